@@ -1,0 +1,138 @@
+// The case file (DESIGN.md §2.1, data/SCHEMA.md): typed, validated structs.
+// The loader (case_loader.cpp) is the single source of truth for what a case may say;
+// everything downstream trusts these values.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace granwave::config {
+
+enum class Model { chain, crystal };
+
+// A material of the case. Beads need mass (given, or density * 4/3 pi R^3) and radius;
+// a wall material needs only E and nu.
+struct Material {
+  std::string name;
+  std::optional<double> mass;     // kg (resolved from density when given that way)
+  std::optional<double> density;  // kg/m^3, as written (mass XOR density in the file)
+  double youngs_modulus = 0.0;    // Pa
+  double poisson_ratio = 0.0;
+  std::optional<double> radius;   // m
+  std::string source;             // free text: where the numbers come from
+  bool is_bead() const { return mass.has_value() && radius.has_value(); }
+};
+
+// ---- chain (seed 001) ----
+struct Striker {
+  std::string material;
+  double velocity = 0.0;  // m/s towards the wall
+};
+
+// One ordered piece of the chain, from the striker towards the wall.
+struct ChainSegment {
+  enum class Kind { cells, beads } kind = Kind::cells;
+  // cells: one spin per cell; spin 1 = `cell` as written, 0 = reversed.
+  std::string spins;       // resolved spin string (explicit, or drawn from count/n_up/seed)
+  bool flippable = false;  // cells whose orientation is a random variable of the study
+  bool counts_for_m = false;  // counted in M of eq. (15) (default: = flippable)
+  bool drawn = false;      // spins were drawn from (count, n_up, seed)
+  int count = 0;           // number of cells
+  int n_up = 0;            // number of up spins
+  std::uint64_t seed = 0;  // RNG seed of a drawn segment
+  // beads: single beads (sensors, buffers), repeated `repeat` times.
+  std::vector<std::string> beads;
+  int repeat = 1;
+};
+
+struct ChainCase {
+  Striker striker;
+  std::string wall = "free";              // a material name or "free"
+  std::vector<std::string> cell;          // materials of one cell, spin-up order
+  double precompression = 0.0;            // static force F0 (N)
+  std::vector<ChainSegment> segments;
+};
+
+// ---- crystal (seed 002) ----
+enum class NormalTension { allow, clip };
+
+struct CrystalCase {
+  std::string lattice = "fcc";
+  std::array<int, 3> cells{0, 0, 0};  // particles per layer in x, y; layers in z
+  double radius = 0.0;                // m (mean radius a)
+  double density = 0.0;               // kg/m^3
+  double overlap = 1e-3;              // initial delta/d at every contact
+  double polydispersity = 0.0;        // half-width of the uniform radius law, in units of delta
+  int fixed_layers = 2;               // at each z end; the bottom ones are the source
+  std::uint64_t seed = 1;             // radii draw
+  double relax_tolerance = 1e-7;      // kinetic/potential energy that ends the relaxation
+};
+
+struct ContactParams {
+  double kn = 0.0;          // N/m
+  double gamma_n = 0.0;     // kg/s
+  double kt = 0.0;          // N/m
+  double gamma_t = 0.0;     // kg/s
+  double mu_static = 0.5;
+  double mu_dynamic = 0.5;
+  NormalTension normal_tension = NormalTension::allow;
+};
+
+struct Excitation {
+  enum class Mode { P, S } mode = Mode::P;
+  enum class Drive { displacement, velocity } drive = Drive::displacement;
+  double amplitude = 1e-4;  // displacement: fraction of d; velocity: m/s
+};
+
+// ---- common ----
+enum class Scheme { verlet, rk4 };
+
+struct Integrator {
+  Scheme scheme = Scheme::verlet;
+  std::optional<double> dt;          // s
+  std::optional<double> dt_over_tc;  // dt as a fraction of the shortest contact time
+  double t_end = 0.0;                // s
+};
+
+// Early stop (ensembles): end a chain run once the leading front has passed `after_bead`
+// by `margin_beads` beads, or at `max_time` whatever happens.
+struct StopRule {
+  bool enabled = false;
+  int after_bead = -1;
+  int margin_beads = 10;
+  double front_threshold = 1e-3;  // fraction of the striker contact's peak force that marks the front
+  std::optional<double> max_time;
+};
+
+struct Output {
+  double interval = 0.0;  // s between stored samples (0: every step)
+  std::vector<std::string> fields;
+  std::vector<int> full_rate_beads;  // chain: sensors stored at every step
+  int vtk_every = 0;                 // crystal: a particle snapshot every N output intervals
+};
+
+struct Case {
+  std::string path;       // the file it was read from
+  std::string toml_text;  // its full text (stored in every trace file)
+  std::string name;
+  Model model = Model::chain;
+  std::vector<Material> materials;  // in file order
+  std::optional<ChainCase> chain;
+  std::optional<CrystalCase> crystal;
+  ContactParams contact;  // crystal only
+  Excitation excitation;  // crystal only
+  Integrator integrator;
+  StopRule stop;          // chain only
+  Output output;
+
+  const Material& material(const std::string& name) const;  // throws InputError
+};
+
+// Read, parse and validate a case file. Throws InputError naming file, key and allowed range.
+Case load_case(const std::string& path);
+// Same, from text (tests; `origin` names it in messages).
+Case parse_case(const std::string& toml_text, const std::string& origin);
+
+}  // namespace granwave::config

@@ -1,0 +1,305 @@
+// The one translation unit that includes H5Cpp.h (it is heavy to compile).
+#include "io/h5.hpp"
+
+#include <H5Cpp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+
+#include "core/error.hpp"
+
+namespace granwave::io {
+namespace {
+
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> parts;
+  std::string cur;
+  for (char c : path) {
+    if (c == '/') {
+      if (!cur.empty()) parts.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) parts.push_back(cur);
+  return parts;
+}
+
+// Open or create every group along `path` (not including the last element when leaf_is_dataset).
+H5::Group ensure_groups(H5::H5File& file, const std::string& path, bool leaf_is_dataset) {
+  auto parts = split_path(path);
+  if (leaf_is_dataset && !parts.empty()) parts.pop_back();
+  H5::Group g = file.openGroup("/");
+  std::string cur;
+  for (const auto& p : parts) {
+    cur += "/" + p;
+    if (file.nameExists(cur)) {
+      g = file.openGroup(cur);
+    } else {
+      g = file.createGroup(cur);
+    }
+  }
+  return g;
+}
+
+std::vector<hsize_t> shape_of(std::vector<std::size_t> dims, std::size_t n) {
+  if (dims.empty()) dims = {n};
+  std::size_t prod = 1;
+  for (auto d : dims) prod *= d;
+  if (prod != n) throw RunError("internal: HDF5 dataset dims do not match the data size");
+  return {dims.begin(), dims.end()};
+}
+
+H5::H5Object* open_object(H5::H5File& file, const std::string& object, std::unique_ptr<H5::H5Object>& holder) {
+  if (object == "/" || object.empty()) {
+    holder = std::make_unique<H5::Group>(file.openGroup("/"));
+  } else {
+    H5O_info2_t info;
+    H5Oget_info_by_name3(file.getId(), object.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT);
+    if (info.type == H5O_TYPE_DATASET) {
+      holder = std::make_unique<H5::DataSet>(file.openDataSet(object));
+    } else {
+      holder = std::make_unique<H5::Group>(file.openGroup(object));
+    }
+  }
+  return holder.get();
+}
+
+}  // namespace
+
+struct H5Writer::Impl {
+  std::string tmp_path;
+  H5::H5File file;
+};
+
+H5Writer::H5Writer(std::string final_path) : impl_(std::make_unique<Impl>()), final_path_(std::move(final_path)) {
+  H5::Exception::dontPrint();
+  impl_->tmp_path = final_path_ + ".tmp";
+  try {
+    impl_->file = H5::H5File(impl_->tmp_path, H5F_ACC_TRUNC);
+  } catch (const H5::Exception& e) {
+    throw RunError("cannot create '" + impl_->tmp_path + "': " + e.getDetailMsg());
+  }
+}
+
+H5Writer::~H5Writer() {
+  if (!committed_ && impl_) {
+    try {
+      impl_->file.close();
+    } catch (...) {
+    }
+    std::remove(impl_->tmp_path.c_str());
+  }
+}
+
+void H5Writer::write(const std::string& path, const std::vector<double>& data, std::vector<std::size_t> dims) {
+  auto shape = shape_of(std::move(dims), data.size());
+  H5::Group g = ensure_groups(impl_->file, path, true);
+  H5::DataSpace space(static_cast<int>(shape.size()), shape.data());
+  H5::DataSet ds = impl_->file.createDataSet(path, H5::PredType::NATIVE_DOUBLE, space);
+  if (!data.empty()) ds.write(data.data(), H5::PredType::NATIVE_DOUBLE);
+}
+
+void H5Writer::write(const std::string& path, const std::vector<std::int64_t>& data, std::vector<std::size_t> dims) {
+  auto shape = shape_of(std::move(dims), data.size());
+  H5::Group g = ensure_groups(impl_->file, path, true);
+  H5::DataSpace space(static_cast<int>(shape.size()), shape.data());
+  H5::DataSet ds = impl_->file.createDataSet(path, H5::PredType::NATIVE_INT64, space);
+  if (!data.empty()) ds.write(data.data(), H5::PredType::NATIVE_INT64);
+}
+
+void H5Writer::write(const std::string& path, const std::vector<std::string>& data) {
+  H5::Group g = ensure_groups(impl_->file, path, true);
+  hsize_t n = data.size();
+  H5::DataSpace space(1, &n);
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  type.setCset(H5T_CSET_UTF8);
+  H5::DataSet ds = impl_->file.createDataSet(path, type, space);
+  std::vector<const char*> ptrs;
+  for (const auto& s : data) ptrs.push_back(s.c_str());
+  if (!data.empty()) ds.write(ptrs.data(), type);
+}
+
+void H5Writer::group(const std::string& path) { ensure_groups(impl_->file, path, false); }
+
+void H5Writer::attr(const std::string& object, const std::string& name, const std::string& value) {
+  std::unique_ptr<H5::H5Object> holder;
+  if (object != "/" && !impl_->file.nameExists(object)) group(object);
+  H5::H5Object* obj = open_object(impl_->file, object, holder);
+  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+  type.setCset(H5T_CSET_UTF8);
+  H5::Attribute a = obj->createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
+  const char* p = value.c_str();
+  a.write(type, &p);
+}
+
+void H5Writer::attr(const std::string& object, const std::string& name, double value) {
+  std::unique_ptr<H5::H5Object> holder;
+  if (object != "/" && !impl_->file.nameExists(object)) group(object);
+  H5::H5Object* obj = open_object(impl_->file, object, holder);
+  H5::Attribute a = obj->createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
+  a.write(H5::PredType::NATIVE_DOUBLE, &value);
+}
+
+void H5Writer::attr(const std::string& object, const std::string& name, std::int64_t value) {
+  std::unique_ptr<H5::H5Object> holder;
+  if (object != "/" && !impl_->file.nameExists(object)) group(object);
+  H5::H5Object* obj = open_object(impl_->file, object, holder);
+  H5::Attribute a = obj->createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
+  a.write(H5::PredType::NATIVE_INT64, &value);
+}
+
+void H5Writer::commit() {
+  if (committed_) return;
+  try {
+    impl_->file.close();
+  } catch (const H5::Exception& e) {
+    throw RunError("cannot close '" + impl_->tmp_path + "': " + e.getDetailMsg());
+  }
+  std::error_code ec;
+  std::filesystem::rename(impl_->tmp_path, final_path_, ec);
+  if (ec) throw RunError("cannot rename '" + impl_->tmp_path + "' to '" + final_path_ + "': " + ec.message());
+  committed_ = true;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+struct H5Reader::Impl {
+  H5::H5File file;
+};
+
+H5Reader::H5Reader(const std::string& path) : impl_(std::make_unique<Impl>()), path_(path) {
+  H5::Exception::dontPrint();
+  if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
+  try {
+    impl_->file = H5::H5File(path, H5F_ACC_RDONLY);
+  } catch (const H5::Exception& e) {
+    throw InputError(path + ": not a readable HDF5 file (" + e.getDetailMsg() + ")");
+  }
+}
+
+H5Reader::~H5Reader() = default;
+
+bool H5Reader::has(const std::string& path) const {
+  // nameExists fails on a missing intermediate group; check each prefix.
+  std::string cur;
+  for (const auto& p : split_path(path)) {
+    cur += "/" + p;
+    if (!impl_->file.nameExists(cur)) return false;
+  }
+  return true;
+}
+
+namespace {
+template <class T>
+std::vector<T> read_numeric(H5::H5File& file, const std::string& file_path, const std::string& path,
+                            const H5::PredType& type, std::vector<std::size_t>* dims) {
+  try {
+    H5::DataSet ds = file.openDataSet(path);
+    H5::DataSpace space = ds.getSpace();
+    int rank = space.getSimpleExtentNdims();
+    std::vector<hsize_t> d(static_cast<std::size_t>(rank));
+    space.getSimpleExtentDims(d.data());
+    std::size_t n = 1;
+    for (auto x : d) n *= x;
+    std::vector<T> out(n);
+    if (n) ds.read(out.data(), type);
+    if (dims) dims->assign(d.begin(), d.end());
+    return out;
+  } catch (const H5::Exception& e) {
+    throw InputError(file_path + ": cannot read dataset '" + path + "' (" + e.getDetailMsg() + ")");
+  }
+}
+}  // namespace
+
+std::vector<double> H5Reader::read_double(const std::string& path, std::vector<std::size_t>* dims) const {
+  return read_numeric<double>(impl_->file, path_, path, H5::PredType::NATIVE_DOUBLE, dims);
+}
+
+std::vector<std::int64_t> H5Reader::read_int(const std::string& path, std::vector<std::size_t>* dims) const {
+  return read_numeric<std::int64_t>(impl_->file, path_, path, H5::PredType::NATIVE_INT64, dims);
+}
+
+std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
+  try {
+    H5::DataSet ds = impl_->file.openDataSet(path);
+    H5::DataSpace space = ds.getSpace();
+    hsize_t n = 0;
+    space.getSimpleExtentDims(&n);
+    H5::DataType ftype = ds.getDataType();
+    std::vector<std::string> out;
+    if (ftype.isVariableStr()) {
+      H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+      std::vector<char*> ptrs(n);
+      if (n) ds.read(ptrs.data(), type);
+      for (auto* p : ptrs) out.emplace_back(p ? p : "");
+      H5Dvlen_reclaim(type.getId(), space.getId(), H5P_DEFAULT, ptrs.data());
+    } else {  // fixed-length strings (h5py writes these for numpy 'S' arrays)
+      std::size_t len = ftype.getSize();
+      std::vector<char> buf(n * len);
+      if (n) ds.read(buf.data(), H5::StrType(H5::PredType::C_S1, len));
+      for (hsize_t i = 0; i < n; ++i) {
+        std::string s(buf.data() + i * len, len);
+        out.push_back(s.substr(0, s.find('\0')));
+      }
+    }
+    return out;
+  } catch (const H5::Exception& e) {
+    throw InputError(path_ + ": cannot read strings '" + path + "' (" + e.getDetailMsg() + ")");
+  }
+}
+
+bool H5Reader::has_attr(const std::string& object, const std::string& name) const {
+  if (object != "/" && !has(object)) return false;
+  return H5Aexists_by_name(impl_->file.getId(), object.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::string H5Reader::attr_string(const std::string& object, const std::string& name) const {
+  try {
+    std::unique_ptr<H5::H5Object> holder;
+    H5::H5Object* obj = open_object(impl_->file, object, holder);
+    H5::Attribute a = obj->openAttribute(name);
+    H5::StrType type = a.getStrType();
+    std::string out;
+    a.read(type, out);
+    return out;
+  } catch (const H5::Exception& e) {
+    throw InputError(path_ + ": cannot read attribute '" + name + "' of '" + object + "'");
+  }
+}
+
+double H5Reader::attr_double(const std::string& object, const std::string& name) const {
+  try {
+    std::unique_ptr<H5::H5Object> holder;
+    H5::H5Object* obj = open_object(impl_->file, object, holder);
+    H5::Attribute a = obj->openAttribute(name);
+    double v = 0;
+    a.read(H5::PredType::NATIVE_DOUBLE, &v);
+    return v;
+  } catch (const H5::Exception& e) {
+    throw InputError(path_ + ": cannot read attribute '" + name + "' of '" + object + "'");
+  }
+}
+
+std::string utc_now_iso8601() {
+  std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+void write_provenance(H5Writer& w, const std::string& code) {
+  w.attr("/", "schema_version", std::int64_t{1});
+  w.attr("/", "code", code);
+  w.attr("/", "code_version", std::string(GRANWAVE_VERSION));
+  w.attr("/", "git_describe", std::string(GRANWAVE_GIT_DESCRIBE));
+  w.attr("/", "created_utc", utc_now_iso8601());
+  w.attr("/", "units", std::string("SI"));
+}
+
+}  // namespace granwave::io

@@ -1,0 +1,63 @@
+// A thin HDF5 layer (the only header the rest of granwave needs; H5Cpp stays in h5.cpp).
+// Files are written to NAME.tmp and renamed on commit(): a crash never leaves a half file
+// under the final name (HDF5 files are not crash-safe in place).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace granwave::io {
+
+class H5Writer {
+ public:
+  explicit H5Writer(std::string final_path);
+  ~H5Writer();  // removes the temporary file unless commit() succeeded
+  H5Writer(const H5Writer&) = delete;
+  H5Writer& operator=(const H5Writer&) = delete;
+
+  // Datasets: `path` like "/chain/contact_force"; parent groups are created on demand.
+  // dims multiply to data.size(); row-major ([nt, n] = nt rows).
+  void write(const std::string& path, const std::vector<double>& data, std::vector<std::size_t> dims = {});
+  void write(const std::string& path, const std::vector<std::int64_t>& data, std::vector<std::size_t> dims = {});
+  void write(const std::string& path, const std::vector<std::string>& data);
+  // Attributes on a group or dataset ("/" for the root).
+  void attr(const std::string& object, const std::string& name, const std::string& value);
+  void attr(const std::string& object, const std::string& name, double value);
+  void attr(const std::string& object, const std::string& name, std::int64_t value);
+  void group(const std::string& path);
+
+  void commit();  // close and rename NAME.tmp -> NAME
+  const std::string& path() const { return final_path_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string final_path_;
+  bool committed_ = false;
+};
+
+class H5Reader {
+ public:
+  explicit H5Reader(const std::string& path);  // throws InputError if unreadable
+  ~H5Reader();
+  bool has(const std::string& path) const;
+  std::vector<double> read_double(const std::string& path, std::vector<std::size_t>* dims = nullptr) const;
+  std::vector<std::int64_t> read_int(const std::string& path, std::vector<std::size_t>* dims = nullptr) const;
+  std::vector<std::string> read_strings(const std::string& path) const;
+  bool has_attr(const std::string& object, const std::string& name) const;
+  std::string attr_string(const std::string& object, const std::string& name) const;
+  double attr_double(const std::string& object, const std::string& name) const;
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string path_;
+};
+
+// Root attributes every granwave file carries: code, version, git describe, UTC time.
+void write_provenance(H5Writer& w, const std::string& code = "granwave");
+std::string utc_now_iso8601();
+
+}  // namespace granwave::io

@@ -1,0 +1,34 @@
+// The entry points the command line calls for each model. src/chain/ and src/crystal/ each
+// implement their namespace; src/cli/ only parses arguments and dispatches here.
+#pragma once
+#include <iosfwd>
+#include <string>
+
+#include "config/case.hpp"
+
+namespace granwave {
+
+struct RunRequest {
+  std::string trace_path;   // where the trace file goes (written via NAME.tmp, renamed when done)
+  std::string system_path;  // optional: a system file from `granwave build` to run instead of building
+  bool json = false;        // print a machine-readable summary (one JSON object) on stdout
+  bool quiet = false;       // no progress on stderr
+};
+
+namespace chain {
+// Print the resolved chain and the derived numbers; throws InputError when the case must be
+// refused (e.g. dt above the stability limit). Warnings go to `out` too.
+void check(const config::Case& c, std::ostream& out);
+// Resolve the chain (spins, masses, constants, overlaps) and write the system file.
+void build(const config::Case& c, const std::string& system_path);
+// Simulate and write the trace file; prints the summary (text or JSON). Returns the exit code.
+int run(const config::Case& c, const RunRequest& request, std::ostream& out);
+}  // namespace chain
+
+namespace crystal {
+void check(const config::Case& c, std::ostream& out);
+void build(const config::Case& c, const std::string& system_path);
+int run(const config::Case& c, const RunRequest& request, std::ostream& out);
+}  // namespace crystal
+
+}  // namespace granwave
