@@ -29,20 +29,14 @@ std::vector<std::string> split_path(const std::string& path) {
 }
 
 // Open or create every group along `path` (not including the last element when leaf_is_dataset).
-H5::Group ensure_groups(H5::H5File& file, const std::string& path, bool leaf_is_dataset) {
+void ensure_groups(H5::H5File& file, const std::string& path, bool leaf_is_dataset) {
   auto parts = split_path(path);
   if (leaf_is_dataset && !parts.empty()) parts.pop_back();
-  H5::Group g = file.openGroup("/");
   std::string cur;
   for (const auto& p : parts) {
     cur += "/" + p;
-    if (file.nameExists(cur)) {
-      g = file.openGroup(cur);
-    } else {
-      g = file.createGroup(cur);
-    }
+    if (!file.nameExists(cur)) file.createGroup(cur);
   }
-  return g;
 }
 
 std::vector<hsize_t> shape_of(std::vector<std::size_t> dims, std::size_t n) {
@@ -53,33 +47,40 @@ std::vector<hsize_t> shape_of(std::vector<std::size_t> dims, std::size_t n) {
   return {dims.begin(), dims.end()};
 }
 
-H5::H5Object* open_object(H5::H5File& file, const std::string& object, std::unique_ptr<H5::H5Object>& holder) {
-  if (object == "/" || object.empty()) {
-    holder = std::make_unique<H5::Group>(file.openGroup("/"));
-  } else {
-    H5O_info2_t info;
-    H5Oget_info_by_name3(file.getId(), object.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT);
-    if (info.type == H5O_TYPE_DATASET) {
-      holder = std::make_unique<H5::DataSet>(file.openDataSet(object));
-    } else {
-      holder = std::make_unique<H5::Group>(file.openGroup(object));
-    }
-  }
-  return holder.get();
+// An HDF5 object (group or dataset) opened by path, closed on scope exit (C API: attributes
+// work the same on both, which the C++ API's protected H5Object does not let us share).
+struct ObjectHandle {
+  hid_t id;
+  ObjectHandle(hid_t file, const std::string& object) : id(H5Oopen(file, object.empty() ? "/" : object.c_str(), H5P_DEFAULT)) {}
+  ~ObjectHandle() { if (id >= 0) H5Oclose(id); }
+  ObjectHandle(const ObjectHandle&) = delete;
+  ObjectHandle& operator=(const ObjectHandle&) = delete;
+};
+
+void write_attr(hid_t file, const std::string& object, const std::string& name, hid_t type, const void* value) {
+  ObjectHandle obj(file, object);
+  if (obj.id < 0) throw RunError("internal: no HDF5 object '" + object + "'");
+  if (H5Aexists(obj.id, name.c_str()) > 0) H5Adelete(obj.id, name.c_str());
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t a = H5Acreate2(obj.id, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+  herr_t err = a >= 0 ? H5Awrite(a, type, value) : -1;
+  if (a >= 0) H5Aclose(a);
+  H5Sclose(space);
+  if (err < 0) throw RunError("internal: cannot write HDF5 attribute '" + name + "' on '" + object + "'");
 }
 
 }  // namespace
 
 struct H5Writer::Impl {
   std::string tmp_path;
-  H5::H5File file;
+  std::unique_ptr<H5::H5File> file;
 };
 
 H5Writer::H5Writer(std::string final_path) : impl_(std::make_unique<Impl>()), final_path_(std::move(final_path)) {
   H5::Exception::dontPrint();
   impl_->tmp_path = final_path_ + ".tmp";
   try {
-    impl_->file = H5::H5File(impl_->tmp_path, H5F_ACC_TRUNC);
+    impl_->file = std::make_unique<H5::H5File>(impl_->tmp_path, H5F_ACC_TRUNC);
   } catch (const H5::Exception& e) {
     throw RunError("cannot create '" + impl_->tmp_path + "': " + e.getDetailMsg());
   }
@@ -88,7 +89,7 @@ H5Writer::H5Writer(std::string final_path) : impl_(std::make_unique<Impl>()), fi
 H5Writer::~H5Writer() {
   if (!committed_ && impl_) {
     try {
-      impl_->file.close();
+      impl_->file->close();
     } catch (...) {
     }
     std::remove(impl_->tmp_path.c_str());
@@ -97,65 +98,56 @@ H5Writer::~H5Writer() {
 
 void H5Writer::write(const std::string& path, const std::vector<double>& data, std::vector<std::size_t> dims) {
   auto shape = shape_of(std::move(dims), data.size());
-  H5::Group g = ensure_groups(impl_->file, path, true);
+  ensure_groups(*impl_->file, path, true);
   H5::DataSpace space(static_cast<int>(shape.size()), shape.data());
-  H5::DataSet ds = impl_->file.createDataSet(path, H5::PredType::NATIVE_DOUBLE, space);
+  H5::DataSet ds = impl_->file->createDataSet(path, H5::PredType::NATIVE_DOUBLE, space);
   if (!data.empty()) ds.write(data.data(), H5::PredType::NATIVE_DOUBLE);
 }
 
 void H5Writer::write(const std::string& path, const std::vector<std::int64_t>& data, std::vector<std::size_t> dims) {
   auto shape = shape_of(std::move(dims), data.size());
-  H5::Group g = ensure_groups(impl_->file, path, true);
+  ensure_groups(*impl_->file, path, true);
   H5::DataSpace space(static_cast<int>(shape.size()), shape.data());
-  H5::DataSet ds = impl_->file.createDataSet(path, H5::PredType::NATIVE_INT64, space);
+  H5::DataSet ds = impl_->file->createDataSet(path, H5::PredType::NATIVE_INT64, space);
   if (!data.empty()) ds.write(data.data(), H5::PredType::NATIVE_INT64);
 }
 
 void H5Writer::write(const std::string& path, const std::vector<std::string>& data) {
-  H5::Group g = ensure_groups(impl_->file, path, true);
+  ensure_groups(*impl_->file, path, true);
   hsize_t n = data.size();
   H5::DataSpace space(1, &n);
   H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
   type.setCset(H5T_CSET_UTF8);
-  H5::DataSet ds = impl_->file.createDataSet(path, type, space);
+  H5::DataSet ds = impl_->file->createDataSet(path, type, space);
   std::vector<const char*> ptrs;
   for (const auto& s : data) ptrs.push_back(s.c_str());
   if (!data.empty()) ds.write(ptrs.data(), type);
 }
 
-void H5Writer::group(const std::string& path) { ensure_groups(impl_->file, path, false); }
+void H5Writer::group(const std::string& path) { ensure_groups(*impl_->file, path, false); }
 
 void H5Writer::attr(const std::string& object, const std::string& name, const std::string& value) {
-  std::unique_ptr<H5::H5Object> holder;
-  if (object != "/" && !impl_->file.nameExists(object)) group(object);
-  H5::H5Object* obj = open_object(impl_->file, object, holder);
+  if (object != "/" && !impl_->file->nameExists(object)) group(object);
   H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
   type.setCset(H5T_CSET_UTF8);
-  H5::Attribute a = obj->createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
   const char* p = value.c_str();
-  a.write(type, &p);
+  write_attr(impl_->file->getId(), object, name, type.getId(), &p);
 }
 
 void H5Writer::attr(const std::string& object, const std::string& name, double value) {
-  std::unique_ptr<H5::H5Object> holder;
-  if (object != "/" && !impl_->file.nameExists(object)) group(object);
-  H5::H5Object* obj = open_object(impl_->file, object, holder);
-  H5::Attribute a = obj->createAttribute(name, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
-  a.write(H5::PredType::NATIVE_DOUBLE, &value);
+  if (object != "/" && !impl_->file->nameExists(object)) group(object);
+  write_attr(impl_->file->getId(), object, name, H5T_NATIVE_DOUBLE, &value);
 }
 
 void H5Writer::attr(const std::string& object, const std::string& name, std::int64_t value) {
-  std::unique_ptr<H5::H5Object> holder;
-  if (object != "/" && !impl_->file.nameExists(object)) group(object);
-  H5::H5Object* obj = open_object(impl_->file, object, holder);
-  H5::Attribute a = obj->createAttribute(name, H5::PredType::NATIVE_INT64, H5::DataSpace(H5S_SCALAR));
-  a.write(H5::PredType::NATIVE_INT64, &value);
+  if (object != "/" && !impl_->file->nameExists(object)) group(object);
+  write_attr(impl_->file->getId(), object, name, H5T_NATIVE_INT64, &value);
 }
 
 void H5Writer::commit() {
   if (committed_) return;
   try {
-    impl_->file.close();
+    impl_->file->close();
   } catch (const H5::Exception& e) {
     throw RunError("cannot close '" + impl_->tmp_path + "': " + e.getDetailMsg());
   }
@@ -168,14 +160,14 @@ void H5Writer::commit() {
 // ---------------------------------------------------------------------------------------------
 
 struct H5Reader::Impl {
-  H5::H5File file;
+  std::unique_ptr<H5::H5File> file;
 };
 
 H5Reader::H5Reader(const std::string& path) : impl_(std::make_unique<Impl>()), path_(path) {
   H5::Exception::dontPrint();
   if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
   try {
-    impl_->file = H5::H5File(path, H5F_ACC_RDONLY);
+    impl_->file = std::make_unique<H5::H5File>(path, H5F_ACC_RDONLY);
   } catch (const H5::Exception& e) {
     throw InputError(path + ": not a readable HDF5 file (" + e.getDetailMsg() + ")");
   }
@@ -188,7 +180,7 @@ bool H5Reader::has(const std::string& path) const {
   std::string cur;
   for (const auto& p : split_path(path)) {
     cur += "/" + p;
-    if (!impl_->file.nameExists(cur)) return false;
+    if (!impl_->file->nameExists(cur)) return false;
   }
   return true;
 }
@@ -216,16 +208,16 @@ std::vector<T> read_numeric(H5::H5File& file, const std::string& file_path, cons
 }  // namespace
 
 std::vector<double> H5Reader::read_double(const std::string& path, std::vector<std::size_t>* dims) const {
-  return read_numeric<double>(impl_->file, path_, path, H5::PredType::NATIVE_DOUBLE, dims);
+  return read_numeric<double>(*impl_->file, path_, path, H5::PredType::NATIVE_DOUBLE, dims);
 }
 
 std::vector<std::int64_t> H5Reader::read_int(const std::string& path, std::vector<std::size_t>* dims) const {
-  return read_numeric<std::int64_t>(impl_->file, path_, path, H5::PredType::NATIVE_INT64, dims);
+  return read_numeric<std::int64_t>(*impl_->file, path_, path, H5::PredType::NATIVE_INT64, dims);
 }
 
 std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   try {
-    H5::DataSet ds = impl_->file.openDataSet(path);
+    H5::DataSet ds = impl_->file->openDataSet(path);
     H5::DataSpace space = ds.getSpace();
     hsize_t n = 0;
     space.getSimpleExtentDims(&n);
@@ -254,34 +246,47 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
 
 bool H5Reader::has_attr(const std::string& object, const std::string& name) const {
   if (object != "/" && !has(object)) return false;
-  return H5Aexists_by_name(impl_->file.getId(), object.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+  return H5Aexists_by_name(impl_->file->getId(), object.c_str(), name.c_str(), H5P_DEFAULT) > 0;
 }
 
 std::string H5Reader::attr_string(const std::string& object, const std::string& name) const {
-  try {
-    std::unique_ptr<H5::H5Object> holder;
-    H5::H5Object* obj = open_object(impl_->file, object, holder);
-    H5::Attribute a = obj->openAttribute(name);
-    H5::StrType type = a.getStrType();
-    std::string out;
-    a.read(type, out);
-    return out;
-  } catch (const H5::Exception& e) {
-    throw InputError(path_ + ": cannot read attribute '" + name + "' of '" + object + "'");
+  ObjectHandle obj(impl_->file->getId(), object);
+  hid_t a = obj.id >= 0 ? H5Aopen(obj.id, name.c_str(), H5P_DEFAULT) : -1;
+  if (a < 0) throw InputError(path_ + ": no attribute '" + name + "' on '" + object + "'");
+  hid_t ftype = H5Aget_type(a);
+  std::string out;
+  herr_t err;
+  if (H5Tis_variable_str(ftype) > 0) {
+    char* p = nullptr;
+    hid_t mtype = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mtype, H5T_VARIABLE);
+    err = H5Aread(a, mtype, &p);
+    if (err >= 0 && p) { out = p; H5free_memory(p); }
+    H5Tclose(mtype);
+  } else {  // fixed-length (h5py writes numpy bytes this way)
+    std::size_t len = H5Tget_size(ftype);
+    std::vector<char> buf(len + 1, '\0');
+    hid_t mtype = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mtype, len);
+    err = H5Aread(a, mtype, buf.data());
+    out = std::string(buf.data());
+    H5Tclose(mtype);
   }
+  H5Tclose(ftype);
+  H5Aclose(a);
+  if (err < 0) throw InputError(path_ + ": cannot read attribute '" + name + "' of '" + object + "' as text");
+  return out;
 }
 
 double H5Reader::attr_double(const std::string& object, const std::string& name) const {
-  try {
-    std::unique_ptr<H5::H5Object> holder;
-    H5::H5Object* obj = open_object(impl_->file, object, holder);
-    H5::Attribute a = obj->openAttribute(name);
-    double v = 0;
-    a.read(H5::PredType::NATIVE_DOUBLE, &v);
-    return v;
-  } catch (const H5::Exception& e) {
-    throw InputError(path_ + ": cannot read attribute '" + name + "' of '" + object + "'");
-  }
+  ObjectHandle obj(impl_->file->getId(), object);
+  hid_t a = obj.id >= 0 ? H5Aopen(obj.id, name.c_str(), H5P_DEFAULT) : -1;
+  if (a < 0) throw InputError(path_ + ": no attribute '" + name + "' on '" + object + "'");
+  double v = 0;
+  herr_t err = H5Aread(a, H5T_NATIVE_DOUBLE, &v);  // converts integer attributes too
+  H5Aclose(a);
+  if (err < 0) throw InputError(path_ + ": cannot read attribute '" + name + "' of '" + object + "' as a number");
+  return v;
 }
 
 std::string utc_now_iso8601() {
