@@ -1,0 +1,29 @@
+// One function per verb, one file per verb (src/cli/<verb>.cpp). `args` excludes the program
+// and the verb. Verbs throw InputError for bad input (main exits 2) and RunError for a failed
+// run (exit 1); they print their own --help.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace granwave::cli {
+
+using Args = std::vector<std::string>;
+
+int cmd_check(const Args& args);
+int cmd_build(const Args& args);
+int cmd_run(const Args& args);
+int cmd_analyze(const Args& args);
+int cmd_theory(const Args& args);
+int cmd_sweep(const Args& args);
+int cmd_figures(const Args& args);
+
+// Small shared helpers for argument parsing (src/cli/args.cpp).
+bool wants_help(const Args& args);
+// Value of "-o X" / "--output X" style options; empty when absent. Throws InputError when the
+// option is last with no value.
+std::string option_value(const Args& args, const std::string& short_name, const std::string& long_name);
+bool has_flag(const Args& args, const std::string& name);
+// Positional arguments (not options and not option values). `valued` lists options taking a value.
+std::vector<std::string> positionals(const Args& args, const std::vector<std::string>& valued);
+
+}  // namespace granwave::cli
