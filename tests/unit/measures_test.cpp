@@ -1,0 +1,90 @@
+// The measures of DESIGN.md §2.4 on signals whose answers are known in closed form.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "analysis/measures.hpp"
+
+using namespace granwave::analysis;
+
+namespace {
+std::vector<double> linspace(double a, double b, int n) {
+  std::vector<double> v(n);
+  for (int i = 0; i < n; ++i) v[i] = a + (b - a) * i / (n - 1);
+  return v;
+}
+}  // namespace
+
+TEST_CASE("first peak of a parabola-shaped bump is exact", "[measures]") {
+  // y = 1 - ((t - 0.3137)/0.1)^2 inside the bump: a parabola, so the 3-point refinement is exact.
+  auto t = linspace(0.0, 1.0, 101);
+  std::vector<double> y(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) y[i] = std::max(0.0, 1.0 - std::pow((t[i] - 0.3137) / 0.1, 2));
+  Peak p = first_peak(t, y);
+  REQUIRE(p.found);
+  CHECK(p.time == Approx(0.3137).epsilon(1e-12));
+  CHECK(p.value == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("first peak ignores precursors below 30 % and takes the first hump above", "[measures]") {
+  auto t = linspace(0.0, 10.0, 1001);
+  std::vector<double> y(t.size());
+  auto bump = [](double t, double c, double a) { return a * std::exp(-std::pow((t - c) / 0.3, 2)); };
+  for (std::size_t i = 0; i < t.size(); ++i) y[i] = bump(t[i], 2.0, 0.2) + bump(t[i], 5.0, 0.6) + bump(t[i], 8.0, 1.0);
+  Peak p = first_peak(t, y);
+  REQUIRE(p.found);
+  CHECK(p.time == Approx(5.0).margin(2e-3));   // the 0.6 hump: first above 0.3 of the max
+  CHECK(p.value == Approx(0.6).epsilon(1e-3));
+  SignalMeasures m = measure_signal(t, y);
+  // Half-peak crossing of a Gaussian: c - w sqrt(ln 2) (the 0.2 hump never reaches 0.3).
+  CHECK(m.half_peak.time == Approx(5.0 - 0.3 * std::sqrt(std::log(2.0))).margin(1e-3));
+}
+
+TEST_CASE("arrivals and duration of a half-sine pulse", "[measures]") {
+  // y = sin(pi (t - 1)/2) on [1, 3], 0 elsewhere: 1 % crossings at 1 + (2/pi) asin(0.01) and its mirror.
+  auto t = linspace(0.0, 4.0, 40001);
+  std::vector<double> y(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) y[i] = (t[i] > 1 && t[i] < 3) ? std::sin(M_PI * (t[i] - 1) / 2) : 0.0;
+  SignalMeasures m = measure_signal(t, y);
+  const double a = 2.0 / M_PI * std::asin(0.01);
+  CHECK(m.one_percent.time == Approx(1.0 + a).margin(1e-6));
+  CHECK(m.half_peak.time == Approx(1.0 + 2.0 / M_PI * std::asin(0.5)).margin(1e-6));
+  CHECK(m.duration == Approx(2.0 - 2 * a).margin(1e-6));
+  CHECK(m.first_peak.time == Approx(2.0).margin(1e-6));
+  CHECK(m.leading_pulse.value == Approx(1.0).margin(1e-6));
+}
+
+TEST_CASE("leading-pulse maximum finds the larger second hump of one pulse", "[measures]") {
+  auto t = linspace(0.0, 10.0, 2001);
+  std::vector<double> y(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    y[i] = 0.6 * std::exp(-std::pow((t[i] - 4.0) / 0.5, 2)) + 1.0 * std::exp(-std::pow((t[i] - 5.0) / 0.5, 2));
+  }
+  SignalMeasures m = measure_signal(t, y);
+  CHECK(m.first_peak.time < 4.5);
+  CHECK(m.leading_pulse.time > 4.8);
+  CHECK(m.leading_pulse.value > m.first_peak.value);
+}
+
+TEST_CASE("line fit recovers slope and its standard error", "[measures]") {
+  std::vector<double> x{0, 1, 2, 3, 4}, y{1, 3, 5, 7, 9};
+  LineFit f = fit_line(x, y);
+  CHECK(f.slope == Approx(2.0));
+  CHECK(f.intercept == Approx(1.0));
+  CHECK(f.slope_error == Approx(0.0).margin(1e-12));
+  // Residuals +e, -e pattern: known closed-form standard error.
+  std::vector<double> y2{1.1, 2.9, 5.1, 6.9, 9.1};
+  LineFit g = fit_line(x, y2);
+  // s2 = sum r^2/(n-2) with r from the fit; sxx = 10.
+  double ss = 0;
+  for (int i = 0; i < 5; ++i) ss += std::pow(y2[i] - g.intercept - g.slope * x[i], 2);
+  CHECK(g.slope_error == Approx(std::sqrt(ss / 3.0 / 10.0)));
+  CHECK(g.slope_error > 0.0);
+}
+
+TEST_CASE("a signal that never rises has no peak", "[measures]") {
+  std::vector<double> t{0, 1, 2}, y{0, -1, -2};
+  CHECK_FALSE(first_peak(t, y).found);
+  CHECK_FALSE(measure_signal(t, y).half_peak.found);
+}
