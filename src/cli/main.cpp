@@ -1,1 +1,67 @@
-int main() { return 0; }
+// granwave: one verb per file in src/cli/. Exit codes (DESIGN.md §2.3): 0 success,
+// 2 bad input, 1 a failed run or check.
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "cli/verbs.hpp"
+#include "core/error.hpp"
+
+namespace {
+
+constexpr const char* kUsage = R"(granwave — a reference solver for waves in granular media
+
+usage: granwave VERB [ARGS] (granwave VERB --help for each verb)
+
+  build CASE.toml -o system.h5          resolve spins, radii, relaxation; write the system file
+  run CASE.toml [-o traces.h5] [--system system.h5] [--json] [--quiet]
+                                        simulate one case and write its trace file
+  check CASE.toml                       validate; print the resolved case and derived numbers
+  analyze traces.h5 [--json] [--layers LO:HI]
+                                        wave speeds, arrivals, peaks, dispersion (any code's traces)
+  theory CASE.toml [--json]             stiffness tensor, V_p, V_s, omega_0, t_c
+  sweep STUDY.toml [-o study.h5] [--quiet]
+                                        ensembles and parameter studies, resumable
+  figures chain|crystal [--out DIR]     the seeds' figures as PNG, from fresh runs
+  version                               print the version
+
+Exit codes: 0 success, 2 bad input, 1 a failed run.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace granwave;
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+    std::cout << kUsage;
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string verb = argv[1];
+  cli::Args args(argv + 2, argv + argc);
+  const std::map<std::string, int (*)(const cli::Args&)> verbs{
+      {"build", cli::cmd_build},   {"run", cli::cmd_run},       {"check", cli::cmd_check},     {"analyze", cli::cmd_analyze},
+      {"theory", cli::cmd_theory}, {"sweep", cli::cmd_sweep},   {"figures", cli::cmd_figures},
+  };
+  if (verb == "version" || verb == "--version") {
+    std::cout << "granwave " << GRANWAVE_VERSION << " (" << GRANWAVE_GIT_DESCRIBE << ")\n";
+    return 0;
+  }
+  auto it = verbs.find(verb);
+  if (it == verbs.end()) {
+    std::cerr << "granwave: unknown verb '" << verb << "' (try granwave --help)\n";
+    return 2;
+  }
+  try {
+    return it->second(args);
+  } catch (const InputError& e) {
+    std::cerr << "granwave " << verb << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const RunError& e) {
+    std::cerr << "granwave " << verb << ": run failed: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "granwave " << verb << ": internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

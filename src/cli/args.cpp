@@ -1,0 +1,38 @@
+#include <algorithm>
+
+#include "cli/verbs.hpp"
+#include "core/error.hpp"
+
+namespace granwave::cli {
+
+bool wants_help(const Args& args) {
+  return std::any_of(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; });
+}
+
+std::string option_value(const Args& args, const std::string& short_name, const std::string& long_name) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if ((!short_name.empty() && args[i] == short_name) || args[i] == long_name) {
+      if (i + 1 >= args.size()) throw InputError("option " + args[i] + " needs a value");
+      return args[i + 1];
+    }
+    if (args[i].rfind(long_name + "=", 0) == 0) return args[i].substr(long_name.size() + 1);
+  }
+  return {};
+}
+
+bool has_flag(const Args& args, const std::string& name) { return std::find(args.begin(), args.end(), name) != args.end(); }
+
+std::vector<std::string> positionals(const Args& args, const std::vector<std::string>& valued) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (std::find(valued.begin(), valued.end(), args[i]) != valued.end()) {
+      ++i;
+      continue;
+    }
+    if (args[i].rfind("-", 0) == 0) continue;
+    out.push_back(args[i]);
+  }
+  return out;
+}
+
+}  // namespace granwave::cli
