@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# README command 1: install, build, and run the main job on the default case.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+mkdir -p out
+echo "==> granwave run data/cases/oriented20.toml"
+./build/granwave run data/cases/oriented20.toml -o out/oriented20.traces.h5

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Install what is missing (Debian 12 packages only), then configure and build granwave (Release).
+# Used by both README commands; safe to run again (installs nothing that is already there).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake pkg-config git
+  libeigen3-dev libhdf5-dev hdf5-tools catch2 libtomlplusplus-dev libfftw3-dev libbenchmark-dev
+  python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pytest
+  yade liggghts
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "==> installing: ${missing[*]}"
+  if [[ $(id -u) -ne 0 ]]; then SUDO=sudo; else SUDO=; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -q
+  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+echo "==> building granwave (Release) in build/"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
+cmake --build build -j"$(nproc)"

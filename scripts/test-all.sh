@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# README command 2 (and .ci/run): install, build, and run every test:
+#   1. ctest on the Release build (labels unit, physics, regression, cli, slow),
+#   2. the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
+#   3. pytest for the cross-code harness (real YADE and LIGGGHTS runs).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+jobs=$(nproc)
+
+echo "==> sanitizer build (ASan + UBSan) in build-sanitize/"
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DGRANWAVE_BENCH=OFF \
+  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" > build-sanitize.configure.log 2>&1 || { cat build-sanitize.configure.log; exit 1; }
+cmake --build build-sanitize -j"$jobs"
+echo "==> unit tests under sanitizers"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-sanitize -L unit --output-on-failure -j"$jobs"
+
+if [[ -d tests/crosscheck ]] && ls tests/crosscheck/test_*.py > /dev/null 2>&1; then
+  echo "==> pytest: cross-code harness"
+  PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q tests/crosscheck
+fi
+
+echo "==> ctest: every test of the Release build"
+ctest --test-dir build --output-on-failure -j"$jobs"
