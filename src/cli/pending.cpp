@@ -22,5 +22,6 @@ namespace cli {
 [[gnu::weak]] int cmd_theory(const Args&) { GRANWAVE_PENDING("granwave theory"); }
 [[gnu::weak]] int cmd_sweep(const Args&) { GRANWAVE_PENDING("granwave sweep"); }
 [[gnu::weak]] int cmd_figures(const Args&) { GRANWAVE_PENDING("granwave figures"); }
+[[gnu::weak]] int figures_crystal(const Args&) { GRANWAVE_PENDING("granwave figures crystal"); }
 }  // namespace cli
 }  // namespace granwave

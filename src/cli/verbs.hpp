@@ -16,6 +16,8 @@ int cmd_analyze(const Args& args);
 int cmd_theory(const Args& args);
 int cmd_sweep(const Args& args);
 int cmd_figures(const Args& args);
+// The crystal half of `granwave figures` (seed 002's figures), called by cmd_figures.
+int figures_crystal(const Args& args);
 
 // Small shared helpers for argument parsing (src/cli/args.cpp).
 bool wants_help(const Args& args);
