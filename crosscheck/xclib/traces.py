@@ -1,0 +1,223 @@
+"""Case and system reading, trace writing (data/SCHEMA.md §2-3) and the one layer-stress definition.
+
+Used by the YADE script (under YADE's /usr/bin/python3), the LIGGGHTS converter and the harness.
+Only numpy, h5py and tomllib: nothing here may import YADE or LIGGGHTS.
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import math
+import os
+import subprocess
+import tomllib
+
+import h5py
+import numpy as np
+
+SCHEMA_VERSION = 1
+
+# Every trace dataset by model (SCHEMA.md §3); `[output] fields` selects among them.
+CHAIN_FIELDS = ("bead_force", "contact_force")
+CRYSTAL_FIELDS = ("layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
+                  "layer_velocity_z", "layer_velocity_x", "coordination")
+
+
+# ---------------------------------------------------------------- case and system
+def load_case(path: str) -> tuple[dict, str]:
+    """The case as a dict (TOML) and its exact text. Validation is granwave's job (`granwave check`);
+    here only what the drivers need is read, with defaults from SCHEMA.md §1."""
+    with open(path, "rb") as f:
+        raw = f.read()
+    return tomllib.loads(raw.decode()), raw.decode()
+
+
+def contact_params(case: dict) -> dict:
+    c = dict(kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5, normal_tension="allow")
+    c.update(case.get("contact", {}))
+    return c
+
+
+def excitation(case: dict) -> dict:
+    e = dict(mode="P", drive="displacement", amplitude=1e-4)
+    e.update(case.get("excitation", {}))
+    return e
+
+
+def read_system(path: str) -> dict:
+    """All datasets (numpy arrays) and root attributes of a system file (SCHEMA.md §2)."""
+    out: dict = {"attrs": {}}
+    with h5py.File(path, "r") as f:
+        g = f["/system"] if "system" in f and isinstance(f["system"], h5py.Group) else f
+        for k, v in g.attrs.items():
+            out["attrs"][k] = v.decode() if isinstance(v, bytes) else (v.item() if hasattr(v, "item") and np.ndim(v) == 0 else v)
+        for k, v in g.items():
+            if isinstance(v, h5py.Dataset):
+                a = v[()]
+                if a.dtype.kind in "SO":
+                    a = [x.decode() if isinstance(x, bytes) else str(x) for x in np.atleast_1d(a)]
+                out[k] = a
+    return out
+
+
+def timestep(case: dict, system: dict) -> float:
+    """dt of the run. `dt` is taken as written; `dt_over_tc` needs the shortest contact time, which
+    only granwave resolves for chains: a system attribute `dt` (when granwave writes one) wins."""
+    integ = case.get("integrator", {})
+    if "dt" in system["attrs"]:
+        return float(system["attrs"]["dt"])
+    if "dt" in integ:
+        return float(integ["dt"])
+    if "dt_over_tc" in integ and case["case"]["model"] == "crystal":
+        c = contact_params(case)
+        m = float(np.min(system["mass"]))
+        mstar = m / 2.0
+        eta = c["gamma_n"] / (2 * mstar)
+        tc = math.pi / math.sqrt(c["kn"] / mstar - eta * eta)
+        return float(integ["dt_over_tc"]) * tc
+    raise ValueError("case gives dt_over_tc for a chain and the system file has no resolved `dt` attribute")
+
+
+def sampling(case: dict, dt: float) -> tuple[int, int]:
+    """(number of steps, steps between stored samples); interval rounded to whole steps (SCHEMA §1)."""
+    t_end = float(case["integrator"]["t_end"])
+    nsteps = int(round(t_end / dt))
+    interval = float(case.get("output", {}).get("interval", 0.0))
+    every = max(1, int(round(interval / dt))) if interval > 0 else 1
+    return nsteps, every
+
+
+def chain_layout(system: dict) -> dict:
+    """Chain geometry: bead count, whether a wall closes it, wall sphere data."""
+    n = len(system["mass"])
+    wall = str(system["attrs"].get("wall", "free"))
+    has_wall = wall != "free"
+    return dict(n=n, has_wall=has_wall, ncontacts=n - 1 + (1 if has_wall else 0),
+                wall_x=float(system["attrs"].get("wall_position", np.nan)))
+
+
+def crystal_layout(system: dict) -> dict:
+    a = system["attrs"]
+    layer = np.asarray(system["layer"], dtype=int)
+    nl = int(layer.max()) + 1
+    nf = int(a.get("fixed_layers", 2))
+    l0 = float(a["l0"])
+    # layer_z: distance from the innermost driven layer (layer nf - 1), with the actual spacing.
+    zc = np.array([np.mean(system["position"][layer == k, 2]) for k in range(nl)])
+    return dict(nlayers=nl, fixed_layers=nf, l0=l0, box_x=float(a["box_x"]), box_y=float(a["box_y"]),
+                d=float(a.get("d", 2 * np.mean(system["radius"]))), layer_z=zc - zc[nf - 1], layer=layer)
+
+
+# ---------------------------------------------------------------- the layer stress (DESIGN §2.2)
+def layer_stress(pos, radius, layer, fixed, i, j, f_on_i, box_x, box_y, l0, nlayers):
+    """sigma_zz and sigma_zx per layer, compression positive, contact part only:
+
+        sigma_ab(layer) = -(1/(l_x l_y l0)) sum_{p in layer} sum_{c of p} (x_c - x_p)_a f_b
+
+    f is the force on p at contact c, x_c the middle of the overlap, minimum image in x and y,
+    contacts between two fixed particles excluded. Component zx = (x_c - x_p)_z f_x.
+    `i`, `j` index the two particles of each contact and `f_on_i` is the force on i (on j: -f).
+    """
+    pos = np.asarray(pos, float)
+    i = np.asarray(i, int)
+    j = np.asarray(j, int)
+    f = np.asarray(f_on_i, float).reshape(-1, 3)
+    keep = ~(np.asarray(fixed, bool)[i] & np.asarray(fixed, bool)[j])
+    i, j, f = i[keep], j[keep], f[keep]
+    dx = pos[j] - pos[i]
+    dx[:, 0] -= box_x * np.round(dx[:, 0] / box_x)
+    dx[:, 1] -= box_y * np.round(dx[:, 1] / box_y)
+    dist = np.linalg.norm(dx, axis=1)
+    n = dx / dist[:, None]
+    ri, rj = np.asarray(radius)[i], np.asarray(radius)[j]
+    overlap = ri + rj - dist
+    bi = n * (ri - overlap / 2)[:, None]        # x_c - x_i
+    bj = bi - dx                                 # x_c - x_j
+    vol = box_x * box_y * l0
+    szz = np.zeros(nlayers)
+    szx = np.zeros(nlayers)
+    li, lj = np.asarray(layer)[i], np.asarray(layer)[j]
+    np.add.at(szz, li, -bi[:, 2] * f[:, 2])
+    np.add.at(szz, lj, -bj[:, 2] * -f[:, 2])
+    np.add.at(szx, li, -bi[:, 2] * f[:, 0])
+    np.add.at(szx, lj, -bj[:, 2] * -f[:, 0])
+    return szz / vol, szx / vol
+
+
+def layer_mean(values, layer, nlayers):
+    s = np.zeros(nlayers)
+    c = np.zeros(nlayers)
+    np.add.at(s, layer, values)
+    np.add.at(c, layer, 1)
+    return s / np.maximum(c, 1)
+
+
+def bead_force_from_contacts(cf: np.ndarray, nbeads: int, has_wall: bool) -> np.ndarray:
+    """[nt, nbeads]: mean of a bead's two contact forces (a missing neighbour contact counts 0)."""
+    nt = cf.shape[0]
+    left = np.zeros((nt, nbeads))
+    right = np.zeros((nt, nbeads))
+    left[:, 1:] = cf[:, : nbeads - 1]
+    right[:, : nbeads - 1] = cf[:, : nbeads - 1]
+    if has_wall:
+        right[:, nbeads - 1] = cf[:, nbeads - 1]
+    return 0.5 * (left + right)
+
+
+# ---------------------------------------------------------------- trace writer
+def git_describe() -> str:
+    here = os.path.dirname(os.path.abspath(__file__))
+    try:
+        return subprocess.run(["git", "-C", here, "describe", "--always", "--dirty"], capture_output=True,
+                              text=True, timeout=10).stdout.strip() or "unknown"
+    except Exception:
+        return "unknown"
+
+
+def write_trace(path: str, *, code: str, code_version: str, case_text: str, case_name: str, system_path: str,
+                time_convention: str, time: np.ndarray, datasets: dict, extra_attrs: dict | None = None) -> None:
+    """Write a trace file (SCHEMA.md §3) to PATH.tmp, then rename. `datasets` maps absolute paths
+    ("/chain/contact_force") to arrays. /system is copied verbatim from the system file."""
+    tmp = path + ".tmp"
+    with h5py.File(tmp, "w") as f:
+        a = f.attrs
+        a["schema_version"] = SCHEMA_VERSION
+        a["code"] = code
+        a["code_version"] = code_version
+        a["case_name"] = case_name
+        a["case_toml"] = case_text
+        a["created_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+        a["git_describe"] = git_describe()
+        a["time_convention"] = time_convention
+        a["units"] = "SI"
+        for k, v in (extra_attrs or {}).items():
+            a[k] = v
+        with h5py.File(system_path, "r") as s:
+            src = s["/system"] if "system" in s and isinstance(s["system"], h5py.Group) else s
+            g = f.create_group("system")
+            for k, v in src.attrs.items():
+                g.attrs[k] = v
+            for k in src:
+                s.copy(src[k], g, name=k)
+        f.create_dataset("time", data=np.asarray(time, float))
+        for p, v in datasets.items():
+            f.create_dataset(p, data=np.asarray(v))
+    os.replace(tmp, path)
+
+
+def read_trace(path: str) -> dict:
+    """A trace file as {"attrs": {...}, "time": array, "/chain/contact_force": array, ...}."""
+    out: dict = {"attrs": {}}
+    with h5py.File(path, "r") as f:
+        for k, v in f.attrs.items():
+            out["attrs"][k] = v.decode() if isinstance(v, bytes) else v
+        out["time"] = f["time"][()]
+
+        def visit(name, obj):
+            if isinstance(obj, h5py.Dataset) and not name.startswith("system") and name != "time":
+                out["/" + name] = obj[()]
+        f.visititems(visit)
+        if "system" in f:
+            out["system_attrs"] = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["system"].attrs.items()}
+            if "layer" in f["system"]:
+                out["layer"] = f["system/layer"][()]
+    return out

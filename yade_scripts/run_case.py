@@ -1,0 +1,339 @@
+# YADE driver for granwave cases (chain and crystal).
+#
+#   yade -n -x yade_scripts/run_case.py CASE.toml SYSTEM.h5 OUT.h5
+#
+# Reads the case (TOML) and granwave's system file (data/SCHEMA.md §2), never re-draws anything,
+# runs YADE and writes the trace file of SCHEMA.md §3 with h5py. Prints one JSON line
+# ({"code": "yade", "wall_s": ..., "steps": ..., ...}) on stdout at the end.
+#
+# Time convention (made synchronous, exactly):
+#  * YADE integrates leapfrog: a body's stored velocity is v(t - dt/2). Velocity Verlet (granwave,
+#    LIGGGHTS) starts from v(0). The two give identical trajectories when the leapfrog starts
+#    from v(-dt/2) = v(0) - F(0)/m dt/2, so F(0) is evaluated first (a step with NewtonIntegrator
+#    dead) and the initial velocities are set accordingly. Without this an impulsive start (the
+#    step of the source layers) leads the velocity-Verlet codes by dt/2.
+#  * In a PyRunner placed after NewtonIntegrator, forces belong to the time t of the step,
+#    positions to t + dt and velocities to t + dt/2. The writer labels the sample with t and
+#    shifts positions x(t) = x - v dt and velocities v(t) = v - F(t)/m dt/2 (exact for the scheme).
+#  * Both normal dashpots (ViscEl) see the velocity half a step behind the force, as LIGGGHTS.
+import json
+import math
+import os
+import sys
+import time as _time
+
+_me = sys.argv[0] if sys.argv and sys.argv[0].endswith("run_case.py") else globals().get("__file__", "")
+HERE = os.environ.get("GRANWAVE_YADE_SCRIPTS") or os.path.dirname(os.path.abspath(_me))
+sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+
+import numpy as np  # noqa: E402
+
+from xclib import traces as T  # noqa: E402
+
+from yade import O, utils  # noqa: E402
+from yade.wrapper import (  # noqa: E402
+    ForceResetter, InsertionSortCollider, Bo1_Sphere_Aabb, InteractionLoop, Ig2_Sphere_Sphere_ScGeom,
+    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, Ip2_FrictMat_FrictMat_FrictPhys,
+    Law2_ScGeom_FrictPhys_CundallStrack, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
+    NewtonIntegrator, PyRunner, FrictMat, ViscElMat)
+from yade.minieigenHP import Vector3  # noqa: E402
+
+WALL_SPHERE_RADIUS = 100.0  # m: YADE 2023.02a's Mindlin gives box/wall bodies R* = R/2 (wrong)
+
+
+def fail(msg, code=2):
+    sys.stderr.write("run_case.py: " + msg + "\n")
+    sys.stdout.flush()
+    os._exit(code)
+
+
+def yade_version():
+    try:
+        import yade.config
+        return "yade " + str(yade.config.version)
+    except Exception:
+        return "yade"
+
+
+class Sampler:
+    """Called by a PyRunner after NewtonIntegrator; collects synchronous samples."""
+
+    def __init__(self, every, record, ids_free, dt):
+        self.every, self.record, self.dt = every, record, dt
+        self.t0_iter = None
+        self.times, self.rows = [], []
+        self.cost = 0.0   # seconds spent sampling (subtracted for the solver's own speed)
+
+    def __call__(self):
+        k = O.iter - self.t0_iter          # physical step index; forces belong to t = k dt
+        if k < 0 or k % self.every:
+            return
+        t = _time.time()
+        self.times.append(k * self.dt)
+        self.rows.append(self.record())
+        self.cost += _time.time() - t
+
+
+def sync_state(ids, masses, dt, fixed):
+    """Positions and velocities at the force time t (see the header)."""
+    st = [O.bodies[i].state for i in ids]
+    pos = np.array([(v[0], v[1], v[2]) for v in [s.pos for s in st]])
+    vel = np.array([(v[0], v[1], v[2]) for v in [s.vel for s in st]])
+    frc = np.array([(v[0], v[1], v[2]) for v in [O.forces.f(i) for i in ids]])
+    pos = pos - vel * dt
+    vs = vel - frc / masses[:, None] * (0.5 * dt)
+    vs[fixed] = vel[fixed]
+    return pos, vs
+
+
+def start_leapfrog(ids, masses, v0, fixed, dt, newton, runner):
+    """Evaluate F(0) with NewtonIntegrator dead, then set v(-dt/2) = v(0) - F(0)/m dt/2."""
+    newton.dead = True
+    runner.dead = True
+    O.step()
+    for k, i in enumerate(ids):
+        if fixed[k]:
+            continue
+        f = np.array(tuple(O.forces.f(i)))
+        v = v0[k] - f / masses[k] * (0.5 * dt)
+        O.bodies[i].state.vel = Vector3(*v)
+    newton.dead = False
+    runner.dead = False
+
+
+# ------------------------------------------------------------------------------------------ chain
+def run_chain(case, system, dt, nsteps, every):
+    lay = T.chain_layout(system)
+    n = lay["n"]
+    mats = {}
+    names = system["material_names"]
+    mi = np.asarray(system["material_index"], int)
+    e, nu = np.asarray(system["youngs_modulus"]), np.asarray(system["poisson_ratio"])
+    for k in range(n):
+        key = (float(e[k]), float(nu[k]))
+        if key not in mats:
+            mats[key] = O.materials.append(FrictMat(young=key[0], poisson=key[1], frictionAngle=0.0,
+                                                    density=1000.0, label="m%d_%s" % (len(mats), names[mi[k]])))
+    pos = np.asarray(system["position"], float)
+    r = np.asarray(system["radius"], float)
+    m = np.asarray(system["mass"], float)
+    inertia = np.asarray(system["inertia"], float)
+    v0 = np.asarray(system["velocity"], float)
+    ids = []
+    for k in range(n):
+        b = utils.sphere(Vector3(*pos[k]), float(r[k]), material=mats[(float(e[k]), float(nu[k]))], fixed=False)
+        b.state.mass = float(m[k])
+        b.state.inertia = Vector3(*([float(inertia[k])] * 3))
+        ids.append(O.bodies.append(b))
+    wall_id = None
+    if lay["has_wall"]:
+        wm = O.materials.append(FrictMat(young=float(system["attrs"]["wall_youngs_modulus"]),
+                                         poisson=float(system["attrs"]["wall_poisson_ratio"]),
+                                         frictionAngle=0.0, density=1000.0, label="wall"))
+        c = Vector3(lay["wall_x"] + WALL_SPHERE_RADIUS, float(pos[-1, 1]), float(pos[-1, 2]))
+        wall_id = O.bodies.append(utils.sphere(c, WALL_SPHERE_RADIUS, material=wm, fixed=True))
+    O.dt = dt
+    newton = NewtonIntegrator(damping=0.0, gravity=(0, 0, 0))
+    pairs = [(k, k + 1) for k in range(n - 1)] + ([(n - 1, wall_id)] if wall_id is not None else [])
+    fixed = np.zeros(n, bool)
+
+    def record():
+        cf = np.zeros(len(pairs))
+        for c, (a, b) in enumerate(pairs):
+            if O.interactions.has(a, b):
+                it = O.interactions[a, b]
+                if it.isReal:
+                    cf[c] = float(it.phys.normalForce.dot(it.geom.normal))
+        p, v = sync_state(ids, m, dt, fixed)
+        ke = 0.5 * float(np.sum(m * np.sum(v * v, axis=1)))
+        return cf, ke, p
+
+    sampler = Sampler(every, record, ids, dt)
+    runner = PyRunner(command="__import__('builtins').xc_sampler()", iterPeriod=1)
+    __import__("builtins").xc_sampler = sampler
+    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_MindlinPhys()],
+                                 [Law2_ScGeom_MindlinPhys_Mindlin()]),
+                 newton, runner]
+    start_leapfrog(ids, m, v0, fixed, dt, newton, runner)
+    sampler.t0_iter = O.iter
+    t = _time.time()
+    O.run(nsteps + 1, True)
+    wall = _time.time() - t
+    cf = np.array([row[0] for row in sampler.rows])
+    ke = np.array([row[1] for row in sampler.rows])
+    # potential energy from the synchronous positions (Hertz: 2/5 A delta^5/2)
+    a = np.asarray(system["hertz_constant"], float)
+    pe = []
+    for row in sampler.rows:
+        p = row[2]
+        dl = r[:-1] + r[1:] - (p[1:, 0] - p[:-1, 0])
+        if lay["has_wall"]:
+            dl = np.append(dl, r[-1] - (lay["wall_x"] - p[-1, 0]))
+        pe.append(float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5)))
+    data = {"/chain/contact_force": cf,
+            "/chain/bead_force": T.bead_force_from_contacts(cf, n, lay["has_wall"]),
+            "/energy/kinetic": ke, "/energy/potential": np.array(pe)}
+    return np.array(sampler.times), data, wall, n, sampler.cost
+
+
+# ---------------------------------------------------------------------------------------- crystal
+def run_crystal(case, system, dt, nsteps, every):
+    c = T.contact_params(case)
+    ex = T.excitation(case)
+    lay = T.crystal_layout(system)
+    pos = np.asarray(system["position"], float)
+    r = np.asarray(system["radius"], float)
+    m = np.asarray(system["mass"], float)
+    inertia = np.asarray(system["inertia"], float)
+    fixed = np.asarray(system["fixed"], int).astype(bool)
+    layer = lay["layer"]
+    n = len(m)
+    cells = case["crystal"]["cells"]
+    if min(int(cells[0]), int(cells[1])) < 3:
+        fail("YADE keeps one interaction per particle pair: a periodic layer needs >= 3 particles in x "
+             "and y (this case has %d x %d), otherwise a particle touches two images of the same neighbour"
+             % (int(cells[0]), int(cells[1])))
+    damped = c["gamma_n"] > 0 or c["gamma_t"] > 0
+    if c["mu_static"] != c["mu_dynamic"] and c["kt"] > 0:
+        sys.stderr.write("run_case.py: YADE has one friction coefficient; using mu_static=%g (mu_dynamic=%g "
+                         "ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
+    phi = math.atan(c["mu_static"])
+    if damped:
+        if c["normal_tension"] == "clip":
+            fail("normal_tension = \"clip\" with a dashpot is not available in Law2_ScGeom_ViscElPhys_Basic")
+        # ViscEl contacts get k1 k2/(k1+k2): the material values are twice the contact values.
+        mat = O.materials.append(ViscElMat(kn=2 * c["kn"], ks=2 * c["kt"], cn=2 * c["gamma_n"], cs=2 * c["gamma_t"],
+                                           frictionAngle=phi, density=1000.0))
+        ip2, law = Ip2_ViscElMat_ViscElMat_ViscElPhys(), Law2_ScGeom_ViscElPhys_Basic()
+    else:
+        mat = O.materials.append(FrictMat(young=1e9, poisson=0.3, frictionAngle=phi, density=1000.0))
+        ip2, law = Ip2_FrictMat_FrictMat_FrictPhys(kn=c["kn"], ks=c["kt"]), Law2_ScGeom_FrictPhys_CundallStrack()
+    zoff = 2 * float(np.max(r))
+    lz = float(np.ptp(pos[:, 2])) + 4 * zoff + 10 * float(np.max(r))
+    O.periodic = True
+    O.cell.setBox(lay["box_x"], lay["box_y"], lz)
+    ids = []
+    for k in range(n):
+        b = utils.sphere(Vector3(pos[k, 0], pos[k, 1], pos[k, 2] + zoff), float(r[k]), material=mat,
+                         fixed=bool(fixed[k]))
+        b.state.mass = float(m[k])
+        b.state.inertia = Vector3(*([float(inertia[k])] * 3))
+        ids.append(O.bodies.append(b))
+    O.dt = dt
+    newton = NewtonIntegrator(damping=0.0, gravity=(0, 0, 0))
+    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
+    nl = lay["nlayers"]
+    x0 = pos.copy()
+    has_shear = c["kt"] > 0 or c["gamma_t"] > 0
+
+    def record():
+        p, v = sync_state(ids, m, dt, np.zeros(n, bool) | fixed)
+        p[:, 2] -= zoff
+        real = [it for it in O.interactions if it.isReal]
+        ii = [it.id1 for it in real]
+        jj = [it.id2 for it in real]
+        phys = [it.phys for it in real]
+        # force on id1 = -(normalForce + shearForce) (YADE applies +F to id2)
+        ff = -np.array([(v[0], v[1], v[2]) for v in [p.normalForce for p in phys]]).reshape(-1, 3)
+        if has_shear:
+            ff -= np.array([(v[0], v[1], v[2]) for v in [p.shearForce for p in phys]]).reshape(-1, 3)
+        # positions of id2 across the periodic boundary: layer_stress takes the minimum image in x, y
+        szz, szx = T.layer_stress(p, r, layer, fixed, ii, jj, ff, lay["box_x"], lay["box_y"], lay["l0"], nl)
+        du = p - x0
+        return (szz, szx, T.layer_mean(du[:, 2], layer, nl), T.layer_mean(du[:, 0], layer, nl),
+                T.layer_mean(v[:, 2], layer, nl), T.layer_mean(v[:, 0], layer, nl))
+
+    sampler = Sampler(every, record, ids, dt)
+    runner = PyRunner(command="__import__('builtins').xc_sampler()", iterPeriod=1)
+    __import__("builtins").xc_sampler = sampler
+    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [ip2], [law]), newton, runner]
+    # contacts are made in the undisplaced packing (tangential springs start from zero there) ...
+    newton.dead = True
+    runner.dead = True
+    O.step()
+    nreal = sum(1 for it in O.interactions if it.isReal)
+    if damped:
+        for it in O.interactions:
+            if it.isReal:
+                ph = it.phys
+                for name, want in (("kn", c["kn"]), ("cn", c["gamma_n"]), ("ks", c["kt"]), ("cs", c["gamma_t"])):
+                    got = getattr(ph, name)
+                    if abs(got - want) > 1e-9 * max(abs(want), 1e-30):
+                        fail("ViscEl contact %s = %g, expected %g (stiffness halving)" % (name, got, want), 1)
+                break
+    else:
+        for it in O.interactions:
+            if it.isReal:
+                if abs(it.phys.kn - c["kn"]) > 1e-9 * c["kn"] or abs(it.phys.ks - c["kt"]) > 1e-9 * max(c["kt"], 1):
+                    fail("FrictPhys kn/ks = %g/%g, expected %g/%g" % (it.phys.kn, it.phys.ks, c["kn"], c["kt"]), 1)
+                break
+    # ... then the source (all bottom fixed layers) makes its step, and the leapfrog starts.
+    src = [k for k in range(n) if fixed[k] and layer[k] < lay["fixed_layers"]]
+    axis = 2 if ex["mode"] == "P" else 0
+    v0 = np.zeros((n, 3))
+    if ex["drive"] == "displacement":
+        shift = float(ex["amplitude"]) * lay["d"]
+        for k in src:
+            p = O.bodies[ids[k]].state.pos
+            p[axis] += shift
+            O.bodies[ids[k]].state.pos = p
+            x0[k, axis] += 0.0  # displacement outputs are measured from the undisplaced packing
+    else:
+        for k in src:
+            vv = Vector3(0, 0, 0)
+            vv[axis] = float(ex["amplitude"])
+            O.bodies[ids[k]].state.vel = vv
+    start_leapfrog(ids, m, v0, fixed, dt, newton, runner)
+    sampler.t0_iter = O.iter
+    t = _time.time()
+    O.run(nsteps + 1, True)
+    wall = _time.time() - t
+    rows = sampler.rows
+    keys = ("layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
+            "layer_velocity_z", "layer_velocity_x")
+    data = {"/crystal/layer_z": lay["layer_z"]}
+    for q, key in enumerate(keys):
+        data["/crystal/" + key] = np.array([row[q] for row in rows])
+    return np.array(sampler.times), data, wall, n, nreal, sampler.cost
+
+
+def main(argv):
+    if len(argv) < 3 or argv[0] in ("-h", "--help"):
+        sys.stderr.write("usage: yade -n -x yade_scripts/run_case.py CASE.toml SYSTEM.h5 OUT.h5\n")
+        os._exit(2)
+    case_path, system_path, out_path = argv[:3]
+    if os.path.exists(out_path):
+        fail("%s exists: nothing is overwritten" % out_path)
+    case, text = T.load_case(case_path)
+    system = T.read_system(system_path)
+    model = case["case"]["model"]
+    if system["attrs"].get("model", model) != model:
+        fail("system file is a %s, case is a %s" % (system["attrs"].get("model"), model))
+    dt = T.timestep(case, system)
+    nsteps, every = T.sampling(case, dt)
+    summary = {"code": "yade", "case": case["case"]["name"], "dt": dt, "steps": nsteps}
+    if model == "chain":
+        times, data, wall, n, cost = run_chain(case, system, dt, nsteps, every)
+        law = "Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin, wall = fixed sphere R=100 m"
+    else:
+        times, data, wall, n, nreal, cost = run_crystal(case, system, dt, nsteps, every)
+        summary["contacts"] = nreal
+        law = "crystal: CundallStrack (FrictPhys) undamped / ViscEl (material k,c = 2x contact) damped"
+    conv = ("synchronous: leapfrog started from v(-dt/2) = v(0) - F(0)/m dt/2 (F(0) evaluated with "
+            "NewtonIntegrator dead); samples taken by a PyRunner after NewtonIntegrator are labelled "
+            "with the force time t, positions shifted x(t) = x(t+dt) - v(t+dt/2) dt, velocities "
+            "v(t) = v(t+dt/2) - F(t)/m dt/2")
+    T.write_trace(out_path, code="yade", code_version=yade_version(), case_text=text,
+                  case_name=case["case"]["name"], system_path=system_path, time_convention=conv,
+                  time=times, datasets=data, extra_attrs={"contact_law": law, "dt": dt})
+    solver = max(wall - cost, 1e-9)
+    summary.update(wall_s=wall, sampling_s=cost, solver_s=solver, particles=n,
+                   particle_steps_per_s=n * nsteps / solver,
+                   trace=out_path)
+    print("XC_SUMMARY " + json.dumps(summary))
+    sys.stdout.flush()
+
+
+main(sys.argv[1:])
