@@ -1,0 +1,103 @@
+// Tangential spring with static/dynamic Coulomb friction, seed 002 eqs. (2)-(8) (Luding's model,
+// in the spirit of Cundall & Strack). Stateless functions; the caller keeps the spring xi and
+// the stick/slip flag of each contact in flat arrays.
+//
+// Order of operations per contact and time step (velocity Verlet):
+//   xi   = advance_spring(xi', n, v_t, dt)    eq. (2) projection, then eq. (6) increment
+//   f, xi', sliding = tangential_force(...)   eqs. (5), (7), (8) and the stick-slip rule
+// In velocity Verlet the velocity available at the force evaluation at t_{n+1} is the
+// half-step velocity, i.e. the velocity over the step just taken, so its increment (6) belongs
+// to that step and is applied before the test force (5). Applying it after (5), literally as
+// the text is written, would make the spring lag the positions by one step (a first-order
+// error that acts as negative damping). In the sliding case the spring reset by (7) is then
+// advanced by the next step's displacement, as a sticking spring is.
+#pragma once
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace granwave::contact {
+
+using Vec3 = Eigen::Vector3d;
+
+struct TangentialSpringParams {
+  double kt = 0.0;          // tangential spring stiffness k_t (N/m), eq. (5)
+  double gamma_t = 0.0;     // tangential dashpot gamma_t (kg/s), eq. (5)
+  double mu_static = 0.5;   // mu^s: Coulomb limit of the static case
+  double mu_dynamic = 0.5;  // mu^d: Coulomb limit of the sliding case
+
+  void validate() const {
+    if (!(kt >= 0.0) || !std::isfinite(kt)) throw InputError("contact.kt = " + std::to_string(kt) + ": must be >= 0");
+    if (!(gamma_t >= 0.0) || !std::isfinite(gamma_t))
+      throw InputError("contact.gamma_t = " + std::to_string(gamma_t) + ": must be >= 0");
+    if (!(mu_static >= 0.0) || !(mu_dynamic >= 0.0))
+      throw InputError("contact.mu_static and contact.mu_dynamic must be >= 0");
+    if (mu_dynamic > mu_static)
+      throw InputError("contact.mu_dynamic = " + std::to_string(mu_dynamic) + " exceeds contact.mu_static = " +
+                       std::to_string(mu_static) + ": the text requires mu^d <= mu^s");
+  }
+  // Without spring and dashpot the tangential force vanishes identically.
+  bool active() const { return kt > 0.0 || gamma_t > 0.0; }
+};
+
+// Eq. (2): rotate the previous spring xi' into the current tangent plane, keeping |xi'|.
+inline Vec3 project_spring(const Vec3& xi_prev, const Vec3& n) {
+  const Vec3 xi_star = xi_prev - n * n.dot(xi_prev);
+  const double len_star = xi_star.norm();
+  if (len_star == 0.0) return Vec3::Zero();
+  return xi_star * (xi_prev.norm() / len_star);
+}
+
+// Eq. (4): relative velocity of the two surfaces at the contact, n = (r_i - r_j)/|r_i - r_j|.
+inline Vec3 relative_surface_velocity(const Vec3& vi, const Vec3& vj, const Vec3& wi, const Vec3& wj, double ai,
+                                      double aj, const Vec3& n) {
+  return vi - vj + ai * n.cross(wi) + aj * n.cross(wj);
+}
+
+// Eq. (3): the tangential part of a relative velocity.
+inline Vec3 tangential_velocity(const Vec3& vij, const Vec3& n) { return vij - n * n.dot(vij); }
+
+// Eqs. (2) and (6): the spring for this step, projected and advanced by v_t dt.
+// Without a spring (k_t = 0) xi stays zero.
+inline Vec3 advance_spring(const TangentialSpringParams& p, const Vec3& xi_prev, const Vec3& n, const Vec3& vt,
+                           double dt) {
+  if (p.kt == 0.0) return Vec3::Zero();
+  return project_spring(xi_prev, n) + vt * dt;
+}
+
+struct TangentialResult {
+  Vec3 force;        // f^t on particle i (j gets -f^t), eq. (8)
+  Vec3 spring;       // xi' to keep for the next step (eq. (6) sticking, eq. (7) sliding)
+  bool sliding;      // the dynamic (sliding) case (2) is active
+  double slip_loss;  // elastic energy removed by the reset (7) (J); 0 when sticking
+};
+
+// Eqs. (5), (7), (8) with the stick-slip switching of the text: a sticking contact starts to
+// slide when |f_o^t| > mu^s f^n; a sliding one sticks again when |f_o^t| <= mu^d f^n.
+// f_n is the normal force (a pulling normal force gives no friction).
+inline TangentialResult tangential_force(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
+                                         bool was_sliding) {
+  const Vec3 f_test = -p.kt * xi - p.gamma_t * vt;  // eq. (5)
+  const double f_pos = std::max(f_n, 0.0);
+  const double f_static = p.mu_static * f_pos;    // f_C^s
+  const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
+  const double magnitude = f_test.norm();
+  const bool sliding = was_sliding ? magnitude > f_dynamic : magnitude > f_static;
+  if (!sliding) return {f_test, xi, false, 0.0};  // static case (1): f^t = f_o^t, spring kept (6)
+  // Sliding case (2); magnitude > f_dynamic >= 0, so t is defined.
+  const Vec3 t = f_test / magnitude;
+  const Vec3 force = f_dynamic * t;  // eq. (8): min(f_C^d, |f_o^t|) t
+  if (p.kt == 0.0) return {force, Vec3::Zero(), true, 0.0};
+  const Vec3 spring = -(f_dynamic * t + p.gamma_t * vt) / p.kt;  // eq. (7)
+  const double slip_loss = 0.5 * p.kt * (xi.squaredNorm() - spring.squaredNorm());
+  return {force, spring, true, slip_loss};
+}
+
+// Torques from f^t acting at the contact point: on i at -a_i n, on j (force -f^t) at +a_j n;
+// both equal -a n x f^t.
+inline Vec3 tangential_torque(double a, const Vec3& n, const Vec3& f_t) { return -a * n.cross(f_t); }
+
+}  // namespace granwave::contact

@@ -1,0 +1,414 @@
+#include "crystal/dynamics.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "core/error.hpp"
+#include "crystal/neighbors.hpp"
+
+namespace granwave::crystal {
+
+using contact::Vec3;
+
+Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, double dt)
+    : packing_(packing), dt_(dt) {
+  normal_ = {cp.kn, cp.gamma_n, cp.normal_tension == config::NormalTension::clip};
+  tangential_ = {cp.kt, cp.gamma_t, cp.mu_static, cp.mu_dynamic};
+  normal_.validate();
+  tangential_.validate();
+  friction_ = tangential_.active();
+  if (!(dt > 0.0)) throw InputError("integrator.dt must be > 0");
+  const std::size_t n = packing.size();
+  x = x0 = packing.x;
+  y = y0 = packing.y;
+  z = z0 = packing.z;
+  for (auto* v : {&vx, &vy, &vz, &wx, &wy, &wz, &fx, &fy, &fz, &tx, &ty, &tz}) v->assign(n, 0.0);
+  radius = packing.radius;
+  mass = packing.mass;
+  inertia = packing.inertia;
+  inv_mass.resize(n);
+  inv_inertia.resize(n);
+  mobile.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    inv_mass[p] = 1.0 / mass[p];
+    inv_inertia[p] = 1.0 / inertia[p];
+    mobile[p] = packing.fixed[p] ? 0 : 1;
+  }
+  // Skin: 5 % of a diameter keeps next-nearest FCC neighbours (sqrt(2) d away) out of the
+  // list while small-amplitude waves never trigger a rebuild.
+  const double a_mean = std::accumulate(radius.begin(), radius.end(), 0.0) / std::max<std::size_t>(1, n);
+  skin_ = 0.1 * a_mean;
+  rebuild();
+  compute_forces(dt_, true);
+}
+
+void Dynamics::set_mobile(std::size_t p, bool on) {
+  if (mobile[p] == static_cast<std::uint8_t>(on)) return;
+  mobile[p] = on;
+  rebuild();  // pairs of two non-mobile particles are not in the list
+}
+
+double Dynamics::max_displacement_since_build() const {
+  double m2 = 0.0;
+  for (std::size_t p = 0; p < size(); ++p) {
+    const double dx = x[p] - x_build_[p], dy = y[p] - y_build_[p], dz = z[p] - z_build_[p];
+    m2 = std::max(m2, dx * dx + dy * dy + dz * dz);
+  }
+  return std::sqrt(m2);
+}
+
+void Dynamics::rebuild() {
+  const std::size_t n = size();
+  std::vector<std::uint8_t> skip(n);
+  for (std::size_t p = 0; p < n; ++p) skip[p] = !mobile[p];
+  PairList pairs = find_pairs(x.data(), y.data(), z.data(), radius.data(), n, packing_.box_x, packing_.box_y, skin_,
+                              skip.data());
+  ContactList& old = contacts;
+  for (double e : old.dissipated) dissipated_before_ += e;
+  ContactList fresh;
+  const std::size_t nc = pairs.size();
+  fresh.i = std::move(pairs.i);
+  fresh.j = std::move(pairs.j);
+  fresh.image_x = std::move(pairs.image_x);
+  fresh.image_y = std::move(pairs.image_y);
+  fresh.shift_x.resize(nc);
+  fresh.shift_y.resize(nc);
+  for (auto* v : {&fresh.xi_x, &fresh.xi_y, &fresh.xi_z, &fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z,
+                  &fresh.nf_x, &fresh.nf_y, &fresh.nf_z, &fresh.dissipated})
+    v->assign(nc, 0.0);
+  fresh.sliding.assign(nc, 0);
+  auto key_less = [](const ContactList& a, std::size_t u, const ContactList& b, std::size_t v) {
+    if (a.i[u] != b.i[v]) return a.i[u] < b.i[v];
+    if (a.j[u] != b.j[v]) return a.j[u] < b.j[v];
+    if (a.image_x[u] != b.image_x[v]) return a.image_x[u] < b.image_x[v];
+    return a.image_y[u] < b.image_y[v];
+  };
+  // Both lists are sorted by (i, j, image): carry the history of persisting pairs over.
+  std::size_t u = 0;
+  for (std::size_t c = 0; c < nc; ++c) {
+    fresh.shift_x[c] = fresh.image_x[c] * packing_.box_x;
+    fresh.shift_y[c] = fresh.image_y[c] * packing_.box_y;
+    while (u < old.size() && key_less(old, u, fresh, c)) ++u;
+    if (u < old.size() && !key_less(fresh, c, old, u)) {
+      fresh.xi_x[c] = old.xi_x[u];
+      fresh.xi_y[c] = old.xi_y[u];
+      fresh.xi_z[c] = old.xi_z[u];
+      fresh.sliding[c] = old.sliding[u];
+      fresh.delta[c] = old.delta[u];
+      fresh.f_x[c] = old.f_x[u];
+      fresh.f_y[c] = old.f_y[u];
+      fresh.f_z[c] = old.f_z[u];
+      fresh.nf_x[c] = old.nf_x[u];
+      fresh.nf_y[c] = old.nf_y[u];
+      fresh.nf_z[c] = old.nf_z[u];
+    }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
+  }
+  // Per-particle contact lists (CSR) in contact order, for the deterministic gather.
+  fresh.first.assign(n + 1, 0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    ++fresh.first[fresh.i[c] + 1];
+    ++fresh.first[fresh.j[c] + 1];
+  }
+  std::partial_sum(fresh.first.begin(), fresh.first.end(), fresh.first.begin());
+  fresh.entries.resize(2 * nc);
+  {
+    std::vector<std::int32_t> fill(fresh.first.begin(), fresh.first.end() - 1);
+    for (std::size_t c = 0; c < nc; ++c) {
+      fresh.entries[fill[fresh.i[c]]++] = static_cast<std::int32_t>(c);
+      fresh.entries[fill[fresh.j[c]]++] = ~static_cast<std::int32_t>(c);
+    }
+  }
+  contacts = std::move(fresh);
+  x_build_ = x;
+  y_build_ = y;
+  z_build_ = z;
+  ++rebuilds;
+}
+
+template <bool Friction>
+void Dynamics::contact_pass(double inc, bool dashpots) {
+  ContactList& C = contacts;
+  const std::int64_t nc = static_cast<std::int64_t>(C.size());
+  const contact::LinearSpringDashpotParams nrm{normal_.kn, dashpots ? normal_.gamma_n : 0.0, normal_.clip_tension};
+  const contact::TangentialSpringParams tan{tangential_.kt, dashpots ? tangential_.gamma_t : 0.0,
+                                            tangential_.mu_static, tangential_.mu_dynamic};
+  const double* px = x.data(); const double* py = y.data(); const double* pz = z.data();
+  const double* pvx = vx.data(); const double* pvy = vy.data(); const double* pvz = vz.data();
+  const double* pa = radius.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < nc; ++c) {
+    const int i = C.i[c], j = C.j[c];
+    const double bx = px[j] + C.shift_x[c] - px[i];
+    const double by = py[j] + C.shift_y[c] - py[i];
+    const double bz = pz[j] - pz[i];
+    const double r2 = bx * bx + by * by + bz * bz;
+    const double reach = pa[i] + pa[j];
+    const double r = std::sqrt(r2);
+    C.delta[c] = reach - r;
+    if (r >= reach) {  // open: no force; a spring that existed is lost
+      if constexpr (Friction) {
+        const double xi2 = C.xi_x[c] * C.xi_x[c] + C.xi_y[c] * C.xi_y[c] + C.xi_z[c] * C.xi_z[c];
+        C.dissipated[c] += 0.5 * tan.kt * xi2;
+        C.xi_x[c] = C.xi_y[c] = C.xi_z[c] = 0.0;
+        C.sliding[c] = 0;
+        C.nf_x[c] = C.nf_y[c] = C.nf_z[c] = 0.0;
+      }
+      C.f_x[c] = C.f_y[c] = C.f_z[c] = 0.0;
+      continue;
+    }
+    const double delta = reach - r;
+    const double inv_r = 1.0 / r;
+    const double nx = -bx * inv_r, ny = -by * inv_r, nz = -bz * inv_r;  // n = (r_i - r_j)/|r_i - r_j|
+    const double dvx = pvx[i] - pvx[j], dvy = pvy[i] - pvy[j], dvz = pvz[i] - pvz[j];
+    const double delta_dot = -(nx * dvx + ny * dvy + nz * dvz);
+    const double f_n = contact::normal_force(nrm, delta, delta_dot);  // eq. (1) text
+    // dissipated = work of (f_n - k delta) against the approach (dashpot, or clipped pull)
+    double loss = (f_n - nrm.kn * delta) * delta_dot * inc;
+    double fxc = f_n * nx, fyc = f_n * ny, fzc = f_n * nz;
+    if constexpr (Friction) {
+      const Vec3 n(nx, ny, nz);
+      const Vec3 vij = contact::relative_surface_velocity(Vec3(pvx[i], pvy[i], pvz[i]), Vec3(pvx[j], pvy[j], pvz[j]),
+                                                          Vec3(wx[i], wy[i], wz[i]), Vec3(wx[j], wy[j], wz[j]),
+                                                          pa[i], pa[j], n);  // eq. (4)
+      const Vec3 vt = contact::tangential_velocity(vij, n);                  // eq. (3)
+      const Vec3 xi = contact::advance_spring(tan, Vec3(C.xi_x[c], C.xi_y[c], C.xi_z[c]), n, vt, inc);  // (2), (6)
+      const auto res = contact::tangential_force(tan, xi, vt, f_n, C.sliding[c] != 0);  // (5), (7), (8)
+      C.xi_x[c] = res.spring.x();
+      C.xi_y[c] = res.spring.y();
+      C.xi_z[c] = res.spring.z();
+      C.sliding[c] = res.sliding;
+      const Vec3 nf = n.cross(res.force);
+      C.nf_x[c] = nf.x();
+      C.nf_y[c] = nf.y();
+      C.nf_z[c] = nf.z();
+      fxc += res.force.x();
+      fyc += res.force.y();
+      fzc += res.force.z();
+      loss += tan.kt == 0.0 ? -res.force.dot(vt) * inc : tan.gamma_t * vt.squaredNorm() * inc + res.slip_loss;
+    }
+    C.f_x[c] = fxc;
+    C.f_y[c] = fyc;
+    C.f_z[c] = fzc;
+    C.dissipated[c] += loss;
+  }
+}
+
+void Dynamics::particle_pass() {
+  const ContactList& C = contacts;
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  const bool fr = friction_;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
+    for (std::int32_t k = C.first[p]; k < C.first[p + 1]; ++k) {
+      const std::int32_t e = C.entries[k];
+      const bool is_i = e >= 0;
+      const std::int32_t c = is_i ? e : ~e;
+      const double s = is_i ? 1.0 : -1.0;
+      sx += s * C.f_x[c];
+      sy += s * C.f_y[c];
+      sz += s * C.f_z[c];
+      if (fr) {  // both spheres feel -a n x f^t (contact::tangential_torque)
+        nx += C.nf_x[c];
+        ny += C.nf_y[c];
+        nz += C.nf_z[c];
+      }
+    }
+    fx[p] = sx;
+    fy[p] = sy;
+    fz[p] = sz;
+    tx[p] = -radius[p] * nx;
+    ty[p] = -radius[p] * ny;
+    tz[p] = -radius[p] * nz;
+  }
+}
+
+void Dynamics::compute_forces(double inc, bool dashpots) {
+  if (friction_)
+    contact_pass<true>(inc, dashpots);
+  else
+    contact_pass<false>(inc, dashpots);
+  particle_pass();
+}
+
+void Dynamics::kick(double h) {
+  const std::int64_t n = static_cast<std::int64_t>(size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    if (!mobile[p]) continue;
+    vx[p] += h * fx[p] * inv_mass[p];
+    vy[p] += h * fy[p] * inv_mass[p];
+    vz[p] += h * fz[p] * inv_mass[p];
+    if (friction_) {
+      wx[p] += h * tx[p] * inv_inertia[p];
+      wy[p] += h * ty[p] * inv_inertia[p];
+      wz[p] += h * tz[p] * inv_inertia[p];
+    }
+  }
+}
+
+void Dynamics::step() {
+  const double h = 0.5 * dt_;
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  // First half kick and drift (translation; sphere orientation is not needed).
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    if (!mobile[p]) continue;
+    vx[p] += h * fx[p] * inv_mass[p];
+    vy[p] += h * fy[p] * inv_mass[p];
+    vz[p] += h * fz[p] * inv_mass[p];
+    x[p] += dt_ * vx[p];
+    y[p] += dt_ * vy[p];
+    z[p] += dt_ * vz[p];
+    if (friction_) {
+      wx[p] += h * tx[p] * inv_inertia[p];
+      wy[p] += h * ty[p] * inv_inertia[p];
+      wz[p] += h * tz[p] * inv_inertia[p];
+    }
+  }
+  time += dt_;
+  ++steps;
+  if (max_displacement_since_build() > 0.5 * skin_) rebuild();
+  compute_forces(dt_, true);
+  kick(h);
+}
+
+void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double dy, double dz) {
+  const double before = potential_energy() + dissipated_energy();
+  // Static update: every particle at rest except the moved ones, whose "velocity" is the step
+  // itself over a unit time, so that eq. (6) advances the springs by the step; no dashpots.
+  const auto keep = std::array{vx, vy, vz, wx, wy, wz};
+  for (auto* v : {&vx, &vy, &vz, &wx, &wy, &wz}) std::fill(v->begin(), v->end(), 0.0);
+  for (std::size_t p : which) {
+    x[p] += dx;
+    y[p] += dy;
+    z[p] += dz;
+    vx[p] = dx;
+    vy[p] = dy;
+    vz[p] = dz;
+  }
+  if (max_displacement_since_build() > 0.5 * skin_) rebuild();
+  compute_forces(1.0, false);
+  vx = keep[0];
+  vy = keep[1];
+  vz = keep[2];
+  wx = keep[3];
+  wy = keep[4];
+  wz = keep[5];
+  work_in += potential_energy() + dissipated_energy() - before;
+}
+
+double Dynamics::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < size(); ++p) {
+    if (!mobile[p]) continue;
+    e += 0.5 * mass[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
+         0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
+  }
+  return e;
+}
+
+double Dynamics::potential_energy() const {
+  const ContactList& C = contacts;
+  double e = 0.0;
+  for (std::size_t c = 0; c < C.size(); ++c) {
+    if (C.delta[c] <= 0.0) continue;
+    e += contact::normal_energy(normal_, C.delta[c]);
+    if (friction_)
+      e += 0.5 * tangential_.kt * (C.xi_x[c] * C.xi_x[c] + C.xi_y[c] * C.xi_y[c] + C.xi_z[c] * C.xi_z[c]);
+  }
+  return e;
+}
+
+double Dynamics::dissipated_energy() const {
+  double e = dissipated_before_;
+  for (double d : contacts.dissipated) e += d;
+  return e;
+}
+
+double Dynamics::verlet_correction() const {
+  double s = 0.0;
+  for (std::size_t p = 0; p < size(); ++p) {
+    if (!mobile[p]) continue;
+    s += (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
+         (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
+  }
+  return dt_ * dt_ / 8.0 * s;
+}
+
+int Dynamics::touching_contacts_of(std::size_t p) const {
+  int k = 0;
+  for (std::int32_t e = contacts.first[p]; e < contacts.first[p + 1]; ++e) {
+    const std::int32_t c = contacts.entries[e] >= 0 ? contacts.entries[e] : ~contacts.entries[e];
+    if (contacts.delta[c] > 0.0) ++k;
+  }
+  return k;
+}
+
+// ---- relaxation ----
+
+RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps) {
+  config::ContactParams cp;
+  cp.kn = kn;
+  cp.kt = 0.0;
+  cp.gamma_n = 0.0;
+  // FIRE parameters of Bitzek et al., PRL 97, 170201 (2006).
+  const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
+  const double t_c = contact::contact_time({kn, 0.0, false}, 0.5 * m_min);
+  const double dt_max = 0.1 * t_c, f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
+  const int n_min = 5, n_quiet = 50;
+  double dt = 0.02 * t_c, alpha = alpha_0;
+  Dynamics dyn(packing, cp, dt);
+  const std::size_t n = dyn.size();
+  long since_reset = 0, quiet = 0;
+  RelaxResult res;
+  for (long s = 0; s < max_steps; ++s) {
+    // FIRE mixing: power P = F.v over the mobile particles.
+    double power = 0.0, v2 = 0.0, f2 = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      if (!dyn.mobile[p]) continue;
+      power += dyn.fx[p] * dyn.vx[p] + dyn.fy[p] * dyn.vy[p] + dyn.fz[p] * dyn.vz[p];
+      v2 += dyn.vx[p] * dyn.vx[p] + dyn.vy[p] * dyn.vy[p] + dyn.vz[p] * dyn.vz[p];
+      f2 += dyn.fx[p] * dyn.fx[p] + dyn.fy[p] * dyn.fy[p] + dyn.fz[p] * dyn.fz[p];
+    }
+    if (power > 0.0) {
+      const double scale = f2 > 0.0 ? alpha * std::sqrt(v2 / f2) : 0.0;
+      for (std::size_t p = 0; p < n; ++p) {
+        if (!dyn.mobile[p]) continue;
+        dyn.vx[p] = (1.0 - alpha) * dyn.vx[p] + scale * dyn.fx[p];
+        dyn.vy[p] = (1.0 - alpha) * dyn.vy[p] + scale * dyn.fy[p];
+        dyn.vz[p] = (1.0 - alpha) * dyn.vz[p] + scale * dyn.fz[p];
+      }
+      if (++since_reset > n_min) {
+        dt = std::min(dt * f_inc, dt_max);
+        alpha *= f_alpha;
+      }
+    } else {
+      for (auto* v : {&dyn.vx, &dyn.vy, &dyn.vz}) std::fill(v->begin(), v->end(), 0.0);
+      dt *= f_dec;
+      alpha = alpha_0;
+      since_reset = 0;
+    }
+    dyn.set_dt(dt);
+    dyn.step();
+    const double ratio = dyn.kinetic_energy() / dyn.potential_energy();
+    quiet = (ratio < tolerance && since_reset > 0) ? quiet + 1 : 0;
+    if (quiet >= n_quiet) {
+      res.steps = s + 1;
+      res.ratio = ratio;
+      for (std::size_t p = 0; p < n; ++p) {
+        packing.x[p] = dyn.x[p] - std::floor(dyn.x[p] / packing.box_x) * packing.box_x;
+        packing.y[p] = dyn.y[p] - std::floor(dyn.y[p] / packing.box_y) * packing.box_y;
+        packing.z[p] = dyn.z[p];
+      }
+      return res;
+    }
+  }
+  throw RunError("relaxation did not reach E_kin/E_pot < " + std::to_string(tolerance) + " within " +
+                 std::to_string(max_steps) + " steps");
+}
+
+}  // namespace granwave::crystal

@@ -1,0 +1,113 @@
+// The crystal's equations of motion, eq. (1): spheres with translation and rotation, contact
+// forces of sec. 2.1 (contact/linear_spring_dashpot.hpp, contact/tangential_spring.hpp),
+// velocity Verlet, periodic x-y box. Flat structure of arrays throughout; the contact list is a
+// Verlet list with a skin, rebuilt only when a particle has moved more than skin/2, and its
+// per-contact history (tangential spring xi, stick/slip flag) survives rebuilds.
+//
+// Force evaluation is two passes, both free of write conflicts (so OpenMP over contacts and
+// over particles gives bit-identical results for any thread count):
+//   1. per contact: overlap, normal and tangential force, n x f^t, dissipation;
+//   2. per particle: sum of its contacts' forces and torques in a fixed order.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "config/case.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "contact/tangential_spring.hpp"
+#include "crystal/packing.hpp"
+
+namespace granwave::crystal {
+
+// Per-contact arrays, indexed like the pair list.
+struct ContactList {
+  std::vector<std::int32_t> i, j;
+  std::vector<std::int16_t> image_x, image_y;
+  std::vector<double> shift_x, shift_y;    // image offsets of j (m)
+  std::vector<double> xi_x, xi_y, xi_z;    // tangential spring xi' (m), eqs. (6)/(7)
+  std::vector<std::uint8_t> sliding;       // 1 = dynamic (sliding) case active
+  std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
+  std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N
+  std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -a_i n x f^t, on j = -a_j n x f^t)
+  std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
+  // Per particle: its contacts, as c (particle is i) or ~c (particle is j), in contact order.
+  std::vector<std::int32_t> first, entries;
+  std::size_t size() const { return i.size(); }
+};
+
+class Dynamics {
+ public:
+  // The packing's fixed particles are not integrated; `dt` is the time step.
+  Dynamics(const Packing& packing, const config::ContactParams& contact, double dt);
+
+  // ---- state (SoA; public so observers and tests can read and set it) ----
+  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;  // positions (unwrapped), velocities, angular velocities
+  std::vector<double> fx, fy, fz, tx, ty, tz;           // total force and torque at the current time
+  std::vector<double> x0, y0, z0;                       // positions of the packing (for displacements)
+  std::vector<double> radius, mass, inv_mass, inv_inertia, inertia;
+  std::vector<std::uint8_t> mobile;                     // 1 = integrated
+  ContactList contacts;
+  double time = 0.0;
+  long steps = 0;
+  long rebuilds = 0;
+  double work_in = 0.0;  // cumulative work done by driven particles on the rest (J)
+
+  std::size_t size() const { return x.size(); }
+  const Packing& packing() const { return packing_; }
+  double dt() const { return dt_; }
+  void set_dt(double dt) { dt_ = dt; }
+  const contact::LinearSpringDashpotParams& normal() const { return normal_; }
+  const contact::TangentialSpringParams& tangential() const { return tangential_; }
+  bool friction() const { return friction_; }
+
+  // Start (or stop) integrating particle p (velocity drive makes the source mobile).
+  void set_mobile(std::size_t p, bool on);
+  // Rigid step of the particles in `which` by (dx, dy, dz), held afterwards: the contacts are
+  // updated statically (springs advanced by the step, no dashpot) and the change of stored plus
+  // dissipated energy is booked as work_in.
+  void displace(const std::vector<std::size_t>& which, double dx, double dy, double dz);
+  // Recompute the contact list from scratch (keeps history of pairs that persist).
+  void rebuild();
+  // Forces and torques at the current positions and velocities (advances springs by v_t dt).
+  void compute_forces() { compute_forces(dt_, true); }
+  // One velocity-Verlet step of translation and rotation.
+  void step();
+
+  // ---- energies (J) ----
+  double kinetic_energy() const;    // translational + rotational, mobile particles
+  double potential_energy() const;  // (1/2) k delta^2 + (1/2) k_t |xi|^2 over touching contacts
+  double dissipated_energy() const; // cumulative: dashpots, sliding, springs lost on opening
+  // dt^2/8 sum(|F|^2/m + |T|^2/I): velocity Verlet conserves E_kin + E_pot minus this exactly
+  // for linear forces (the "shadow" energy), so it separates integrator error from physics.
+  double verlet_correction() const;
+  int touching_contacts_of(std::size_t p) const;
+  double max_displacement_since_build() const;
+
+ private:
+  void compute_forces(double increment_time, bool dashpots);
+  template <bool Friction>
+  void contact_pass(double increment_time, bool dashpots);
+  void particle_pass();
+  void kick(double h);
+
+  Packing packing_;
+  contact::LinearSpringDashpotParams normal_;
+  contact::TangentialSpringParams tangential_;
+  bool friction_ = false;
+  double dt_ = 0.0;
+  double skin_ = 0.0;
+  double dissipated_before_ = 0.0;  // folded in at rebuilds
+  std::vector<double> x_build_, y_build_, z_build_;
+};
+
+// Frictionless relaxation of a packing (FIRE, Bitzek et al. 2006, on the mobile particles; the
+// fixed layers stay): stops when E_kin/E_pot < tolerance has held for the last 50 steps.
+// Velocities are zero afterwards. Returns the number of steps; throws RunError if it does not
+// converge within max_steps.
+struct RelaxResult {
+  long steps = 0;
+  double ratio = 0.0;
+};
+RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps = 2000000);
+
+}  // namespace granwave::crystal

@@ -1,0 +1,22 @@
+// Candidate pairs for the contact list: a cell list over the periodic x-y box and the open z
+// range, any box size (periodic images are tested explicitly, so boxes only two particles
+// across work too). The result is sorted by (i, j, image), so it does not depend on the
+// storage order of the cells and history can be matched across rebuilds by a merge.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace granwave::crystal {
+
+struct PairList {
+  std::vector<std::int32_t> i, j;          // i < j
+  std::vector<std::int16_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y
+  std::size_t size() const { return i.size(); }
+};
+
+// Pairs with |x_j(image) - x_i| < a_i + a_j + skin. Pairs of two particles with skip[i] and
+// skip[j] set are left out (two fixed particles); skip may be null.
+PairList find_pairs(const double* x, const double* y, const double* z, const double* radius, std::size_t n,
+                    double box_x, double box_y, double skin, const std::uint8_t* skip);
+
+}  // namespace granwave::crystal

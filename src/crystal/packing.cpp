@@ -1,0 +1,180 @@
+#include "crystal/packing.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/rng.hpp"
+#include "crystal/dynamics.hpp"
+#include "crystal/neighbors.hpp"
+#include "io/h5.hpp"
+
+namespace granwave::crystal {
+
+Packing lattice_packing(const config::Case& c) {
+  if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
+  const config::CrystalCase& k = *c.crystal;
+  const auto [nx, ny, layers] = k.cells;
+  if (k.lattice != "fcc") throw InputError(c.path + ": crystal.lattice = \"" + k.lattice + "\": only \"fcc\"");
+  // With fewer than 2 particles across, a sphere would touch its own periodic image.
+  if (nx < 2 || ny < 2)
+    throw InputError(c.path + ": crystal.cells = [" + std::to_string(nx) + ", " + std::to_string(ny) +
+                     ", ...]: the packing does not fit its periodic box (need at least 2 particles across x and y)");
+  if (k.fixed_layers < 1 || layers < 2 * k.fixed_layers + 1)
+    throw InputError(c.path + ": crystal.cells[2] = " + std::to_string(layers) + " layers leave no free layer between " +
+                     std::to_string(k.fixed_layers) + " fixed layers at each end");
+  if (!(k.radius > 0.0) || !(k.density > 0.0)) throw InputError(c.path + ": crystal.radius and density must be > 0");
+  if (!(k.overlap >= 0.0 && k.overlap < 0.1)) throw InputError(c.path + ": crystal.overlap must be in [0, 0.1)");
+  if (!(k.polydispersity >= 0.0)) throw InputError(c.path + ": crystal.polydispersity must be >= 0");
+
+  Packing p;
+  p.nx = nx;
+  p.ny = ny;
+  p.layers = layers;
+  p.fixed_layers = k.fixed_layers;
+  p.d = 2.0 * k.radius;
+  p.d_prime = p.d * (1.0 - k.overlap);
+  p.delta = p.d - p.d_prime;
+  p.l0 = p.d_prime / std::numbers::sqrt2;
+  p.box_x = nx * p.d_prime;
+  p.box_y = ny * p.d_prime;
+  // Polydisperse radii a + U(-1, 1) * polydispersity * delta; the lattice (box volume) is kept.
+  const double half_width = k.polydispersity * p.delta;
+  if (half_width >= k.radius) throw InputError(c.path + ": crystal.polydispersity makes radii <= 0");
+  const std::size_t n = static_cast<std::size_t>(nx) * ny * layers;
+  p.x.reserve(n);
+  for (int L = 0; L < layers; ++L) {
+    const double shift = (L % 2) ? 0.5 * p.d_prime : 0.0;  // every second layer in the holes
+    for (int iy = 0; iy < ny; ++iy)
+      for (int ix = 0; ix < nx; ++ix) {
+        const std::size_t id = p.x.size();
+        double a = k.radius;
+        if (half_width > 0.0) {
+          CounterRng rng(k.seed, id);  // one stream per particle: independent of any order
+          a += half_width * (2.0 * rng.uniform() - 1.0);
+        }
+        const double m = k.density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
+        p.x.push_back(ix * p.d_prime + shift);
+        p.y.push_back(iy * p.d_prime + shift);
+        p.z.push_back(k.radius + L * p.l0);
+        p.radius.push_back(a);
+        p.mass.push_back(m);
+        p.inertia.push_back(0.4 * m * a * a);
+        p.layer.push_back(L);
+        p.fixed.push_back(L < k.fixed_layers || L >= layers - k.fixed_layers);
+      }
+  }
+  return p;
+}
+
+Packing make_packing(const config::Case& c) {
+  Packing p = lattice_packing(c);
+  if (c.crystal->polydispersity > 0.0) {
+    const RelaxResult r = relax(p, c.contact.kn, c.crystal->relax_tolerance);
+    p.relaxed = true;
+    p.relax_steps = r.steps;
+    p.relax_ratio = r.ratio;
+  }
+  return p;
+}
+
+std::vector<PackingContact> list_contacts(const Packing& p, bool include_fixed_pairs) {
+  std::vector<std::uint8_t> skip(p.size());
+  for (std::size_t q = 0; q < p.size(); ++q) skip[q] = p.fixed[q];
+  const PairList pairs = find_pairs(p.x.data(), p.y.data(), p.z.data(), p.radius.data(), p.size(), p.box_x, p.box_y,
+                                    0.0, include_fixed_pairs ? nullptr : skip.data());
+  std::vector<PackingContact> out;
+  out.reserve(pairs.size());
+  for (std::size_t c = 0; c < pairs.size(); ++c) {
+    const int i = pairs.i[c], j = pairs.j[c];
+    PackingContact k;
+    k.i = i;
+    k.j = j;
+    k.bx = p.x[j] + pairs.image_x[c] * p.box_x - p.x[i];
+    k.by = p.y[j] + pairs.image_y[c] * p.box_y - p.y[i];
+    k.bz = p.z[j] - p.z[i];
+    k.overlap = p.radius[i] + p.radius[j] - std::sqrt(k.bx * k.bx + k.by * k.by + k.bz * k.bz);
+    if (k.overlap > 0.0) out.push_back(k);
+  }
+  return out;
+}
+
+void write_system(io::H5Writer& w, const Packing& p, const std::string& case_name, const std::string& group) {
+  const std::string g = group.empty() ? "/" : group;
+  const std::string pre = group.empty() ? "/" : group + "/";
+  if (!group.empty()) w.group(group);
+  const std::size_t n = p.size();
+  w.attr(g, "model", std::string("crystal"));
+  w.attr(g, "schema_version", std::int64_t{1});
+  w.attr(g, "case_name", case_name);
+  w.write(pre + "material_names", std::vector<std::string>{"grain"});
+  w.write(pre + "material_index", std::vector<std::int64_t>(n, 0));
+  w.write(pre + "mass", p.mass);
+  w.write(pre + "radius", p.radius);
+  w.write(pre + "inertia", p.inertia);
+  w.write(pre + "fixed", std::vector<std::int64_t>(p.fixed.begin(), p.fixed.end()));
+  w.write(pre + "layer", std::vector<std::int64_t>(p.layer.begin(), p.layer.end()));
+  std::vector<double> pos(3 * n), vel(3 * n, 0.0);
+  for (std::size_t q = 0; q < n; ++q) {
+    pos[3 * q] = p.x[q];
+    pos[3 * q + 1] = p.y[q];
+    pos[3 * q + 2] = p.z[q];
+  }
+  w.write(pre + "position", pos, {n, 3});
+  w.write(pre + "velocity", vel, {n, 3});
+  w.attr(g, "box_x", p.box_x);
+  w.attr(g, "box_y", p.box_y);
+  w.attr(g, "d", p.d);
+  w.attr(g, "d_prime", p.d_prime);
+  w.attr(g, "l0", p.l0);
+  w.attr(g, "delta", p.delta);
+  w.attr(g, "fixed_layers", std::int64_t{p.fixed_layers});
+  w.attr(g, "cells_x", std::int64_t{p.nx});
+  w.attr(g, "cells_y", std::int64_t{p.ny});
+  w.attr(g, "layers", std::int64_t{p.layers});
+  w.attr(g, "relaxed", std::int64_t{p.relaxed});
+  w.attr(g, "relax_steps", std::int64_t{p.relax_steps});
+  w.attr(g, "relax_ratio", p.relax_ratio);
+}
+
+Packing read_system(const std::string& path) {
+  io::H5Reader r(path);
+  const std::string g = r.has("/system") ? "/system" : "/";
+  const std::string pre = g == "/" ? "/" : g + "/";
+  if (!r.has_attr(g, "model") || r.attr_string(g, "model") != "crystal")
+    throw InputError(path + ": not a crystal system file (attribute model != \"crystal\")");
+  Packing p;
+  p.mass = r.read_double(pre + "mass");
+  p.radius = r.read_double(pre + "radius");
+  p.inertia = r.read_double(pre + "inertia");
+  const auto fixed = r.read_int(pre + "fixed");
+  const auto layer = r.read_int(pre + "layer");
+  const auto pos = r.read_double(pre + "position");
+  const std::size_t n = p.mass.size();
+  if (p.radius.size() != n || p.inertia.size() != n || fixed.size() != n || layer.size() != n || pos.size() != 3 * n)
+    throw InputError(path + ": system arrays have inconsistent lengths");
+  for (std::size_t q = 0; q < n; ++q) {
+    p.x.push_back(pos[3 * q]);
+    p.y.push_back(pos[3 * q + 1]);
+    p.z.push_back(pos[3 * q + 2]);
+    p.fixed.push_back(fixed[q] != 0);
+    p.layer.push_back(static_cast<int>(layer[q]));
+  }
+  p.box_x = r.attr_double(g, "box_x");
+  p.box_y = r.attr_double(g, "box_y");
+  p.d = r.attr_double(g, "d");
+  p.d_prime = r.attr_double(g, "d_prime");
+  p.l0 = r.attr_double(g, "l0");
+  p.delta = r.attr_double(g, "delta");
+  p.fixed_layers = static_cast<int>(r.attr_double(g, "fixed_layers"));
+  p.nx = static_cast<int>(r.attr_double(g, "cells_x"));
+  p.ny = static_cast<int>(r.attr_double(g, "cells_y"));
+  p.layers = static_cast<int>(r.attr_double(g, "layers"));
+  p.relaxed = r.attr_double(g, "relaxed") != 0.0;
+  p.relax_steps = static_cast<long>(r.attr_double(g, "relax_steps"));
+  p.relax_ratio = r.attr_double(g, "relax_ratio");
+  return p;
+}
+
+}  // namespace granwave::crystal
