@@ -79,7 +79,7 @@ def sync_state(ids, masses, dt, fixed):
     st = [O.bodies[i].state for i in ids]
     pos = np.array([(v[0], v[1], v[2]) for v in [s.pos for s in st]])
     vel = np.array([(v[0], v[1], v[2]) for v in [s.vel for s in st]])
-    frc = np.array([(v[0], v[1], v[2]) for v in [O.forces.f(i) for i in ids]])
+    frc = np.array([(v[0], v[1], v[2]) for v in [O.forces.f(i, True) for i in ids]])
     pos = pos - vel * dt
     vs = vel - frc / masses[:, None] * (0.5 * dt)
     vs[fixed] = vel[fixed]
@@ -94,7 +94,7 @@ def start_leapfrog(ids, masses, v0, fixed, dt, newton, runner):
     for k, i in enumerate(ids):
         if fixed[k]:
             continue
-        f = np.array(tuple(O.forces.f(i)))
+        f = np.array(tuple(O.forces.f(i, True)))
         v = v0[k] - f / masses[k] * (0.5 * dt)
         O.bodies[i].state.vel = Vector3(*v)
     newton.dead = False

@@ -1,0 +1,304 @@
+#!/usr/bin/python3
+"""LIGGGHTS driver for granwave cases: render (case + system -> deck + data file), run, convert.
+
+    /usr/bin/python3 liggghts_inputs/liggghts_case.py CASE.toml SYSTEM.h5 OUT.h5 [--workdir DIR]
+                     [--timeout S] [--render-only] [--liggghts liggghts]
+
+The deck templates are liggghts_inputs/templates/*.in.tmpl; every parameter mapping is explained in
+liggghts_inputs/MAPPING.md. Prints one line "XC_SUMMARY {json}" at the end.
+
+Time convention: LIGGGHTS integrates velocity Verlet and writes its dumps after a whole step, so
+positions, velocities and the contact forces of `compute pair/gran/local` (recomputed from the
+dumped state) belong to step*dt: already synchronous, no shift. The crystal deck builds contacts
+with `run 1` in the undisplaced packing and resets the step counter before the source steps.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import string
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+from xclib import traces as T  # noqa: E402
+
+TIME_CONVENTION = ("synchronous: LIGGGHTS velocity Verlet, dumps after a whole step; positions, "
+                   "velocities and compute pair/gran/local forces at step*dt (no shift)")
+
+
+def _template(name: str) -> string.Template:
+    with open(os.path.join(HERE, "templates", name)) as f:
+        return string.Template(f.read())
+
+
+def _g(x: float) -> str:
+    return repr(float(x))
+
+
+def _masses(m: np.ndarray) -> str:
+    return "\n".join("set             atom %d mass %s" % (k + 1, _g(v)) for k, v in enumerate(m))
+
+
+def _data_file(path, n_types, box, ids_types, radius, mass, pos):
+    vol = 4.0 / 3.0 * math.pi * radius ** 3
+    with open(path, "w") as f:
+        f.write("granwave system -> LIGGGHTS data file (atom_style granular)\n\n")
+        f.write("%d atoms\n%d atom types\n\n" % (len(mass), n_types))
+        for lo, hi, ax in zip(box[0], box[1], "xyz"):
+            f.write("%s %s %slo %shi\n" % (_g(lo), _g(hi), ax, ax))
+        f.write("\nAtoms\n\n")
+        for k in range(len(mass)):
+            # atom-ID atom-type diameter density x y z
+            f.write("%d %d %s %s %s %s %s\n" % (k + 1, ids_types[k], _g(2 * radius[k]), _g(mass[k] / vol[k]),
+                                               _g(pos[k, 0]), _g(pos[k, 1]), _g(pos[k, 2])))
+
+
+def render(case: dict, system: dict, workdir: str) -> dict:
+    """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...)."""
+    model = case["case"]["model"]
+    dt = T.timestep(case, system)
+    nsteps, every = T.sampling(case, dt)
+    m = np.asarray(system["mass"], float)
+    r = np.asarray(system["radius"], float)
+    pos = np.asarray(system["position"], float)
+    n = len(m)
+    facts = dict(model=model, dt=dt, nsteps=nsteps, every=every, n=n)
+    if model == "chain":
+        lay = T.chain_layout(system)
+        e = np.asarray(system["youngs_modulus"], float)
+        nu = np.asarray(system["poisson_ratio"], float)
+        keys = []
+        types = np.zeros(n, int)
+        for k in range(n):
+            key = (float(e[k]), float(nu[k]))
+            if key not in keys:
+                keys.append(key)
+            types[k] = keys.index(key) + 1
+        ym = [k[0] for k in keys]
+        pr = [k[1] for k in keys]
+        wall_line = "# free end: no wall"
+        if lay["has_wall"]:
+            ym.append(float(system["attrs"]["wall_youngs_modulus"]))
+            pr.append(float(system["attrs"]["wall_poisson_ratio"]))
+            wall_line = ("fix             wall all wall/gran model hertz tangential no_history primitive type %d "
+                         "xplane %s store_force yes" % (len(ym), _g(lay["wall_x"])))
+        nt = len(ym)
+        rmax = float(r.max())
+        lo = [float(pos[:, 0].min() - 3 * rmax), float(pos[:, 1].min() - 3 * rmax), float(pos[:, 2].min() - 3 * rmax)]
+        hi = [float((lay["wall_x"] if lay["has_wall"] else pos[:, 0].max()) + 3 * rmax),
+              float(pos[:, 1].max() + 3 * rmax), float(pos[:, 2].max() + 3 * rmax)]
+        _data_file(os.path.join(workdir, "data.system"), nt, (lo, hi), types, r, m, pos)
+        v = np.asarray(system["velocity"], float)
+        vel = "\n".join("set             atom %d vx %s vy %s vz %s" % (k + 1, _g(v[k, 0]), _g(v[k, 1]), _g(v[k, 2]))
+                        for k in range(n) if np.any(v[k] != 0))
+        deck = _template("chain.in.tmpl").substitute(
+            case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.5 * float(r.min())),
+            youngs=" ".join(map(_g, ym)), poissons=" ".join(map(_g, pr)), ntypes=nt,
+            restitution=" ".join(["1.0"] * nt * nt), friction=" ".join(["0.0"] * nt * nt),
+            wall_line=wall_line, dt=_g(dt), velocity_line=vel, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10),
+            nsteps=nsteps)
+        facts.update(has_wall=lay["has_wall"])
+    else:
+        c = T.contact_params(case)
+        ex = T.excitation(case)
+        lay = T.crystal_layout(system)
+        fixed = np.asarray(system["fixed"], int).astype(bool)
+        layer = lay["layer"]
+        types = np.where(fixed, np.where(layer < lay["fixed_layers"], 3, 2), 1)
+        zmin, zmax = float(pos[:, 2].min()), float(pos[:, 2].max())
+        rmax = float(r.max())
+        # x, y periodic with the system's lengths (the packing starts at x = y = 0, images by minimum image)
+        lo = [0.0, 0.0, zmin - 3 * rmax]
+        hi = [lay["box_x"], lay["box_y"], zmax + 3 * rmax]
+        p = pos.copy()
+        p[:, 0] = np.mod(p[:, 0] - lo[0], lay["box_x"]) + lo[0]
+        p[:, 1] = np.mod(p[:, 1] - lo[1], lay["box_y"]) + lo[1]
+        _data_file(os.path.join(workdir, "data.system"), 3, (lo, hi), types, r, m, p)
+        if c["mu_static"] != c["mu_dynamic"]:
+            sys.stderr.write("liggghts_case: LIGGGHTS has one coefficientFriction; using mu_static=%g "
+                             "(mu_dynamic=%g ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
+        nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
+        axis = (0, 0, 1) if ex["mode"] == "P" else (1, 0, 0)
+        if ex["drive"] == "displacement":
+            s = float(ex["amplitude"]) * lay["d"]
+            exl = "displace_atoms  source move %s %s %s units box" % tuple(_g(s * a) for a in axis)
+        else:
+            vv = float(ex["amplitude"])
+            exl = "fix             drive source move linear %s %s %s" % tuple(_g(vv * a) for a in axis)
+        deck = _template("crystal.in.tmpl").substitute(
+            case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.2 * float(r.min())),
+            kn9=nine(c["kn"]), kt9=nine(c["kt"]), gn9=nine(c["gamma_n"]), gt9=nine(c["gamma_t"]),
+            mu9=nine(c["mu_static"]), limit_force="on" if c["normal_tension"] == "clip" else "off",
+            dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 6, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps)
+        facts.update(lay={k: v for k, v in lay.items() if k != "layer"})
+    with open(os.path.join(workdir, "in.case"), "w") as f:
+        f.write(deck)
+    return facts
+
+
+# ------------------------------------------------------------------------------------ dump reading
+def read_dump(path: str):
+    """Yield (timestep, column names, rows [n, ncol]) for each frame of a LIGGGHTS text dump
+    (custom or local)."""
+    with open(path) as f:
+        lines = f.read().split("\n")
+    k = 0
+    nl = len(lines)
+    while k < nl:
+        if not lines[k].startswith("ITEM: TIMESTEP"):
+            k += 1
+            continue
+        step = int(lines[k + 1])
+        n = int(lines[k + 3])
+        k += 4
+        while not (lines[k].startswith("ITEM: ATOMS") or lines[k].startswith("ITEM: ENTRIES")):
+            k += 1
+        cols = lines[k].split()[2:]
+        body = lines[k + 1:k + 1 + n]
+        rows = np.array([ln.split() for ln in body], dtype=float).reshape(n, len(cols))
+        yield step, cols, rows
+        k += 1 + n
+
+
+def _pairs_on_first(rows: np.ndarray):
+    """(i, j, force on i) with each physical contact once. pair/gran/local rows are id1 id2 flag fx fy fz
+    (force on id1); with newton off a contact across a periodic boundary is listed from both sides."""
+    i = rows[:, 0].astype(int) - 1
+    j = rows[:, 1].astype(int) - 1
+    f = rows[:, 3:6]
+    a = np.minimum(i, j)
+    b = np.maximum(i, j)
+    sgn = np.where(i == a, 1.0, -1.0)
+    key = a.astype(np.int64) * (1 << 32) + b
+    _, first = np.unique(key, return_index=True)
+    return a[first], b[first], f[first] * sgn[first][:, None]
+
+
+def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str, facts: dict, version: str) -> None:
+    system = T.read_system(system_path)
+    dt, every = facts["dt"], facts["every"]
+    atoms = list(read_dump(os.path.join(workdir, "dump.atoms")))
+    pairs = {s: rows for s, _, rows in read_dump(os.path.join(workdir, "dump.pairs"))}
+    steps = [s for s, _, _ in atoms]
+    times = np.array(steps, float) * dt
+    r = np.asarray(system["radius"], float)
+    n = len(r)
+    if facts["model"] == "chain":
+        lay = T.chain_layout(system)
+        nc = lay["ncontacts"]
+        cf = np.zeros((len(steps), nc))
+        ke = np.zeros(len(steps))
+        pe = np.zeros(len(steps))
+        m = np.asarray(system["mass"], float)
+        a = np.asarray(system["hertz_constant"], float)
+        for q, (s, cols, rows) in enumerate(atoms):
+            x = rows[:, cols.index("x")]
+            v = rows[:, [cols.index("vx"), cols.index("vy"), cols.index("vz")]]
+            ke[q] = 0.5 * float(np.sum(m * np.sum(v * v, axis=1)))
+            dl = r[:-1] + r[1:] - np.diff(x)
+            if lay["has_wall"]:
+                dl = np.append(dl, r[-1] - (lay["wall_x"] - x[-1]))
+                # primitive wall: R* = R, its force from the same Hertz law LIGGGHTS applied
+                cf[q, n - 1] = a[-1] * max(dl[-1], 0.0) ** 1.5
+            pe[q] = float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5))
+            pr = pairs.get(s)
+            if pr is not None and len(pr):
+                i, j, f = _pairs_on_first(pr)
+                ok = j == i + 1
+                # force on the striker-side bead points back (-x) when compressed
+                cf[q, i[ok]] = -f[ok, 0]
+        data = {"/chain/contact_force": cf, "/chain/bead_force": T.bead_force_from_contacts(cf, n, lay["has_wall"]),
+                "/energy/kinetic": ke, "/energy/potential": pe}
+    else:
+        lay = T.crystal_layout(system)
+        nl = lay["nlayers"]
+        fixed = np.asarray(system["fixed"], int).astype(bool)
+        layer = lay["layer"]
+        x0 = np.asarray(system["position"], float)
+        out_rows = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx")}
+        for s, cols, rows in atoms:
+            p = rows[:, [cols.index("x"), cols.index("y"), cols.index("z")]]
+            v = rows[:, [cols.index("vx"), cols.index("vy"), cols.index("vz")]]
+            du = p - x0
+            du[:, 0] -= lay["box_x"] * np.round(du[:, 0] / lay["box_x"])
+            du[:, 1] -= lay["box_y"] * np.round(du[:, 1] / lay["box_y"])
+            pr = pairs.get(s, np.zeros((0, 6)))
+            i, j, f = _pairs_on_first(pr) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
+            szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
+            out_rows["szz"].append(szz)
+            out_rows["szx"].append(szx)
+            out_rows["uz"].append(T.layer_mean(du[:, 2], layer, nl))
+            out_rows["ux"].append(T.layer_mean(du[:, 0], layer, nl))
+            out_rows["vz"].append(T.layer_mean(v[:, 2], layer, nl))
+            out_rows["vx"].append(T.layer_mean(v[:, 0], layer, nl))
+        data = {"/crystal/layer_z": lay["layer_z"]}
+        for key, name in (("szz", "layer_stress_zz"), ("szx", "layer_stress_zx"), ("uz", "layer_displacement_z"),
+                          ("ux", "layer_displacement_x"), ("vz", "layer_velocity_z"), ("vx", "layer_velocity_x")):
+            data["/crystal/" + name] = np.array(out_rows[key])
+    T.write_trace(out, code="liggghts", code_version=version, case_text=case_text, case_name=case["case"]["name"],
+                  system_path=system_path, time_convention=TIME_CONVENTION, time=times, datasets=data,
+                  extra_attrs={"dt": dt, "deck": open(os.path.join(workdir, "in.case")).read()})
+
+
+def liggghts_version(log: str) -> str:
+    for ln in log.splitlines():
+        if ln.startswith("LIGGGHTS"):
+            return ln.strip()
+    return "LIGGGHTS"
+
+
+def main(argv) -> int:
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case")
+    ap.add_argument("system")
+    ap.add_argument("out")
+    ap.add_argument("--workdir", help="where the deck, data file and dumps go (default: OUT's name + .liggghts)")
+    ap.add_argument("--timeout", type=float, default=1800)
+    ap.add_argument("--render-only", action="store_true")
+    ap.add_argument("--liggghts", default="liggghts")
+    a = ap.parse_args(argv)
+    if os.path.exists(a.out):
+        print("liggghts_case: %s exists: nothing is overwritten" % a.out, file=sys.stderr)
+        return 2
+    work = a.workdir or (a.out + ".liggghts")
+    os.makedirs(work, exist_ok=False)
+    case, text = T.load_case(a.case)
+    system = T.read_system(a.system)
+    facts = render(case, system, work)
+    if a.render_only:
+        print("rendered %s" % work)
+        return 0
+    exe = shutil.which(a.liggghts)
+    if exe is None:
+        print("liggghts_case: %s not found" % a.liggghts, file=sys.stderr)
+        return 127
+    t = time.time()
+    with open(os.path.join(work, "log.stdout"), "w") as lo:
+        p = subprocess.run([exe, "-in", "in.case"], cwd=work, stdout=lo, stderr=subprocess.STDOUT, timeout=a.timeout)
+    wall = time.time() - t
+    log = open(os.path.join(work, "log.stdout")).read()
+    if p.returncode != 0 or "ERROR" in log:
+        err = [ln for ln in log.splitlines() if "ERROR" in ln]
+        print("liggghts_case: LIGGGHTS failed (%d): %s" % (p.returncode, "; ".join(err[-3:])), file=sys.stderr)
+        return 1
+    # the solver's own time: LIGGGHTS' "Loop time" of the main run
+    loops = [float(ln.split()[3]) for ln in log.splitlines() if ln.startswith("Loop time of")]
+    convert(work, case, text, a.system, a.out, facts, liggghts_version(log))
+    solver = loops[-1] if loops else wall
+    print("XC_SUMMARY " + json.dumps(dict(code="liggghts", case=case["case"]["name"], dt=facts["dt"],
+                                          steps=facts["nsteps"], wall_s=wall, solver_s=solver, particles=facts["n"],
+                                          particle_steps_per_s=facts["n"] * facts["nsteps"] / max(solver, 1e-9),
+                                          trace=a.out)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
