@@ -1,0 +1,30 @@
+# Command-line tests: exit codes and files, run through the real binary (label "cli").
+# Each bad case must exit 2 with a message naming the key, and write nothing.
+set(GW $<TARGET_FILE:granwave>)
+set(BAD ${CMAKE_SOURCE_DIR}/tests/data/bad)
+set(CLI_TMP ${CMAKE_BINARY_DIR}/cli-tests)
+file(MAKE_DIRECTORY ${CLI_TMP})
+
+function(granwave_cli_refuses name file key)
+  foreach(verb check run build)
+    add_test(NAME "cli: ${verb} refuses ${name}"
+      COMMAND sh -c "rm -f ${CLI_TMP}/${name}.${verb}.h5*; ${GW} ${verb} ${BAD}/${file} -o ${CLI_TMP}/${name}.${verb}.h5 2> ${CLI_TMP}/${name}.${verb}.err; rc=$?; \
+test $rc -eq 2 || { echo \"exit code $rc, expected 2\"; exit 1; }; \
+grep -q -- '${key}' ${CLI_TMP}/${name}.${verb}.err || { cat ${CLI_TMP}/${name}.${verb}.err; echo 'message does not name ${key}'; exit 1; }; \
+grep -q -- '${file}' ${CLI_TMP}/${name}.${verb}.err || { echo 'message does not name the file'; exit 1; }; \
+! ls ${CLI_TMP}/${name}.${verb}.h5* 2>/dev/null || { echo 'wrote a file'; exit 1; }")
+    set_tests_properties("cli: ${verb} refuses ${name}" PROPERTIES LABELS "cli;unit")
+  endforeach()
+endfunction()
+
+granwave_cli_refuses(unknown_key unknown_key.toml "case.colour")
+granwave_cli_refuses(negative_modulus negative_modulus.toml "materials.steel.youngs_modulus")
+granwave_cli_refuses(off_grid_m off_grid_m.toml "magnetisation")
+granwave_cli_refuses(crystal_mu crystal_mu.toml "contact.mu_dynamic")
+
+add_test(NAME "cli: missing case file exits 2" COMMAND sh -c "${GW} check /nonexistent/case.toml; test $? -eq 2")
+add_test(NAME "cli: unknown verb exits 2" COMMAND sh -c "${GW} frobnicate; test $? -eq 2")
+add_test(NAME "cli: unknown option exits 2" COMMAND sh -c "${GW} check ${BAD}/unknown_key.toml --frob; test $? -eq 2")
+add_test(NAME "cli: every verb has --help" COMMAND sh -c "for v in build run check analyze theory sweep figures; do ${GW} $v --help > /dev/null || { echo $v; exit 1; }; done")
+set_tests_properties("cli: missing case file exits 2" "cli: unknown verb exits 2" "cli: unknown option exits 2"
+                     "cli: every verb has --help" PROPERTIES LABELS "cli;unit")
