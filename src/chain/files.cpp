@@ -1,0 +1,142 @@
+// The chain parts of the system and trace files (data/SCHEMA.md §2, §3).
+#include <cmath>
+
+#include "chain/chain.hpp"
+#include "core/error.hpp"
+#include "io/h5.hpp"
+
+namespace granwave::chain {
+namespace {
+
+std::vector<std::int64_t> to_i64(const std::vector<int>& v) { return {v.begin(), v.end()}; }
+std::vector<int> to_int(const std::vector<std::int64_t>& v) { return {v.begin(), v.end()}; }
+
+std::string join(const std::string& group, const std::string& name) {
+  return (group == "/" || group.empty()) ? "/" + name : group + "/" + name;
+}
+
+// Chain beads lie along x: [n, 3] with y = z = 0.
+std::vector<double> along_x(const std::vector<double>& x) {
+  std::vector<double> out(3 * x.size(), 0.0);
+  for (std::size_t i = 0; i < x.size(); ++i) out[3 * i] = x[i];
+  return out;
+}
+
+}  // namespace
+
+void write_system(io::H5Writer& w, const ChainSystem& sys, const std::string& group) {
+  const std::string g = group.empty() ? "/" : group;
+  if (g != "/") w.group(g);
+  const std::size_t n = sys.nbeads();
+  w.attr(g, "model", std::string("chain"));
+  w.attr(g, "schema_version", std::int64_t{1});
+  w.attr(g, "case_name", sys.case_name);
+  w.write(join(g, "material_names"), sys.material_names);
+  w.write(join(g, "material_index"), to_i64(sys.material));
+  w.write(join(g, "mass"), sys.mass);
+  w.write(join(g, "radius"), sys.radius);
+  std::vector<double> inertia(n);
+  for (std::size_t i = 0; i < n; ++i) inertia[i] = 0.4 * sys.mass[i] * sys.radius[i] * sys.radius[i];
+  w.write(join(g, "inertia"), inertia);
+  w.write(join(g, "youngs_modulus"), sys.youngs_modulus);
+  w.write(join(g, "poisson_ratio"), sys.poisson_ratio);
+  w.write(join(g, "fixed"), std::vector<std::int64_t>(n, 0));
+  w.write(join(g, "position"), along_x(sys.position), {n, 3});
+  w.write(join(g, "velocity"), along_x(sys.velocity), {n, 3});
+  w.write(join(g, "cell"), to_i64(sys.cell));
+  w.write(join(g, "spin"), to_i64(sys.spin));
+  w.write(join(g, "flippable"), to_i64(sys.flippable));
+  w.write(join(g, "counts_for_m"), to_i64(sys.counts_for_m));
+  w.write(join(g, "cell_materials"), to_i64(sys.cell_materials));
+  w.write(join(g, "hertz_constant"), sys.hertz_constant);
+  w.write(join(g, "initial_overlap"), sys.initial_overlap);
+  w.attr(g, "magnetisation", sys.magnetisation);
+  w.attr(g, "wall", sys.wall);
+  w.attr(g, "wall_youngs_modulus", sys.wall_youngs_modulus);
+  w.attr(g, "wall_poisson_ratio", sys.wall_poisson_ratio);
+  w.attr(g, "wall_position", sys.wall_position);
+  w.attr(g, "precompression", sys.precompression);
+  w.attr(g, "striker_velocity", sys.striker_velocity);
+}
+
+ChainSystem read_system(const io::H5Reader& r, const std::string& group) {
+  const std::string g = group.empty() ? "/" : group;
+  if (!r.has_attr(g, "model") || r.attr_string(g, "model") != "chain")
+    throw InputError(r.path() + ": not a chain system (attribute 'model' is not \"chain\")");
+  ChainSystem s;
+  s.case_name = r.attr_string(g, "case_name");
+  s.material_names = r.read_strings(join(g, "material_names"));
+  s.material = to_int(r.read_int(join(g, "material_index")));
+  s.mass = r.read_double(join(g, "mass"));
+  s.radius = r.read_double(join(g, "radius"));
+  s.youngs_modulus = r.read_double(join(g, "youngs_modulus"));
+  s.poisson_ratio = r.read_double(join(g, "poisson_ratio"));
+  const auto pos = r.read_double(join(g, "position"));
+  const auto vel = r.read_double(join(g, "velocity"));
+  const std::size_t n = s.mass.size();
+  if (pos.size() != 3 * n || vel.size() != 3 * n) throw InputError(r.path() + ": position/velocity are not [n, 3]");
+  for (std::size_t i = 0; i < n; ++i) {
+    s.position.push_back(pos[3 * i]);
+    s.velocity.push_back(vel[3 * i]);
+  }
+  s.cell = to_int(r.read_int(join(g, "cell")));
+  s.spin = to_int(r.read_int(join(g, "spin")));
+  s.counts_for_m = to_int(r.read_int(join(g, "counts_for_m")));
+  s.flippable = r.has(join(g, "flippable")) ? to_int(r.read_int(join(g, "flippable"))) : std::vector<int>(s.spin.size(), 0);
+  if (r.has(join(g, "cell_materials"))) s.cell_materials = to_int(r.read_int(join(g, "cell_materials")));
+  s.cell_first_bead.assign(s.spin.size(), -1);
+  for (std::size_t b = n; b-- > 0;)
+    if (s.cell[b] >= 0) s.cell_first_bead[s.cell[b]] = static_cast<int>(b);
+  s.hertz_constant = r.read_double(join(g, "hertz_constant"));
+  s.initial_overlap = r.read_double(join(g, "initial_overlap"));
+  s.magnetisation = r.attr_double(g, "magnetisation");
+  s.wall = r.attr_string(g, "wall");
+  s.has_wall = s.wall != "free";
+  s.wall_youngs_modulus = r.attr_double(g, "wall_youngs_modulus");
+  s.wall_poisson_ratio = r.attr_double(g, "wall_poisson_ratio");
+  s.wall_position = r.attr_double(g, "wall_position");
+  s.precompression = r.has_attr(g, "precompression") ? r.attr_double(g, "precompression") : 0.0;
+  s.striker_velocity = n > 0 ? s.velocity[0] : 0.0;
+  // The material table's per-material values are not stored; take them from the beads.
+  const std::size_t nm = s.material_names.size();
+  const double nan = std::nan("");
+  s.mat_mass.assign(nm, nan);
+  s.mat_radius.assign(nm, nan);
+  s.mat_youngs_modulus.assign(nm, nan);
+  s.mat_poisson_ratio.assign(nm, nan);
+  for (std::size_t b = 0; b < n; ++b) {
+    const int m = s.material[b];
+    s.mat_mass[m] = s.mass[b];
+    s.mat_radius[m] = s.radius[b];
+    s.mat_youngs_modulus[m] = s.youngs_modulus[b];
+    s.mat_poisson_ratio[m] = s.poisson_ratio[b];
+  }
+  if (s.hertz_constant.size() != n - 1 + (s.has_wall ? 1 : 0) || s.initial_overlap.size() != s.hertz_constant.size())
+    throw InputError(r.path() + ": hertz_constant/initial_overlap do not match the beads and the wall");
+  return s;
+}
+
+void write_trace(io::H5Writer& w, const ChainTrace& tr) {
+  const std::size_t nt = tr.nt();
+  w.write("/time", tr.time);
+  if (!tr.bead_force.empty()) w.write("/chain/bead_force", tr.bead_force, {nt, tr.nbeads});
+  if (!tr.contact_force.empty()) w.write("/chain/contact_force", tr.contact_force, {nt, tr.ncontacts});
+  if (!tr.full_rate_beads.empty()) {
+    w.write("/chain/full_rate/time", tr.full_rate_time);
+    w.write("/chain/full_rate/bead_force", tr.full_rate_bead_force, {tr.full_rate_time.size(), tr.full_rate_beads.size()});
+    w.write("/chain/full_rate/beads", to_i64(tr.full_rate_beads));
+  }
+  if (!tr.kinetic.empty()) {
+    w.write("/energy/kinetic", tr.kinetic);
+    w.write("/energy/potential", tr.potential);
+    // Conservative model: nothing dissipated, no driven particles after the impact.
+    w.write("/energy/dissipated", std::vector<double>(nt, 0.0));
+    w.write("/energy/work_in", std::vector<double>(nt, 0.0));
+  }
+  w.attr("/", "time_convention", std::string("synchronous"));
+  w.attr("/", "dt", tr.dt);
+  w.attr("/", "steps", static_cast<std::int64_t>(tr.steps));
+  w.attr("/", "stopped_early", static_cast<std::int64_t>(tr.stopped_early));
+}
+
+}  // namespace granwave::chain

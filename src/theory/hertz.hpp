@@ -1,0 +1,29 @@
+// Closed forms for Hertz contacts (DESIGN.md §3): two-body impact and Nesterenko's solitary wave.
+#pragma once
+#include <limits>
+
+namespace granwave::theory {
+
+// Constant of the Hertz contact time t_c = 2.86827 (m*^2 / (R* E*^2 v))^(1/5).
+inline constexpr double kHertzContactTimeConstant = 2.86827;
+
+// Head-on impact of two elastic bodies joined by F = A delta^(3/2), closing at speed v.
+struct HertzImpact {
+  double hertz_constant = 0.0;  // A (N/m^1.5)
+  double effective_mass = 0.0;  // m* = m1 m2 / (m1 + m2) (m1 for a wall)
+  double velocity = 0.0;        // relative approach speed (m/s)
+  double max_overlap = 0.0;     // delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5) = (5 m* v^2 / (4 A))^(2/5)
+  double peak_force = 0.0;      // A delta_max^(3/2)
+  double contact_time = 0.0;    // 2.86827 (m*^2 / (R* E*^2 v))^(1/5)
+};
+
+// m2 = infinity for a wall.
+HertzImpact hertz_impact(double A, double m1, double m2, double v);
+inline constexpr double kWallMass = std::numeric_limits<double>::infinity();
+
+// Nesterenko's long-wave solitary-wave speed in a homogeneous Hertz chain,
+// V_s = 0.6802 (2E / (D rho^(3/2) (1 - nu^2)))^(1/3) F_m^(1/6)
+// (D bead diameter, rho = bead mass / bead volume, F_m peak contact force).
+double nesterenko_speed(double E, double nu, double D, double rho, double F_m);
+
+}  // namespace granwave::theory
