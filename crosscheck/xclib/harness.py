@@ -44,9 +44,9 @@ def expected_disagreement(tol: dict, case_name: str) -> str | None:
 
 # ------------------------------------------------------------------------------ running
 def find_granwave(explicit: str | None) -> str | None:
-    for c in ([explicit] if explicit else []) + [os.environ.get("GRANWAVE", ""), "granwave",
-                                                   os.path.join(REPO, "build", "granwave"),
-                                                   os.path.join(REPO, "build-xc", "granwave")]:
+    cands = [explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave",
+                                          os.path.join(REPO, "build", "granwave"), os.path.join(REPO, "build-xc", "granwave")]
+    for c in cands:
         if not c:
             continue
         p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)

@@ -1,0 +1,19 @@
+import os
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(REPO, "crosscheck"))
+sys.path.insert(0, os.path.join(REPO, "liggghts_inputs"))
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "realcodes: runs real YADE/LIGGGHTS/granwave (a few minutes); "
+                            "select with -m realcodes, skip with -m 'not realcodes'")
+
+
+@pytest.fixture
+def cases_dir():
+    return os.path.join(HERE, "cases")
