@@ -1,0 +1,142 @@
+// The analysis of a trace file (data/SCHEMA.md §3) of any code — granwave, YADE or LIGGGHTS:
+// one ruler for all three. Crystal traces (seed 002): per-layer measures of DESIGN.md §2.4 on
+// sigma - sigma(t = 0), speed fits with standard errors, local speeds, the 2D-FFT dispersion fit
+// and the wavelength estimates of sec. 3.4. Chain traces (seed 001): per-contact measures and the
+// front speed. Every measure comes from analysis/measures.hpp; nothing here knows which code
+// wrote the trace.
+//
+// Local speed (seed 002 Fig. 4, "a centre-weighted average over five layers"): the local slowness
+// at layer i is the (1, 2, 2, 1)/6-weighted mean of the four layer-to-layer delays of the first-peak
+// time between layers i-2 .. i+2, i.e. ((t_{i+1} + t_{i+2}) - (t_{i-1} + t_{i-2})) / (6 l0);
+// identical to the weighted least-squares slope of t against z with layer weights (1, 2, 3, 2, 1).
+// V = 1/slowness. Its error is the scatter of the four delays times sqrt(sum w^2) = sqrt(10)/6.
+// Delays are averaged, not speeds, because the peak times carry the noise.
+#pragma once
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "analysis/dispersion.hpp"
+#include "analysis/measures.hpp"
+
+namespace granwave::analysis {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A measured number with its standard error (NaN when not available).
+struct Measured {
+  double value = kNaN;
+  double error = kNaN;
+};
+
+// ---- reading ----
+struct CrystalTrace {
+  std::vector<double> time;      // [nt] s
+  std::vector<double> layer_z;   // [nlayers] m, from the innermost driven layer
+  std::size_t nt = 0, nlayers = 0;
+  double l0 = 0.0;               // layer spacing (m): /system attr l0, else from layer_z
+  int fixed_layers = 0;          // at each end
+  char mode = 'P';               // 'P' or 'S' (from case_toml, else from the field amplitudes)
+  std::string mode_source;       // "case_toml" | "inferred"
+  // Row-major [nt, nlayers]; empty when the trace lacks the dataset.
+  std::vector<double> stress_zz, stress_zx, displacement_z, displacement_x, velocity_z, velocity_x;
+  std::vector<double> coordination;
+};
+
+struct ChainTrace {
+  std::vector<double> time;
+  std::size_t nt = 0, ncontacts = 0;
+  std::vector<double> contact_force;     // [nt, ncontacts]
+  std::vector<double> contact_position;  // [ncontacts] m along the chain (NaN if no system)
+};
+
+struct TraceFile {
+  std::string path, code, code_version, case_name, time_convention;
+  std::string model;  // "crystal" | "chain"
+  CrystalTrace crystal;
+  ChainTrace chain;
+};
+TraceFile read_trace(const std::string& path);  // throws InputError
+
+// ---- crystal ----
+struct LayerMeasures {
+  std::size_t layer = 0;     // index in the trace (0 = bottom, fixed layers included)
+  double z = 0.0;            // m
+  double z_over_l0 = 0.0;
+  bool arrived = false;      // first peak found strictly before the end of the trace
+  Measured peak_time;        // s; error: |parabola - Gaussian| vertex of the same 3 samples
+  Measured peak_value;       // Pa (signal units)
+  Measured half_peak_time;   // s; error: h^2 |y''| / (8 |y'|), linear-interpolation bound
+  Measured one_percent_time; // s; same
+  Measured duration;         // T (s), 1 % arrival to the next 1 % crossing
+  Measured leading_max;      // largest value of the leading pulse
+  Measured local_speed;      // m/s, five-layer centre-weighted (header)
+  Measured lambda_vt;        // V T (m)
+  Measured k_from_speed;     // (2/l0) arccos(V/V(k->0)) (1/m)
+};
+
+struct SpeedFit {
+  std::string measure;       // "first_peak" | "half_peak" | "one_percent"
+  Measured speed;            // m/s, slope of z against arrival time (front_speed)
+  double intercept = kNaN;   // m
+  int lo = 0, hi = 0;        // z/l0 range used (inclusive)
+  std::size_t n = 0;
+};
+
+struct CrystalAnalysisOptions {
+  int lo = -1, hi = -1;       // z/l0 range of the fits (< 0: default 10 .. min(150, last - 20))
+  std::string field = "auto"; // dispersion field: "auto" (displacement) | "displacement" | "velocity" | "stress"
+  double t_max = -1.0;        // analyse t <= t_max only (< 0: the whole trace)
+  DispersionOptions dispersion;
+};
+
+struct CrystalAnalysis {
+  char mode = 'P';
+  std::string mode_source, measure_field, dispersion_field;
+  double polarity = 1.0;     // the measured signal is polarity * (sigma - sigma(0))
+  double l0 = 0.0, dt = 0.0; // output interval (s)
+  std::vector<LayerMeasures> layers;  // every layer above the source (z > 0) up to the last free one
+  int last_free = 0;                  // z/l0 of the last free layer
+  int requested_lo = 0, requested_hi = 0;
+  bool shortened = false;
+  std::string note;                   // says why the range was shortened
+  SpeedFit v_first_peak, v_half_peak, v_one_percent;
+  // The output interval the local speeds need: the first-peak time error must stay well below
+  // the layer delay l0/V; `delay_samples` = (l0/V_first_peak)/dt samples per layer delay.
+  double delay_samples = kNaN;
+  DispersionResult dispersion;
+};
+
+CrystalAnalysis analyze_crystal(const CrystalTrace& trace, const CrystalAnalysisOptions& options = {});
+
+// Five-layer local speed (header comment) from first-peak times t[i] at equal spacing dz;
+// entries without a full window (or with a missing time, NaN) are NaN.
+std::vector<Measured> local_speeds(const std::vector<double>& peak_times, double dz);
+
+// ---- chain ----
+struct ContactMeasures {
+  std::size_t contact = 0;
+  double position = kNaN;  // m
+  bool arrived = false;
+  Measured peak_time, peak_value, half_peak_time, one_percent_time, duration, leading_max;  // s, N
+};
+struct ChainAnalysis {
+  std::vector<ContactMeasures> contacts;
+  int lo = 0, hi = 0;               // contact range of the fits
+  bool shortened = false;
+  std::string note;
+  Measured v_first_peak_contacts;   // contacts per second
+  Measured v_half_peak_contacts;
+  Measured v_first_peak, v_half_peak;  // m/s (when contact positions are known)
+};
+struct ChainAnalysisOptions {
+  int lo = -1, hi = -1;  // contact range (< 0: default 5 .. ncontacts - 7)
+};
+ChainAnalysis analyze_chain(const ChainTrace& trace, const ChainAnalysisOptions& options = {});
+
+// ---- JSON (the crosscheck's ruler: keep stable; schema in `granwave analyze --help`) ----
+std::string to_json(const TraceFile& file, const CrystalAnalysis& a);
+std::string to_json(const TraceFile& file, const ChainAnalysis& a);
+
+}  // namespace granwave::analysis

@@ -1,0 +1,155 @@
+// granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--t-max T]: the one ruler for
+// the trace files of granwave, YADE and LIGGGHTS (src/analysis/trace_analysis.hpp).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+#include "analysis/trace_analysis.hpp"
+#include "cli/verbs.hpp"
+#include "core/error.hpp"
+
+namespace granwave::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--t-max T]
+
+Measures a trace file of any code (granwave, yade, liggghts; data/SCHEMA.md §3) with the one set
+of measures of DESIGN.md §2.4.
+
+Crystal traces (seed 002):
+  per layer (on sigma - sigma(t=0): sigma_zz for P, sigma_zx for S, sign-normalised so the pulse
+  is positive): first peak (time, value), half-peak arrival, 1 % arrival, duration T of the first
+  oscillation, leading-pulse maximum, local speed, lambda = V T, k(z) = (2/l0) arccos(V/V(k->0));
+  speeds: least-squares z against arrival time (first peak, half peak, 1 %) with standard errors
+  over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20)), shortened, with a note, where
+  the first peak has not arrived before the end of the trace;
+  local speed: slowness = (1,2,2,1)/6-weighted mean of the four first-peak delays over layers
+  i-2..i+2 (= least squares with layer weights 1,2,3,2,1). It needs the refined peak time error
+  well below a layer delay l0/V: `delay_samples` in the JSON is (l0/V)/dt. At the seed's 1 us
+  output (about 6.5 samples per delay) the parabola refinement suffices for the smooth pulses
+  beyond z/l0 ~ 10 (see tests/unit/analysis_synthetic.cpp for the measured error against the
+  output interval);
+  dispersion: 2D FFT of the (t, z) field from the innermost driven layer (z = 0) to the last free
+  layer, power-weighted omega_max(k) with phi = 4, sine fit omega_0 sin(k l0/2) over all k > 0,
+  V(k->0) = omega_0 l0/2. Default field: the layer displacement (the stress weights the poorly
+  excited short waves and biases omega_0 low: 6 % on YADE traces of the seed's crystal).
+Chain traces (seed 001): per contact the same measures on the contact force minus its t = 0 value,
+  front speed over contacts LO..HI (default 5 .. ncontacts - 7) in contacts/s and m/s.
+
+  --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain)
+  --field F        dispersion field: displacement (default) | velocity | stress
+  --t-max T        analyse t <= T only (s), e.g. to stop before a reflection returns
+  --json           one JSON object (schema "granwave-analyze/1"): every number as
+                   {"value", "error", "unit"} (error null where none applies). Top-level keys:
+                   schema, file, code, code_version, case_name, time_convention, model,
+                   crystal: mode, mode_source, measure_field, polarity, l0, output_interval,
+                     last_free_layer_z_over_l0, fit_range {z_over_l0, requested, shortened, note},
+                     v_first_peak, v_half_peak, v_one_percent (m/s, + z_over_l0 range, n),
+                     omega_0 (1/s), v_k0 (m/s), dispersion {field, nt, nz, domega, dk, n_fit,
+                     fit_rms, k, omega_max}, local_speed {method, delay_samples},
+                     wavelength_at [{z_over_l0, local_speed, duration, lambda_vt_over_l0,
+                     lambda_k_over_l0}] at z/l0 = 10, 15, 20, 80, 150,
+                     layers {layer, z_over_l0, arrived, peak_time, peak_value, half_peak_time,
+                     one_percent_time, duration, leading_max, local_speed, lambda_vt,
+                     k_from_speed: each {unit, values, errors}}
+                   chain: fit_range {contacts, shortened, note}, v_first_peak, v_half_peak (m/s),
+                     v_first_peak_contacts, v_half_peak_contacts (contacts/s),
+                     contacts {contact, position, arrived, peak_time, peak_value, half_peak_time,
+                     one_percent_time, duration, leading_max}
+)";
+
+void parse_range(const std::string& s, int* lo, int* hi) {
+  const auto colon = s.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    *lo = std::stoi(s.substr(0, colon));
+    *hi = std::stoi(s.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw InputError("--layers " + s + ": expected LO:HI (integers)");
+  }
+  if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
+}
+
+void print_measured(const char* name, const analysis::Measured& m, const char* unit) {
+  std::printf("%-16s %.6g +- %.2g %s\n", name, m.value, m.error, unit);
+}
+
+}  // namespace
+
+int cmd_analyze(const Args& args) {
+  if (wants_help(args)) {
+    std::cout << kHelp;
+    return 0;
+  }
+  const auto pos = positionals(args, {"--layers", "--field", "--t-max"});
+  if (pos.size() != 1) throw InputError("analyze: expected one trace file (granwave analyze --help)");
+  const bool json = has_flag(args, "--json");
+  int lo = -1, hi = -1;
+  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &lo, &hi);
+  const auto file = analysis::read_trace(pos[0]);
+
+  if (file.model == "chain") {
+    const auto a = analysis::analyze_chain(file.chain, {lo, hi});
+    if (json) {
+      std::cout << analysis::to_json(file, a);
+      return 0;
+    }
+    std::printf("%s: chain trace of %s (%s), %zu contacts, %zu samples\n", file.path.c_str(), file.code.c_str(),
+                file.case_name.c_str(), file.chain.ncontacts, file.chain.nt);
+    if (a.shortened) std::printf("note: %s\n", a.note.c_str());
+    std::printf("front speed over contacts %d..%d:\n", a.lo, a.hi);
+    print_measured("  first peak", a.v_first_peak_contacts, "contacts/s");
+    print_measured("  half peak", a.v_half_peak_contacts, "contacts/s");
+    print_measured("  first peak", a.v_first_peak, "m/s");
+    print_measured("  half peak", a.v_half_peak, "m/s");
+    std::printf("%8s %12s %12s %12s %12s %12s\n", "contact", "t_peak(s)", "F_peak(N)", "t_half(s)", "F_lead(N)", "T(s)");
+    for (const auto& c : a.contacts)
+      std::printf("%8zu %12.6g %12.6g %12.6g %12.6g %12.6g\n", c.contact, c.peak_time.value, c.peak_value.value,
+                  c.half_peak_time.value, c.leading_max.value, c.duration.value);
+    return 0;
+  }
+
+  analysis::CrystalAnalysisOptions opt;
+  opt.lo = lo;
+  opt.hi = hi;
+  if (const auto f = option_value(args, "", "--field"); !f.empty()) opt.field = f;
+  if (const auto t = option_value(args, "", "--t-max"); !t.empty()) {
+    try {
+      opt.t_max = std::stod(t);
+    } catch (const std::exception&) {
+      throw InputError("--t-max " + t + ": expected a time in seconds");
+    }
+  }
+  const auto a = analysis::analyze_crystal(file.crystal, opt);
+  if (json) {
+    std::cout << analysis::to_json(file, a);
+    return 0;
+  }
+  std::printf("%s: crystal trace of %s (%s), %c wave (%s), %zu layers, %zu samples, dt = %.4g s, l0 = %.6g m\n",
+              file.path.c_str(), file.code.c_str(), file.case_name.c_str(), a.mode, a.mode_source.c_str(),
+              file.crystal.nlayers, file.crystal.nt, a.dt, a.l0);
+  std::printf("measures on %s - its t=0 value (polarity %+g)\n", a.measure_field.c_str(), a.polarity);
+  if (a.shortened) std::printf("note: %s\n", a.note.c_str());
+  std::printf("speeds over z/l0 = %d..%d (n = %zu):\n", a.v_first_peak.lo, a.v_first_peak.hi, a.v_first_peak.n);
+  print_measured("  first peak", a.v_first_peak.speed, "m/s");
+  print_measured("  half peak", a.v_half_peak.speed, "m/s");
+  print_measured("  1 % arrival", a.v_one_percent.speed, "m/s");
+  const auto& d = a.dispersion;
+  std::printf("dispersion (%s, %zu x %zu, domega = %.4g 1/s, %zu k bins, rms %.4g 1/s):\n", a.dispersion_field.c_str(),
+              d.nt, d.nz, d.domega, d.n_fit, d.fit_rms);
+  print_measured("  omega_0", {d.omega0, d.omega0_error}, "1/s");
+  print_measured("  V(k->0)", {d.v_k0, d.v_k0_error}, "m/s");
+  std::printf("local speeds need (l0/V)/dt = %.3g samples per layer delay here\n", a.delay_samples);
+  std::printf("%6s %12s %12s %12s %12s %10s %9s %9s\n", "z/l0", "t_peak(s)", "peak", "t_half(s)", "T(s)", "V(m/s)",
+              "VT/l0", "2pi/kl0");
+  for (const auto& L : a.layers) {
+    const double lk = std::isfinite(L.k_from_speed.value) ? 2 * M_PI / L.k_from_speed.value / a.l0 : NAN;
+    std::printf("%6.0f %12.6g %12.6g %12.6g %12.6g %10.4g %9.3g %9.3g\n", L.z_over_l0, L.peak_time.value,
+                L.peak_value.value, L.half_peak_time.value, L.duration.value, L.local_speed.value,
+                L.lambda_vt.value / a.l0, lk);
+  }
+  return 0;
+}
+
+}  // namespace granwave::cli

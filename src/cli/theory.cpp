@@ -1,0 +1,195 @@
+// granwave theory CASE [--json] [--layers LO:HI]: eq. (10) of seed 002 from the case's actual
+// contact network (regular or polydisperse, relaxed as `granwave build` would), the derived
+// sound speeds, anisotropy ratios, lattice omega_0 and the two-body t_c and restitution.
+// src/theory/ stays pure (no crystal dependency); the packing is built here (cli links all).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "cli/verbs.hpp"
+#include "config/case.hpp"
+#include "core/error.hpp"
+#include "crystal/packing.hpp"
+#include "theory/crystal_theory.hpp"
+
+namespace granwave::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: granwave theory CASE.toml [--json] [--layers LO:HI]
+
+Continuum and lattice predictions for a crystal case (seed 002 secs. 2.1, 3.3, 3.4), from the
+packing's actual contact network (polydisperse packings are relaxed first, as in `build`):
+  C        the stiffness tensor of eq. (10), full 3x3x3x3, with the affine kt term (major but not
+           minor symmetry), C_frictionless without it, and the Voigt 6x6 of its symmetrised part
+  V_pz, V_sz, V_sy   sqrt(C_zzzz/rho), sqrt(C_zxzx/rho), sqrt(C_zyzy/rho), rho = bulk density of
+           the representative slab (particle mass / slab volume)
+  ratios   C_xxxx/C_zzzz, C_zxzx/C_yxyx, C_zzzz/C_zxzx (frictionless FCC: 1.25, 2, 2)
+  omega_0  of omega = omega_0 sin(k l0/2) from the nearest-layer dynamical matrix (P and S),
+           v_k0 = omega_0 l0/2; also with the geometric stiffness of the static contact forces
+  t_c, restitution   two-body linear spring-dashpot collision of two mean particles (sec. 2.1)
+Index convention: C[a][b][g][f] with a, g branch (gradient) directions and b, f displacement
+(force) directions; sigma_ab = C_abgf du_f/dx_g.
+
+  --layers LO:HI   representative slab (layer indices, inclusive); default: the free layers
+  --json           one JSON object; every number as {"value": v, "unit": u}; top-level keys
+                   V_pz, V_sz, V_sy, t_c, restitution, omega_0 (= omega_0 of P), omega_0_s, v_k0,
+                   v_k0_s, rho_bulk, l0, ratios, C, C_frictionless, C_voigt_sym, ...
+)";
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+std::string quantity(double v, const char* unit) { return std::string("{\"value\": ") + num(v) + ", \"unit\": \"" + unit + "\"}"; }
+std::string escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\', o += c;
+    else if (c == '\n') o += "\\n";
+    else if (static_cast<unsigned char>(c) < 0x20) o += ' ';
+    else o += c;
+  }
+  return o;
+}
+std::string tensor_json(const theory::Tensor4& C) {
+  std::ostringstream o;
+  o << "{\"unit\": \"Pa\", \"index_order\": \"C[a][b][g][f]: a,g branch, b,f displacement\", \"values\": [";
+  for (int a = 0; a < 3; ++a) {
+    o << (a ? ", " : "") << "[";
+    for (int b = 0; b < 3; ++b) {
+      o << (b ? ", " : "") << "[";
+      for (int g = 0; g < 3; ++g) {
+        o << (g ? ", " : "") << "[";
+        for (int f = 0; f < 3; ++f) o << (f ? ", " : "") << num(C(a, b, g, f));
+        o << "]";
+      }
+      o << "]";
+    }
+    o << "]";
+  }
+  o << "]}";
+  return o.str();
+}
+
+void parse_range(const std::string& s, int* lo, int* hi) {
+  const auto colon = s.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    *lo = std::stoi(s.substr(0, colon));
+    *hi = std::stoi(s.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw InputError("--layers " + s + ": expected LO:HI (layer indices)");
+  }
+  if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
+}
+
+}  // namespace
+
+int cmd_theory(const Args& args) {
+  if (wants_help(args)) {
+    std::cout << kHelp;
+    return 0;
+  }
+  const auto pos = positionals(args, {"--layers"});
+  if (pos.size() != 1) throw InputError("theory: expected one case file (granwave theory --help)");
+  const bool json = has_flag(args, "--json");
+  const config::Case c = config::load_case(pos[0]);
+  if (c.model != config::Model::crystal || !c.crystal)
+    throw InputError(pos[0] + ": granwave theory covers crystal cases (eq. (10)); for a chain's Hertz numbers use granwave check");
+  const auto& cr = *c.crystal;
+
+  const crystal::Packing pk = crystal::make_packing(c);
+  theory::ContactNetwork net;
+  net.box_x = pk.box_x;
+  net.box_y = pk.box_y;
+  net.k = c.contact.kn;
+  net.kt = c.contact.kt;
+  for (std::size_t p = 0; p < pk.size(); ++p) net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p]});
+  for (const auto& q : crystal::list_contacts(pk, true))
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+
+  theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
+  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &slab.layer_lo, &slab.layer_hi);
+  if (slab.layer_hi >= pk.layers) throw InputError("--layers: the case has " + std::to_string(pk.layers) + " layers");
+  const auto r = theory::crystal_prediction(net, slab);
+
+  // Sec. 2.1: the collision of two particles of the mean radius.
+  const double m = cr.density * 4.0 / 3.0 * std::numbers::pi * cr.radius * cr.radius * cr.radius;
+  const bool clip = c.contact.normal_tension == config::NormalTension::clip;
+  const auto tc = theory::linear_contact_time(c.contact.kn, c.contact.gamma_n, 0.5 * m, clip);
+
+  if (json) {
+    std::ostringstream o;
+    o << "{\n  \"case\": \"" << escape(c.name) << "\",\n  \"model\": \"crystal\",\n";
+    o << "  \"V_pz\": " << quantity(r.V_pz, "m/s") << ",\n";
+    o << "  \"V_sz\": " << quantity(r.V_sz, "m/s") << ",\n";
+    o << "  \"V_sy\": " << quantity(r.V_sy, "m/s") << ",\n";
+    o << "  \"V_pz_frictionless\": " << quantity(r.V_pz_frictionless, "m/s") << ",\n";
+    o << "  \"V_sz_frictionless\": " << quantity(r.V_sz_frictionless, "m/s") << ",\n";
+    o << "  \"t_c\": " << quantity(tc.t_c, "s") << ",\n";
+    o << "  \"restitution\": " << quantity(tc.restitution, "1") << ",\n";
+    o << "  \"contact_omega\": " << quantity(tc.omega, "1/s") << ",\n";
+    o << "  \"eta_0\": " << quantity(tc.eta0, "1/s") << ",\n";
+    o << "  \"omega_0\": " << quantity(r.omega0_p, "1/s") << ",\n";
+    o << "  \"omega_0_s\": " << quantity(r.omega0_s, "1/s") << ",\n";
+    o << "  \"v_k0\": " << quantity(r.V_k0_p, "m/s") << ",\n";
+    o << "  \"v_k0_s\": " << quantity(r.V_k0_s, "m/s") << ",\n";
+    o << "  \"omega_0_prestressed\": " << quantity(r.omega0_p_prestressed, "1/s") << ",\n";
+    o << "  \"omega_0_s_prestressed\": " << quantity(r.omega0_s_prestressed, "1/s") << ",\n";
+    o << "  \"rho_bulk\": " << quantity(r.rho_bulk, "kg/m^3") << ",\n";
+    o << "  \"l0\": " << quantity(r.l0, "m") << ",\n";
+    o << "  \"d\": " << quantity(pk.d, "m") << ",\n";
+    o << "  \"d_prime\": " << quantity(pk.d_prime, "m") << ",\n";
+    o << "  \"coordination\": " << quantity(r.coordination, "1") << ",\n";
+    o << "  \"slab\": {\"layer_lo\": " << r.layer_lo << ", \"layer_hi\": " << r.layer_hi
+      << ", \"particles\": " << r.n_particles << ", \"volume\": " << quantity(r.volume, "m^3")
+      << ", \"mass\": " << quantity(r.mass, "kg") << "},\n";
+    o << "  \"ratios\": {\"C_xxxx/C_zzzz\": " << quantity(r.ratio_xxxx_zzzz, "1")
+      << ", \"C_zxzx/C_yxyx\": " << quantity(r.ratio_zxzx_yxyx, "1")
+      << ", \"C_zzzz/C_zxzx\": " << quantity(r.ratio_zzzz_zxzx, "1") << "},\n";
+    o << "  \"major_asymmetry\": " << quantity(r.major_asymmetry, "1") << ",\n";
+    o << "  \"minor_asymmetry\": " << quantity(r.minor_asymmetry, "1") << ",\n";
+    o << "  \"C\": " << tensor_json(r.C) << ",\n";
+    o << "  \"C_frictionless\": " << tensor_json(r.C_frictionless) << ",\n";
+    o << "  \"C_voigt_sym\": {\"unit\": \"Pa\", \"order\": [\"xx\", \"yy\", \"zz\", \"yz\", \"xz\", \"xy\"], \"values\": [";
+    for (int I = 0; I < 6; ++I) {
+      o << (I ? ", " : "") << "[";
+      for (int J = 0; J < 6; ++J) o << (J ? ", " : "") << num(r.C_voigt_sym(I, J));
+      o << "]";
+    }
+    o << "]}\n}\n";
+    std::cout << o.str();
+    return 0;
+  }
+
+  std::printf("case %s: FCC %d x %d x %d, d = %.6g m, d' = %.6g m, l0 = %.6g m, k = %g N/m, kt = %g N/m\n",
+              c.name.c_str(), pk.nx, pk.ny, pk.layers, pk.d, pk.d_prime, r.l0, net.k, net.kt);
+  std::printf("representative slab: layers %d..%d, %d particles, coordination %.4f, rho_bulk = %.6g kg/m^3\n",
+              r.layer_lo, r.layer_hi, r.n_particles, r.coordination, r.rho_bulk);
+  std::printf("eq. (10): C_zzzz = %.6g Pa, C_zxzx = %.6g Pa, C_xxxx = %.6g Pa, C_yxyx = %.6g Pa\n", r.C(2, 2, 2, 2),
+              r.C(2, 0, 2, 0), r.C(0, 0, 0, 0), r.C(1, 0, 1, 0));
+  std::printf("ratios: C_xxxx/C_zzzz = %.6f, C_zxzx/C_yxyx = %.6f, C_zzzz/C_zxzx = %.6f\n", r.ratio_xxxx_zzzz,
+              r.ratio_zxzx_yxyx, r.ratio_zzzz_zxzx);
+  std::printf("symmetry: major %.2e, minor %.2e (kt term: major only)\n", r.major_asymmetry, r.minor_asymmetry);
+  std::printf("V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (frictionless: %.4f, %.4f)\n", r.V_pz, r.V_sz, r.V_sy,
+              r.V_pz_frictionless, r.V_sz_frictionless);
+  std::printf("lattice: omega_0 = %.1f 1/s (P), %.1f 1/s (S); v_k0 = omega_0 l0/2 = %.4f, %.4f m/s\n", r.omega0_p,
+              r.omega0_s, r.V_k0_p, r.V_k0_s);
+  std::printf("         with the static contact forces' geometric stiffness: %.1f, %.1f 1/s\n", r.omega0_p_prestressed,
+              r.omega0_s_prestressed);
+  std::printf("contact (sec. 2.1, m_ij = m/2 = %.6g kg, %s): t_c = %.6g s, restitution = %.6f, eta_0 = %.6g 1/s\n",
+              0.5 * m, clip ? "clip" : "allow", tc.t_c, tc.restitution, tc.eta0);
+  std::printf("Voigt 6x6 of the symmetrised C (Pa; xx yy zz yz xz xy):\n");
+  for (int I = 0; I < 6; ++I) {
+    for (int J = 0; J < 6; ++J) std::printf(" %12.5e", r.C_voigt_sym(I, J));
+    std::printf("\n");
+  }
+  return 0;
+}
+
+}  // namespace granwave::cli

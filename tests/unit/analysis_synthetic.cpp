@@ -1,0 +1,295 @@
+// Synthetic traces with a known answer: a pulse moving at exactly 200 m/s, and a field built from
+// omega(k) = omega_0 sin(k l0/2). Every tolerance is derived from the sampling (dt) or the FFT
+// resolution (domega); the derivations are next to the checks.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+
+#include "analysis/dispersion.hpp"
+#include "analysis/trace_analysis.hpp"
+#include "core/rng.hpp"
+#include "io/h5.hpp"
+
+using namespace granwave;
+using namespace granwave::analysis;
+
+namespace {
+
+constexpr double V = 200.0;       // m/s, the pulse speed
+constexpr double h = 1e-6;        // s, output interval (the seed's)
+const double l0 = 2e-3 * (1 - 1e-3) / std::sqrt(2.0);
+constexpr double t0 = 60e-6;      // s, peak time at z = 0
+constexpr double A = 1e4;         // Pa
+
+// A Gaussian pulse of rms width sigma, y = A exp(-tau^2 / (2 sigma^2)), tau = t - t0 - z/V.
+double pulse(double t, double z, double sigma) {
+  const double tau = t - t0 - z / V;
+  return A * std::exp(-tau * tau / (2 * sigma * sigma));
+}
+
+// A crystal trace of `layers` layers (2 fixed at each end, layer 1 at z = 0) carrying the pulse
+// in sigma_zz (plus a prestress offset, removed by the analysis) and displacement `disp`.
+CrystalTrace pulse_trace(int layers, std::size_t nt, double sigma) {
+  CrystalTrace c;
+  c.nt = nt;
+  c.nlayers = layers;
+  c.l0 = l0;
+  c.fixed_layers = 2;
+  c.mode = 'P';
+  c.mode_source = "test";
+  for (std::size_t n = 0; n < nt; ++n) c.time.push_back(n * h);
+  for (int p = 0; p < layers; ++p) c.layer_z.push_back((p - 1) * l0);
+  c.stress_zz.resize(nt * layers);
+  c.displacement_z.resize(nt * layers);
+  for (std::size_t n = 0; n < nt; ++n)
+    for (int p = 0; p < layers; ++p) {
+      const double z = c.layer_z[p];
+      c.stress_zz[n * layers + p] = 1.417e5 + (z > 0 ? pulse(n * h, z, sigma) : 0.0);
+      c.displacement_z[n * layers + p] = 1e-9 * pulse(n * h, z, sigma) / A;
+    }
+  return c;
+}
+
+// Rigorous bound of linear interpolation at the half-peak crossing of the Gaussian:
+// |error| <= h^2 max|y''| / (8 min|y'|) over the bracketing interval (within +-h of the crossing).
+double half_crossing_bound(double sigma) {
+  const double xc = sigma * std::sqrt(2 * std::log(2.0));
+  double ypp = 0.0, yp = 1e300;
+  for (int i = -100; i <= 100; ++i) {
+    const double x = xc + h * i / 100.0;
+    const double y = std::exp(-x * x / (2 * sigma * sigma));
+    ypp = std::max(ypp, std::abs((x * x / (sigma * sigma) - 1) / (sigma * sigma) * y));
+    yp = std::min(yp, std::abs(x / (sigma * sigma) * y));
+  }
+  return h * h * ypp / (8 * yp);
+}
+
+}  // namespace
+
+TEST_CASE("a pulse at exactly 200 m/s: speed fits and local speeds", "[analysis]") {
+  const double sigma = 10e-6;
+  const auto tr = pulse_trace(200, 1200, sigma);
+  const auto a = analyze_crystal(tr);
+  // The 200-layer crystal: last free layer z/l0 = 196, default range 10 .. min(150, 176).
+  CHECK(a.last_free == 196);
+  CHECK(a.v_first_peak.lo == 10);
+  CHECK(a.v_first_peak.hi == 150);
+  CHECK_FALSE(a.shortened);
+  CHECK(a.v_first_peak.n == 141);
+  CHECK(a.polarity == 1.0);
+
+  // Error budget. Peak: the 3-point parabola through samples of a Gaussian misplaces the vertex by
+  // at most eps_p = h^3/(8 sigma^2) (Taylor: the quartic term of the Gaussian over the parabola's
+  // curvature; measured worst case h^3/(20.8 sigma^2)). Half peak: eps_h = half_crossing_bound.
+  // A least-squares line through N evenly spread points whose times are off by at most eps moves
+  // the slowness by at most eps sum|z - zbar| / sum (z - zbar)^2 = 3 eps / span_z, so
+  // |dV/V| <= 3 eps / span_t, span_t = 140 l0 / V.
+  const double eps_p = h * h * h / (8 * sigma * sigma);
+  const double eps_h = half_crossing_bound(sigma);
+  const double span_t = 140 * l0 / V;
+  CHECK(std::abs(a.v_first_peak.speed.value - V) <= V * 3 * eps_p / span_t);
+  CHECK(std::abs(a.v_half_peak.speed.value - V) <= V * 3 * eps_h / span_t);
+  CHECK(a.v_first_peak.speed.error < V * 3 * eps_p / span_t);
+  // The refined peak value of a Gaussian: parabola error relative (h/sigma)^2/8 at most... here
+  // we only need the sign-normalised amplitude back.
+  for (const auto& L : a.layers) {
+    if (L.z_over_l0 < 5 || L.z_over_l0 > 152) continue;  // t0 + z/V + 5 sigma < 1.2 ms
+    REQUIRE(L.arrived);
+    CHECK(std::abs(L.peak_time.value - (t0 + L.z / V)) <= eps_p);
+    CHECK(std::abs(L.half_peak_time.value - (t0 + L.z / V - sigma * std::sqrt(2 * std::log(2.0)))) <= eps_h);
+    CHECK(std::abs(L.peak_value.value - A) <= A * (h * h) / (8 * sigma * sigma));
+    // Duration: 1 % to 1 % of a Gaussian is 2 sigma sqrt(2 ln 100), each end within the
+    // interpolation bound (the 1 % level is far in the tail: h^2 |y''|/(8|y'|) < h/2 anyway).
+    CHECK(std::abs(L.duration.value - 2 * sigma * std::sqrt(2 * std::log(100.0))) <= h);
+    // Local speed (five-layer, weights summing to 1): slowness off by at most 2 eps_p over the
+    // delay l0/V, so |dV/V| <= 2 eps_p V / l0.
+    if (L.z_over_l0 >= 3 && L.z_over_l0 <= 194) CHECK(std::abs(L.local_speed.value - V) <= V * 2 * eps_p * V / l0);
+  }
+}
+
+TEST_CASE("local speeds against the output interval: what rate Fig. 4 needs", "[analysis]") {
+  // The worst local-speed error is 2 eps_p V / l0 = h^3 V / (4 sigma^2 l0) (previous test). Near
+  // the source the seed's pulse is narrow (T ~ 8 l0 / V, sigma ~ T/5 ~ 11 us; at z/l0 = 10 about
+  // 8 us): at h = 1 us that is 0.05 %, below the ~1 % acceleration of Fig. 4. A pulse of
+  // sigma = 3 us needs h <= 1 us for 0.5 %. Check the scaling on the synthetic pulse.
+  for (double sigma : {3e-6, 5e-6}) {
+    const auto a = analyze_crystal(pulse_trace(120, 800, sigma));
+    double worst = 0.0;
+    for (const auto& L : a.layers)
+      if (std::isfinite(L.local_speed.value)) worst = std::max(worst, std::abs(L.local_speed.value / V - 1));
+    const double bound = h * h * h * V / (4 * sigma * sigma * l0);
+    CHECK(worst <= bound);
+    CHECK(worst > 0.05 * bound);  // the bound is not vacuous: the error does scale like it
+  }
+}
+
+TEST_CASE("the fit range is shortened, and said so, where the first peak has not arrived", "[analysis]") {
+  // Peak at layer z arrives at t0 + z/V; with 900 samples (t <= 899 us) the last arrived layer is
+  // the largest z/l0 with t0 + z/V < 899 us - 1 sample of margin for the local maximum.
+  const auto a = analyze_crystal(pulse_trace(200, 900, 10e-6));
+  CHECK(a.shortened);
+  const int expected = static_cast<int>(std::floor((898e-6 - t0) * V / l0));
+  CHECK(a.v_first_peak.hi == expected);
+  CHECK(a.note.find("has not arrived") != std::string::npos);
+  CHECK(std::abs(a.v_first_peak.speed.value - V) < 0.01);
+}
+
+TEST_CASE("2D FFT: a single mode lands on its (omega, k) bin with the signs of a +z wave", "[analysis]") {
+  const std::size_t nt = 256, nz = 64;
+  const double dt = 1e-6, dz = l0;
+  const double domega = 2 * std::numbers::pi / (nt * dt), dk = 2 * std::numbers::pi / (nz * dz);
+  std::vector<double> f(nt * nz);
+  for (std::size_t n = 0; n < nt; ++n)
+    for (std::size_t p = 0; p < nz; ++p) f[n * nz + p] = std::cos(10 * dk * p * dz - 37 * domega * n * dt);
+  DispersionOptions o;
+  o.keep_spectrum = true;
+  const auto r = dispersion(f, nt, nz, dt, dz, o);
+  CHECK(r.domega == Approx(domega).epsilon(1e-14));
+  REQUIRE(r.k.size() == nz / 2);
+  CHECK(r.k[9] == Approx(10 * dk).epsilon(1e-14));
+  CHECK(r.omega_max[9] == Approx(37 * domega).epsilon(1e-12));
+  // Zero frequency and wavenumber in place: the peak of the stored spectrum is at (+37, +10).
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < r.spectrum.size(); ++i)
+    if (r.spectrum[i] > r.spectrum[best]) best = i;
+  const std::size_t nk = r.k_axis.size();
+  CHECK(r.omega_axis[best / nk] == Approx(37 * domega));
+  CHECK(r.k_axis[best % nk] == Approx(10 * dk));
+  CHECK(r.spectrum[best] == Approx(0.5 * nt * nz).epsilon(1e-9));
+}
+
+TEST_CASE("dispersion: omega_0 sin(k l0/2) recovered within the FFT resolution", "[analysis]") {
+  // The seed's record: nt = 1200 samples of dt = 1 us, nz = 200 layers of l0. One travelling mode
+  // per wavenumber bin k_q = q dk (q = 1..100), omega = omega_0 sin(k_q l0/2), random phases.
+  const std::size_t nt = 1200, nz = 200;
+  const double dt = 1e-6, omega0 = 309019.0;
+  std::vector<double> f(nt * nz, 0.0);
+  const double dk = 2 * std::numbers::pi / (nz * l0);
+  CounterRng rng(5, 0);
+  for (std::size_t q = 1; q <= nz / 2; ++q) {
+    const double k = q * dk, w = omega0 * std::sin(0.5 * k * l0), phase = 2 * std::numbers::pi * rng.uniform();
+    for (std::size_t n = 0; n < nt; ++n)
+      for (std::size_t p = 0; p < nz; ++p) f[n * nz + p] += std::cos(k * p * l0 - w * n * dt + phase);
+  }
+  const auto r = dispersion(f, nt, nz, dt, l0);
+  const double domega = r.domega;  // 2 pi / 1.2 ms = 5236 1/s
+  REQUIRE(r.n_fit == nz / 2);
+  // Each k holds one tone of frequency omega(k), generally between two bins. The |F|^4-weighted
+  // centroid of its (Dirichlet-kernel) line is pulled towards the nearest bin, never beyond it:
+  // |omega_max - omega(k)| <= domega/2.
+  for (std::size_t i = 0; i < r.k.size(); ++i)
+    CHECK(std::abs(r.omega_max[i] - omega0 * std::sin(0.5 * r.k[i] * l0)) <= 0.5 * domega);
+  // The fractional bin offsets of omega(k_q) are equidistributed over q, so the per-k errors act
+  // like independent uniform errors of rms domega/sqrt(12); the least-squares omega_0 then has the
+  // standard error domega / sqrt(12 sum sin^2) ~ domega/sqrt(6 n) = 214 1/s for n = 100: allow 3.
+  double ss = 0.0;
+  for (double k : r.k) ss += std::pow(std::sin(0.5 * k * l0), 2);
+  const double se_model = domega / std::sqrt(12 * ss);
+  CHECK(std::abs(r.omega0 - omega0) <= 3 * se_model);
+  // The fit's own standard error estimates the same scatter.
+  CHECK(r.omega0_error <= 2 * se_model);
+  CHECK(r.omega0_error >= 0.25 * se_model);
+  CHECK(std::abs(r.v_k0 - omega0 * l0 / 2) <= 3 * se_model * l0 / 2);
+}
+
+TEST_CASE("wavenumber from speed inverts the group speed of the sine branch", "[analysis]") {
+  const double vk0 = 218.3;
+  for (double k : {100.0, 500.0, 1500.0}) {
+    const double v = vk0 * std::cos(0.5 * k * l0);
+    CHECK(wavenumber_from_speed(v, vk0, l0) == Approx(k).epsilon(1e-12));
+  }
+  CHECK(std::isnan(wavenumber_from_speed(vk0 * 1.01, vk0, l0)));
+}
+
+TEST_CASE("trace file round trip: any code's file, mode from the data, S polarity", "[analysis]") {
+  // A YADE-labelled S-wave trace whose shear stress pulse is negative and without case text.
+  const int layers = 60;
+  const std::size_t nt = 400;
+  const double sigma = 8e-6;
+  std::vector<double> time, z, sxz(nt * layers), szz(nt * layers, 1.4e5), ux(nt * layers), uz(nt * layers, 0.0);
+  for (std::size_t n = 0; n < nt; ++n) time.push_back(n * h);
+  for (int p = 0; p < layers; ++p) z.push_back((p - 1) * l0);
+  for (std::size_t n = 0; n < nt; ++n)
+    for (int p = 0; p < layers; ++p) {
+      sxz[n * layers + p] = z[p] > 0 ? -pulse(n * h, z[p], sigma) : 0.0;
+      ux[n * layers + p] = 1e-9 * pulse(n * h, z[p], sigma) / A;
+    }
+  const std::string path = (std::filesystem::temp_directory_path() / "granwave_analysis_roundtrip.h5").string();
+  {
+    io::H5Writer w(path);
+    w.attr("/", "code", std::string("yade"));
+    w.attr("/", "case_name", std::string("synthetic_s"));
+    w.attr("/", "time_convention", std::string("shifted to synchronous"));
+    w.write("/time", time);
+    w.write("/crystal/layer_z", z);
+    w.write("/crystal/layer_stress_zx", sxz, {nt, static_cast<std::size_t>(layers)});
+    w.write("/crystal/layer_stress_zz", szz, {nt, static_cast<std::size_t>(layers)});
+    w.write("/crystal/layer_displacement_x", ux, {nt, static_cast<std::size_t>(layers)});
+    w.write("/crystal/layer_displacement_z", uz, {nt, static_cast<std::size_t>(layers)});
+    w.commit();
+  }
+  const auto f = read_trace(path);
+  CHECK(f.model == "crystal");
+  CHECK(f.crystal.mode == 'S');
+  CHECK(f.crystal.mode_source == "inferred");
+  CHECK(f.crystal.fixed_layers == 2);
+  CHECK(f.crystal.l0 == Approx(l0).epsilon(1e-12));
+  CrystalAnalysisOptions o;
+  o.lo = 5;
+  o.hi = 40;
+  const auto a = analyze_crystal(f.crystal, o);
+  CHECK(a.polarity == -1.0);
+  CHECK(a.measure_field == "layer_stress_zx");
+  CHECK(a.dispersion_field == "layer_displacement_x");
+  CHECK(a.v_first_peak.speed.value == Approx(V).epsilon(1e-4));
+  const std::string js = to_json(f, a);
+  CHECK(js.find("\"v_first_peak\": {\"value\": ") != std::string::npos);
+  CHECK(js.find("\"omega_0\": {\"value\": ") != std::string::npos);
+  CHECK(js.find("\"v_k0\": {\"value\": ") != std::string::npos);
+  CHECK(js.find("nan") == std::string::npos);
+  std::filesystem::remove(path);
+}
+
+// Known bug (reported): H5Writer writes UTF-8 string attributes, H5Reader::attr_string reads them
+// with an ASCII memory type and HDF5 refuses the character-set conversion. read_trace tolerates it
+// ("(unreadable)"); this checks the provenance text once src/io/h5.cpp sets the cset.
+TEST_CASE("trace file provenance attributes are readable", "[analysis][!mayfail]") {
+  const std::string path = (std::filesystem::temp_directory_path() / "granwave_analysis_attr.h5").string();
+  {
+    io::H5Writer w(path);
+    w.attr("/", "code", std::string("liggghts"));
+    w.write("/time", std::vector<double>{0.0, 1e-6, 2e-6, 3e-6});
+    w.write("/crystal/layer_z", std::vector<double>{-l0, 0.0, l0, 2 * l0, 3 * l0});
+    w.commit();
+  }
+  const auto f = read_trace(path);
+  std::filesystem::remove(path);
+  CHECK(f.code == "liggghts");
+}
+
+TEST_CASE("chain trace: per-contact measures and front speed", "[analysis]") {
+  // 41 contacts, a force pulse moving at 50 contacts/ms with a 9.52 mm pitch.
+  ChainTrace c;
+  c.ncontacts = 41;
+  c.nt = 2000;
+  const double rate = 5e4, pitch = 9.52e-3, sigma = 8e-6, hc = 5e-7;
+  for (std::size_t n = 0; n < c.nt; ++n) c.time.push_back(n * hc);
+  for (std::size_t j = 0; j < c.ncontacts; ++j) c.contact_position.push_back(j * pitch);
+  c.contact_force.resize(c.nt * c.ncontacts);
+  for (std::size_t n = 0; n < c.nt; ++n)
+    for (std::size_t j = 0; j < c.ncontacts; ++j) {
+      const double tau = n * hc - 20e-6 - j / rate;
+      c.contact_force[n * c.ncontacts + j] = 40.0 * std::exp(-tau * tau / (2 * sigma * sigma));
+    }
+  const auto a = analyze_chain(c);
+  CHECK(a.lo == 5);
+  CHECK(a.hi == 34);
+  // Same error budget as the crystal pulse: |dV/V| <= 3 eps_p / span_t.
+  const double eps_p = hc * hc * hc / (8 * sigma * sigma), span_t = 29 / rate;
+  CHECK(std::abs(a.v_first_peak_contacts.value - rate) <= rate * 3 * eps_p / span_t);
+  CHECK(std::abs(a.v_first_peak.value - rate * pitch) <= rate * pitch * 3 * eps_p / span_t);
+  CHECK(a.contacts[10].peak_value.value == Approx(40.0).epsilon(hc * hc / (8 * sigma * sigma)));
+}
