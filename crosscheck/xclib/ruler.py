@@ -71,8 +71,8 @@ def fit_line(x, y):
 
 def signal_measures(t, y):
     p = first_peak(t, y)
-    if p is None:
-        return None
+    if p is None or p["index"] >= len(y) - 2:
+        return None          # no peak inside the window (the front has not arrived and passed yet)
     return dict(peak=p["value"], peak_time=p["time"], half_arrival=first_crossing(t, y, 0.5 * p["value"]))
 
 
@@ -105,8 +105,14 @@ def python_ruler(trace: dict) -> dict:
         pass
     s = trace["/crystal/layer_stress_" + comp]
     s = s - s[0]
-    if comp == "zx" and np.max(s) < np.max(-s):
-        s = -s
+    if comp == "zx":
+        # a shear front may arrive with either sign: orient each layer by its first large excursion
+        for k in range(s.shape[1]):
+            a = np.abs(s[:, k])
+            if a.max() > 0:
+                first = int(np.nonzero(a >= 0.3 * a.max())[0][0])
+                if s[first, k] < 0:
+                    s[:, k] = -s[:, k]
     z = trace["/crystal/layer_z"]
     nf = int(sa.get("fixed_layers", 2))
     nl = s.shape[1]
