@@ -1,0 +1,237 @@
+// Resumable, thread-count-independent execution of a study's members (see study.hpp).
+#include "sweep/study.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <numeric>
+#include <set>
+
+#include "core/error.hpp"
+#include "io/h5.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace granwave::sweep {
+namespace fs = std::filesystem;
+
+double wall_seconds() {
+  using clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+std::string fingerprint(const std::vector<std::string>& texts) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
+  for (const auto& t : texts) {
+    for (unsigned char c : t) h = (h ^ c) * 0x100000001b3ULL;
+    h = (h ^ 0xff) * 0x100000001b3ULL;  // separator: ("ab","c") != ("a","bc")
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+// ---- member datasets ----
+
+void write_members(io::H5Writer& w, const std::string& group, const std::vector<MemberResult>& results,
+                   const std::vector<std::string>& value_names) {
+  const std::size_t n = results.size(), nv = value_names.size();
+  std::vector<std::int64_t> index(n), offset(n + 1, 0);
+  std::vector<double> values, profile, work(n);
+  std::vector<std::string> label(n);
+  values.reserve(n * nv);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto& r = results[k];
+    if (r.values.size() != nv) throw RunError("internal: member " + std::to_string(r.index) + " has the wrong number of values");
+    index[k] = r.index;
+    values.insert(values.end(), r.values.begin(), r.values.end());
+    profile.insert(profile.end(), r.profile.begin(), r.profile.end());
+    offset[k + 1] = offset[k] + static_cast<std::int64_t>(r.profile.size());
+    work[k] = r.work;
+    label[k] = r.label;
+  }
+  w.write(group + "/index", index);
+  w.write(group + "/values", values, {n, nv});
+  w.write(group + "/value_names", value_names);
+  w.write(group + "/profile_offset", offset);
+  w.write(group + "/profile", profile);
+  w.write(group + "/label", label);
+  w.write(group + "/work", work);
+}
+
+std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string& group) {
+  std::vector<std::size_t> dims;
+  const auto index = r.read_int(group + "/index");
+  const auto values = r.read_double(group + "/values", &dims);
+  const auto offset = r.read_int(group + "/profile_offset");
+  const auto profile = r.read_double(group + "/profile");
+  const auto label = r.read_strings(group + "/label");
+  const auto work = r.read_double(group + "/work");
+  const std::size_t n = index.size();
+  const std::size_t nv = dims.size() == 2 ? dims[1] : 0;
+  if (offset.size() != n + 1 || label.size() != n || work.size() != n || values.size() != n * nv)
+    throw InputError(r.path() + ": " + group + ": inconsistent member datasets");
+  std::vector<MemberResult> out(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    out[k].index = index[k];
+    out[k].values.assign(values.begin() + static_cast<std::ptrdiff_t>(k * nv), values.begin() + static_cast<std::ptrdiff_t>((k + 1) * nv));
+    out[k].profile.assign(profile.begin() + offset[k], profile.begin() + offset[k + 1]);
+    out[k].label = label[k];
+    out[k].work = work[k];
+  }
+  return out;
+}
+
+// ---- batch files ----
+
+std::vector<MemberResult> read_parts(const std::string& parts_dir, const std::string& fp) {
+  std::vector<MemberResult> out;
+  if (parts_dir.empty() || !fs::is_directory(parts_dir)) return out;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(parts_dir))
+    if (e.path().extension() == ".h5") files.push_back(e.path());  // *.h5.tmp are unfinished: ignored
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    io::H5Reader r(f.string());
+    const std::string have = r.has_attr("/", "fingerprint") ? r.attr_string("/", "fingerprint") : "";
+    if (have != fp)
+      throw InputError(f.string() + ": a batch of another study (fingerprint " + have + ", this study " + fp +
+                       "); remove " + parts_dir + " to start afresh");
+    auto part = read_members(r, "/members");
+    for (auto& m : part) out.push_back(std::move(m));
+  }
+  return out;
+}
+
+namespace {
+
+void write_batch(const std::string& dir, std::size_t serial, const std::vector<MemberResult>& batch, const RunnerOptions& opt) {
+  // Name by the smallest member index + a serial, so a restart never overwrites an earlier batch.
+  std::int64_t lo = batch.front().index;
+  for (const auto& m : batch) lo = std::min(lo, m.index);
+  char name[64];
+  std::snprintf(name, sizeof name, "batch_%08lld_%d_%04zu.h5", static_cast<long long>(lo), static_cast<int>(getpid()), serial);
+  io::H5Writer w((fs::path(dir) / name).string());  // NAME.tmp, renamed by commit()
+  w.attr("/", "fingerprint", opt.fingerprint);
+  io::write_provenance(w);
+  write_members(w, "/members", batch, opt.value_names);
+  w.commit();
+}
+
+}  // namespace
+
+std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const RunnerOptions& opt, RunStats* stats) {
+  const double t0 = wall_seconds();
+  std::vector<MemberResult> results(n);
+  std::vector<char> done(n, 0);
+  std::size_t resumed = 0;
+  for (auto& m : read_parts(opt.parts_dir, opt.fingerprint)) {
+    if (m.index < 0 || static_cast<std::size_t>(m.index) >= n || done[m.index]) continue;
+    done[m.index] = 1;
+    ++resumed;
+    results[m.index] = std::move(m);
+  }
+  if (!opt.parts_dir.empty()) fs::create_directories(opt.parts_dir);
+
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!done[i]) todo.push_back(i);
+  if (opt.cost.size() == n)  // most expensive first (ties by index): a shorter dynamic-schedule tail
+    std::stable_sort(todo.begin(), todo.end(), [&](std::size_t a, std::size_t b) { return opt.cost[a] > opt.cost[b]; });
+  if (opt.limit > 0 && todo.size() > opt.limit) todo.resize(opt.limit);
+
+  Progress progress(n, resumed, opt.progress, opt.what);
+  std::vector<MemberResult> pending;
+  std::size_t serial = 0, computed = 0;
+  double work = 0.0;
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+  const std::size_t batch = std::max<std::size_t>(1, opt.batch);
+  const long ntodo = static_cast<long>(todo.size());
+
+#ifdef _OPENMP
+  const int nthreads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
+#endif
+  for (long k = 0; k < ntodo; ++k) {
+    if (failed.load(std::memory_order_relaxed)) continue;  // an OpenMP loop cannot break
+    try {
+      MemberResult r = fn(todo[static_cast<std::size_t>(k)]);
+      r.index = static_cast<std::int64_t>(todo[static_cast<std::size_t>(k)]);
+#ifdef _OPENMP
+#pragma omp critical(granwave_sweep_commit)
+#endif
+      {
+        work += r.work;
+        ++computed;
+        results[static_cast<std::size_t>(r.index)] = r;
+        if (!opt.parts_dir.empty()) {
+          pending.push_back(std::move(r));
+          if (pending.size() >= batch) {
+            write_batch(opt.parts_dir, serial++, pending, opt);
+            pending.clear();
+          }
+        }
+        progress.tick(computed);
+      }
+    } catch (...) {
+#ifdef _OPENMP
+#pragma omp critical(granwave_sweep_error)
+#endif
+      {
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    }
+  }
+  if (!pending.empty()) write_batch(opt.parts_dir, serial++, pending, opt);
+  progress.finish();
+  if (error) std::rethrow_exception(error);
+
+  if (stats) {
+    stats->total = n;
+    stats->resumed = resumed;
+    stats->computed = computed;
+    stats->work = work;
+    stats->seconds = wall_seconds() - t0;
+  }
+  if (opt.limit > 0) {
+    std::vector<MemberResult> got;  // a limited call returns only what exists
+    for (auto& r : results)
+      if (r.index >= 0) got.push_back(std::move(r));
+    return got;
+  }
+  return results;
+}
+
+// ---- progress ----
+
+Progress::Progress(std::size_t total, std::size_t already_done, bool enabled, std::string what)
+    : total_(total), base_(already_done), on_(enabled && isatty(2)), what_(std::move(what)), t0_(wall_seconds()) {}
+
+void Progress::tick(std::size_t done_now) {
+  if (!on_) return;
+  const double t = wall_seconds();
+  if (last_ >= 0.0 && t - last_ < 0.25 && base_ + done_now < total_) return;
+  last_ = t;
+  const double el = t - t0_;
+  const double rate = el > 0 ? static_cast<double>(done_now) / el : 0.0;
+  const std::size_t left = total_ - std::min(total_, base_ + done_now);
+  const double eta = rate > 0 ? static_cast<double>(left) / rate : 0.0;
+  std::fprintf(stderr, "\r%zu/%zu %s  %.1f/s  elapsed %.0f s  ETA %.0f s   ", base_ + done_now, total_, what_.c_str(), rate, el, eta);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (on_ && last_ >= 0.0) std::fprintf(stderr, "\n");
+}
+
+}  // namespace granwave::sweep

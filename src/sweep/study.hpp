@@ -1,0 +1,91 @@
+// The study machinery (issue 3; reused by the crystal studies): a study is a base case, what
+// varies, and a list of members indexed 0..n-1. Each member is a pure function of (study inputs,
+// member index) — its random stream is CounterRng(study seed, member index) — so the results do
+// not depend on the thread count or on the order in which members run.
+//
+//   RunnerOptions opt; opt.parts_dir = "study.h5.parts"; opt.fingerprint = fingerprint(texts);
+//   auto results = run_members(n, [&](std::size_t i) { return run_one(i); }, opt, &stats);
+//
+// Resumable: finished members are committed in batches, each batch written to NAME.tmp and
+// renamed (HDF5 files are not crash-safe in place), so `kill -9` loses at most the batches in
+// flight; a restart reads the batch files and runs only the missing members.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace granwave::io {
+class H5Writer;
+class H5Reader;
+}  // namespace granwave::io
+
+namespace granwave::sweep {
+
+// What one member produced: a fixed number of named scalars and one variable-length array.
+struct MemberResult {
+  std::int64_t index = -1;
+  std::vector<double> values;   // same length for every member of a study (RunnerOptions::value_names)
+  std::vector<double> profile;  // any length (e.g. the peak force along the chain)
+  std::string label;            // free text (e.g. the spin string)
+  double work = 0.0;            // bead-steps (or particle-steps) spent, for the throughput line
+};
+
+struct RunnerOptions {
+  std::string parts_dir;                 // batch files live here ("" = no checkpoints)
+  std::string fingerprint;               // batches written under another fingerprint are refused
+  std::vector<std::string> value_names;  // names of MemberResult::values, stored in every batch
+  std::size_t batch = 32;                // members per committed batch
+  int threads = 0;                       // 0 = OpenMP default
+  bool progress = true;                  // a progress line on stderr (only when it is a terminal)
+  std::string what = "members";          // progress label
+  // Estimated relative cost of each member (optional): the most expensive start first, which
+  // shortens the tail of a dynamic schedule. Never changes a result.
+  std::vector<double> cost;
+  // Stop after this many members were computed in this call (tests of resumption; 0 = no limit).
+  std::size_t limit = 0;
+};
+
+struct RunStats {
+  std::size_t total = 0, resumed = 0, computed = 0;
+  double work = 0.0;  // summed MemberResult::work of the members computed now
+  double seconds = 0.0;
+};
+
+using MemberFn = std::function<MemberResult(std::size_t index)>;
+
+// Every member's result, ordered by index (members done by earlier runs are read back from
+// parts_dir). Exceptions thrown by fn propagate after the running members finish.
+std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const RunnerOptions& opt, RunStats* stats = nullptr);
+
+// Batch files of a parts directory (read back; fingerprint checked). Missing dir = empty.
+std::vector<MemberResult> read_parts(const std::string& parts_dir, const std::string& fingerprint);
+
+// Members as datasets under `group` (index, values [n, nv], profile_offset [n + 1], profile,
+// label, work), and back. Used by the batch files and by the final study file.
+void write_members(io::H5Writer& w, const std::string& group, const std::vector<MemberResult>& results,
+                   const std::vector<std::string>& value_names);
+std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string& group);
+
+// 64-bit FNV-1a of the inputs that define a study (its file and the base case text).
+std::string fingerprint(const std::vector<std::string>& texts);
+
+// done/total, rate, ETA on stderr, at most a few times a second; silent unless enabled and stderr
+// is a terminal.
+class Progress {
+ public:
+  Progress(std::size_t total, std::size_t already_done, bool enabled, std::string what);
+  void tick(std::size_t done_now);  // members done in this run so far
+  void finish();
+
+ private:
+  std::size_t total_, base_;
+  bool on_;
+  std::string what_;
+  double t0_, last_ = -1.0;
+};
+
+double wall_seconds();
+
+}  // namespace granwave::sweep
