@@ -38,7 +38,9 @@ from yade.wrapper import (  # noqa: E402
     NewtonIntegrator, PyRunner, FrictMat, ViscElMat)
 from yade.minieigenHP import Vector3  # noqa: E402
 
-WALL_SPHERE_RADIUS = 100.0  # m: YADE 2023.02a's Mindlin gives box/wall bodies R* = R/2 (wrong)
+# YADE 2023.02a's Mindlin gives box/wall bodies R* = R/2 (wrong): the wall is a fixed sphere this big
+# (R* error r/R_wall). XC_YADE_WALL_RADIUS overrides it (used to show where chain differences come from).
+WALL_SPHERE_RADIUS = float(os.environ.get("XC_YADE_WALL_RADIUS", "1000.0"))  # m
 
 
 def fail(msg, code=2):
@@ -316,7 +318,7 @@ def main(argv):
     summary = {"code": "yade", "case": case["case"]["name"], "dt": dt, "steps": nsteps}
     if model == "chain":
         times, data, wall, n, cost = run_chain(case, system, dt, nsteps, every)
-        law = "Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin, wall = fixed sphere R=100 m"
+        law = "Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin, wall = fixed sphere R=%g m" % WALL_SPHERE_RADIUS
     else:
         times, data, wall, n, nreal, cost = run_crystal(case, system, dt, nsteps, every)
         summary["contacts"] = nreal
