@@ -159,8 +159,12 @@ def run_chain(case, system, dt, nsteps, every):
                  newton, runner]
     start_leapfrog(ids, m, v0, fixed, dt, newton, runner)
     sampler.t0_iter = O.iter
+    runner.iterPeriod = every           # fire only on sampled steps (Python per step is costly)
+    runner.iterLast = O.iter - every
     t = _time.time()
     O.run(nsteps + 1, True)
+    if len(sampler.times) != nsteps // every + 1:
+        fail("sampling misaligned: %d samples, expected %d" % (len(sampler.times), nsteps // every + 1), 1)
     wall = _time.time() - t
     cf = np.array([row[0] for row in sampler.rows])
     ke = np.array([row[1] for row in sampler.rows])
@@ -289,8 +293,12 @@ def run_crystal(case, system, dt, nsteps, every):
             O.bodies[ids[k]].state.vel = vv
     start_leapfrog(ids, m, v0, fixed, dt, newton, runner)
     sampler.t0_iter = O.iter
+    runner.iterPeriod = every           # fire only on sampled steps (Python per step is costly)
+    runner.iterLast = O.iter - every
     t = _time.time()
     O.run(nsteps + 1, True)
+    if len(sampler.times) != nsteps // every + 1:
+        fail("sampling misaligned: %d samples, expected %d" % (len(sampler.times), nsteps // every + 1), 1)
     wall = _time.time() - t
     rows = sampler.rows
     keys = ("layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
