@@ -7,7 +7,8 @@
 //   chain::Stepper st(sys, scheme, dt); st.advance(n);   // raw state access (tests, benchmarks)
 //
 // Indexing (DESIGN.md §2.2): bead 0 is the striker; contact j joins bead j and bead j + 1; with a
-// wall, the last contact (j = nbeads - 1) is the wall's. Positions and velocities point from the
+// wall, the last contact (j = nbeads - 1) is the wall's. A precompressed chain (F0 > 0, needs a
+// wall) is held by a constant force F0 on the striker towards the wall, so it starts in equilibrium. Positions and velocities point from the
 // striker towards the wall. The integrator works on displacements u from the built positions, so
 // the overlap of contact j is initial_overlap[j] + u[j] - u[j + 1] (u = 0 for the wall).
 //
@@ -121,6 +122,7 @@ struct ChainTrace {
   std::vector<double> contact_force;  // [nt, ncontacts]
   std::vector<double> bead_force;     // [nt, nbeads] mean of the bead's two contact forces
   std::vector<double> kinetic, potential;  // [nt]
+  std::vector<double> work_in;             // [nt] work of the static load F0 on the striker
   std::vector<int> full_rate_beads;
   std::vector<double> full_rate_time;        // [nt_full]
   std::vector<double> full_rate_bead_force;  // [nt_full, nsensors]
@@ -129,7 +131,7 @@ struct ChainTrace {
   std::vector<double> contact_series(std::size_t j) const;
   std::vector<double> bead_series(std::size_t b) const;
   std::vector<double> full_rate_series(std::size_t k) const;  // k-th sensor
-  // max |E - E0| / E0 over the samples (0 when energies were not stored).
+  // max |E - E0| / K0 over the samples, E = K + P - W (0 when energies were not stored).
   double energy_error() const;
 };
 
@@ -159,11 +161,13 @@ class Stepper {
   double kinetic_energy() const;
   double potential_energy() const;
   double momentum() const;
+  // Work done on the chain by the static load F0 on the striker (precompression): F0 u_0.
+  double work_in() const { return f_ext_ * u_[0]; }
 
  private:
   void accelerations(const double* u, double* a);  // F and a from displacements u
   std::size_t n_ = 0, nc_ = 0;
-  double dt_ = 0.0;
+  double dt_ = 0.0, f_ext_ = 0.0;
   config::Scheme scheme_;
   std::size_t steps_ = 0;
   // u_, F_ have n + 1 slots: u_[n] = 0 is the wall, F_[0] = 0 is the striker's missing left contact,

@@ -129,9 +129,9 @@ void write_trace(io::H5Writer& w, const ChainTrace& tr) {
   if (!tr.kinetic.empty()) {
     w.write("/energy/kinetic", tr.kinetic);
     w.write("/energy/potential", tr.potential);
-    // Conservative model: nothing dissipated, no driven particles after the impact.
+    // Conservative model: nothing dissipated; work_in is the static load's work (precompression).
     w.write("/energy/dissipated", std::vector<double>(nt, 0.0));
-    w.write("/energy/work_in", std::vector<double>(nt, 0.0));
+    w.write("/energy/work_in", tr.work_in);
   }
   w.attr("/", "time_convention", std::string("synchronous"));
   w.attr("/", "dt", tr.dt);
