@@ -13,6 +13,7 @@
 // advanced by the next step's displacement, as a sticking spring is.
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
 #include <algorithm>
 #include <cmath>
 #include <string>

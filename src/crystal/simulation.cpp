@@ -1,0 +1,255 @@
+#include "crystal/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace granwave::crystal {
+
+Derived derive(const config::Case& c) {
+  if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
+  const config::CrystalCase& k = *c.crystal;
+  const contact::LinearSpringDashpotParams normal{c.contact.kn, c.contact.gamma_n,
+                                                  c.contact.normal_tension == config::NormalTension::clip};
+  const contact::TangentialSpringParams tangential{c.contact.kt, c.contact.gamma_t, c.contact.mu_static,
+                                                   c.contact.mu_dynamic};
+  normal.validate();
+  tangential.validate();
+  Derived d;
+  const double a = k.radius;
+  d.mass = k.density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
+  d.m_ij = contact::reduced_mass(d.mass, d.mass);
+  d.omega = contact::contact_frequency(normal, d.m_ij);
+  if (!std::isfinite(d.omega))
+    throw InputError(c.path + ": contact.gamma_n = " + std::to_string(c.contact.gamma_n) +
+                     " overdamps a contact (k/m_ij < eta_0^2): no contact time");
+  d.t_c = contact::contact_time(normal, d.m_ij);
+  d.restitution = contact::restitution(normal, d.m_ij);
+  if (c.integrator.dt)
+    d.dt = *c.integrator.dt;
+  else if (c.integrator.dt_over_tc)
+    d.dt = *c.integrator.dt_over_tc * d.t_c;
+  else
+    throw InputError(c.path + ": [integrator] needs dt or dt_over_tc");
+  if (!(d.dt > 0.0)) throw InputError(c.path + ": integrator.dt must be > 0");
+  if (c.integrator.scheme != config::Scheme::verlet)
+    throw InputError(c.path + ": integrator.scheme: the crystal integrates with \"verlet\" only");
+  // Stability of velocity Verlet: dt < 2/omega_max. Conservative (Gershgorin-type) bound on
+  // the crystal's highest frequency: omega_max^2 <= 2 z (k + 3.5 k_t)/m_min with z = 12 contacts;
+  // 3.5 = 1 + m a^2/I couples the tangential spring to rotation. With dashpots the explicit
+  // limit shrinks to (sqrt(1 + zeta^2) - zeta) 2/omega_max, zeta = eta_max/omega_max.
+  const double delta = 2.0 * a * k.overlap;
+  const double a_min = a - k.polydispersity * delta;
+  const double m_min = k.density * 4.0 / 3.0 * std::numbers::pi * a_min * a_min * a_min;
+  const double z = 12.0;
+  const double omega_max = std::sqrt(2.0 * z * (c.contact.kn + 3.5 * c.contact.kt) / m_min);
+  const double eta_max = z * (c.contact.gamma_n + c.contact.gamma_t) / (2.0 * m_min);
+  const double zeta = eta_max / omega_max;
+  d.dt_stable = 2.0 / omega_max * (std::sqrt(1.0 + zeta * zeta) - zeta);
+  const double d_prime = 2.0 * a - delta;
+  d.sigma_0 = 2.0 * std::numbers::sqrt2 * c.contact.kn * delta / (d_prime * d_prime);
+  // Eq. (10) for the FCC network with branch d' (sum n_z^4 = 2, sum n_z^2 n_x^2 = 1 per
+  // particle, volume d'^3/sqrt(2) per particle): V_pz = d' sqrt(k/m) sqrt(1 + k_t/k) (affine),
+  // V_sz = d' sqrt(k/(2m)) (frictionless; rotations make the k_t term unreliable for S).
+  d.v_p = d_prime * std::sqrt(c.contact.kn / d.mass) * std::sqrt(1.0 + c.contact.kt / c.contact.kn);
+  d.v_s = d_prime * std::sqrt(c.contact.kn / (2.0 * d.mass));
+  d.steps = std::llround(c.integrator.t_end / d.dt);
+  d.sample_every = c.output.interval > 0.0 ? std::max(1LL, std::llround(c.output.interval / d.dt)) : 1;
+  return d;
+}
+
+void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<double>& zx,
+                  std::vector<double>* particle_stress) {
+  const Packing& pk = dyn.packing();
+  const std::size_t nl = static_cast<std::size_t>(pk.layers);
+  zz.assign(nl, 0.0);
+  zx.assign(nl, 0.0);
+  if (particle_stress) particle_stress->assign(9 * dyn.size(), 0.0);
+  const ContactList& C = dyn.contacts;
+  const double volume = pk.box_x * pk.box_y * pk.l0;  // of one layer
+  for (std::size_t c = 0; c < C.size(); ++c) {
+    const double delta = C.delta[c];
+    if (delta <= 0.0) continue;
+    const int i = C.i[c], j = C.j[c];
+    if (pk.fixed[i] && pk.fixed[j]) continue;
+    const double bx = dyn.x[j] + C.shift_x[c] - dyn.x[i];
+    const double by = dyn.y[j] + C.shift_y[c] - dyn.y[i];
+    const double bz = dyn.z[j] - dyn.z[i];
+    const double r = std::sqrt(bx * bx + by * by + bz * bz);
+    const double u[3] = {bx / r, by / r, bz / r};  // from i towards j
+    const double f[3] = {C.f_x[c], C.f_y[c], C.f_z[c]};  // on i; j gets -f
+    // -(x_c - x_i) (x) f  with x_c - x_i = (a_i - delta/2) u;  -(x_c - x_j) (x) (-f) likewise
+    const double arm_i = dyn.radius[i] - 0.5 * delta, arm_j = dyn.radius[j] - 0.5 * delta;
+    zz[pk.layer[i]] -= arm_i * u[2] * f[2];
+    zx[pk.layer[i]] -= arm_i * u[2] * f[0];
+    zz[pk.layer[j]] -= arm_j * u[2] * f[2];
+    zx[pk.layer[j]] -= arm_j * u[2] * f[0];
+    if (particle_stress) {
+      double* si = particle_stress->data() + 9 * i;
+      double* sj = particle_stress->data() + 9 * j;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          si[3 * a + b] -= arm_i * u[a] * f[b];
+          sj[3 * a + b] -= arm_j * u[a] * f[b];
+        }
+    }
+  }
+  for (std::size_t L = 0; L < nl; ++L) {
+    zz[L] /= volume;
+    zx[L] /= volume;
+  }
+  if (particle_stress) {
+    const double share = volume / (static_cast<double>(pk.nx) * pk.ny);
+    for (double& s : *particle_stress) s /= share;
+  }
+}
+
+double coordination(const Dynamics& dyn) {
+  long contacts = 0, particles = 0;
+  for (std::size_t p = 0; p < dyn.size(); ++p) {
+    if (dyn.packing().fixed[p]) continue;
+    ++particles;
+    contacts += dyn.touching_contacts_of(p);
+  }
+  return particles ? static_cast<double>(contacts) / particles : 0.0;
+}
+
+namespace {
+
+void sample(const Dynamics& dyn, Traces& tr) {
+  const Packing& pk = dyn.packing();
+  const std::size_t nl = tr.nlayers;
+  tr.time.push_back(dyn.time);
+  std::vector<double> zz, zx;
+  layer_stress(dyn, zz, zx);
+  std::vector<double> uz(nl, 0.0), ux(nl, 0.0), vz(nl, 0.0), vx(nl, 0.0), count(nl, 0.0);
+  for (std::size_t p = 0; p < dyn.size(); ++p) {
+    const int L = pk.layer[p];
+    uz[L] += dyn.z[p] - dyn.z0[p];
+    ux[L] += dyn.x[p] - dyn.x0[p];
+    vz[L] += dyn.vz[p];
+    vx[L] += dyn.vx[p];
+    count[L] += 1.0;
+  }
+  for (std::size_t L = 0; L < nl; ++L) {
+    const double w = count[L] > 0.0 ? 1.0 / count[L] : 0.0;
+    tr.stress_zz.push_back(zz[L]);
+    tr.stress_zx.push_back(zx[L]);
+    tr.displacement_z.push_back(uz[L] * w);
+    tr.displacement_x.push_back(ux[L] * w);
+    tr.velocity_z.push_back(vz[L] * w);
+    tr.velocity_x.push_back(vx[L] * w);
+  }
+  tr.coordination.push_back(coordination(dyn));
+  tr.kinetic.push_back(dyn.kinetic_energy());
+  tr.potential.push_back(dyn.potential_energy());
+  tr.dissipated.push_back(dyn.dissipated_energy());
+  tr.work_in.push_back(dyn.work_in);
+  tr.verlet_correction.push_back(dyn.verlet_correction());
+}
+
+// The particle to blame for a blow-up: the first non-finite one, else the fastest.
+std::size_t culprit(const Dynamics& dyn) {
+  std::size_t worst = 0;
+  double vmax = -1.0;
+  for (std::size_t p = 0; p < dyn.size(); ++p) {
+    const double v2 = dyn.vx[p] * dyn.vx[p] + dyn.vy[p] * dyn.vy[p] + dyn.vz[p] * dyn.vz[p];
+    if (!std::isfinite(v2) || !std::isfinite(dyn.x[p] + dyn.y[p] + dyn.z[p])) return p;
+    if (v2 > vmax) {
+      vmax = v2;
+      worst = p;
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook) {
+  const Derived d = derive(c);
+  Dynamics dyn(packing, c.contact, d.dt);
+  RunResult res;
+  Traces& tr = res.traces;
+  tr.nlayers = static_cast<std::size_t>(packing.layers);
+  // Positions along z from the innermost driven layer, with the actual spacing l0 = d'/sqrt(2).
+  for (int L = 0; L < packing.layers; ++L) tr.layer_z.push_back((L - (packing.fixed_layers - 1)) * packing.l0);
+
+  // Excitation at t = 0 (secs. 2.2 B, 3.1): all bottom fixed layers together.
+  std::vector<std::size_t> source;
+  for (std::size_t p = 0; p < dyn.size(); ++p)
+    if (packing.fixed[p] && packing.layer[p] < packing.fixed_layers) source.push_back(p);
+  const bool p_mode = c.excitation.mode == config::Excitation::Mode::P;
+  const double e_start = dyn.potential_energy();
+  if (c.excitation.drive == config::Excitation::Drive::displacement) {
+    const double step = c.excitation.amplitude * packing.d;  // a step of amplitude * d, held
+    dyn.displace(source, p_mode ? 0.0 : step, 0.0, p_mode ? step : 0.0);
+  } else {
+    // Initial source velocity, no displacement control afterwards: the source is integrated.
+    for (std::size_t p : source) dyn.set_mobile(p, true);
+    dyn.compute_forces();
+    for (std::size_t p : source) {
+      (p_mode ? dyn.vz[p] : dyn.vx[p]) = c.excitation.amplitude;
+      dyn.work_in += 0.5 * dyn.mass[p] * c.excitation.amplitude * c.excitation.amplitude;
+    }
+  }
+  const double budget = e_start + std::abs(dyn.work_in);
+
+  sample(dyn, tr);
+  if (hook) hook(dyn, 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long s = 1; s <= d.steps; ++s) {
+    dyn.step();
+    if (s % d.sample_every != 0) continue;
+    sample(dyn, tr);
+    const double e = tr.kinetic.back() + tr.potential.back();
+    // Energy can only leave (dashpots, friction); growth beyond the budget is an instability.
+    if (!std::isfinite(e) || e > 1.5 * budget + 1e-30) {
+      const std::size_t p = culprit(dyn);
+      std::ostringstream msg;
+      msg << "crystal run unstable at step " << s << " (t = " << dyn.time << " s): E_kin + E_pot = " << e
+          << " J against " << budget << " J available; particle " << p << " (layer " << packing.layer[p]
+          << ") has velocity (" << dyn.vx[p] << ", " << dyn.vy[p] << ", " << dyn.vz[p] << ") m/s";
+      res.failed = true;
+      res.error = msg.str();
+      break;
+    }
+    if (hook) hook(dyn, tr.samples() - 1);
+  }
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.steps = dyn.steps;
+  res.rebuilds = dyn.rebuilds;
+  return res;
+}
+
+FrontSpeeds front_speeds(const Traces& tr, double l0, bool shear, double z_min, double z_max) {
+  FrontSpeeds out;
+  const std::size_t nt = tr.samples(), nl = tr.nlayers;
+  const std::vector<double>& sigma = shear ? tr.stress_zx : tr.stress_zz;
+  std::vector<double> t_peak, z_peak, t_half, z_half, signal(nt);
+  out.z_min = z_max;
+  for (std::size_t L = 0; L < nl; ++L) {
+    const double zl = tr.layer_z[L] / l0;
+    if (zl < z_min - 1e-9 || zl > z_max + 1e-9 || nt < 3) continue;
+    for (std::size_t k = 0; k < nt; ++k) signal[k] = sigma[k * nl + L] - sigma[L];
+    const analysis::SignalMeasures m = analysis::measure_signal(tr.time, signal);
+    if (!m.first_peak.found) continue;
+    t_peak.push_back(m.first_peak.time);
+    z_peak.push_back(tr.layer_z[L]);
+    if (m.half_peak.found) {
+      t_half.push_back(m.half_peak.time);
+      z_half.push_back(tr.layer_z[L]);
+    }
+    out.z_min = std::min(out.z_min, zl);
+    out.z_max = std::max(out.z_max, zl);
+  }
+  out.layers = t_peak.size();
+  if (t_peak.size() >= 2) out.first_peak = analysis::front_speed(t_peak, z_peak);
+  if (t_half.size() >= 2) out.half_peak = analysis::front_speed(t_half, z_half);
+  return out;
+}
+
+}  // namespace granwave::crystal

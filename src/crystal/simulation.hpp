@@ -1,0 +1,74 @@
+// A wave run of the crystal (secs. 2.2 B and 3.1): excitation of the bottom fixed layers,
+// the time loop, and the observers of DESIGN.md §2.2 sampled at the output interval.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/measures.hpp"
+#include "config/case.hpp"
+#include "crystal/dynamics.hpp"
+#include "crystal/packing.hpp"
+
+namespace granwave::crystal {
+
+// Derived numbers of a case (crystal check prints them; run uses dt and the limits).
+struct Derived {
+  double mass = 0.0, m_ij = 0.0;        // mean particle mass, reduced mass of a contact
+  double omega = 0.0, t_c = 0.0;        // eq. (1) text: omega = sqrt(k/m_ij - eta_0^2), t_c = pi/omega
+  double restitution = 1.0;             // exp(-eta_0 t_c) ("allow")
+  double dt = 0.0;                      // resolved time step
+  double dt_stable = 0.0;               // velocity-Verlet limit (conservative estimate)
+  double sigma_0 = 0.0;                 // isotropic prestress 2 sqrt(2) k delta / d'^2 (monodisperse)
+  double v_p = 0.0, v_s = 0.0;          // long-wave speeds along z from eq. (10) with branch d'
+  long steps = 0, sample_every = 1;     // time steps, steps between samples
+};
+// Throws InputError for refused cases (stability, geometry, contact parameters).
+Derived derive(const config::Case& c);
+
+// The per-layer and global observables of one run, in trace-file layout ([nt, nlayers] rows).
+struct Traces {
+  std::vector<double> time;
+  std::vector<double> layer_z;  // distance from the innermost driven layer (m)
+  std::size_t nlayers = 0;
+  std::vector<double> stress_zz, stress_zx, displacement_z, displacement_x, velocity_z, velocity_x;
+  std::vector<double> coordination;
+  std::vector<double> kinetic, potential, dissipated, work_in, verlet_correction;
+  std::size_t samples() const { return time.size(); }
+};
+
+// Per-layer stress (compression positive, prestress included, contact point at the middle of
+// the overlap, contacts of two fixed particles excluded) and, optionally, per-particle stress
+// (9 components, row-major, normalised by the particle's share of the layer volume).
+void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<double>& zx,
+                  std::vector<double>* particle_stress = nullptr);
+// Mean touching contacts per non-fixed particle (contacts with fixed particles count).
+double coordination(const Dynamics& dyn);
+
+struct RunResult {
+  Traces traces;
+  bool failed = false;
+  std::string error;  // the RunError message when failed
+  long steps = 0;
+  long rebuilds = 0;
+  double seconds = 0.0;  // wall time of the time loop
+};
+
+// Called at each sample with the dynamics and the sample index (e.g. VTK snapshots).
+using SampleHook = std::function<void(const Dynamics&, std::size_t sample)>;
+
+// Excite and integrate to t_end. A NaN or an energy that grows beyond the available budget
+// stops the run: failed = true, traces hold the samples before the failure.
+RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {});
+
+// Front speeds of the measures of DESIGN.md §2.4 on sigma - sigma(t = 0) of each layer with
+// z/l0 in [z_min, z_max] (sigma_zz for P, sigma_zx for S); layers whose signal has no first
+// peak are left out. Speeds in m/s with their standard errors.
+struct FrontSpeeds {
+  analysis::LineFit first_peak, half_peak;
+  std::size_t layers = 0;  // layers used
+  double z_min = 0.0, z_max = 0.0;  // in units of l0, as used
+};
+FrontSpeeds front_speeds(const Traces& tr, double l0, bool shear, double z_min = 10.0, double z_max = 150.0);
+
+}  // namespace granwave::crystal
