@@ -223,8 +223,10 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
     space.getSimpleExtentDims(&n);
     H5::DataType ftype = ds.getDataType();
     std::vector<std::string> out;
+    const H5T_cset_t cset = H5Tget_cset(ftype.getId());  // read in the file's character set
     if (ftype.isVariableStr()) {
       H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+      type.setCset(cset);
       std::vector<char*> ptrs(n);
       if (n) ds.read(ptrs.data(), type);
       for (auto* p : ptrs) out.emplace_back(p ? p : "");
@@ -232,7 +234,9 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
     } else {  // fixed-length strings (h5py writes these for numpy 'S' arrays)
       std::size_t len = ftype.getSize();
       std::vector<char> buf(n * len);
-      if (n) ds.read(buf.data(), H5::StrType(H5::PredType::C_S1, len));
+      H5::StrType type(H5::PredType::C_S1, len);
+      type.setCset(cset);
+      if (n) ds.read(buf.data(), type);
       for (hsize_t i = 0; i < n; ++i) {
         std::string s(buf.data() + i * len, len);
         out.push_back(s.substr(0, s.find('\0')));
@@ -260,6 +264,7 @@ std::string H5Reader::attr_string(const std::string& object, const std::string& 
     char* p = nullptr;
     hid_t mtype = H5Tcopy(H5T_C_S1);
     H5Tset_size(mtype, H5T_VARIABLE);
+    H5Tset_cset(mtype, H5Tget_cset(ftype));  // HDF5 does not convert between ASCII and UTF-8
     err = H5Aread(a, mtype, &p);
     if (err >= 0 && p) { out = p; H5free_memory(p); }
     H5Tclose(mtype);
@@ -268,6 +273,8 @@ std::string H5Reader::attr_string(const std::string& object, const std::string& 
     std::vector<char> buf(len + 1, '\0');
     hid_t mtype = H5Tcopy(H5T_C_S1);
     H5Tset_size(mtype, len);
+    H5Tset_cset(mtype, H5Tget_cset(ftype));
+    H5Tset_strpad(mtype, H5Tget_strpad(ftype));
     err = H5Aread(a, mtype, buf.data());
     out = std::string(buf.data());
     H5Tclose(mtype);
