@@ -86,7 +86,9 @@ struct SpeedFit {
 
 struct CrystalAnalysisOptions {
   int lo = -1, hi = -1;       // z/l0 range of the fits (< 0: default 10 .. min(150, last - 20))
-  std::string field = "auto"; // dispersion field: "auto" (displacement) | "displacement" | "velocity" | "stress"
+  // Dispersion field: "auto" (the layer velocity; without it the time derivative of the layer
+  // displacement) | "velocity" | "displacement" | "stress" (raw). See analyze_crystal for why.
+  std::string field = "auto";
   double t_max = -1.0;        // analyse t <= t_max only (< 0: the whole trace)
   DispersionOptions dispersion;
 };

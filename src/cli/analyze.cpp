@@ -32,13 +32,16 @@ Crystal traces (seed 002):
   output interval);
   dispersion: 2D FFT of the (t, z) field from the innermost driven layer (z = 0) to the last free
   layer, power-weighted omega_max(k) with phi = 4, sine fit omega_0 sin(k l0/2) over all k > 0,
-  V(k->0) = omega_0 l0/2. Default field: the layer displacement (the stress weights the poorly
-  excited short waves and biases omega_0 low: 6 % on YADE traces of the seed's crystal).
+  V(k->0) = omega_0 l0/2. Default field: the layer velocity (without one in the trace, the time
+  derivative of the layer displacement). Not the stress: it weights the poorly excited short waves
+  (6 % low on YADE traces of the seed's crystal). Not the raw displacement of a held step either:
+  it stays at the step height to the end of the record, the window cuts it, and the resulting
+  |F| ~ 1/omega dominates |F|^4 (omega_0 = 2.0e4 1/s instead of 3.09e5 on the 3200-particle run).
 Chain traces (seed 001): per contact the same measures on the contact force minus its t = 0 value,
   front speed over contacts LO..HI (default 5 .. ncontacts - 7) in contacts/s and m/s.
 
   --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain)
-  --field F        dispersion field: displacement (default) | velocity | stress
+  --field F        dispersion field: velocity (default) | displacement | stress (raw fields)
   --t-max T        analyse t <= T only (s), e.g. to stop before a reflection returns
   --json           one JSON object (schema "granwave-analyze/1"): every number as
                    {"value", "error", "unit"} (error null where none applies). Top-level keys:

@@ -243,7 +243,7 @@ TEST_CASE("trace file round trip: any code's file, mode from the data, S polarit
   const auto a = analyze_crystal(f.crystal, o);
   CHECK(a.polarity == -1.0);
   CHECK(a.measure_field == "layer_stress_zx");
-  CHECK(a.dispersion_field == "layer_displacement_x");
+  CHECK(a.dispersion_field == "layer_displacement_x (time derivative)");
   CHECK(a.v_first_peak.speed.value == Approx(V).epsilon(1e-4));
   const std::string js = to_json(f, a);
   CHECK(js.find("\"v_first_peak\": {\"value\": ") != std::string::npos);
