@@ -25,3 +25,8 @@ fi
 echo "==> building granwave (Release) in build/"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 cmake --build build -j"$(nproc)"
+
+# The cross-code harness on PATH (an executable of the repository, run by /usr/bin/python3).
+if [[ -w /usr/local/bin ]]; then
+  ln -sf "$PWD/crosscheck/crosscheck" /usr/local/bin/crosscheck
+fi
