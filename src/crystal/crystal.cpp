@@ -17,48 +17,12 @@ namespace granwave::crystal {
 
 namespace {
 
-bool wants(const config::Case& c, const std::string& field) {
-  if (c.output.fields.empty()) return true;
-  for (const auto& f : c.output.fields)
-    if (f == field) return true;
-  return false;
-}
-
 // A packing given as a system file must be the case's crystal.
 void check_system_matches(const config::Case& c, const Packing& p, const std::string& path) {
   const auto& k = *c.crystal;
   if (p.nx != k.cells[0] || p.ny != k.cells[1] || p.layers != k.cells[2] || p.fixed_layers != k.fixed_layers ||
       std::abs(p.d - 2.0 * k.radius) > 1e-12 * p.d)
     throw InputError(path + ": the system's packing (cells, fixed layers, radius) is not the one of " + c.path);
-}
-
-void write_trace(const config::Case& c, const Packing& p, const RunResult& r, const std::string& path) {
-  io::H5Writer w(path);
-  io::write_provenance(w);
-  w.attr("/", "case_name", c.name);
-  w.attr("/", "case_toml", c.toml_text);
-  w.attr("/", "time_convention", std::string("synchronous"));
-  w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
-  write_system(w, p, c.name, "/system");
-  const Traces& t = r.traces;
-  const std::size_t nt = t.samples(), nl = t.nlayers;
-  w.write("/time", t.time);
-  w.write("/crystal/layer_z", t.layer_z);
-  const std::pair<const char*, const std::vector<double>*> fields[] = {
-      {"layer_stress_zz", &t.stress_zz},         {"layer_stress_zx", &t.stress_zx},
-      {"layer_displacement_z", &t.displacement_z}, {"layer_displacement_x", &t.displacement_x},
-      {"layer_velocity_z", &t.velocity_z},       {"layer_velocity_x", &t.velocity_x}};
-  for (const auto& [name, data] : fields)
-    if (wants(c, name)) w.write(std::string("/crystal/") + name, *data, {nt, nl});
-  if (wants(c, "coordination")) w.write("/crystal/coordination", t.coordination);
-  if (wants(c, "energy")) {
-    w.write("/energy/kinetic", t.kinetic);
-    w.write("/energy/potential", t.potential);
-    w.write("/energy/dissipated", t.dissipated);
-    w.write("/energy/work_in", t.work_in);
-    w.write("/energy/verlet_correction", t.verlet_correction);
-  }
-  w.commit();
 }
 
 std::string trace_path_for(const config::Case& c, const RunRequest& req) {

@@ -61,6 +61,10 @@ using SampleHook = std::function<void(const Dynamics&, std::size_t sample)>;
 // stops the run: failed = true, traces hold the samples before the failure.
 RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {});
 
+// The trace file of SCHEMA.md §3 (with /system, provenance, case_toml, time_convention
+// "synchronous", root attribute status = "complete" or "failed: ..."), written via NAME.tmp.
+void write_trace(const config::Case& c, const Packing& packing, const RunResult& result, const std::string& path);
+
 // Front speeds of the measures of DESIGN.md §2.4 on sigma - sigma(t = 0) of each layer with
 // z/l0 in [z_min, z_max] (sigma_zz for P, sigma_zx for S); layers whose signal has no first
 // peak are left out. Speeds in m/s with their standard errors.

@@ -37,9 +37,11 @@ crystal::Packing two_spheres(double gap) {
 struct Collision {
   double t_c, r;
 };
-// Head-on collision at 0.01 m/s each; contact time and restitution from the interpolated
-// zero crossings of the overlap.
+// Head-on collision at 0.01 m/s each. The contact ends where the overlap returns to zero
+// ("allow", the seed's t_c = pi/omega) or, with "clip", where the force k delta + gamma_0
+// delta_dot reaches zero (afterwards the spheres fly apart force-free); interpolated.
 Collision collide(double gamma_n, config::NormalTension tension, double dt) {
+  const bool clip = tension == config::NormalTension::clip;
   config::ContactParams cp;
   cp.kn = 1e5;
   cp.gamma_n = gamma_n;
@@ -50,8 +52,9 @@ Collision collide(double gamma_n, config::NormalTension tension, double dt) {
   double t_prev = 0.0, delta_prev = 0.0, t_end = -1.0;
   while (dyn.time < 1e-3) {
     dyn.step();
-    const double delta = 2e-3 - (dyn.z[1] - dyn.z[0]);
-    if (delta_prev > 0.0 && delta <= 0.0) {
+    const double overlap = 2e-3 - (dyn.z[1] - dyn.z[0]);
+    const double delta = clip ? 1e5 * overlap + gamma_n * (dyn.vz[0] - dyn.vz[1]) : overlap;
+    if (dyn.time > 2 * dt && delta_prev > 0.0 && delta <= 0.0) {
       t_end = t_prev + (dyn.time - t_prev) * delta_prev / (delta_prev - delta);
       break;
     }

@@ -1,0 +1,134 @@
+// The prestressed crystal of seed 002 sec. 2.2: isotropic prestress, static equilibrium,
+// coordination 12, invariance under periodic shifts and storage order; the energy audit.
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include "config/case.hpp"
+#include "core/rng.hpp"
+#include "crystal/dynamics.hpp"
+#include "crystal/packing.hpp"
+#include "crystal/simulation.hpp"
+
+using namespace granwave;
+
+namespace {
+config::Case load(const std::string& name) {
+  return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/" + name + ".toml");
+}
+}  // namespace
+
+TEST_CASE("prestress is isotropic: sigma_0 = 2 sqrt(2) k delta / d'^2 = 1.417e5 Pa", "[crystal][static]") {
+  const config::Case c = load("crystal_p");
+  const crystal::Packing p = crystal::make_packing(c);
+  crystal::Dynamics dyn(p, c.contact, *c.integrator.dt);
+  const double sigma_0 = 2 * std::sqrt(2.0) * 1e5 * p.delta / (p.d_prime * p.d_prime);
+  CHECK(sigma_0 == Approx(1.417e5).epsilon(3e-4));
+  std::vector<double> zz, zx, ps;
+  crystal::layer_stress(dyn, zz, zx, &ps);
+  for (int L = 2; L < 198; ++L) {  // free layers (fixed-fixed contacts are excluded in the end layers)
+    CHECK(zz[L] == Approx(sigma_0).epsilon(1e-9));
+    CHECK(std::abs(zx[L]) < 1e-9 * sigma_0);
+  }
+  for (std::size_t q = 0; q < p.size(); q += 97) {
+    if (p.fixed[q]) continue;
+    CHECK(ps[9 * q + 0] == Approx(sigma_0).epsilon(1e-9));  // xx
+    CHECK(ps[9 * q + 4] == Approx(sigma_0).epsilon(1e-9));  // yy
+    CHECK(ps[9 * q + 8] == Approx(sigma_0).epsilon(1e-9));  // zz
+    CHECK(std::abs(ps[9 * q + 1]) < 1e-9 * sigma_0);
+  }
+  CHECK(crystal::coordination(dyn) == 12.0);
+  // Unexcited, it stays static.
+  const double e_pot = dyn.potential_energy();
+  for (int s = 0; s < 1000; ++s) dyn.step();
+  std::printf("static crystal after 1000 steps: E_kin/E_pot = %.3g\n", dyn.kinetic_energy() / e_pot);
+  CHECK(dyn.kinetic_energy() / e_pot < 1e-12);
+}
+
+namespace {
+// A disturbed copy of a packing (deterministic, 1e-8 m), with velocities and spins, so that
+// normal, dashpot and tangential forces are all non-zero.
+struct Disturbed {
+  crystal::Packing p;
+  std::vector<double> v, w;
+};
+Disturbed disturb(crystal::Packing p) {
+  Disturbed d;
+  const std::size_t n = p.size();
+  d.v.resize(3 * n);
+  d.w.resize(3 * n);
+  for (std::size_t q = 0; q < n; ++q) {
+    CounterRng rng(42, q);
+    p.x[q] += 1e-8 * (2 * rng.uniform() - 1);
+    p.y[q] += 1e-8 * (2 * rng.uniform() - 1);
+    p.z[q] += 1e-8 * (2 * rng.uniform() - 1);
+    for (int k = 0; k < 3; ++k) d.v[3 * q + k] = 1e-3 * (2 * rng.uniform() - 1);
+    for (int k = 0; k < 3; ++k) d.w[3 * q + k] = 1.0 * (2 * rng.uniform() - 1);
+  }
+  d.p = std::move(p);
+  return d;
+}
+crystal::Dynamics forces_of(const Disturbed& d, const config::ContactParams& cp) {
+  crystal::Dynamics dyn(d.p, cp, 2e-7);
+  for (std::size_t q = 0; q < d.p.size(); ++q) {
+    dyn.vx[q] = d.v[3 * q], dyn.vy[q] = d.v[3 * q + 1], dyn.vz[q] = d.v[3 * q + 2];
+    dyn.wx[q] = d.w[3 * q], dyn.wy[q] = d.w[3 * q + 1], dyn.wz[q] = d.w[3 * q + 2];
+  }
+  dyn.compute_forces();
+  return dyn;
+}
+}  // namespace
+
+TEST_CASE("same forces after a shift across the periodic faces and after reordering", "[crystal][static]") {
+  config::Case c = load("crystal_small");
+  c.crystal->cells = {4, 4, 20};
+  c.contact.kt = 1e5;
+  c.contact.gamma_n = 0.1;
+  c.contact.gamma_t = 0.05;
+  const Disturbed base = disturb(crystal::make_packing(c));
+  const crystal::Dynamics ref = forces_of(base, c.contact);
+  const double f_scale = 1e5 * 2e-6;
+
+  // Shift by 0.37 box in x and 0.81 box in y, wrapping particles back into the box.
+  Disturbed shifted = base;
+  for (std::size_t q = 0; q < base.p.size(); ++q) {
+    shifted.p.x[q] = std::fmod(base.p.x[q] + 0.37 * base.p.box_x, base.p.box_x);
+    shifted.p.y[q] = std::fmod(base.p.y[q] + 0.81 * base.p.box_y, base.p.box_y);
+  }
+  const crystal::Dynamics s = forces_of(shifted, c.contact);
+  // Reverse the storage order.
+  Disturbed reordered = base;
+  const std::size_t n = base.p.size();
+  auto rev = [n](auto& v, int k) {
+    auto copy = v;
+    for (std::size_t q = 0; q < n; ++q)
+      for (int m = 0; m < k; ++m) v[k * q + m] = copy[k * (n - 1 - q) + m];
+  };
+  for (auto* v : {&reordered.p.x, &reordered.p.y, &reordered.p.z, &reordered.p.radius, &reordered.p.mass,
+                  &reordered.p.inertia})
+    rev(*v, 1);
+  rev(reordered.p.layer, 1);
+  rev(reordered.p.fixed, 1);
+  rev(reordered.v, 3);
+  rev(reordered.w, 3);
+  const crystal::Dynamics r = forces_of(reordered, c.contact);
+  double max_shift = 0.0, max_order = 0.0, max_f = 0.0, max_torque_diff = 0.0;
+  for (std::size_t q = 0; q < n; ++q) {
+    const std::size_t k = n - 1 - q;
+    max_f = std::max({max_f, std::abs(ref.fx[q]), std::abs(ref.fz[q])});
+    max_shift = std::max({max_shift, std::abs(s.fx[q] - ref.fx[q]), std::abs(s.fy[q] - ref.fy[q]),
+                          std::abs(s.fz[q] - ref.fz[q])});
+    max_order = std::max({max_order, std::abs(r.fx[k] - ref.fx[q]), std::abs(r.fy[k] - ref.fy[q]),
+                          std::abs(r.fz[k] - ref.fz[q])});
+    max_torque_diff = std::max({max_torque_diff, std::abs(s.tx[q] - ref.tx[q]), std::abs(r.tz[k] - ref.tz[q])});
+  }
+  std::printf("max |F| %.3g N; differences: shifted %.3g N, reordered %.3g N, torques %.3g N m\n", max_f, max_shift,
+              max_order, max_torque_diff);
+  CHECK(max_f > 1e-3 * f_scale);
+  // Round-off of positions ~1e-3 m (ulp 2e-19) against overlaps of 2e-6 m: relative 1e-10.
+  CHECK(max_shift < 1e-9 * f_scale);
+  CHECK(max_order < 1e-9 * f_scale);
+  CHECK(max_torque_diff < 1e-9 * f_scale * 1e-3);
+}

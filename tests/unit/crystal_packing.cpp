@@ -1,0 +1,143 @@
+// The packing of seed 002 sec. 2.2 (geometry, contacts across periodic faces, system file) and
+// the refusals of `crystal::check` / failures of `crystal::run`.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+#include <sstream>
+
+#include "config/case.hpp"
+#include "core/error.hpp"
+#include "crystal/packing.hpp"
+#include "crystal/simulation.hpp"
+#include "io/h5.hpp"
+#include "models.hpp"
+
+using namespace granwave;
+
+namespace {
+config::Case small_case() {
+  return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
+}
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("granwave_crystal_" + name)).string();
+}
+}  // namespace
+
+TEST_CASE("FCC packing geometry: d', l0, box, equal overlaps, coordination 12", "[crystal][packing]") {
+  config::Case c = small_case();
+  c.crystal->cells = {4, 4, 12};
+  const crystal::Packing p = crystal::make_packing(c);
+  REQUIRE(p.size() == 4u * 4u * 12u);
+  CHECK(p.d_prime == Approx(2e-3 * (1 - 1e-3)).epsilon(1e-15));
+  CHECK(p.l0 == Approx(p.d_prime / std::numbers::sqrt2).epsilon(1e-15));
+  CHECK(p.box_x == Approx(4 * p.d_prime).epsilon(1e-15));
+  CHECK(p.delta == Approx(2e-6).epsilon(1e-9));
+  CHECK(p.inertia[7] == Approx(0.4 * p.mass[7] * 1e-6).epsilon(1e-15));
+  CHECK(p.mass[0] == Approx(2000 * 4.0 / 3.0 * std::numbers::pi * 1e-9).epsilon(1e-15));
+  const auto contacts = crystal::list_contacts(p);
+  std::vector<int> count(p.size(), 0);
+  for (const auto& k : contacts) {
+    CHECK(k.overlap == Approx(2e-6).epsilon(1e-6));
+    ++count[k.i];
+    ++count[k.j];
+  }
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    const bool end_layer = p.layer[q] == 0 || p.layer[q] == 11;
+    CHECK(count[q] == (end_layer ? 8 : 12));
+  }
+  // Without pairs of two fixed particles: the two bottom and two top layers lose theirs.
+  CHECK(crystal::list_contacts(p, false).size() < contacts.size());
+}
+
+TEST_CASE("a box two particles across: both periodic images are contacts", "[crystal][packing]") {
+  const crystal::Packing p = crystal::make_packing(small_case());  // 2 x 2 x 40
+  std::vector<int> count(p.size(), 0);
+  for (const auto& k : crystal::list_contacts(p)) {
+    ++count[k.i];
+    ++count[k.j];
+    CHECK(std::sqrt(k.bx * k.bx + k.by * k.by + k.bz * k.bz) == Approx(p.d_prime).epsilon(1e-12));
+  }
+  for (std::size_t q = 0; q < p.size(); ++q)
+    if (p.layer[q] > 0 && p.layer[q] < 39) CHECK(count[q] == 12);
+}
+
+TEST_CASE("system file round trip and reuse by a run", "[crystal][packing]") {
+  const config::Case c = small_case();
+  const std::string path = temp_path("system.h5");
+  crystal::build(c, path);
+  const crystal::Packing a = crystal::make_packing(c), b = crystal::read_system(path);
+  CHECK(a.x == b.x);
+  CHECK(a.z == b.z);
+  CHECK(a.radius == b.radius);
+  CHECK(a.fixed == b.fixed);
+  CHECK(a.layer == b.layer);
+  CHECK(a.box_x == b.box_x);
+  CHECK(a.l0 == b.l0);
+  // run --system gives the same trace as a fresh build.
+  RunRequest req;
+  req.trace_path = temp_path("a.h5");
+  std::ostringstream out;
+  CHECK(crystal::run(c, req, out) == 0);
+  req.trace_path = temp_path("b.h5");
+  req.system_path = path;
+  req.json = true;
+  std::ostringstream out_json;
+  CHECK(crystal::run(c, req, out_json) == 0);
+  CHECK(out_json.str().front() == '{');
+  io::H5Reader ra(temp_path("a.h5")), rb(temp_path("b.h5"));
+  CHECK(ra.read_double("/crystal/layer_stress_zz") == rb.read_double("/crystal/layer_stress_zz"));
+  CHECK(ra.attr_string("/", "time_convention") == "synchronous");
+  CHECK(ra.attr_string("/", "status") == "complete");
+  CHECK(ra.has("/system/position"));
+  std::vector<std::size_t> dims;
+  ra.read_double("/crystal/layer_velocity_z", &dims);
+  CHECK(dims == std::vector<std::size_t>{101, 40});
+  for (const char* f : {"a.h5", "b.h5", "system.h5"}) std::filesystem::remove(temp_path(f));
+}
+
+TEST_CASE("check refuses unstable dt, mu_d > mu_s, negative stiffness; warns above t_c/50", "[crystal][check]") {
+  config::Case c = small_case();
+  std::ostringstream out;
+  crystal::check(c, out);
+  CHECK(out.str().find("prestress sigma_0") != std::string::npos);
+  CHECK(crystal::derive(c).sigma_0 == Approx(1.417e5).epsilon(3e-4));
+  CHECK(crystal::derive(c).t_c == Approx(2.033e-5).epsilon(3e-4));
+  CHECK(out.str().find("warning") == std::string::npos);
+  c.integrator.dt = 1e-6;  // above t_c/50 = 4.07e-7, below the stability limit
+  std::ostringstream warn;
+  crystal::check(c, warn);
+  CHECK(warn.str().find("warning: dt") != std::string::npos);
+  c.integrator.dt = 1e-5;
+  CHECK_THROWS_AS(crystal::check(c, out), InputError);
+  c = small_case();
+  c.contact.mu_dynamic = 0.6;
+  CHECK_THROWS_AS(crystal::check(c, out), InputError);
+  c = small_case();
+  c.contact.kn = -1.0;
+  CHECK_THROWS_AS(crystal::check(c, out), InputError);
+  c = small_case();
+  c.crystal->cells = {1, 2, 40};
+  CHECK_THROWS_AS(crystal::check(c, out), InputError);
+}
+
+TEST_CASE("an unstable run stops naming the step and the particle and keeps its samples", "[crystal][check]") {
+  config::Case c = small_case();
+  c.integrator.dt = 2e-5;  // ten times the stability limit
+  c.output.interval = 2e-5;
+  std::ostringstream out;
+  CHECK_THROWS_AS(crystal::check(c, out), InputError);  // run refuses it up front ...
+  const crystal::Packing p = crystal::make_packing(c);
+  const crystal::RunResult r = crystal::simulate(c, p);  // ... forced, it blows up
+  REQUIRE(r.failed);
+  CHECK(r.error.find("step") != std::string::npos);
+  CHECK(r.error.find("particle") != std::string::npos);
+  CHECK(r.traces.samples() >= 1);
+  const std::string path = temp_path("unstable.h5");
+  crystal::write_trace(c, p, r, path);
+  io::H5Reader h(path);
+  CHECK(h.attr_string("/", "status").rfind("failed", 0) == 0);
+  CHECK(h.read_double("/time").size() == r.traces.samples());
+  std::filesystem::remove(path);
+}
