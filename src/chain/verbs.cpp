@@ -43,19 +43,27 @@ void require_stable(const ChainSystem& sys, double dt, const std::string& origin
                      fmt("%.3g", dt_max / 100.0) + " s for accuracy");
 }
 
-// Run-length text of the bead materials: "large_steel, (large_steel aluminium) x 20, ...".
-std::string bead_sequence(const ChainSystem& sys) {
+// The chain by runs of beads: "beads 1-40: cells 0-19 (spins 1111...)", "bead 41: small_steel".
+std::string bead_layout(const ChainSystem& sys) {
   std::ostringstream s;
-  std::size_t b = 0;
   const std::size_t n = sys.nbeads();
-  bool first = true;
+  auto range = [](std::size_t a, std::size_t b) {
+    return a == b ? std::to_string(a) : std::to_string(a) + "-" + std::to_string(b);
+  };
+  s << "    bead 0: " << sys.material_names[sys.material[0]] << " (striker)\n";
+  std::size_t b = 1;
   while (b < n) {
     std::size_t r = b + 1;
-    while (r < n && sys.material[r] == sys.material[b]) ++r;
-    if (!first) s << ", ";
-    first = false;
-    s << sys.material_names[sys.material[b]];
-    if (r - b > 1) s << " x " << (r - b);
+    if (sys.cell[b] >= 0) {
+      while (r < n && sys.cell[r] >= 0) ++r;
+      const int c0 = sys.cell[b], c1 = sys.cell[r - 1];
+      std::string spins;
+      for (int c = c0; c <= c1; ++c) spins += sys.spin[c] ? '1' : '0';
+      s << "    beads " << range(b, r - 1) << ": cells " << range(c0, c1) << " (spins " << spins << ")\n";
+    } else {
+      while (r < n && sys.cell[r] < 0 && sys.material[r] == sys.material[b]) ++r;
+      s << "    bead" << (r - b > 1 ? "s " : " ") << range(b, r - 1) << ": " << sys.material_names[sys.material[b]] << "\n";
+    }
     b = r;
   }
   return s.str();
@@ -120,7 +128,7 @@ void check(const config::Case& c, std::ostream& out) {
       << ", wall: " << sys.wall << "\n";
   out << "  striker: " << sys.material_names[sys.material[0]] << ", " << fmt("%.6g", sys.mass[0] * 1e3) << " g, v0 = "
       << fmt("%.6g", sys.striker_velocity) << " m/s\n";
-  out << "  sequence: " << bead_sequence(sys) << "\n";
+  out << bead_layout(sys);
   if (sys.ncells() > 0) {
     std::size_t counted = 0;
     for (int k : sys.counts_for_m) counted += k;
