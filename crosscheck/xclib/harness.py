@@ -103,17 +103,7 @@ def run_code(code, case_path, system_path, workdir, timeout, granwave):
         cmd = ["/usr/bin/python3", os.path.join(REPO, "liggghts_inputs", "liggghts_case.py"), case_path, system_path,
                out, "--workdir", os.path.join(workdir, "liggghts"), "--timeout", str(timeout)]
     status, rc, wall, stdout = _run(cmd, workdir, timeout, "stderr.txt")
-    note = ""
-    if code == "granwave" and status == "failed" and "system.h5" in open(os.path.join(workdir, "stderr.txt")).read():
-        # granwave could not read the system file (its own): rerun resolving the case itself (seeded,
-        # deterministic) and say so in the table rather than drop granwave from the comparison.
-        note = "RAN WITHOUT --system: " + open(os.path.join(workdir, "stderr.txt")).read().strip()[-200:]
-        os.rename(os.path.join(workdir, "stderr.txt"), os.path.join(workdir, "stderr.with-system.txt"))
-        cmd = [c for c in cmd if c not in ("--system", system_path)]
-        status, rc, wall, stdout = _run(cmd, workdir, timeout, "stderr.txt")
     res = dict(status=status, rc=rc, wall_s=wall, command=" ".join(cmd), trace=out)
-    if note:
-        res["detail"] = note
     res["summary"] = _summary(stdout) if status == "ok" else {}
     if status == "ok" and not os.path.exists(out):
         res["status"] = "failed"
