@@ -73,7 +73,7 @@ struct TangentialResult {
   Vec3 force;        // f^t on particle i (j gets -f^t), eq. (8)
   Vec3 spring;       // xi' to keep for the next step (eq. (6) sticking, eq. (7) sliding)
   bool sliding;      // the dynamic (sliding) case (2) is active
-  double slip_loss;  // elastic energy removed by the reset (7) (J); 0 when sticking
+  double slip_loss;  // energy dissipated by the slip in this step (J); 0 when sticking
 };
 
 // Eqs. (5), (7), (8) with the stick-slip switching of the text: a sticking contact starts to
@@ -93,7 +93,10 @@ inline TangentialResult tangential_force(const TangentialSpringParams& p, const 
   const Vec3 force = f_dynamic * t;  // eq. (8): min(f_C^d, |f_o^t|) t
   if (p.kt == 0.0) return {force, Vec3::Zero(), true, 0.0};
   const Vec3 spring = -(f_dynamic * t + p.gamma_t * vt) / p.kt;  // eq. (7)
-  const double slip_loss = 0.5 * p.kt * (xi.squaredNorm() - spring.squaredNorm());
+  // Dissipated by the slip: the Coulomb force times the displacement the reset (7) removes
+  // from the spring, |xi - xi'| = (|f_o^t| - f_C^d)/k_t (exact for steady sliding; the
+  // elastic energy of the over-stretched trial spring beyond that never acted on the spheres).
+  const double slip_loss = f_dynamic * (magnitude - f_dynamic) / p.kt;
   return {force, spring, true, slip_loss};
 }
 
