@@ -31,7 +31,7 @@ Stepper::Stepper(const ChainSystem& sys, config::Scheme scheme, double dt)
   if (scheme_ == config::Scheme::rk4) {
     for (auto& k : ku_) k.assign(n_, 0.0);
     for (auto& k : kv_) k.assign(n_, 0.0);
-    tmp_u_.assign(n_ + 1, 0.0);
+    tmp_u_.assign(n_ + 1, 0.0);  // tmp_u_[n] = 0: the wall
   }
   accelerations(u_.data(), a_.data());
 }
@@ -61,13 +61,23 @@ void Stepper::step() {
     // Velocity Verlet: half kick, drift, force, half kick (positions, velocities and forces
     // are synchronous at the end of the step).
     double* __restrict a = a_.data();
+    double* __restrict F = F_.data();
+    const double* __restrict A = A_.data();
+    const double* __restrict g = g_.data();
+    const double* __restrict inv_m = inv_m_.data();
     const double h = 0.5 * dt;
     for (std::size_t i = 0; i < n; ++i) {
       v[i] += h * a[i];
       u[i] += dt * v[i];
     }
-    accelerations(u, a);
-    for (std::size_t i = 0; i < n; ++i) v[i] += h * a[i];
+    for (std::size_t j = 0; j < n; ++j) {  // eq. (13), as in accelerations()
+      const double d = std::max(g[j] + u[j] - u[j + 1], 0.0);
+      F[j + 1] = A[j] * d * std::sqrt(d);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      a[i] = (F[i] - F[i + 1]) * inv_m[i];
+      v[i] += h * a[i];
+    }
   } else {
     // Classical RK4 on (u, v), as in seed 001's Appendix 1 and 4.
     double* __restrict tu = tmp_u_.data();
