@@ -233,6 +233,7 @@ TEST_CASE("trace file round trip: any code's file, mode from the data, S polarit
   }
   const auto f = read_trace(path);
   CHECK(f.model == "crystal");
+  CHECK(f.code == "yade");
   CHECK(f.crystal.mode == 'S');
   CHECK(f.crystal.mode_source == "inferred");
   CHECK(f.crystal.fixed_layers == 2);
@@ -253,10 +254,8 @@ TEST_CASE("trace file round trip: any code's file, mode from the data, S polarit
   std::filesystem::remove(path);
 }
 
-// Known bug (reported): H5Writer writes UTF-8 string attributes, H5Reader::attr_string reads them
-// with an ASCII memory type and HDF5 refuses the character-set conversion. read_trace tolerates it
-// ("(unreadable)"); this checks the provenance text once src/io/h5.cpp sets the cset.
-TEST_CASE("trace file provenance attributes are readable", "[analysis][!mayfail]") {
+// The provenance text (UTF-8 attributes) reads back; read_trace would say "(unreadable)".
+TEST_CASE("trace file provenance attributes are readable", "[analysis]") {
   const std::string path = (std::filesystem::temp_directory_path() / "granwave_analysis_attr.h5").string();
   {
     io::H5Writer w(path);
