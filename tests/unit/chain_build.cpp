@@ -258,3 +258,46 @@ TEST_CASE("system file round trip", "[chain][files]") {
   CHECK(r.attr_string("/", "case_name") == "experiment68");
   std::filesystem::remove(path);
 }
+
+TEST_CASE("observers: output stride, full-rate sensors, fields, stop rule", "[chain][simulate]") {
+  auto c = config::load_case(kCases + "experiment68.toml");
+  c.integrator.t_end = 2e-5;  // 1000 steps of 2e-8
+  const auto sys = chain::build_chain(c);
+  auto opt = chain::sim_options(c, sys);
+  REQUIRE(opt.stride == 25);
+  const auto tr = chain::simulate(sys, opt);
+  CHECK(tr.steps == 1000);
+  CHECK(tr.nt() == 41);
+  CHECK(tr.full_rate_time.size() == 1001);
+  REQUIRE(tr.full_rate_beads == std::vector<int>{39, 48});
+  // A full-rate sample on the output grid equals the stored bead force; a bead force is the mean
+  // of its two contact forces.
+  for (std::size_t k = 0; k < tr.nt(); ++k) {
+    CHECK(tr.full_rate_bead_force[(25 * k) * 2 + 0] == tr.bead_force[k * tr.nbeads + 39]);
+    const double* F = &tr.contact_force[k * tr.ncontacts];
+    CHECK(tr.bead_force[k * tr.nbeads + 5] == 0.5 * (F[4] + F[5]));
+    CHECK(tr.bead_force[k * tr.nbeads] == 0.5 * F[0]);
+  }
+  CHECK(tr.time[40] == Approx(2e-5).epsilon(1e-12));
+  // Fields select datasets.
+  c.output.fields = {"contact_force"};
+  const auto only = chain::simulate(sys, chain::sim_options(c, sys));
+  CHECK(only.bead_force.empty());
+  CHECK(only.kinetic.empty());
+  CHECK(only.contact_force == tr.contact_force);
+  // Stop rule: the front (1e-3 of the striker contact's peak) passes bead 10 by 5 beads, long
+  // before t_end; the run ends there.
+  c.output.fields.clear();
+  c.integrator.t_end = 3e-3;
+  c.stop.enabled = true;
+  c.stop.after_bead = 10;
+  c.stop.margin_beads = 5;
+  const auto stopped = chain::simulate(sys, chain::sim_options(c, sys));
+  CHECK(stopped.stopped_early);
+  const double t_stop = stopped.time.back();
+  CHECK(t_stop < 0.5e-3);
+  const auto F0 = stopped.contact_series(0);
+  const double thr = 1e-3 * *std::max_element(F0.begin(), F0.end());
+  CHECK(stopped.contact_series(15).back() > thr);  // the front has reached contact 15 ...
+  CHECK(stopped.contact_series(20).back() < thr);  // ... and not contact 20
+}
