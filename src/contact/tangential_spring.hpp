@@ -47,9 +47,9 @@ struct TangentialSpringParams {
 // Eq. (2): rotate the previous spring xi' into the current tangent plane, keeping |xi'|.
 inline Vec3 project_spring(const Vec3& xi_prev, const Vec3& n) {
   const Vec3 xi_star = xi_prev - n * n.dot(xi_prev);
-  const double len_star = xi_star.norm();
-  if (len_star == 0.0) return Vec3::Zero();
-  return xi_star * (xi_prev.norm() / len_star);
+  const double star2 = xi_star.squaredNorm();
+  if (star2 == 0.0) return Vec3::Zero();
+  return xi_star * std::sqrt(xi_prev.squaredNorm() / star2);  // |xi'| t*, one square root
 }
 
 // Eq. (4): relative velocity of the two surfaces at the contact, n = (r_i - r_j)/|r_i - r_j|.
@@ -85,10 +85,12 @@ inline TangentialResult tangential_force(const TangentialSpringParams& p, const 
   const double f_pos = std::max(f_n, 0.0);
   const double f_static = p.mu_static * f_pos;    // f_C^s
   const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
-  const double magnitude = f_test.norm();
-  const bool sliding = was_sliding ? magnitude > f_dynamic : magnitude > f_static;
+  const double magnitude2 = f_test.squaredNorm();  // compared squared: no root while sticking
+  const double limit = was_sliding ? f_dynamic : f_static;
+  const bool sliding = magnitude2 > limit * limit;
   if (!sliding) return {f_test, xi, false, 0.0};  // static case (1): f^t = f_o^t, spring kept (6)
-  // Sliding case (2); magnitude > f_dynamic >= 0, so t is defined.
+  // Sliding case (2); |f_o^t| > f_C^d >= 0, so t is defined.
+  const double magnitude = std::sqrt(magnitude2);
   const Vec3 t = f_test / magnitude;
   const Vec3 force = f_dynamic * t;  // eq. (8): min(f_C^d, |f_o^t|) t
   if (p.kt == 0.0) return {force, Vec3::Zero(), true, 0.0};

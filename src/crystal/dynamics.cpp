@@ -128,7 +128,8 @@ void Dynamics::rebuild() {
   ++rebuilds;
 }
 
-template <bool Friction>
+// Friction: tangential forces at all; Lossy: dashpots or clipping can dissipate normally.
+template <bool Friction, bool Lossy>
 void Dynamics::contact_pass(double inc, bool dashpots) {
   ContactList& C = contacts;
   const std::int64_t nc = static_cast<std::int64_t>(C.size());
@@ -166,7 +167,7 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
     const double delta_dot = -(nx * dvx + ny * dvy + nz * dvz);
     const double f_n = contact::normal_force(nrm, delta, delta_dot);  // eq. (1) text
     // dissipated = work of (f_n - k delta) against the approach (dashpot, or clipped pull)
-    double loss = (f_n - nrm.kn * delta) * delta_dot * inc;
+    double loss = Lossy ? (f_n - nrm.kn * delta) * delta_dot * inc : 0.0;
     double fxc = f_n * nx, fyc = f_n * ny, fzc = f_n * nz;
     if constexpr (Friction) {
       const Vec3 n(nx, ny, nz);
@@ -192,7 +193,7 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
     C.f_x[c] = fxc;
     C.f_y[c] = fyc;
     C.f_z[c] = fzc;
-    C.dissipated[c] += loss;
+    if (Friction || Lossy) C.dissipated[c] += loss;
   }
 }
 
@@ -227,10 +228,11 @@ void Dynamics::particle_pass() {
 }
 
 void Dynamics::compute_forces(double inc, bool dashpots) {
+  const bool lossy = (dashpots && normal_.gamma_n > 0.0) || normal_.clip_tension;
   if (friction_)
-    contact_pass<true>(inc, dashpots);
+    lossy ? contact_pass<true, true>(inc, dashpots) : contact_pass<true, false>(inc, dashpots);
   else
-    contact_pass<false>(inc, dashpots);
+    lossy ? contact_pass<false, true>(inc, dashpots) : contact_pass<false, false>(inc, dashpots);
   particle_pass();
 }
 

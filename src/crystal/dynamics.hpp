@@ -85,7 +85,7 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots);
-  template <bool Friction>
+  template <bool Friction, bool Lossy>
   void contact_pass(double increment_time, bool dashpots);
   void particle_pass();
   void kick(double h);
