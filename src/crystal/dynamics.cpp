@@ -139,7 +139,7 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
   const double* px = x.data(); const double* py = y.data(); const double* pz = z.data();
   const double* pvx = vx.data(); const double* pvy = vy.data(); const double* pvz = vz.data();
   const double* pa = radius.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded())
   for (std::int64_t c = 0; c < nc; ++c) {
     const int i = C.i[c], j = C.j[c];
     const double bx = px[j] + C.shift_x[c] - px[i];
@@ -201,7 +201,7 @@ void Dynamics::particle_pass() {
   const ContactList& C = contacts;
   const std::int64_t n = static_cast<std::int64_t>(size());
   const bool fr = friction_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded())
   for (std::int64_t p = 0; p < n; ++p) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     for (std::int32_t k = C.first[p]; k < C.first[p + 1]; ++k) {
@@ -238,7 +238,7 @@ void Dynamics::compute_forces(double inc, bool dashpots) {
 
 void Dynamics::kick(double h) {
   const std::int64_t n = static_cast<std::int64_t>(size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded())
   for (std::int64_t p = 0; p < n; ++p) {
     if (!mobile[p]) continue;
     vx[p] += h * fx[p] * inv_mass[p];
@@ -256,7 +256,7 @@ void Dynamics::step() {
   const double h = 0.5 * dt_;
   const std::int64_t n = static_cast<std::int64_t>(size());
   // First half kick and drift (translation; sphere orientation is not needed).
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (threaded())
   for (std::int64_t p = 0; p < n; ++p) {
     if (!mobile[p]) continue;
     vx[p] += h * fx[p] * inv_mass[p];

@@ -73,6 +73,10 @@ class Dynamics {
   // One velocity-Verlet step of translation and rotation.
   void step();
 
+  // OpenMP is used from this many particles on (fork/join costs more than it saves on small
+  // crystals, and much more on a loaded machine); results do not depend on it.
+  std::size_t parallel_min_particles = 20000;
+
   // ---- energies (J) ----
   double kinetic_energy() const;    // translational + rotational, mobile particles
   double potential_energy() const;  // (1/2) k delta^2 + (1/2) k_t |xi|^2 over touching contacts
@@ -85,6 +89,7 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots);
+  bool threaded() const { return size() >= parallel_min_particles; }
   template <bool Friction, bool Lossy>
   void contact_pass(double increment_time, bool dashpots);
   void particle_pass();

@@ -132,3 +132,22 @@ TEST_CASE("same forces after a shift across the periodic faces and after reorder
   CHECK(max_order < 1e-9 * f_scale);
   CHECK(max_torque_diff < 1e-9 * f_scale * 1e-3);
 }
+
+TEST_CASE("results do not depend on the number of threads", "[crystal][static]") {
+  config::Case c = load("crystal_small");
+  c.contact.kt = 1e5;
+  c.contact.gamma_n = 0.1;
+  const Disturbed base = disturb(crystal::make_packing(c));
+  crystal::Dynamics serial(base.p, c.contact, 2e-7), threaded(base.p, c.contact, 2e-7);
+  serial.parallel_min_particles = ~std::size_t{0};  // never threaded
+  threaded.parallel_min_particles = 0;               // always (as many threads as OpenMP gives)
+  for (auto* d : {&serial, &threaded}) {
+    d->vz = std::vector<double>(base.p.size(), 0.0);
+    for (std::size_t q = 0; q < base.p.size(); ++q) d->vz[q] = base.v[3 * q + 2];
+    for (int s = 0; s < 200; ++s) d->step();
+  }
+  CHECK(serial.x == threaded.x);
+  CHECK(serial.z == threaded.z);
+  CHECK(serial.wy == threaded.wy);
+  CHECK(serial.dissipated_energy() == threaded.dissipated_energy());
+}
