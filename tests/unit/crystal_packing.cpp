@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 #include <sstream>
 
@@ -140,4 +142,25 @@ TEST_CASE("an unstable run stops naming the step and the particle and keeps its 
   CHECK(h.attr_string("/", "status").rfind("failed", 0) == 0);
   CHECK(h.read_double("/time").size() == r.traces.samples());
   std::filesystem::remove(path);
+}
+
+TEST_CASE("ParaView snapshots: .vtp every vtk_every samples and a .pvd collection", "[crystal][vtk]") {
+  config::Case c = small_case();
+  c.integrator.t_end = 2e-5;  // 100 steps, 21 samples
+  c.output.vtk_every = 10;    // samples 0, 10, 20
+  RunRequest req;
+  req.trace_path = temp_path("vtk.h5");
+  std::ostringstream out;
+  REQUIRE(crystal::run(c, req, out) == 0);
+  const std::string base = temp_path("vtk");
+  for (const char* k : {"_000000.vtp", "_000001.vtp", "_000002.vtp"}) CHECK(std::filesystem::exists(base + k));
+  CHECK_FALSE(std::filesystem::exists(base + "_000003.vtp"));
+  std::ifstream pvd(base + ".pvd");
+  const std::string text((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  CHECK(text.find("granwave_crystal_vtk_000002.vtp") != std::string::npos);
+  std::ifstream vtp(base + "_000001.vtp");
+  const std::string snap((std::istreambuf_iterator<char>(vtp)), std::istreambuf_iterator<char>());
+  CHECK(snap.find("NumberOfPoints=\"160\"") != std::string::npos);
+  CHECK(snap.find("Name=\"stress\" NumberOfComponents=\"9\"") != std::string::npos);
+  for (const char* k : {"_000000.vtp", "_000001.vtp", "_000002.vtp", ".pvd", ".h5"}) std::filesystem::remove(base + k);
 }
