@@ -1,0 +1,316 @@
+// The crystal studies of seed 002 (see crystal_study.hpp): members, their measures, the study file.
+#include "sweep/crystal_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/h5.hpp"
+#include "theory/crystal_theory.hpp"
+
+namespace granwave::sweep {
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+}  // namespace
+
+const char* to_string(CrystalVary v) {
+  switch (v) {
+    case CrystalVary::gamma_n: return "gamma_n";
+    case CrystalVary::kt_over_k: return "kt_over_k";
+    case CrystalVary::polydispersity: return "polydispersity";
+  }
+  return "?";
+}
+
+std::vector<CrystalMember> crystal_members(const CrystalStudy& s) {
+  std::vector<CrystalMember> m;
+  for (double v : s.values)
+    for (char mode : s.modes) m.push_back({v, mode});
+  return m;
+}
+
+config::Case member_case(const CrystalStudy& s, const CrystalMember& m) {
+  config::Case c = s.base;
+  auto& cr = *c.crystal;
+  switch (s.vary) {
+    case CrystalVary::gamma_n: c.contact.gamma_n = m.value; break;
+    case CrystalVary::kt_over_k: c.contact.kt = m.value * c.contact.kn; break;
+    case CrystalVary::polydispersity: cr.polydispersity = m.value; break;
+  }
+  if (s.layers) cr.cells[2] = *s.layers;
+  if (s.dt) {
+    c.integrator.dt = *s.dt;
+    c.integrator.dt_over_tc.reset();
+  }
+  if (s.interval) c.output.interval = *s.interval;
+  const double t_end_p = s.t_end.value_or(c.integrator.t_end);
+  if (m.mode == 'S') {
+    c.excitation.mode = config::Excitation::Mode::S;
+    // An S front is sqrt(C_zzzz/C_zxzx) = sqrt(2) slower (sec. 3.3): same distance, sqrt(2) longer.
+    c.integrator.t_end = s.t_end_s.value_or(t_end_p * std::numbers::sqrt2);
+  } else {
+    c.excitation.mode = config::Excitation::Mode::P;
+    c.integrator.t_end = t_end_p;
+  }
+  c.output.vtk_every = 0;
+  c.name = s.name + "_" + std::to_string(m.value) + "_" + m.mode;
+  return c;
+}
+
+std::vector<std::string> crystal_value_names(const CrystalStudy& s) {
+  std::vector<std::string> n = {
+      "value", "mode_s", "v_first_peak", "v_first_peak_err", "v_half_peak", "v_half_peak_err", "fit_lo", "fit_hi",
+      "omega0", "omega0_err", "v_k0", "v_k0_err", "theory_v", "theory_v_frictionless", "theory_v_pz", "theory_v_sz",
+      "theory_omega0", "theory_omega0_prestressed", "coordination_theory", "coordination0", "coordination_min",
+      "coordination_max", "sigma0", "relax_steps", "t_c", "restitution", "t_gamma", "m_ij", "steps"};
+  for (double z : s.positions) n.push_back("amp_z" + std::to_string(static_cast<int>(z)));
+  return n;
+}
+
+CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum) {
+  const auto members = crystal_members(s);
+  const CrystalMember& m = members.at(index);
+  CrystalMemberRun out;
+  out.c = member_case(s, m);
+  const crystal::Derived der = crystal::derive(out.c);
+  out.packing = crystal::make_packing(out.c);  // relaxed when polydisperse (sec. 2.2 A)
+  out.run = crystal::simulate(out.c, out.packing);
+  if (out.run.failed) throw RunError(out.c.name + ": " + out.run.error);
+  const crystal::Traces& tr = out.run.traces;
+
+  // The same ruler as `granwave analyze`, on the in-memory traces.
+  analysis::CrystalTrace& t = out.trace;
+  t.time = tr.time;
+  t.layer_z = tr.layer_z;
+  t.nt = tr.samples();
+  t.nlayers = tr.nlayers;
+  t.l0 = out.packing.l0;
+  t.fixed_layers = out.packing.fixed_layers;
+  t.mode = m.mode;
+  t.mode_source = "case_toml";
+  t.stress_zz = tr.stress_zz;
+  t.stress_zx = tr.stress_zx;
+  t.displacement_z = tr.displacement_z;
+  t.displacement_x = tr.displacement_x;
+  t.velocity_z = tr.velocity_z;
+  t.velocity_x = tr.velocity_x;
+  t.coordination = tr.coordination;
+  analysis::CrystalAnalysisOptions aopt;
+  aopt.dispersion.keep_spectrum = keep_spectrum;
+  out.analysis = analysis::analyze_crystal(t, aopt);
+  const analysis::CrystalAnalysis& a = out.analysis;
+
+  // sigma_zz^0: the prestress the seed scales by (Figs. 2, 3, 8), mean over the free layers.
+  const int fl = out.packing.fixed_layers;
+  double s0 = 0.0;
+  int n0 = 0;
+  for (std::size_t L = fl; L + fl < tr.nlayers; ++L, ++n0) s0 += tr.stress_zz[L];
+  out.sigma0 = n0 ? s0 / n0 : kNaN;
+
+  // Eq. (10) from this member's own (relaxed) contact network, as `granwave theory` does.
+  theory::ContactNetwork net;
+  net.box_x = out.packing.box_x;
+  net.box_y = out.packing.box_y;
+  net.k = out.c.contact.kn;
+  net.kt = out.c.contact.kt;
+  for (std::size_t p = 0; p < out.packing.size(); ++p)
+    net.particles.push_back({out.packing.mass[p], out.packing.layer[p], out.packing.z[p]});
+  for (const auto& q : crystal::list_contacts(out.packing, true))
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), out.c.contact.kn * q.overlap});
+  const auto th = theory::crystal_prediction(net, {fl, out.packing.layers - 1 - fl});
+  const bool S = m.mode == 'S';
+  const auto ct = theory::linear_contact_time(out.c.contact.kn, out.c.contact.gamma_n, der.m_ij,
+                                              out.c.contact.normal_tension == config::NormalTension::clip);
+
+  std::vector<double> v(crystal_value_names(s).size(), kNaN);
+  v[cv_value] = m.value;
+  v[cv_mode_s] = S ? 1.0 : 0.0;
+  v[cv_v_first_peak] = a.v_first_peak.speed.value;
+  v[cv_v_first_peak_err] = a.v_first_peak.speed.error;
+  v[cv_v_half_peak] = a.v_half_peak.speed.value;
+  v[cv_v_half_peak_err] = a.v_half_peak.speed.error;
+  v[cv_fit_lo] = a.v_first_peak.lo;
+  v[cv_fit_hi] = a.v_first_peak.hi;
+  v[cv_omega0] = a.dispersion.omega0;
+  v[cv_omega0_err] = a.dispersion.omega0_error;
+  v[cv_v_k0] = a.dispersion.v_k0;
+  v[cv_v_k0_err] = a.dispersion.v_k0_error;
+  v[cv_theory_v] = S ? th.V_sz : th.V_pz;
+  v[cv_theory_v_frictionless] = S ? th.V_sz_frictionless : th.V_pz_frictionless;
+  v[cv_theory_v_pz] = th.V_pz;
+  v[cv_theory_v_sz] = th.V_sz;
+  v[cv_theory_omega0] = S ? th.omega0_s : th.omega0_p;
+  v[cv_theory_omega0_prestressed] = S ? th.omega0_s_prestressed : th.omega0_p_prestressed;
+  v[cv_coordination_theory] = th.coordination;
+  if (!tr.coordination.empty()) {
+    v[cv_coordination0] = tr.coordination.front();
+    v[cv_coordination_min] = *std::min_element(tr.coordination.begin(), tr.coordination.end());
+    v[cv_coordination_max] = *std::max_element(tr.coordination.begin(), tr.coordination.end());
+  }
+  v[cv_sigma0] = out.sigma0;
+  v[cv_relax_steps] = static_cast<double>(out.packing.relax_steps);
+  v[cv_t_c] = ct.t_c;
+  v[cv_restitution] = ct.restitution;
+  v[cv_t_gamma] = out.c.contact.gamma_n > 0.0 ? der.m_ij / out.c.contact.gamma_n : kNaN;  // sec. 3.2
+  v[cv_m_ij] = der.m_ij;
+  v[cv_steps] = static_cast<double>(out.run.steps);
+  // First-peak amplitude |sigma - sigma_0| / sigma_0 at each requested z/l0 (Fig. 3 right).
+  for (std::size_t k = 0; k < s.positions.size(); ++k)
+    for (const auto& L : a.layers)
+      if (std::lround(L.z_over_l0) == std::lround(s.positions[k]) && L.arrived)
+        v[cv_count + k] = std::abs(L.peak_value.value) / out.sigma0;
+
+  MemberResult& r = out.result;
+  r.index = static_cast<std::int64_t>(index);
+  r.values = std::move(v);
+  for (const auto& L : a.layers) r.profile.push_back(L.arrived ? std::abs(L.peak_value.value) / out.sigma0 : kNaN);
+  r.label = std::string(to_string(s.vary)) + "=" + fmt("%g", m.value) + " " + m.mode;
+  r.work = static_cast<double>(out.packing.size()) * static_cast<double>(out.run.steps);
+  return out;
+}
+
+DampingSummary damping_summary(const CrystalStudy& s, const std::vector<MemberResult>& members) {
+  DampingSummary d;
+  std::vector<std::pair<double, const MemberResult*>> pts;  // (ln gamma_0, member), P, gamma_0 > 0
+  for (const auto& r : members) {
+    if (r.values[cv_mode_s] != 0.0) continue;
+    if (r.values[cv_value] > 0.0) pts.push_back({std::log(r.values[cv_value]), &r});
+    const double m_ij = r.values[cv_m_ij];
+    d.t_c = std::numbers::pi * std::sqrt(m_ij / s.base.contact.kn);  // gamma_0 -> 0 (sec. 2.1)
+  }
+  std::sort(pts.begin(), pts.end(), [](auto& a, auto& b) { return a.first < b.first; });
+  for (std::size_t k = 0; k < s.positions.size(); ++k) {
+    // Decay rate on the seed's logarithmic gamma axis: dA/d ln gamma_0, central differences; the
+    // strongest decay is the most negative slope, its location refined by a parabola through the
+    // slopes at the two neighbouring midpoints (sec. 3.2 "the point with the largest (negative) slope").
+    std::vector<double> x, sl;
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+      const double a0 = pts[i].second->values[cv_count + k], a1 = pts[i + 1].second->values[cv_count + k];
+      if (!std::isfinite(a0) || !std::isfinite(a1)) continue;
+      x.push_back(0.5 * (pts[i].first + pts[i + 1].first));
+      sl.push_back((a1 - a0) / (pts[i + 1].first - pts[i].first));
+    }
+    double g = kNaN;
+    if (!sl.empty()) {
+      const std::size_t i = std::min_element(sl.begin(), sl.end()) - sl.begin();
+      double xs = x[i];
+      if (i > 0 && i + 1 < sl.size()) {
+        // Vertex of the parabola through (x_{i-1}, s_{i-1}), (x_i, s_i), (x_{i+1}, s_{i+1}).
+        const double x0 = x[i - 1], x1 = x[i], x2 = x[i + 1], y0 = sl[i - 1], y1 = sl[i], y2 = sl[i + 1];
+        const double num = (x1 - x0) * (x1 - x0) * (y1 - y2) - (x1 - x2) * (x1 - x2) * (y1 - y0);
+        const double den = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0);
+        if (den != 0.0) xs = std::clamp(x1 - 0.5 * num / den, x0, x2);
+      }
+      g = std::exp(xs);
+    }
+    const double m_ij = pts.empty() ? kNaN : pts.front().second->values[cv_m_ij];
+    d.gamma_star.push_back(g);
+    d.t_gamma_star.push_back(m_ij / g);
+    d.ratio_t_gamma_t_c.push_back(m_ij / g / d.t_c);
+  }
+  return d;
+}
+
+std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::string& out_path, std::ostream& out,
+                                            const CrystalRunOptions& opt, RunStats* stats) {
+  const auto members = crystal_members(s);
+  const auto names = crystal_value_names(s);
+  RunnerOptions ro;
+  ro.parts_dir = out_path + ".parts";
+  ro.fingerprint = fingerprint({s.text, s.base.toml_text});
+  ro.value_names = names;
+  ro.batch = s.batch;
+  ro.threads = opt.threads;
+  ro.progress = !opt.quiet;
+  ro.what = "crystal runs";
+  ro.limit = opt.limit;
+  // Polydisperse members relax first and S members run sqrt(2) longer: start those first.
+  for (const auto& m : members)
+    ro.cost.push_back((m.mode == 'S' ? std::numbers::sqrt2 : 1.0) * (s.vary == CrystalVary::polydispersity ? 1.0 + m.value : 1.0));
+  std::mutex log_mutex;
+  RunStats st;
+  const auto results = run_members(
+      members.size(),
+      [&](std::size_t i) {
+        CrystalMemberRun r = run_crystal_member(s, i, opt.keep_spectrum);
+        if (opt.hook) opt.hook(i, r);
+        if (!opt.quiet) {
+          std::lock_guard<std::mutex> lock(log_mutex);
+          std::cerr << "  " << s.name << " [" << i + 1 << "/" << members.size() << "] " << r.result.label << ": V_first_peak "
+                    << fmt("%.2f", r.result.values[cv_v_first_peak]) << " m/s, " << fmt("%.1f", r.run.seconds) << " s\n";
+        }
+        return std::move(r.result);
+      },
+      ro, &st);
+  if (stats) *stats = st;
+  if (opt.limit && st.resumed + st.computed < members.size()) return results;  // stopped early on purpose
+
+  io::H5Writer w(out_path);
+  io::write_provenance(w);
+  w.attr("/", "kind", std::string("crystal_study"));
+  w.attr("/", "study_name", s.name);
+  w.attr("/", "vary", std::string(to_string(s.vary)));
+  w.attr("/", "study_toml", s.text);
+  w.attr("/", "case_toml", s.base.toml_text);
+  w.attr("/", "fingerprint", ro.fingerprint);
+  write_members(w, "/members", results, names);
+  w.write("/study/positions", s.positions);
+  const bool damping = s.vary == CrystalVary::gamma_n;
+  DampingSummary d;
+  if (damping) {
+    d = damping_summary(s, results);
+    w.write("/damping/gamma_star", d.gamma_star);
+    w.write("/damping/t_gamma_star", d.t_gamma_star);
+    w.write("/damping/ratio_t_gamma_t_c", d.ratio_t_gamma_t_c);
+    w.attr("/damping", "t_c", d.t_c);
+  }
+  w.commit();
+
+  // The table (one line per member), then the study-level numbers.
+  out << "crystal study " << s.name << " (vary " << to_string(s.vary) << "): " << results.size() << " runs, " << st.resumed
+      << " resumed, " << st.computed << " computed in " << fmt("%.1f", st.seconds) << " s\n";
+  out << "  value  mode  V_first_peak (m/s)   V_half_peak (m/s)   theory (m/s)  omega_0 (1/s)  C0";
+  for (double z : s.positions) out << "  A(" << z << ")";
+  out << "\n";
+  for (const auto& r : results) {
+    const auto& v = r.values;
+    out << "  " << fmt("%-6g", v[cv_value]) << " " << (v[cv_mode_s] != 0.0 ? 'S' : 'P') << "    "
+        << fmt("%7.2f", v[cv_v_first_peak]) << " +- " << fmt("%-6.2g", v[cv_v_first_peak_err]) << "  "
+        << fmt("%7.2f", v[cv_v_half_peak]) << " +- " << fmt("%-6.2g", v[cv_v_half_peak_err]) << "  "
+        << fmt("%8.2f", v[cv_theory_v]) << "     " << fmt("%9.0f", v[cv_omega0]) << "   " << fmt("%.4g", v[cv_coordination0]);
+    for (std::size_t k = 0; k < s.positions.size(); ++k) out << "  " << fmt("%.4f", v[cv_count + k]);
+    out << "\n";
+  }
+  if (damping)
+    for (std::size_t k = 0; k < s.positions.size(); ++k)
+      out << "  strongest decay at z/l0 = " << s.positions[k] << ": gamma_0 = " << fmt("%.3g", d.gamma_star[k])
+          << " kg/s, t_gamma = m_ij/gamma_0 = " << fmt("%.3g", d.t_gamma_star[k]) << " s = "
+          << fmt("%.2f", d.ratio_t_gamma_t_c[k]) << " t_c (seed: ~2 t_c)\n";
+  out << "  study file: " << out_path << "\n";
+  return results;
+}
+
+int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out) {
+  const CrystalStudy s = load_crystal_study(path);
+  std::string o = out_path;
+  if (o.empty()) o = std::filesystem::path(path).stem().string() + ".h5";
+  CrystalRunOptions opt;
+  opt.quiet = quiet;
+  run_crystal_study(s, o, out, opt);
+  return 0;
+}
+
+}  // namespace granwave::sweep

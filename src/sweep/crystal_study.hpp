@@ -1,0 +1,113 @@
+// The crystal parameter studies of seed 002 (issue 5) on the study machinery of study.hpp:
+// members = (parameter value, excitation mode), each a full wave run of the crystal, measured by
+// analysis::analyze_crystal (the one ruler; no measure is re-implemented here) and compared with
+// eq. (10) from the member's own contact network (theory::crystal_prediction).
+//
+//   vary = "gamma_n"        Fig. 3 right (sec. 3.2): first-peak amplitude at fixed z/l0 against
+//                           gamma_0; the strongest decay located and compared with t_gamma ~ 2 t_c
+//   vary = "kt_over_k"      Fig. 6 (sec. 3.5): P and S speeds against kt/k, theory from eq. (10)
+//   vary = "polydispersity" Figs. 8-9 (sec. 3.6): Delta a / delta; relaxed coordination, P speed
+//                           against the theory of the relaxed network, dispersion
+//
+// The study file (data/SCHEMA.md §6) says `[study] kind = "crystal"`; the spin-chain loader
+// refuses that kind, so is_crystal_study() alone decides which loader a file goes to.
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "analysis/trace_analysis.hpp"
+#include "config/case.hpp"
+#include "crystal/packing.hpp"
+#include "crystal/simulation.hpp"
+#include "sweep/study.hpp"
+
+namespace granwave::sweep {
+
+enum class CrystalVary { gamma_n, kt_over_k, polydispersity };
+const char* to_string(CrystalVary v);
+
+struct CrystalStudy {
+  std::string path, text, name;
+  config::Case base;                // a crystal case (the frictionless P run of sec. 3.1, usually)
+  CrystalVary vary = CrystalVary::gamma_n;
+  std::vector<double> values;       // gamma_0 (kg/s) | kt/k | Delta a / delta
+  std::vector<char> modes{'P'};     // 'P' and/or 'S'
+  std::vector<double> positions{10, 45, 80, 115, 150};  // z/l0 of the amplitude table (Fig. 3 right)
+  std::size_t batch = 1;            // members per committed batch (a member is a whole wave run)
+  // Run overrides (absent: the base case's)
+  std::optional<int> layers;        // crystal.cells[2]
+  std::optional<double> t_end;      // P runs
+  std::optional<double> t_end_s;    // S runs (default t_end * sqrt(2): V_pz/V_sz = sqrt(2), sec. 3.3)
+  std::optional<double> dt, interval;
+};
+
+// True when the text is a TOML table with [study] kind = "crystal" (false for anything else,
+// including text that does not parse: the caller's own loader then reports the error).
+bool is_crystal_study(const std::string& toml_text);
+CrystalStudy load_crystal_study(const std::string& path);
+CrystalStudy parse_crystal_study(const std::string& text, const std::string& origin);
+
+struct CrystalMember {
+  double value = 0.0;
+  char mode = 'P';
+};
+// Members in order: values outer, modes inner.
+std::vector<CrystalMember> crystal_members(const CrystalStudy& s);
+// The case of one member (base case with the parameter and mode applied).
+config::Case member_case(const CrystalStudy& s, const CrystalMember& m);
+
+// MemberResult::values of a crystal member: the fixed names below, then amp_z<pos> per position.
+std::vector<std::string> crystal_value_names(const CrystalStudy& s);
+enum CrystalValue : std::size_t {
+  cv_value, cv_mode_s, cv_v_first_peak, cv_v_first_peak_err, cv_v_half_peak, cv_v_half_peak_err, cv_fit_lo, cv_fit_hi,
+  cv_omega0, cv_omega0_err, cv_v_k0, cv_v_k0_err, cv_theory_v, cv_theory_v_frictionless, cv_theory_v_pz, cv_theory_v_sz,
+  cv_theory_omega0, cv_theory_omega0_prestressed, cv_coordination_theory, cv_coordination0, cv_coordination_min,
+  cv_coordination_max, cv_sigma0, cv_relax_steps, cv_t_c, cv_restitution, cv_t_gamma, cv_m_ij, cv_steps, cv_count
+};
+
+// Everything one member run produced (for figures); the MemberResult is what the study stores:
+// profile = first-peak amplitude / sigma_0 at every layer z/l0 = 1 .. last free (NaN: no peak).
+struct CrystalMemberRun {
+  MemberResult result;
+  config::Case c;
+  crystal::Packing packing;
+  crystal::RunResult run;
+  analysis::CrystalTrace trace;
+  analysis::CrystalAnalysis analysis;
+  double sigma0 = 0.0;  // prestress sigma_zz(t = 0), mean over the free layers (Pa)
+};
+// keep_spectrum: store |F(omega, k)| of the dispersion (figures).
+CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum = false);
+
+// Study-level results derived from the members.
+struct DampingSummary {  // vary = gamma_n, P members
+  std::vector<double> gamma_star, t_gamma_star, ratio_t_gamma_t_c;  // per position: strongest decay
+  double t_c = 0.0;      // two-body t_c at gamma -> 0 (s)
+};
+DampingSummary damping_summary(const CrystalStudy& s, const std::vector<MemberResult>& members);
+
+// Called for each member after its run, from the worker thread (caller synchronises).
+using CrystalMemberHook = std::function<void(std::size_t index, const CrystalMemberRun&)>;
+struct CrystalRunOptions {
+  bool quiet = false;
+  std::size_t limit = 0;   // stop after this many computed members (tests of resumption)
+  int threads = 0;
+  CrystalMemberHook hook;  // members read back from batch files do not call it
+  bool keep_spectrum = false;
+};
+// Run (or resume) the study: batches under OUT.parts, the study file OUT (written as OUT.tmp and
+// renamed) once every member is done. Returns the members ordered by index.
+std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::string& out_path, std::ostream& out,
+                                            const CrystalRunOptions& opt = {}, RunStats* stats = nullptr);
+// `granwave sweep STUDY.toml -o OUT` for a crystal study: 0 on success (throws InputError/RunError).
+int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out);
+
+// `granwave figures crystal`: Figs. 2-9 of seed 002 as PNG in out_dir, the data behind them, and
+// summary.md. quick = reduced sizes (about a minute). Progress on `log`.
+int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log);
+
+}  // namespace granwave::sweep
