@@ -1,0 +1,45 @@
+// granwave figures crystal [--out DIR] [--quick]: seed 002's Figs. 2-9 from fresh runs of the
+// crystal studies (data/studies/crystal_*.toml), with summary.md. The work is in
+// sweep::crystal_figures so that tests call it without the binary.
+#include <iostream>
+
+#include "cli/verbs.hpp"
+#include "core/error.hpp"
+#include "sweep/crystal_study.hpp"
+
+namespace granwave::cli {
+namespace {
+constexpr const char* kHelp = R"(usage: granwave figures crystal [--out DIR] [--quick]
+
+Seed 002 (Mouraille, Mulder & Luding 2006) from fresh runs: the damping, friction and
+polydispersity studies of data/studies/crystal_*.toml on the 3200-particle crystal, then
+  fig2.png        sigma_zz/sigma_zz^0 against t at z/l0 = 10, 80, 150
+  fig3_left.png   z/l0 = 10, 80 without and with gamma_0 = 0.1 kg/s
+  fig3_right.png  first-peak amplitude against gamma_0 at z/l0 = 10, 45, 80, 115, 150
+  fig4.png        local speed of the first peak against z/l0, V_p1 and V_pz
+  fig5_p.png, fig5_s.png   dispersion |F(omega, k)| of the P and S waves with the sine fit
+  fig6.png        P and S speeds against kt/k with eq. (10)
+  fig7.png        dispersion of the S wave at kt/k = 2 with the frictionless P fit
+  fig8.png        sigma_zz/sigma_zz^0, monodisperse and Delta a = 2 delta
+  fig9.png        P speed against Delta a with theory; dispersion at Delta a = 2 delta
+  summary.md      every measured number beside the seed's
+and the data behind them (study files, crystal_figures_data.h5). Progress on stderr.
+
+  --out DIR   output directory (default figures/crystal)
+  --quick     a 3x3x60 crystal and reduced grids: the whole set in about a minute (tests)
+)";
+}  // namespace
+
+int figures_crystal(const Args& args) {
+  if (wants_help(args)) {
+    std::cout << kHelp;
+    return 0;
+  }
+  for (const auto& p : positionals(args, {"--out"}))
+    if (p != "crystal") throw InputError("figures crystal: unexpected argument '" + p + "' (granwave figures crystal --help)");
+  std::string out = option_value(args, "", "--out");
+  if (out.empty()) out = "figures/crystal";
+  return sweep::crystal_figures(out, has_flag(args, "--quick"), std::cerr);
+}
+
+}  // namespace granwave::cli
