@@ -4,7 +4,7 @@ Modules:
   traces   -- case/system reading, trace writing (data/SCHEMA.md §2-3), the layer-stress definition
   sysbuild -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
   compare  -- comparison maths (max |diff|/peak, relative L2, measures) on traces
-  ruler    -- the measuring ruler (`granwave analyze --json` when available, else a Python copy)
+  ruler    -- the one measuring ruler: `granwave analyze --json`, translated
   runners  -- running each code in a fresh directory with a timeout
   report   -- Markdown + PNG report
 """

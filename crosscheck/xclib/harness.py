@@ -317,7 +317,7 @@ def write_report(report_dir, results, started):
                           % (code, _fmt(m.get("striker_peak")), _fmt((m.get("front_speed") or 0) / 1e3),
                              _fmt((m.get("front_speed_err") or 0) / 1e3), m.get("front_range"), m.get("ruler")))
             elif m.get("kind") == "crystal":
-                md.append("- %s: speed %s m/s (first peaks), %s m/s (half-peak crossings) over layers %s (ruler: %s)"
+                md.append("- %s: speed %s m/s (first peaks), %s m/s (half-peak crossings) over z/l0 = %s (ruler: %s)"
                           % (code, _fmt(m.get("speed_peak")), _fmt(m.get("speed_half")), m.get("speed_range"), m.get("ruler")))
         md.append("")
         if res["rows"]:
@@ -403,7 +403,10 @@ def run(args) -> int:
             if r["status"] == "ok":
                 try:
                     traces[code] = T.read_trace(r["trace"])
-                    measures[code] = R.measure(r["trace"], traces[code], args.ruler, granwave or "granwave")
+                    measures[code] = R.measure(r["trace"], granwave or "granwave")
+                except R.RulerError as e:
+                    r["status"], r["detail"] = "failed", "not measurable: %s" % e
+                    traces.pop(code, None)
                 except Exception as e:  # noqa: BLE001
                     r["status"], r["detail"] = "failed", "unreadable trace: %s" % e
                     traces.pop(code, None)
@@ -444,7 +447,6 @@ def main(argv=None) -> int:
     r.add_argument("--timeout", type=float, default=900, help="seconds per code run")
     r.add_argument("--granwave", help="granwave executable")
     r.add_argument("--tolerances", help="tolerance file (default crosscheck/tolerances.toml)")
-    r.add_argument("--ruler", choices=("python", "granwave"), default=None)
     r.add_argument("--fixture-system", action="store_true",
                    help="TEST ONLY: build the system with the Python fixture builder instead of `granwave build`")
     a = ap.parse_args(argv)

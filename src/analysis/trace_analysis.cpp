@@ -380,23 +380,29 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
     fld = "displacement";
     df = S ? &tr.displacement_x : &tr.displacement_z;
   }
-  if (df->empty()) throw InputError("analyze: the trace lacks the " + fld + " field for the dispersion");
-  a.dispersion_field = std::string("layer_") + fld + (fld == "stress" ? (S ? "_zx" : "_zz") : (S ? "_x" : "_z"));
-  const int first_index = tr.fixed_layers - 1;
-  const std::size_t nz = static_cast<std::size_t>(last_index - first_index + 1);
-  // "auto" without a velocity dataset: the forward difference of u, (u(t+dt) - u(t))/dt, i.e. the
-  // velocity at mid-steps (one sample shorter).
-  const bool differentiate = opt.field == "auto" && fld == "displacement";
-  if (differentiate) a.dispersion_field += " (time derivative)";
-  const std::size_t ntd = differentiate ? nt - 1 : nt;
-  std::vector<double> field(ntd * nz);
-  for (std::size_t i = 0; i < ntd; ++i)
-    for (std::size_t q = 0; q < nz; ++q) {
-      const std::size_t p = first_index + q;
-      field[i * nz + q] = differentiate ? ((*df)[(i + 1) * nl + p] - (*df)[i * nl + p]) / a.dt
-                                        : (*df)[i * nl + p] - (*df)[p];
-    }
-  a.dispersion = dispersion(field, ntd, nz, a.dt, tr.l0, opt.dispersion);
+  if (df->empty() && opt.field == "auto") {
+    // Speeds need only the stress; without any layer motion there is no dispersion to fit.
+    a.dispersion_field = "none (the trace has no layer velocity or displacement)";
+    a.dispersion.omega0 = a.dispersion.omega0_error = a.dispersion.v_k0 = a.dispersion.v_k0_error = kNaN;
+  } else {
+    if (df->empty()) throw InputError("analyze: the trace lacks the " + fld + " field for the dispersion");
+    a.dispersion_field = std::string("layer_") + fld + (fld == "stress" ? (S ? "_zx" : "_zz") : (S ? "_x" : "_z"));
+    const int first_index = tr.fixed_layers - 1;
+    const std::size_t nz = static_cast<std::size_t>(last_index - first_index + 1);
+    // "auto" without a velocity dataset: the forward difference of u, (u(t+dt) - u(t))/dt, i.e. the
+    // velocity at mid-steps (one sample shorter).
+    const bool differentiate = opt.field == "auto" && fld == "displacement";
+    if (differentiate) a.dispersion_field += " (time derivative)";
+    const std::size_t ntd = differentiate ? nt - 1 : nt;
+    std::vector<double> field(ntd * nz);
+    for (std::size_t i = 0; i < ntd; ++i)
+      for (std::size_t q = 0; q < nz; ++q) {
+        const std::size_t p = first_index + q;
+        field[i * nz + q] = differentiate ? ((*df)[(i + 1) * nl + p] - (*df)[i * nl + p]) / a.dt
+                                          : (*df)[i * nl + p] - (*df)[p];
+      }
+    a.dispersion = dispersion(field, ntd, nz, a.dt, tr.l0, opt.dispersion);
+  }
 
   // Wavelength estimates (sec. 3.4): lambda = V T and k(z) = (2/l0) arccos(V(z)/V(k->0)).
   const double vk0 = a.dispersion.v_k0, vk0e = a.dispersion.v_k0_error;
