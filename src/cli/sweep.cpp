@@ -2,10 +2,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
+#include "sweep/crystal_study.hpp"
 #include "sweep/spin_study.hpp"
 
 namespace granwave::cli {
@@ -62,6 +65,13 @@ int cmd_sweep(const Args& args) {
   o.progress = !has_flag(args, "--quiet");
   o.stop = !has_flag(args, "--no-stop");
 
+  {  // [study] kind = "crystal" belongs to the crystal studies (issue 5)
+    std::ifstream in(pos[0], std::ios::binary);
+    if (!in) throw InputError(pos[0] + ": cannot read the study file");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    if (sweep::is_crystal_study(ss.str())) return sweep::run_crystal_study(pos[0], o.output, !o.progress, std::cout);
+  }
   const sweep::SpinStudy study = sweep::load_spin_study(pos[0]);
   const auto r = sweep::run_spin_study(study, o);
   const auto& st = r.stats;
