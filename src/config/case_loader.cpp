@@ -339,10 +339,10 @@ CrystalCase read_crystal(const Reader& r, const toml::table& t) {
   if (cells.size() != 3) r.fail("crystal.cells", "must be [nx, ny, layers] (three integers)", t.get("cells"));
   c.fixed_layers = static_cast<int>(r.integer(t, "crystal", "fixed_layers", false).value_or(2));
   if (c.fixed_layers < 1 || c.fixed_layers > 100) r.fail("crystal.fixed_layers", "must be in [1, 100]", t.get("fixed_layers"));
-  // FCC stacking alternates shifted layers across the periodic faces: nx, ny must be even
-  // so that a particle's periodic image is a lattice site.
-  if (cells[0] < 2 || cells[1] < 2 || cells[0] % 2 || cells[1] % 2) {
-    r.fail("crystal.cells", "nx and ny must be even and >= 2 (periodic x/y; got " + std::to_string(cells[0]) + ", " +
+  // Any nx, ny >= 2: a shifted layer's periodic image is still a lattice site. (YADE needs >= 3:
+  // it keeps one interaction per pair, and at 2 a particle touches two images of one neighbour.)
+  if (cells[0] < 2 || cells[1] < 2) {
+    r.fail("crystal.cells", "nx and ny must be >= 2 (periodic x/y; got " + std::to_string(cells[0]) + ", " +
                                 std::to_string(cells[1]) + ")", t.get("cells"));
   }
   if (cells[2] < 2 * c.fixed_layers + 1 || cells[2] > 10000000) {

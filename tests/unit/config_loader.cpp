@@ -198,10 +198,15 @@ TEST_CASE("bad case files are refused with the key and the allowed range", "[con
     t.replace(t.find("kn = 1e5"), 8, "kn = 1e5\nmu_static = 0.3\nmu_dynamic = 0.5");
     require_refused(t, {"contact.mu_dynamic", "must not exceed"});
   }
-  SECTION("crystal: odd periodic cells") {
+  SECTION("crystal: a periodic layer of one particle") {
     std::string t = kCrystal;
-    t.replace(t.find("cells = [4, 4, 20]"), 18, "cells = [3, 4, 20]");
-    require_refused(t, {"crystal.cells", "even"});
+    t.replace(t.find("cells = [4, 4, 20]"), 18, "cells = [1, 4, 20]");
+    require_refused(t, {"crystal.cells", ">= 2"});
+  }
+  SECTION("crystal: too few layers for the fixed ends") {
+    std::string t = kCrystal;
+    t.replace(t.find("cells = [4, 4, 20]"), 18, "cells = [4, 4, 4]");
+    require_refused(t, {"crystal.cells", "2 fixed_layers + 1"});
   }
   SECTION("crystal: rk4") {
     std::string t = kCrystal;
