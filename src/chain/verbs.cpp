@@ -1,5 +1,6 @@
 // granwave::chain::check / build / run (src/models.hpp): the chain behind the command line.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -198,7 +199,10 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
     std::filesystem::create_directories("out");
     path = "out/" + c.name + ".h5";
   }
+  const auto start = std::chrono::steady_clock::now();
   const ChainTrace tr = simulate(sys, opt);
+  const double solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double bead_steps_per_second = static_cast<double>(tr.nbeads) * tr.steps / std::max(solver_seconds, 1e-12);
 
   io::H5Writer w(path);
   io::write_provenance(w);
@@ -214,6 +218,8 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
     out << "{\"case\": " << json_string(c.name) << ", \"model\": \"chain\", \"trace\": " << json_string(path)
         << ", \"nbeads\": " << tr.nbeads << ", \"ncontacts\": " << tr.ncontacts << ", \"dt\": " << json_number(tr.dt)
         << ", \"steps\": " << tr.steps << ", \"t_end\": " << json_number(t_run)
+        << ", \"wall_seconds\": " << json_number(solver_seconds)
+        << ", \"bead_steps_per_second\": " << json_number(bead_steps_per_second)
         << ", \"stopped_early\": " << (tr.stopped_early ? "true" : "false")
         << ", \"magnetisation\": " << json_number(sys.magnetisation) << ", \"peaks\": [";
     for (std::size_t i = 0; i < s.peaks.size(); ++i) {
@@ -235,7 +241,7 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
   out << "granwave chain: " << c.name << ", " << tr.nbeads << " beads, wall " << sys.wall << ", "
       << (opt.scheme == config::Scheme::verlet ? "velocity Verlet" : "RK4") << " dt = " << fmt("%.3g", tr.dt) << " s, "
       << tr.steps << " steps to t = " << fmt("%.4g", t_run * 1e3) << " ms" << (tr.stopped_early ? " (stop rule)" : "")
-      << "\n";
+      << " in " << fmt("%.3g", solver_seconds) << " s (" << fmt("%.3g", bead_steps_per_second) << " bead-steps/s)\n";
   if (std::isfinite(sys.magnetisation)) out << "  M (eq. 15) = " << fmt("%.4g", sys.magnetisation) << "\n";
   out << "  contact force, first peak (leading-pulse max):\n";
   for (const auto& p : s.peaks) {

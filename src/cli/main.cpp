@@ -7,6 +7,7 @@
 
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
+#include "core/version.hpp"
 
 namespace {
 
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
       {"theory", cli::cmd_theory}, {"sweep", cli::cmd_sweep},   {"figures", cli::cmd_figures},
   };
   if (verb == "version" || verb == "--version") {
-    std::cout << "granwave " << GRANWAVE_VERSION << " (" << GRANWAVE_GIT_DESCRIBE << ")\n";
+    std::cout << "granwave " << version() << " (" << git_describe() << ")\n";
     return 0;
   }
   auto it = verbs.find(verb);

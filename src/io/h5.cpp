@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "core/version.hpp"
 
 namespace granwave::io {
 namespace {
@@ -308,8 +309,8 @@ std::string utc_now_iso8601() {
 void write_provenance(H5Writer& w, const std::string& code) {
   w.attr("/", "schema_version", std::int64_t{1});
   w.attr("/", "code", code);
-  w.attr("/", "code_version", std::string(GRANWAVE_VERSION));
-  w.attr("/", "git_describe", std::string(GRANWAVE_GIT_DESCRIBE));
+  w.attr("/", "code_version", std::string(version()));
+  w.attr("/", "git_describe", std::string(git_describe()));
   w.attr("/", "created_utc", utc_now_iso8601());
   w.attr("/", "units", std::string("SI"));
 }
