@@ -230,6 +230,8 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
                                             const CrystalRunOptions& opt, RunStats* stats) {
   const auto members = crystal_members(s);
   const auto names = crystal_value_names(s);
+  // Refuse a bad member (an overdamped gamma_0, an unstable dt) before any run starts.
+  for (const auto& m : members) (void)crystal::derive(member_case(s, m));
   RunnerOptions ro;
   ro.parts_dir = out_path + ".parts";
   ro.fingerprint = fingerprint({s.text, s.base.toml_text});

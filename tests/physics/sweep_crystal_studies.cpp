@@ -1,10 +1,10 @@
 // Crystal studies of seed 002 on reduced crystals (src/sweep/crystal_study.hpp): the damping study
 // of sec. 3.2 (Fig. 3 right) and the friction study of sec. 3.5 (Fig. 6).
-#include <catch2/catch_approx.hpp>
-#include <catch2/catch_test_macros.hpp>
+#include <catch2/catch.hpp>
 
 #include <cmath>
 #include <filesystem>
+#include <unistd.h>
 #include <numbers>
 #include <sstream>
 
@@ -57,9 +57,9 @@ TEST_CASE("damping study: first-peak amplitude falls with gamma_0 and with dista
     // Sec. 2.1 closed forms, on the members' own gamma grid.
     const double g = v[cv_value], m_ij = v[cv_m_ij], eta0 = g / (2 * m_ij);
     const double tc = std::numbers::pi / std::sqrt(k / m_ij - eta0 * eta0);
-    CHECK(v[cv_t_c] == Catch::Approx(tc).epsilon(1e-12));
-    CHECK(v[cv_restitution] == Catch::Approx(std::exp(-eta0 * tc)).epsilon(1e-12));
-    if (g > 0) CHECK(v[cv_t_gamma] == Catch::Approx(m_ij / g).epsilon(1e-12));
+    CHECK(v[cv_t_c] == Approx(tc).epsilon(1e-12));
+    CHECK(v[cv_restitution] == Approx(std::exp(-eta0 * tc)).epsilon(1e-12));
+    if (g > 0) CHECK(v[cv_t_gamma] == Approx(m_ij / g).epsilon(1e-12));
   }
   // The seed's numbers at gamma_0 = 0.1 kg/s (Fig. 3 caption): r = 0.78 (DESIGN §3: 0.784),
   // t_c = 2.039e-5 s, t_gamma = 4.19e-5 s (all quoted to the last digit given).
@@ -85,13 +85,22 @@ TEST_CASE("friction study: P speed at kt/k = 1 is V_pz(0) sqrt(2) (affine tangen
                                     << v1[cv_v_half_peak_err] << "; first peak " << v0[cv_v_first_peak] << ", "
                                     << v1[cv_v_first_peak] << "; theory " << v1[cv_theory_v]);
   // Theory (eq. 10 with the kt term, the crystal's own network): 218.29 sqrt(2) = 308.71 m/s.
-  CHECK(v1[cv_theory_v] == Catch::Approx(218.29 * std::numbers::sqrt2).epsilon(2e-4));
-  CHECK(v1[cv_theory_v] / v0[cv_theory_v] == Catch::Approx(std::numbers::sqrt2).epsilon(1e-9));
-  // Scaling of the run: the ratio of half-peak speeds, within 3 combined standard errors.
+  CHECK(v1[cv_theory_v] == Approx(218.29 * std::numbers::sqrt2).epsilon(2e-4));
+  CHECK(v1[cv_theory_v] / v0[cv_theory_v] == Approx(std::numbers::sqrt2).epsilon(1e-9));
+  // Scaling of the run. One term does not scale: the geometric stiffness of the static contact
+  // forces, -(f0/l)(I - n n), which lowers omega_0^2 by the fraction g (theory: omega0_prestressed
+  // vs omega0, about 1e-3) at kt = 0 and by g/2 at kt = k. So the expected ratio is
+  // sqrt((2 - g)/(1 - g)) = sqrt(2) (1 + g/4 + ...), checked within 3 combined standard errors.
+  const double g = 1.0 - std::pow(v0[cv_theory_omega0_prestressed] / v0[cv_theory_omega0], 2);
+  const double expected = std::sqrt((2.0 - g) / (1.0 - g));
   const double ratio = vhalf1 / vhalf0;
   const double ratio_err = ratio * std::hypot(v0[cv_v_half_peak_err] / vhalf0, v1[cv_v_half_peak_err] / vhalf1);
-  CHECK(std::abs(ratio - std::numbers::sqrt2) < 3 * ratio_err + 1e-3);
-  // Against the theory: the frictionless half-peak front runs at V_pz within 0.5 % on this short
-  // crystal (the full crystal: 218.69 vs 218.29, +0.18 %); the scaling carries that to kt = k.
+  INFO("ratio " << ratio << " +- " << ratio_err << ", expected " << expected << " (g = " << g << ")");
+  CHECK(g > 0.0);
+  CHECK(g < 2e-3);
+  CHECK(std::abs(ratio - expected) < 3 * ratio_err);
+  // Against the theory: the half-peak front runs slightly ahead of V_pz (its leading edge carries the
+  // long waves): +0.23 % on the frictionless member of this crystal, +0.18 % on the full 3200-particle
+  // crystal (218.69 vs 218.29); the scaling carries that to kt = k, so 0.5 % bounds it.
   CHECK(std::abs(vhalf1 / (218.29 * std::numbers::sqrt2) - 1.0) < 5e-3);
 }

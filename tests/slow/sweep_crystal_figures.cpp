@@ -1,8 +1,9 @@
 // `granwave figures crystal --quick` end to end (sweep::crystal_figures): the PNGs of seed 002's
 // Figs. 2-9 and summary.md are written. About a minute on 2 cores.
-#include <catch2/catch_test_macros.hpp>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <unistd.h>
 #include <fstream>
 #include <iostream>
 #include <sstream>
