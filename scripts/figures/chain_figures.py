@@ -46,13 +46,14 @@ def fig5(d, out):
         return
     data = np.genfromtxt(path, delimiter=",", names=True)
     cols = [c for c in data.dtype.names if c != "time"]
-    labels = sorted({c.rsplit("_", 1)[0] for c in cols}, key=lambda s: -float(s.split("M")[1]))
+    # Columns M<a>p<b>_s1/_s2: M = a.b (a "." would not survive as a column name).
+    labels = sorted({c.rsplit("_", 1)[0] for c in cols}, key=lambda s: -float(s[1:].replace("p", ".")))
     fig, axes = plt.subplots(len(labels), 1, figsize=(6, 2.4 * len(labels)), sharex=True)
     for ax, lab in zip(np.atleast_1d(axes), labels):
         for c, style in zip(["%s_s1" % lab, "%s_s2" % lab], ["-", "--"]):
             ax.plot(data["time"] * 1e3, data[c], style, lw=1, label={"s1": "sensor 1 (bead 39)", "s2": "sensor 2 (bead 48)"}[c[-2:]])
         ax.set_ylabel("force (N)")
-        ax.set_title("M = %s" % lab.split("M")[1], fontsize=9)
+        ax.set_title("M = %s" % lab[1:].replace("p", "."), fontsize=9)
         ax.legend(fontsize=7)
     np.atleast_1d(axes)[-1].set_xlabel("time (ms)")
     fig.suptitle("Fig. 5: experiment68 chain, sensor forces", fontsize=10)

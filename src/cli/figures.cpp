@@ -66,7 +66,7 @@ void fig5_traces(const sweep::SpinStudy& s, const fs::path& out) {
       cols.push_back(col);
     }
     char h[64];
-    std::snprintf(h, sizeof h, ",M%.1f_s1,M%.1f_s2", M, M);
+    std::snprintf(h, sizeof h, ",M%.0fp%.0f_s1,M%.0fp%.0f_s2", std::floor(M), 10 * (M - std::floor(M)), std::floor(M), 10 * (M - std::floor(M)));
     header += h;
   }
   std::ofstream f(out / "fig5_traces.csv");
