@@ -497,10 +497,17 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log) {
         md << "| lambda/l0 = 2 pi/k(V) at z/l0 = " << lambda_z[q] << " | " << fmt("%.1f", 2 * std::numbers::pi / L.k_from_speed.value / f4.a.l0)
            << " | " << (seeded ? fmt("%g", seed_lambda_k[q]) : "—") << " | from the local speed and the fitted V(k->0); far from the source it is ill-conditioned (seed sec. 3.4) |\n";
       }
-  for (std::size_t k = 0; k < damp.positions.size(); ++k)
+  for (std::size_t k = 0; k < damp.positions.size(); ++k) {
+    // The pulse duration T (1 % arrival to the next 1 % crossing, undamped run) at the same place:
+    // the strongest decay follows it, since a dashpot acts most on motions of period ~ t_gamma.
+    double T = kNaN;
+    for (const auto& L : f4.a.layers)
+      if (std::lround(L.z_over_l0) == std::lround(damp.positions[k])) T = L.duration.value;
     md << "| strongest decay at z/l0 = " << damp.positions[k] << " | gamma_0 = " << fmt("%.3g", dsum.gamma_star[k])
-       << " kg/s, t_gamma = " << fmt("%.2f", dsum.ratio_t_gamma_t_c[k]) << " t_c | t_gamma ~ 2 t_c | located on a "
-       << (quick ? "1-decade" : "half-decade") << " gamma grid (parabola through the slopes) |\n";
+       << " kg/s, t_gamma = " << fmt("%.2f", dsum.ratio_t_gamma_t_c[k]) << " t_c | t_gamma ~ 2 t_c | on a "
+       << (quick ? "1-decade" : "half-decade") << " gamma grid; it moves with z like the undamped pulse duration T = "
+       << fmt("%.2f", T / dsum.t_c) << " t_c here (the pulse widens by dispersion): ~2 t_c holds near the source |\n";
+  }
   for (const auto& r : rd)
     if (std::abs(r.values[cv_value] - 0.1) < 1e-12)
       md << "| gamma_0 = 0.1: r, t_c, t_gamma | " << fmt("%.3f", r.values[cv_restitution]) << ", " << fmt("%.4g", r.values[cv_t_c]) << " s, "
@@ -510,8 +517,10 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log) {
     md << "| kt/k = " << r.values[cv_value] << ", " << (S ? "S" : "P") << ": V first / half peak, theory | "
        << fmt("%.1f", r.values[cv_v_first_peak]) << " / " << fmt("%.1f", r.values[cv_v_half_peak]) << ", "
        << fmt("%.1f", r.values[cv_theory_v]) << " | Fig. 6 | "
-       << (S ? "eq. (10) ignores rotations; S waves rotate the particles, so it overestimates (sec. 3.5)"
-             : "affine theory V_pz(0) sqrt(1 + kt/k)") << " |\n";
+       << (S ? (r.values[cv_value] > 0.0 ? "eq. (10) fails: its affine kt term ignores the particle rotations an S wave excites, "
+                                             "which relax the tangential springs (sec. 3.5); it overestimates"
+                                           : "frictionless: eq. (10) holds")
+             : "affine theory V_pz(0) sqrt(1 + kt/k); holds (a P wave along z rotates no particle)") << " |\n";
   }
   for (const auto& r : rp)
     md << "| Delta a = " << r.values[cv_value] << " delta: coordination (relaxed), V_p first peak, theory | "
