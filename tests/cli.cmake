@@ -7,8 +7,13 @@ file(MAKE_DIRECTORY ${CLI_TMP})
 
 function(granwave_cli_refuses name file key)
   foreach(verb check run build)
+    if(verb STREQUAL "check")
+      set(out_option "")  # check writes nothing and takes no -o
+    else()
+      set(out_option "-o ${CLI_TMP}/${name}.${verb}.h5")
+    endif()
     add_test(NAME "cli: ${verb} refuses ${name}"
-      COMMAND sh -c "rm -f ${CLI_TMP}/${name}.${verb}.h5*; ${GW} ${verb} ${BAD}/${file} -o ${CLI_TMP}/${name}.${verb}.h5 2> ${CLI_TMP}/${name}.${verb}.err; rc=$?; \
+      COMMAND sh -c "rm -f ${CLI_TMP}/${name}.${verb}.h5*; ${GW} ${verb} ${BAD}/${file} ${out_option} 2> ${CLI_TMP}/${name}.${verb}.err; rc=$?; \
 test $rc -eq 2 || { echo \"exit code $rc, expected 2\"; exit 1; }; \
 grep -q -- '${key}' ${CLI_TMP}/${name}.${verb}.err || { cat ${CLI_TMP}/${name}.${verb}.err; echo 'message does not name ${key}'; exit 1; }; \
 grep -q -- '${file}' ${CLI_TMP}/${name}.${verb}.err || { echo 'message does not name the file'; exit 1; }; \
