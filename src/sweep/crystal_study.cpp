@@ -391,7 +391,7 @@ std::string pm(double v, double e, const char* f = "%.2f") { return fmt(f, v) + 
 
 }  // namespace
 
-int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log) {
+int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, int threads) {
   namespace fs = std::filesystem;
   fs::create_directories(out_dir);
   const fs::path studies = fs::path(GRANWAVE_SOURCE_DIR) / "data" / "studies";
@@ -430,6 +430,7 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log) {
   std::ostringstream table;
   CrystalRunOptions opt;
   opt.keep_spectrum = true;
+  opt.threads = threads;
 
   log << "figures crystal: damping study (Figs. 2, 3, 4)\n";
   opt.hook = [&](std::size_t, const CrystalMemberRun& r) {

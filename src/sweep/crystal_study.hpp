@@ -108,6 +108,7 @@ int run_crystal_study(const std::string& path, const std::string& out_path, bool
 
 // `granwave figures crystal`: Figs. 2-9 of seed 002 as PNG in out_dir, the data behind them, and
 // summary.md. quick = reduced sizes (about a minute). Progress on `log`.
-int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log);
+// threads: OpenMP threads over members (0 = default).
+int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, int threads = 0);
 
 }  // namespace granwave::sweep
