@@ -174,6 +174,10 @@ class Stepper {
   // F_[j + 1] is contact j, and contact n - 1 of a free end has A = 0 so that the loop has no branch.
   std::vector<double> u_, v_, a_, inv_m_, m_, A_, g_, F_;
   std::vector<double> ku_[4], kv_[4], tmp_u_;  // RK4 stages
+  // Verlet on an unloaded chain: beads front_.. are exactly at rest (u = v = a = 0, no overlap)
+  // until the front reaches them, so the step skips them; the result is bit-identical to the
+  // full loop. A precompressed chain (every bead loaded) integrates all beads (front_ = n).
+  std::size_t front_ = 0;
 };
 
 // ---- files (data/SCHEMA.md §2, §3) ----

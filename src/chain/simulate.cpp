@@ -34,6 +34,16 @@ Stepper::Stepper(const ChainSystem& sys, config::Scheme scheme, double dt)
     tmp_u_.assign(n_ + 1, 0.0);  // tmp_u_[n] = 0: the wall
   }
   accelerations(u_.data(), a_.data());
+  // The resting region starts after the last bead that moves or is pushed; none exists when any
+  // contact starts loaded (precompression), since a loaded bead's balance is only approximate.
+  const bool unloaded = sys.precompression == 0.0 && std::all_of(g_.begin(), g_.end(), [](double g) { return g <= 0.0; });
+  front_ = n_;
+  if (unloaded) {
+    front_ = 0;
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (v_[i] != 0.0 || a_[i] != 0.0) front_ = i + 1;
+    }
+  }
 }
 
 // Eq. (13) with DESIGN §2.2 indexing: m_i a_i = F_{i-1} - F_i, F_j = A_j max(delta_j, 0)^(3/2),
@@ -66,18 +76,22 @@ void Stepper::step() {
     const double* __restrict g = g_.data();
     const double* __restrict inv_m = inv_m_.data();
     const double h = 0.5 * dt;
-    for (std::size_t i = 0; i < n; ++i) {
+    // Beads 0..moving-1 may move; the first resting bead can only be pushed by contact moving-1.
+    const std::size_t moving = front_;
+    const std::size_t pushed = std::min(moving + 1, n);
+    for (std::size_t i = 0; i < moving; ++i) {
       v[i] += h * a[i];
       u[i] += dt * v[i];
     }
-    for (std::size_t j = 0; j < n; ++j) {  // eq. (13), as in accelerations()
+    for (std::size_t j = 0; j < moving; ++j) {  // eq. (13), as in accelerations()
       const double d = std::max(g[j] + u[j] - u[j + 1], 0.0);
       F[j + 1] = A[j] * d * std::sqrt(d);
     }
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < pushed; ++i) {
       a[i] = (F[i] - F[i + 1]) * inv_m[i];
       v[i] += h * a[i];
     }
+    if (moving < n && (v[moving] != 0.0 || a[moving] != 0.0)) front_ = moving + 1;
   } else {
     // Classical RK4 on (u, v), as in seed 001's Appendix 1 and 4.
     double* __restrict tu = tmp_u_.data();
