@@ -19,7 +19,8 @@ if ((${#missing[@]})); then
   if [[ $(id -u) -ne 0 ]]; then SUDO=sudo; else SUDO=; fi
   export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -q
-  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+  # With recommends: YADE needs some of them at run time (installed this way where it was validated).
+  $SUDO apt-get install -y -q "${missing[@]}"
 fi
 
 echo "==> building granwave (Release) in build/"
