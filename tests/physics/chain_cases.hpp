@@ -1,4 +1,4 @@
-// Inline chain cases for the physics tests (Table 1 materials of seed 001, the listing's brass wall).
+// Inline chain cases for the chain tests (Table 1 materials of seed 001, the listing's brass wall).
 #pragma once
 #include <cstdio>
 #include <string>
@@ -19,6 +19,11 @@ mass = 3.63e-3
 youngs_modulus = 193e9
 poisson_ratio = 0.30
 radius = 4.76e-3
+[materials.small_steel]
+mass = 0.45e-3
+youngs_modulus = 193e9
+poisson_ratio = 0.30
+radius = 2.38e-3
 [materials.aluminium]
 mass = 1.26e-3
 youngs_modulus = 72.4e9

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
+#include "../physics/chain_cases.hpp"
 #include <sstream>
 #include "theory/hertz.hpp"
 
@@ -20,30 +21,8 @@ using Catch::Matchers::WithinRel;
 namespace {
 const std::string kCases = std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/";
 
-// Table 1 materials, for cases written inline.
-const char* kMaterials = R"(
-[materials.large_steel]
-mass = 3.63e-3
-youngs_modulus = 193e9
-poisson_ratio = 0.30
-radius = 4.76e-3
-[materials.small_steel]
-mass = 0.45e-3
-youngs_modulus = 193e9
-poisson_ratio = 0.30
-radius = 2.38e-3
-[materials.aluminium]
-mass = 1.26e-3
-youngs_modulus = 72.4e9
-poisson_ratio = 0.33
-radius = 4.76e-3
-[materials.brass]
-youngs_modulus = 90.2e9
-poisson_ratio = 0.34
-)";
-
 config::Case inline_case(const std::string& chain_and_rest) {
-  return config::parse_case("[case]\nname = \"t\"\nmodel = \"chain\"\n" + std::string(kMaterials) + chain_and_rest, "inline");
+  return config::parse_case("[case]\nname = \"t\"\nmodel = \"chain\"\n" + std::string(chain_test::kMaterials) + chain_and_rest, "inline");
 }
 }  // namespace
 
