@@ -30,7 +30,9 @@ sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 from xclib import traces as T  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LIGGGHTS velocity Verlet, dumps after a whole step; positions, "
-                   "velocities and compute pair/gran/local forces at step*dt (no shift)")
+                   "velocities and compute pair/gran/local forces at step*dt (no shift); the normal "
+                   "dashpot of the dumped contact forces is put back to the step's half-step velocity "
+                   "v(t) - f(t)/m dt/2 (the force that acted, as granwave and YADE record)")
 
 
 def _template(name: str) -> string.Template:
@@ -136,7 +138,7 @@ def render(case: dict, system: dict, workdir: str) -> dict:
             case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.2 * float(r.min())),
             kn9=nine(c["kn"]), kt9=nine(c["kt"]), gn9=nine(c["gamma_n"]), gt9=nine(c["gamma_t"]),
             mu9=nine(c["mu_static"]), limit_force="on" if c["normal_tension"] == "clip" else "off",
-            dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 6, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps)
+            dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps)
         facts.update(lay={k: v for k, v in lay.items() if k != "layer"})
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
@@ -181,6 +183,33 @@ def _pairs_on_first(rows: np.ndarray):
     return a[first], b[first], f[first] * sgn[first][:, None]
 
 
+def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y):
+    """The force each contact applied in the step, from the force `compute pair/gran/local` dumps.
+
+    The compute recomputes the contact forces from the dumped state, so its normal dashpot sees the
+    synchronous velocity v(t); the step itself (LIGGGHTS' pair compute, granwave, YADE) fed it the
+    half-step velocity v(t - dt/2) = v(t) - f(t)/m dt/2 (f: the dumped per-atom total force, which
+    is the step's). The difference, gamma_n (ddelta_half - ddelta_full) n, is put back here so the
+    trace carries the forces that moved the particles, as the other codes' traces do. Only the
+    normal dashpot is corrected (gamma_t = 0 in every case here; a tangential dashpot would also
+    need the angular velocities). p, v, f_atoms [n, 3]; i, j, f_pair: contacts (force on i)."""
+    if gamma_n == 0.0 or len(i) == 0:
+        return f_pair
+    vh = np.array(v, float, copy=True)
+    mob = np.asarray(mobile, bool)
+    vh[mob] -= np.asarray(f_atoms, float)[mob] / np.asarray(m, float)[mob][:, None] * (0.5 * dt)
+    d = p[i] - p[j]
+    d[:, 0] -= box_x * np.round(d[:, 0] / box_x)
+    d[:, 1] -= box_y * np.round(d[:, 1] / box_y)
+    r = np.linalg.norm(d, axis=1)
+    n = d / r[:, None]                      # from j to i
+    touching = r < radius[i] + radius[j]
+    dd_full = -np.sum(n * (v[i] - v[j]), axis=1)
+    dd_half = -np.sum(n * (vh[i] - vh[j]), axis=1)
+    corr = np.where(touching, gamma_n * (dd_half - dd_full), 0.0)
+    return f_pair + corr[:, None] * n
+
+
 def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str, facts: dict, version: str) -> None:
     system = T.read_system(system_path)
     dt, every = facts["dt"], facts["every"]
@@ -222,6 +251,8 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         fixed = np.asarray(system["fixed"], int).astype(bool)
         layer = lay["layer"]
         x0 = np.asarray(system["position"], float)
+        mass = np.asarray(system["mass"], float)
+        gamma_n = float(T.contact_params(case)["gamma_n"])
         out_rows = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx")}
         for s, cols, rows in atoms:
             p = rows[:, [cols.index("x"), cols.index("y"), cols.index("z")]]
@@ -231,6 +262,9 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             du[:, 1] -= lay["box_y"] * np.round(du[:, 1] / lay["box_y"])
             pr = pairs.get(s, np.zeros((0, 6)))
             i, j, f = _pairs_on_first(pr) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
+            if gamma_n > 0.0 and len(i):
+                fa = rows[:, [cols.index("fx"), cols.index("fy"), cols.index("fz")]]
+                f = dashpot_at_half_step(p, v, fa, mass, ~fixed, dt, i, j, f, r, gamma_n, lay["box_x"], lay["box_y"])
             szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
             out_rows["szz"].append(szz)
             out_rows["szx"].append(szx)

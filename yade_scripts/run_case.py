@@ -70,6 +70,9 @@ class Sampler:
         k = O.iter - self.t0_iter          # physical step index; forces belong to t = k dt
         if k < 0 or k % self.every:
             return
+        self.take(k)
+
+    def take(self, k):
         t = _time.time()
         self.times.append(k * self.dt)
         self.rows.append(self.record())
@@ -183,6 +186,30 @@ def run_chain(case, system, dt, nsteps, every):
     return np.array(sampler.times), data, wall, n, sampler.cost
 
 
+def first_verlet_step(ids, masses, v0, fixed, dt, newton, runner, sampler):
+    """Crystal start: F(0) at x(0), v(0) (NewtonIntegrator dead: the dashpots see v(0), as in
+    velocity Verlet), then the first half kick and drift are done here, v(dt/2) = v(0) + F(0)/m dt/2,
+    x(dt) = x(0) + v(dt/2) dt (fixed bodies keep their velocity), and the t = 0 sample is taken from
+    that state, exactly as a PyRunner after NewtonIntegrator would see it. YADE's own loop then
+    starts with F(dt) computed from x(dt) and v(dt/2): identical to velocity Verlet from the first
+    step on. (Starting the leapfrog from v(-dt/2) = v(0) - F(0)/m dt/2 instead, as for chains, gives
+    the same trajectory without dashpots, but the first dashpot force would see v(-dt/2) != v(0).)"""
+    newton.dead = True
+    runner.dead = True
+    O.step()
+    for k, i in enumerate(ids):
+        st = O.bodies[i].state
+        v = np.array(tuple(v0[k]), float) if not fixed[k] else np.array(tuple(st.vel), float)
+        if not fixed[k]:
+            v = v + np.array(tuple(O.forces.f(i, True))) / masses[k] * (0.5 * dt)
+        st.vel = Vector3(*v)
+        st.pos = st.pos + Vector3(*(v * dt))
+    sampler.t0_iter = O.iter - 1      # inside the next O.step O.iter is this value + 1: physical step 1 (F(dt))
+    sampler.take(0)
+    newton.dead = False
+    runner.dead = False
+
+
 # ---------------------------------------------------------------------------------------- crystal
 def run_crystal(case, system, dt, nsteps, every):
     c = T.contact_params(case)
@@ -253,8 +280,13 @@ def run_crystal(case, system, dt, nsteps, every):
     sampler = Sampler(every, record, ids, dt)
     runner = PyRunner(command="__import__('builtins').xc_sampler()", iterPeriod=1)
     __import__("builtins").xc_sampler = sampler
+    # avoidGranularRatcheting=False: the shear increment is the relative velocity of the contact point
+    # times dt. YADE's default (True) multiplies the translational part by alpha = (r1 + r2)/(r1 + r2 -
+    # delta) = 1/(1 - 1e-3) here, which makes CundallStrack's effective kt 1e-3 stiffer (measured: P speed
+    # 2.6e-4 faster than LIGGGHTS with kt = k). ViscEl computes its own contact-point velocity (no alpha).
     O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
-                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [ip2], [law]), newton, runner]
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False)], [ip2], [law]),
+                 newton, runner]
     # contacts are made in the undisplaced packing (tangential springs start from zero there) ...
     newton.dead = True
     runner.dead = True
@@ -291,12 +323,12 @@ def run_crystal(case, system, dt, nsteps, every):
             vv = Vector3(0, 0, 0)
             vv[axis] = float(ex["amplitude"])
             O.bodies[ids[k]].state.vel = vv
-    start_leapfrog(ids, m, v0, fixed, dt, newton, runner)
-    sampler.t0_iter = O.iter
+    first_verlet_step(ids, m, v0, fixed, dt, newton, runner, sampler)
     runner.iterPeriod = every           # fire only on sampled steps (Python per step is costly)
-    runner.iterLast = O.iter - every
+    runner.iterLast = O.iter - 1        # = the step of the t = 0 sample: first fire at physical step `every`
+    runner.nDone = max(1, runner.nDone)  # a PeriodicEngine that never ran re-bases iterLast on its first call
     t = _time.time()
-    O.run(nsteps + 1, True)
+    O.run(nsteps, True)
     if len(sampler.times) != nsteps // every + 1:
         fail("sampling misaligned: %d samples, expected %d" % (len(sampler.times), nsteps // every + 1), 1)
     wall = _time.time() - t

@@ -22,11 +22,13 @@ class RulerError(RuntimeError):
     """granwave analyze is missing, failed, or printed something that is not its JSON."""
 
 
-def granwave_analyze(trace_path: str, granwave: str = "granwave", timeout: float = 300) -> dict:
+def granwave_analyze(trace_path: str, granwave: str = "granwave", timeout: float = 300, extra_args=()) -> dict:
+    """extra_args: analyze options (e.g. ["--layers", "5:25"]) -- the same for every code's trace."""
     exe = shutil.which(granwave) or (granwave if "/" in granwave and os.path.exists(granwave) else None)
     if not exe:
         raise RulerError("granwave executable not found (%s): the ruler is `granwave analyze --json`" % granwave)
-    p = subprocess.run([exe, "analyze", trace_path, "--json"], capture_output=True, text=True, timeout=timeout)
+    p = subprocess.run([exe, "analyze", trace_path, "--json", *extra_args], capture_output=True, text=True,
+                       timeout=timeout)
     if p.returncode != 0:
         raise RulerError("granwave analyze failed (exit %d): %s" % (p.returncode, p.stderr.strip()[-300:]))
     try:

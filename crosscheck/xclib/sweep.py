@@ -1,0 +1,327 @@
+"""crosscheck sweep damping|friction: one parameter over a range, three codes, one ruler.
+
+    crosscheck/crosscheck sweep damping  [--size small|paper] [--codes ...] [--report DIR]
+    crosscheck/crosscheck sweep friction [--size small|paper] [--modes P,S] [--codes ...] [--report DIR]
+
+damping:  first-peak amplitude (ruler: `granwave analyze --json`) at five z/l0 positions over
+          gamma_0 = 0, 0.025, 0.05, 0.1, 0.2 kg/s (seed 002 fig. 3 right), per code; relative
+          differences per pair of codes; a PNG of amplitude against position, one panel per gamma_0.
+friction: P and S front speeds (first peak and half peak) over kt/k = 0, 0.2, 0.5, 1, 1.5, 2 with
+          mu = 0.5 (seed 002 fig. 6), per code and pair; `granwave theory --json` V_pz, V_sz (eq. 10,
+          affine kt term) as the closed-form line; a PNG of speed against kt/k.
+
+Each point is a case derived from a template (small: tests/crosscheck/cases/crystal_small.toml,
+4x4x40; paper: data/cases/crystal_p.toml / crystal_s.toml, 4x4x200) with only the swept keys
+changed (sweepmath.derive_case); the derived case files are kept in the report. Every point goes
+through the crosscheck harness's own steps (granwave build, each code in a fresh directory, the
+ruler), so a sweep point is exactly a `crosscheck run` of that case. Pairs are judged against
+[sweep.<name>] in tolerances.toml (measured values, each with its reason); `expected_pairs`
+there lists pairs reported as EXPECTED-DIFF (a documented difference, never a pass).
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import os
+import subprocess
+import sys
+import time
+
+from . import harness as H
+from . import ruler as R
+from . import sweepmath as M
+
+GAMMAS = (0.0, 0.025, 0.05, 0.1, 0.2)
+KT_OVER_K = (0.0, 0.2, 0.5, 1.0, 1.5, 2.0)
+SIZES = {
+    # small: 4x4x40; the first peak reaches z/l0 = 25 at ~1.7e-4 s (P) and the top reflection returns
+    # there after ~3.9e-4 s, so t_end = 3e-4 s keeps every position's first peak clean.
+    "small": dict(template_P="tests/crosscheck/cases/crystal_small.toml", template_S="tests/crosscheck/cases/crystal_small.toml",
+                  positions=(5, 10, 15, 20, 25), t_end=3e-4, layers="5:25"),
+    # paper: seed 002's 4x4x200 with the seed's positions (fig. 3 right) and its fit range.
+    "paper": dict(template_P="data/cases/crystal_p.toml", template_S="data/cases/crystal_s.toml",
+                  positions=(10, 45, 80, 115, 150), t_end=None, layers=None),
+}
+
+
+def _log(msg):
+    print("sweep: " + msg, file=sys.stderr, flush=True)
+
+
+def make_case(template_path: str, name: str, changes: dict, out_dir: str) -> str:
+    with open(template_path) as f:
+        text = f.read()
+    ch = {("case", "name"): name}
+    ch.update(changes)
+    path = os.path.join(out_dir, name + ".toml")
+    with open(path, "w") as f:
+        f.write("# derived by crosscheck sweep from %s\n" % os.path.relpath(template_path, H.REPO)
+                + M.derive_case(text, ch))
+    return path
+
+
+def run_point(case_path: str, casedir: str, codes, granwave, timeout, fixture, ruler_args) -> dict:
+    """One case through the harness steps; returns {code: {"status", "wall_s", "raw"}}."""
+    out = {}
+    system, _ = H.build_system(case_path, casedir, granwave, fixture, timeout)
+    for code in codes:
+        t = time.time()
+        r = H.run_code(code, case_path, system, os.path.join(casedir, code), timeout, granwave)
+        rec = dict(status=r["status"], wall_s=r.get("wall_s"), detail=r.get("detail", ""))
+        if r["status"] == "ok":
+            try:
+                rec["raw"] = R.granwave_analyze(r["trace"], granwave or "granwave", extra_args=ruler_args)
+            except R.RulerError as e:
+                rec["status"], rec["detail"] = "failed", "not measurable: %s" % e
+        out[code] = rec
+        _log("%s: %s %s (%.1f s)" % (os.path.basename(case_path), code, rec["status"], time.time() - t))
+    return out
+
+
+def theory_speeds(case_path: str, granwave: str | None):
+    """(V_pz, V_sz) of `granwave theory --json` (None when granwave is missing or fails)."""
+    if not granwave:
+        return None, None
+    try:
+        p = subprocess.run([granwave, "theory", case_path, "--json"], capture_output=True, text=True, timeout=300)
+        d = json.loads(p.stdout)
+        return float(d["V_pz"]["value"]), float(d["V_sz"]["value"])
+    except Exception:  # noqa: BLE001 -- the line is optional
+        return None, None
+
+
+def sweep_tolerances(tol: dict, name: str) -> dict:
+    return tol.get("sweep", {}).get(name, {})
+
+
+def judge(value, lim, pair, tsec):
+    if pair in tsec.get("expected_pairs", []):
+        return "EXPECTED-DIFF"
+    if lim is None:
+        return "INFO"
+    if value is None:
+        return "FAIL"
+    return "PASS" if value <= lim else "FAIL"
+
+
+# ------------------------------------------------------------------------------------------ damping
+def damping(a, report_dir, granwave, tol) -> int:
+    size = SIZES[a.size]
+    gammas = [float(x) for x in a.values.split(",")] if a.values else list(GAMMAS)
+    codes = [c.strip() for c in a.codes.split(",") if c.strip()]
+    ruler_args = ["--layers", size["layers"]] if size["layers"] else []
+    points = []
+    for g in gammas:
+        name = "sweep_damping_%s_g%s" % (a.size, ("%g" % g).replace(".", "p"))
+        ch = {("contact", "gamma_n"): g, ("contact", "kt"): 0.0, ("excitation", "mode"): "P"}
+        if size["t_end"]:
+            ch[("integrator", "t_end")] = size["t_end"]
+        casedir = H.fresh_dir(os.path.join(report_dir, name))
+        cp = make_case(os.path.join(H.REPO, size["template_P"]), name, ch, casedir)
+        res = run_point(cp, casedir, codes, granwave, a.timeout, a.fixture_system, ruler_args)
+        peaks = {c: (M.peaks_at(M.layer_table(r["raw"]), size["positions"]) if "raw" in r else {})
+                 for c, r in res.items()}
+        points.append(dict(gamma=g, case=cp, runs={c: {k: v for k, v in r.items() if k != "raw"} for c, r in res.items()},
+                           peaks=peaks))
+    tsec = sweep_tolerances(tol, "damping")
+    lim, why = tsec.get("peak_rel"), tsec.get("peak_rel_why", "no tolerance set")
+    md = ["# crosscheck sweep damping (%s)" % a.size, "",
+          "First-peak amplitude of sigma_zz - sigma_zz(0) (Pa) at z/l0 = %s, P step, kt = 0, over gamma_0 "
+          "(kg/s); ruler `granwave analyze --json`%s. d(a-b) = |a - b| / max(|a|, |b|)."
+          % (", ".join(map(str, size["positions"])), (" " + " ".join(ruler_args)) if ruler_args else ""), ""]
+
+    def rows(pts):
+        for p in pts:
+            for z in size["positions"]:
+                yield "%g" % p["gamma"], "%g" % z, {c: p["peaks"].get(c, {}).get(z) for c in codes}
+
+    md += M.sweep_table(points, codes, "gamma_0", "z/l0", rows) + [""]
+    # decay relative to gamma_0 = 0, per code
+    if 0.0 in gammas:
+        md += ["Amplitude relative to gamma_0 = 0 at the same position (per code):", "",
+               "| gamma_0 | z/l0 | " + " | ".join(codes) + " |", "|" + "---|" * (2 + len(codes))]
+        ref = next(p for p in points if p["gamma"] == 0.0)
+        for p in points:
+            for z in size["positions"]:
+                vals = []
+                for c in codes:
+                    v, r0 = p["peaks"].get(c, {}).get(z), ref["peaks"].get(c, {}).get(z)
+                    vals.append("%.4f" % (v / r0) if (v is not None and r0) else "-")
+                md.append("| %g | %g | %s |" % (p["gamma"], z, " | ".join(vals)))
+        md.append("")
+    verdict = []
+    for pair in M.pair_names(codes):
+        w = M.worst(M.pairwise({c: p["peaks"].get(c, {}).get(z) for c in codes}, codes).get(pair)
+                    for p in points for z in size["positions"])
+        st = judge(w, lim, pair, tsec)
+        verdict.append((pair, "peak_rel (max over the sweep)", w, lim, st))
+    status = _verdict_md(md, verdict, why, tsec)
+    _timings_md(md, points, codes)
+    png = os.path.join(report_dir, "damping.png")
+    _plot_damping(points, codes, size["positions"], png)
+    md += ["![damping](damping.png)", ""]
+    _write(report_dir, "sweep_damping", md, dict(sweep="damping", size=a.size, positions=size["positions"], codes=codes,
+                                                 points=points, verdict=verdict))
+    return status
+
+
+# ----------------------------------------------------------------------------------------- friction
+def friction(a, report_dir, granwave, tol) -> int:
+    size = SIZES[a.size]
+    kts = [float(x) for x in a.values.split(",")] if a.values else list(KT_OVER_K)
+    modes = [m.strip() for m in a.modes.split(",") if m.strip()]
+    codes = [c.strip() for c in a.codes.split(",") if c.strip()]
+    ruler_args = ["--layers", size["layers"]] if size["layers"] else []
+    points = []
+    for mode in modes:
+        for r in kts:
+            name = "sweep_friction_%s_%s_kt%s" % (a.size, mode, ("%g" % r).replace(".", "p"))
+            tmpl = os.path.join(H.REPO, size["template_" + mode])
+            with open(tmpl, "rb") as f:
+                import tomllib
+                kn = float(tomllib.load(f)["contact"]["kn"])
+            ch = {("contact", "kt"): r * kn, ("contact", "gamma_n"): 0.0, ("contact", "mu_static"): 0.5,
+                  ("contact", "mu_dynamic"): 0.5, ("excitation", "mode"): mode}
+            if size["t_end"]:
+                ch[("integrator", "t_end")] = size["t_end"]
+            casedir = H.fresh_dir(os.path.join(report_dir, name))
+            cp = make_case(tmpl, name, ch, casedir)
+            res = run_point(cp, casedir, codes, granwave, a.timeout, a.fixture_system, ruler_args)
+            vp, vs = theory_speeds(cp, granwave)
+            speeds = {}
+            for c, rr in res.items():
+                if "raw" in rr:
+                    t = R.translate(rr["raw"])
+                    speeds[c] = dict(peak=t["speed_peak"], peak_err=t["speed_peak_err"], half=t["speed_half"],
+                                     half_err=t["speed_half_err"], range=t["speed_range"])
+            points.append(dict(mode=mode, kt_over_k=r, case=cp, theory=vp if mode == "P" else vs,
+                               runs={c: {k: v for k, v in rr.items() if k != "raw"} for c, rr in res.items()},
+                               speeds=speeds))
+    tsec = sweep_tolerances(tol, "friction")
+    lim, why = tsec.get("speed_rel"), tsec.get("speed_rel_why", "no tolerance set")
+    md = ["# crosscheck sweep friction (%s)" % a.size, "",
+          "Front speeds (m/s; ruler `granwave analyze --json`%s: least squares over the first-peak and the "
+          "half-peak arrival times) over kt/k with mu = 0.5, gamma = 0; theory = `granwave theory --json` "
+          "(eq. 10 with the affine kt term: V_pz for P, V_sz for S). d(a-b) = |a - b| / max(|a|, |b|)."
+          % ((" " + " ".join(ruler_args)) if ruler_args else ""), ""]
+    for which, lab in (("peak", "first-peak speed"), ("half", "half-peak speed")):
+        def rows(pts, which=which):
+            for p in pts:
+                yield "%s %g" % (p["mode"], p["kt_over_k"]), _fmtv(p["theory"]), \
+                    {c: p["speeds"].get(c, {}).get(which) for c in codes}
+        md += ["### %s" % lab, ""] + M.sweep_table(points, codes, "mode kt/k", "theory", rows) + [""]
+    verdict = []
+    for pair in M.pair_names(codes):
+        for which in ("peak", "half"):
+            w = M.worst(M.pairwise({c: p["speeds"].get(c, {}).get(which) for c in codes}, codes).get(pair)
+                        for p in points)
+            verdict.append((pair, "speed_rel %s (max over the sweep)" % which, w, lim, judge(w, lim, pair, tsec)))
+    status = _verdict_md(md, verdict, why, tsec)
+    _timings_md(md, points, codes)
+    png = os.path.join(report_dir, "friction.png")
+    _plot_friction(points, codes, modes, png)
+    md += ["![friction](friction.png)", ""]
+    _write(report_dir, "sweep_friction", md, dict(sweep="friction", size=a.size, codes=codes, points=points,
+                                                  verdict=verdict))
+    return status
+
+
+# ------------------------------------------------------------------------------------------ output
+def _fmtv(v):
+    return "-" if v is None else "%.5g" % v
+
+
+def _verdict_md(md, verdict, why, tsec) -> int:
+    md += ["## Verdict (pairs of codes)", "", "| pair | quantity | worst | tolerance | status |", "|---|---|---|---|---|"]
+    for pair, q, w, lim, st in verdict:
+        md.append("| %s | %s | %s | %s | %s |" % (pair, q, "-" if w is None else "%.3g" % w,
+                                                 "-" if lim is None else "%.3g" % lim, st))
+    md += ["", "Tolerance: %s" % why]
+    if tsec.get("expected_pairs"):
+        md += ["", "EXPECTED-DIFF pairs: %s" % tsec.get("expected_pairs_why", "")]
+    md.append("")
+    return 1 if any(v[4] == "FAIL" for v in verdict) else 0
+
+
+def _timings_md(md, points, codes):
+    tot = {c: sum((p["runs"].get(c, {}).get("wall_s") or 0.0) for p in points) for c in codes}
+    md += ["Wall time over the sweep (s): " + ", ".join("%s %.1f" % (c, tot[c]) for c in codes), ""]
+
+
+def _write(report_dir, stem, md, data):
+    with open(os.path.join(report_dir, stem + ".md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    with open(os.path.join(report_dir, stem + ".json"), "w") as f:
+        json.dump(data, f, indent=1, default=str)
+
+
+STYLES = {"granwave": ("k", "-", "o"), "yade": ("tab:orange", "--", "s"), "liggghts": ("tab:blue", ":", "^")}
+
+
+def _plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def _plot_damping(points, codes, positions, path):
+    plt = _plt()
+    n = len(points)
+    fig, axes = plt.subplots(1, n, figsize=(3.2 * n, 3.4), sharey=True, squeeze=False)
+    for ax, p in zip(axes[0], points):
+        for c in codes:
+            col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
+            ys = [p["peaks"].get(c, {}).get(z) for z in positions]
+            xs = [z for z, y in zip(positions, ys) if y is not None]
+            ax.plot(xs, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, ms=5, label=c)
+        ax.set_title("gamma_0 = %g kg/s" % p["gamma"], fontsize=9)
+        ax.set_xlabel("z / l0")
+    axes[0][0].set_ylabel("first-peak sigma_zz - sigma_zz(0) (Pa)")
+    axes[0][0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def _plot_friction(points, codes, modes, path):
+    plt = _plt()
+    fig, axes = plt.subplots(1, len(modes), figsize=(5.5 * len(modes), 4), squeeze=False)
+    for ax, mode in zip(axes[0], modes):
+        pts = [p for p in points if p["mode"] == mode]
+        x = [p["kt_over_k"] for p in pts]
+        for c in codes:
+            col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
+            for which, mfc in (("peak", col), ("half", "none")):
+                ys = [p["speeds"].get(c, {}).get(which) for p in pts]
+                xx = [xi for xi, y in zip(x, ys) if y is not None]
+                ax.plot(xx, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, mfc=mfc, ms=6,
+                        label="%s (%s)" % (c, "first peak" if which == "peak" else "half peak"))
+        th = [(p["kt_over_k"], p["theory"]) for p in pts if p["theory"] is not None]
+        if th:
+            ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6,
+                    label="granwave theory (eq. 10, affine kt)")
+        ax.set_title("%s wave" % mode)
+        ax.set_xlabel("kt / k")
+        ax.set_ylabel("front speed (m/s)")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def main_sweep(a) -> int:
+    tol = H.load_tolerances(a.tolerances)
+    bad = [c for c in a.codes.split(",") if c.strip() and c.strip() not in H.CODES]
+    if bad:
+        print("crosscheck sweep: unknown code(s) %s" % bad, file=sys.stderr)
+        return 2
+    started = _dt.datetime.now().strftime("%Y%m%d-%H%M%S")
+    report_dir = H.fresh_dir(os.path.abspath(a.report or ("crosscheck-sweep-%s-%s-%s" % (a.name, a.size, started))))
+    granwave = H.find_granwave(a.granwave)
+    t = time.time()
+    st = (damping if a.name == "damping" else friction)(a, report_dir, granwave, tol)
+    print("report: %s" % os.path.join(report_dir, "sweep_%s.md" % a.name))
+    print("wall: %.1f s" % (time.time() - t))
+    print("VERDICT: %s" % ("FAIL" if st else "PASS"))
+    return st
