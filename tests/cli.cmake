@@ -33,3 +33,9 @@ add_test(NAME "cli: unknown option exits 2" COMMAND sh -c "${GW} check ${BAD}/un
 add_test(NAME "cli: every verb has --help" COMMAND sh -c "for v in build run check analyze theory sweep figures; do ${GW} $v --help > /dev/null || { echo $v; exit 1; }; done")
 set_tests_properties("cli: missing case file exits 2" "cli: unknown verb exits 2" "cli: unknown option exits 2"
                      "cli: every verb has --help" PROPERTIES LABELS "cli;unit")
+add_test(NAME "cli: sweep --threads -3 names the option and its range"
+  COMMAND sh -c "${GW} sweep ${CMAKE_SOURCE_DIR}/data/studies/smoke.toml -o ${CLI_TMP}/threads.h5 --threads -3 2> ${CLI_TMP}/threads.err; rc=$?; \
+test $rc -eq 2 || { echo \"exit code $rc, expected 2\"; exit 1; }; \
+grep -q -- '--threads must be a positive integer' ${CLI_TMP}/threads.err || { cat ${CLI_TMP}/threads.err; exit 1; }; \
+! ls ${CLI_TMP}/threads.h5* 2>/dev/null || { echo 'wrote a file'; exit 1; }")
+set_tests_properties("cli: sweep --threads -3 names the option and its range" PROPERTIES LABELS "cli;unit")

@@ -105,6 +105,11 @@ struct SimOptions {
   std::size_t stride = 1;           // output interval in steps (>= 1)
   std::vector<int> full_rate_beads;  // bead forces stored at every step
   bool store_contact_force = true, store_bead_force = true, store_energy = true;
+  // Running observers that keep no series (the spin study: a stored [nt, nbeads] matrix costs more
+  // than the steps). Peak of beads 0..peak_profile_beads-1 over the output grid, parabola-refined;
+  // the full-rate beads' series are kept only when store_full_rate (their peaks always are).
+  std::size_t peak_profile_beads = 0;
+  bool store_full_rate = true;
   config::StopRule stop;
 };
 // dt (dt or dt_over_tc x shortest contact time), t_end, interval rounded to whole steps, fields,
@@ -126,6 +131,11 @@ struct ChainTrace {
   std::vector<int> full_rate_beads;
   std::vector<double> full_rate_time;        // [nt_full]
   std::vector<double> full_rate_bead_force;  // [nt_full, nsensors]
+  // Per full-rate bead: its largest force over every step and the first time it occurs.
+  std::vector<double> full_rate_peak, full_rate_peak_time;  // [nsensors]
+  // Per bead 0..peak_profile_beads-1: the largest sampled bead force on the output grid, refined
+  // by the parabola through it and its two neighbouring samples (when equally spaced).
+  std::vector<double> bead_peak;
 
   std::size_t nt() const { return time.size(); }
   std::vector<double> contact_series(std::size_t j) const;
@@ -153,11 +163,23 @@ class Stepper {
   std::span<const double> velocity() const { return {v_.data(), n_}; }
   // Signed overlap of contact j (negative = gap) and its force at the current positions.
   double overlap(std::size_t j) const { return g_[j] + u_[j] - u_[j + 1]; }
-  double contact_force(std::size_t j) const { return contact::hertz_force(A_[j], overlap(j)); }
+  // Velocity Verlet keeps the forces of the current state from its step (bit-identical to
+  // evaluating them again); RK4's stages leave other forces behind.
+  double contact_force(std::size_t j) const {
+    return forces_current_ ? F_[j + 1] : contact::hertz_force(A_[j], overlap(j));
+  }
   // Forces of all ncontacts() contacts, then the beads' mean contact forces.
   void contact_forces(double* out) const;
-  void bead_forces(double* out) const;  // needs contact forces of the current state
-  double bead_force(std::size_t b) const;
+  void bead_forces(double* out) const;
+  // Mean of the bead's two contact forces; a missing neighbour contact counts 0 (the listing's signal).
+  double bead_force(std::size_t b) const {
+    const double left = b > 0 ? contact_force(b - 1) : 0.0;
+    const double right = b < nc_ ? contact_force(b) : 0.0;
+    return 0.5 * (left + right);
+  }
+  // Beads from this index on are exactly at rest and carry no force (Verlet on an unloaded
+  // chain, ahead of the front); nbeads() when that is not known.
+  std::size_t resting_from() const { return scheme_ == config::Scheme::verlet ? front_ : n_; }
   double kinetic_energy() const;
   double potential_energy() const;
   double momentum() const;
@@ -178,6 +200,7 @@ class Stepper {
   // until the front reaches them, so the step skips them; the result is bit-identical to the
   // full loop. A precompressed chain (every bead loaded) integrates all beads (front_ = n).
   std::size_t front_ = 0;
+  bool forces_current_ = false;  // F_[j + 1] is contact j's force at the current state
 };
 
 // ---- files (data/SCHEMA.md §2, §3) ----

@@ -1,6 +1,7 @@
 // Time integration of eq. (13) and the observers.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "chain/chain.hpp"
 #include "core/error.hpp"
@@ -34,6 +35,7 @@ Stepper::Stepper(const ChainSystem& sys, config::Scheme scheme, double dt)
     tmp_u_.assign(n_ + 1, 0.0);  // tmp_u_[n] = 0: the wall
   }
   accelerations(u_.data(), a_.data());
+  forces_current_ = scheme_ == config::Scheme::verlet;
   // The resting region starts after the last bead that moves or is pushed; none exists when any
   // contact starts loaded (precompression), since a loaded bead's balance is only approximate.
   const bool unloaded = sys.precompression == 0.0 && std::all_of(g_.begin(), g_.end(), [](double g) { return g <= 0.0; });
@@ -122,13 +124,6 @@ void Stepper::contact_forces(double* out) const {
   for (std::size_t j = 0; j < nc_; ++j) out[j] = contact_force(j);
 }
 
-double Stepper::bead_force(std::size_t b) const {
-  // Mean of the bead's two contact forces; a missing neighbour contact counts 0 (the listing's signal).
-  const double left = b > 0 ? contact_force(b - 1) : 0.0;
-  const double right = b < nc_ ? contact_force(b) : 0.0;
-  return 0.5 * (left + right);
-}
-
 void Stepper::bead_forces(double* out) const {
   for (std::size_t b = 0; b < n_; ++b) out[b] = bead_force(b);
 }
@@ -190,6 +185,39 @@ SimOptions sim_options(const config::Case& c, const ChainSystem& sys) {
 
 // ---- the run ----
 
+namespace {
+// Largest sample of one signal on the output grid and the samples either side of it, kept as
+// the run goes (first occurrence of the maximum; no stored series). At the end, the vertex of
+// the parabola through the three, when they are equally spaced and the middle one is a maximum.
+struct RunningPeak {
+  double best = -1.0;  // bead forces are >= 0: the first sample always replaces it
+  double before = 0.0, after = 0.0, t_before = 0.0, t_best = 0.0, t_after = 0.0;
+  bool has_before = false, has_after = false;
+
+  void add(double f, double t, double f_prev, double t_prev, bool has_prev) {
+    if (f > best) {
+      best = f;
+      t_best = t;
+      before = f_prev;
+      t_before = t_prev;
+      has_before = has_prev;
+      has_after = false;
+    } else if (!has_after) {  // the sample right after the current maximum
+      after = f;
+      t_after = t;
+      has_after = true;
+    }
+  }
+  double refined() const {
+    if (!has_before || !has_after) return best;
+    const double h0 = t_best - t_before, h1 = t_after - t_best;
+    if (!(std::abs(h0 - h1) < 1e-6 * h0)) return best;
+    const double den = before - 2.0 * best + after;
+    return den < 0.0 ? best - (before - after) * (before - after) / (8.0 * den) : best;
+  }
+};
+}  // namespace
+
 ChainTrace simulate(const ChainSystem& sys, const SimOptions& opt) {
   Stepper st(sys, opt.scheme, opt.dt);
   ChainTrace tr;
@@ -199,6 +227,8 @@ ChainTrace simulate(const ChainSystem& sys, const SimOptions& opt) {
   tr.stride = std::max<std::size_t>(1, opt.stride);
   tr.full_rate_beads = opt.full_rate_beads;
   const std::size_t nc = tr.ncontacts, nb = tr.nbeads;
+  const std::size_t nprofile = std::min(opt.peak_profile_beads, nb);
+  const std::size_t nsensors = opt.full_rate_beads.size();
 
   const double t_stop = opt.stop.enabled ? opt.stop.max_time.value_or(opt.t_end) : opt.t_end;
   const auto nsteps = static_cast<std::size_t>(std::llround(t_stop / opt.dt));
@@ -206,14 +236,31 @@ ChainTrace simulate(const ChainSystem& sys, const SimOptions& opt) {
   tr.time.reserve(nt_guess);
   if (opt.store_contact_force) tr.contact_force.reserve(nt_guess * nc);
   if (opt.store_bead_force) tr.bead_force.reserve(nt_guess * nb);
-  if (!opt.full_rate_beads.empty()) {
+  if (nsensors > 0 && opt.store_full_rate) {
     tr.full_rate_time.reserve(nsteps + 1);
-    tr.full_rate_bead_force.reserve((nsteps + 1) * opt.full_rate_beads.size());
+    tr.full_rate_bead_force.reserve((nsteps + 1) * nsensors);
   }
+  tr.full_rate_peak.assign(nsensors, -std::numeric_limits<double>::infinity());
+  tr.full_rate_peak_time.assign(nsensors, 0.0);
 
   std::vector<double> buf(std::max(nb, nc));
+  std::vector<RunningPeak> profile(nprofile);
+  std::vector<double> profile_prev(nprofile, 0.0);
+  double t_prev = 0.0;
+  bool has_prev = false;
+  std::size_t nsamples = 0, profile_live = 0;  // beads >= profile_live have had force 0 at every sample
+  // A bead beyond the front's neighbour has no force; it joins with the state that its
+  // all-zero samples so far would have left (its largest is 0 and has no sample before it).
+  auto bring_live = [&](std::size_t live) {
+    for (; profile_live < live; ++profile_live) {
+      RunningPeak& p = profile[profile_live];
+      if (nsamples >= 1) p.best = 0.0;
+      p.has_after = nsamples >= 2;
+    }
+  };
   auto sample = [&] {
-    tr.time.push_back(st.time());
+    const double t = st.time();
+    tr.time.push_back(t);
     if (opt.store_energy) tr.work_in.push_back(st.work_in());
     if (opt.store_contact_force) {
       st.contact_forces(buf.data());
@@ -223,6 +270,16 @@ ChainTrace simulate(const ChainSystem& sys, const SimOptions& opt) {
       st.bead_forces(buf.data());
       tr.bead_force.insert(tr.bead_force.end(), buf.begin(), buf.begin() + nb);
     }
+    const std::size_t live = std::min(nprofile, st.resting_from() + 1);
+    bring_live(live);
+    for (std::size_t b = 0; b < live; ++b) {
+      const double f = st.bead_force(b);
+      profile[b].add(f, t, profile_prev[b], t_prev, has_prev);
+      profile_prev[b] = f;
+    }
+    t_prev = t;
+    has_prev = true;
+    ++nsamples;
     if (opt.store_energy) {
       tr.kinetic.push_back(st.kinetic_energy());
       tr.potential.push_back(st.potential_energy());
@@ -232,11 +289,18 @@ ChainTrace simulate(const ChainSystem& sys, const SimOptions& opt) {
     }
   };
   auto sample_full = [&] {
-    if (opt.full_rate_beads.empty()) return;
-    tr.full_rate_time.push_back(st.time());
-    for (int b : opt.full_rate_beads) tr.full_rate_bead_force.push_back(st.bead_force(static_cast<std::size_t>(b)));
+    if (nsensors == 0) return;
+    const double t = st.time();
+    if (opt.store_full_rate) tr.full_rate_time.push_back(t);
+    for (std::size_t k = 0; k < nsensors; ++k) {
+      const double f = st.bead_force(static_cast<std::size_t>(opt.full_rate_beads[k]));
+      if (opt.store_full_rate) tr.full_rate_bead_force.push_back(f);
+      if (f > tr.full_rate_peak[k]) {
+        tr.full_rate_peak[k] = f;
+        tr.full_rate_peak_time[k] = t;
+      }
+    }
   };
-
   // Stop rule: the front is the furthest contact whose dynamic force has exceeded
   // front_threshold x the striker contact's peak (running) dynamic force.
   const double F_static = sys.precompression;
@@ -264,6 +328,9 @@ ChainTrace simulate(const ChainSystem& sys, const SimOptions& opt) {
     }
   }
   tr.steps = st.steps();
+  bring_live(nprofile);
+  tr.bead_peak.resize(nprofile);
+  for (std::size_t b = 0; b < nprofile; ++b) tr.bead_peak[b] = profile[b].refined();
   return tr;
 }
 

@@ -54,6 +54,8 @@ void fig5_traces(const sweep::SpinStudy& s, const fs::path& out) {
     o.full_rate_beads = g.sensors;
     o.t_end = 1.5e-3;  // the seed's window: both sensors' leading pulses and what trails them
     o.store_bead_force = false;
+    o.store_full_rate = true;  // the plotted traces
+    o.peak_profile_beads = 0;
     o.stop.enabled = false;
     const auto tr = chain::simulate(sys, o);
     // Every 5th step, like the seed's listing (`mod(kk,5)`), is plenty for a plot.

@@ -39,10 +39,15 @@ int cmd_sweep(const Args& args) {
     return 0;
   }
   const std::vector<std::string> valued{"-o", "--output", "--threads", "--limit"};
-  for (const auto& a : args)
-    if (a.rfind("-", 0) == 0 && a != "--quiet" && a != "--no-stop" &&
-        std::find(valued.begin(), valued.end(), a) == valued.end() && a.rfind("--output=", 0) != 0)
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (std::find(valued.begin(), valued.end(), a) != valued.end()) {
+      ++k;  // its value may start with '-' ("--threads -3" is a bad value, not an unknown option)
+      continue;
+    }
+    if (a.rfind("-", 0) == 0 && a != "--quiet" && a != "--no-stop" && a.rfind("--output=", 0) != 0)
       throw InputError("sweep: unknown option '" + a + "' (see granwave sweep --help)");
+  }
   const auto pos = positionals(args, valued);
   if (pos.size() != 1) throw InputError("sweep: give exactly one study file (see granwave sweep --help)");
   sweep::SweepOptions o;

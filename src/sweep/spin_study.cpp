@@ -133,7 +133,9 @@ chain::SimOptions member_sim_options(const SpinStudy& s, const SpinGroup& g, boo
   o.stride = static_cast<std::size_t>(std::max(1.0, std::round(s.profile_interval / o.dt)));
   o.store_contact_force = false;
   o.store_energy = false;
-  o.store_bead_force = true;
+  o.store_bead_force = false;  // running peaks instead of stored series
+  o.peak_profile_beads = static_cast<std::size_t>(g.measure_beads.back()) + 1;
+  o.store_full_rate = false;
   o.full_rate_beads = g.measure_beads;  // the measure needs every step
   o.full_rate_beads.insert(o.full_rate_beads.end(), g.sensors.begin(), g.sensors.end());
   o.stop.enabled = stop;
@@ -147,46 +149,17 @@ chain::SimOptions member_sim_options(const SpinStudy& s, const SpinGroup& g, boo
 Measure measure_of(const chain::ChainTrace& tr, const std::vector<int>& beads) {
   Measure m;
   const std::size_t ns = tr.full_rate_beads.size();
+  // Over the beads in order, each bead's first largest force: the first (bead, step) with the
+  // largest force over all of them.
   for (std::size_t k = 0; k < beads.size(); ++k) {
     if (k >= ns || tr.full_rate_beads[k] != beads[k]) throw RunError("internal: the measured beads must lead the full-rate beads");
-    for (std::size_t t = 0; t < tr.full_rate_time.size(); ++t) {
-      const double f = tr.full_rate_bead_force[t * ns + k];
-      if (f > m.value) {
-        m.value = f;
-        m.time = tr.full_rate_time[t];
-        m.bead = beads[k];
-      }
+    if (tr.full_rate_peak[k] > m.value) {
+      m.value = tr.full_rate_peak[k];
+      m.time = tr.full_rate_peak_time[k];
+      m.bead = beads[k];
     }
   }
   return m;
-}
-
-std::vector<double> peak_profile(const chain::ChainTrace& tr, int last) {
-  const std::size_t nt = tr.nt(), nb = tr.nbeads;
-  std::vector<double> out(static_cast<std::size_t>(last + 1), 0.0);
-  for (int b = 0; b <= last; ++b) {
-    std::size_t kmax = 0;
-    double fmax = -1.0;
-    for (std::size_t t = 0; t < nt; ++t) {
-      const double f = tr.bead_force[t * nb + static_cast<std::size_t>(b)];
-      if (f > fmax) {
-        fmax = f;
-        kmax = t;
-      }
-    }
-    double peak = fmax;
-    if (kmax > 0 && kmax + 1 < nt) {
-      const double h0 = tr.time[kmax] - tr.time[kmax - 1], h1 = tr.time[kmax + 1] - tr.time[kmax];
-      if (std::abs(h0 - h1) < 1e-6 * h0) {  // parabola through three equally spaced samples
-        const double y0 = tr.bead_force[(kmax - 1) * nb + static_cast<std::size_t>(b)];
-        const double y2 = tr.bead_force[(kmax + 1) * nb + static_cast<std::size_t>(b)];
-        const double den = y0 - 2.0 * fmax + y2;
-        if (den < 0.0) peak = fmax - (y0 - y2) * (y0 - y2) / (8.0 * den);
-      }
-    }
-    out[static_cast<std::size_t>(b)] = peak;
-  }
-  return out;
 }
 
 MemberResult run_spin_member(const SpinStudy& s, const SpinGroup& g, const SpinMember& m, std::size_t index,
@@ -209,11 +182,8 @@ MemberResult run_spin_member(const SpinStudy& s, const SpinGroup& g, const SpinM
   r.values[v_steps] = static_cast<double>(tr.steps);
   r.values[v_stopped_early] = tr.stopped_early ? 1.0 : 0.0;
   r.values[v_final_time] = tr.time.empty() ? 0.0 : tr.time.back();
-  for (std::size_t k = 0; k < g.sensors.size() && k < 2; ++k) {
-    const auto series = tr.full_rate_series(g.measure_beads.size() + k);
-    r.values[v_sensor0 + k] = series.empty() ? kNaN : *std::max_element(series.begin(), series.end());
-  }
-  r.profile = peak_profile(tr, g.measure_beads.back());
+  for (std::size_t k = 0; k < g.sensors.size() && k < 2; ++k) r.values[v_sensor0 + k] = tr.full_rate_peak[g.measure_beads.size() + k];
+  r.profile = tr.bead_peak;
   for (std::size_t c = 0; c < sys.ncells(); ++c)  // the counted spins (for the defect count)
     if (sys.counts_for_m[c]) r.label += sys.spin[c] ? '1' : '0';
   r.work = static_cast<double>(sys.nbeads()) * static_cast<double>(tr.steps);

@@ -92,16 +92,13 @@ chain::SimOptions member_sim_options(const SpinStudy& s, const SpinGroup& g, boo
 MemberResult run_spin_member(const SpinStudy& s, const SpinGroup& g, const SpinMember& m, std::size_t index,
                              const std::string& flippable_spins, bool stop = true);
 
-// The seed's measure on a finished trace: max over time and over `beads` of the full-rate bead
+// The seed's measure on a finished run: max over time (every step) and over `beads` of the bead
 // force (the beads must be the first full-rate beads of the run). Returns (value, time, bead).
 struct Measure {
   double value = 0.0, time = 0.0;
   int bead = -1;
 };
 Measure measure_of(const chain::ChainTrace& tr, const std::vector<int>& beads);
-// Peak over time of each bead 0..last from the sampled bead forces, refined by a parabola
-// through the three samples around the largest (equal spacing only).
-std::vector<double> peak_profile(const chain::ChainTrace& tr, int last);
 
 // ---- Appendix 3 ----
 // Transmission of a solitary pulse through one reversed dimer (spin 0) in an ordered (spin 1)
