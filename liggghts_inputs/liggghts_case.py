@@ -169,45 +169,61 @@ def read_dump(path: str):
         k += 1 + n
 
 
-def _pairs_on_first(rows: np.ndarray):
-    """(i, j, force on i) with each physical contact once. pair/gran/local rows are id1 id2 flag fx fy fz
-    (force on id1); with newton off a contact across a periodic boundary is listed from both sides."""
-    i = rows[:, 0].astype(int) - 1
-    j = rows[:, 1].astype(int) - 1
-    f = rows[:, 3:6]
+def _pairs_on_first(rows: np.ndarray, correct=None):
+    """(i, j, force on i) with each physical contact once, i < j. pair/gran/local rows are id1 id2 flag
+    fx fy fz (force on id1); with newton off a contact across a periodic boundary is listed from both
+    sides. `correct(id1, id2, f)` (optional) adjusts the forces of the chosen rows before reordering."""
+    i, j, f = _unique_rows(rows)
+    if correct is not None:
+        f = correct(i, j, f)
     a = np.minimum(i, j)
     b = np.maximum(i, j)
     sgn = np.where(i == a, 1.0, -1.0)
-    key = a.astype(np.int64) * (1 << 32) + b
-    _, first = np.unique(key, return_index=True)
-    return a[first], b[first], f[first] * sgn[first][:, None]
+    return a, b, f * sgn[:, None]
 
 
 def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y):
     """The force each contact applied in the step, from the force `compute pair/gran/local` dumps.
 
-    The compute recomputes the contact forces from the dumped state, so its normal dashpot sees the
-    synchronous velocity v(t); the step itself (LIGGGHTS' pair compute, granwave, YADE) fed it the
-    half-step velocity v(t - dt/2) = v(t) - f(t)/m dt/2 (f: the dumped per-atom total force, which
-    is the step's). The difference, gamma_n (ddelta_half - ddelta_full) n, is put back here so the
-    trace carries the forces that moved the particles, as the other codes' traces do. Only the
-    normal dashpot is corrected (gamma_t = 0 in every case here; a tangential dashpot would also
-    need the angular velocities). p, v, f_atoms [n, 3]; i, j, f_pair: contacts (force on i)."""
+    The compute recomputes the contact forces at dump time (after final_integrate), so its normal
+    dashpot sees the velocity of the owned atom i at v(t) -- and, for a pair across a periodic
+    boundary, the ghost image of j at the half-step velocity v(t - dt/2) communicated before the
+    step's force (ghosts are not touched by final_integrate). The step itself (LIGGGHTS' pair
+    compute, granwave, YADE) fed the dashpot v(t - dt/2) = v(t) - f(t)/m dt/2 for both (f: the
+    dumped per-atom total force, the step's). The difference gamma_n (ddelta_half - ddelta_used) n is
+    put back, so the trace carries the forces that moved the particles, as the other codes' traces do
+    (verified: the corrected pair forces sum to the dumped per-atom forces to 1e-16 N). Only the
+    normal dashpot is corrected (gamma_t = 0 in every case here; a tangential dashpot would also need
+    the angular velocities). p, v, f_atoms [n, 3]; i (id1 of the dumped row, owned), j (id2),
+    f_pair: force on i, rows as dumped (not reordered); one MPI rank."""
     if gamma_n == 0.0 or len(i) == 0:
         return f_pair
     vh = np.array(v, float, copy=True)
     mob = np.asarray(mobile, bool)
     vh[mob] -= np.asarray(f_atoms, float)[mob] / np.asarray(m, float)[mob][:, None] * (0.5 * dt)
     d = p[i] - p[j]
-    d[:, 0] -= box_x * np.round(d[:, 0] / box_x)
-    d[:, 1] -= box_y * np.round(d[:, 1] / box_y)
+    sx = np.round(d[:, 0] / box_x)
+    sy = np.round(d[:, 1] / box_y)
+    d[:, 0] -= box_x * sx
+    d[:, 1] -= box_y * sy
     r = np.linalg.norm(d, axis=1)
     n = d / r[:, None]                      # from j to i
     touching = r < radius[i] + radius[j]
-    dd_full = -np.sum(n * (v[i] - v[j]), axis=1)
+    ghost_j = (sx != 0) | (sy != 0)          # j seen through a periodic image: already half-step
+    vj_used = np.where(ghost_j[:, None], vh[j], v[j])
+    dd_used = -np.sum(n * (v[i] - vj_used), axis=1)
     dd_half = -np.sum(n * (vh[i] - vh[j]), axis=1)
-    corr = np.where(touching, gamma_n * (dd_half - dd_full), 0.0)
+    corr = np.where(touching, gamma_n * (dd_half - dd_used), 0.0)
     return f_pair + corr[:, None] * n
+
+
+def _unique_rows(rows: np.ndarray):
+    """(id1, id2, force on id1) of the first dumped row of each physical contact, as dumped."""
+    i = rows[:, 0].astype(int) - 1
+    j = rows[:, 1].astype(int) - 1
+    key = np.minimum(i, j).astype(np.int64) * (1 << 32) + np.maximum(i, j)
+    _, first = np.unique(key, return_index=True)
+    return i[first], j[first], rows[first, 3:6]
 
 
 def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str, facts: dict, version: str) -> None:
@@ -261,10 +277,12 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             du[:, 0] -= lay["box_x"] * np.round(du[:, 0] / lay["box_x"])
             du[:, 1] -= lay["box_y"] * np.round(du[:, 1] / lay["box_y"])
             pr = pairs.get(s, np.zeros((0, 6)))
-            i, j, f = _pairs_on_first(pr) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
-            if gamma_n > 0.0 and len(i):
+            correct = None
+            if gamma_n > 0.0 and s > 0:   # step 0: the setup force already saw v(0), as the dump does
                 fa = rows[:, [cols.index("fx"), cols.index("fy"), cols.index("fz")]]
-                f = dashpot_at_half_step(p, v, fa, mass, ~fixed, dt, i, j, f, r, gamma_n, lay["box_x"], lay["box_y"])
+                correct = lambda i1, i2, ff, p=p, v=v, fa=fa: dashpot_at_half_step(  # noqa: E731
+                    p, v, fa, mass, ~fixed, dt, i1, i2, ff, r, gamma_n, lay["box_x"], lay["box_y"])
+            i, j, f = _pairs_on_first(pr, correct) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
             szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
             out_rows["szz"].append(szz)
             out_rows["szx"].append(szx)

@@ -81,12 +81,21 @@ def test_sweep_table_shape():
     assert md1[0] == "| g | z | a |" and md1[1].count("---") == 3
 
 
-def test_liggghts_dashpot_put_back_to_half_step():
-    """Two touching spheres along x, box periodic in x (the pair straddles the boundary). The dumped
-    force carries gamma * ddelta(v(t)); the step used v(t - dt/2) = v - f/m dt/2."""
-    gamma, dt, k, m = 0.1, 2e-7, 1e5, np.array([1e-5, 2e-5])
+def _two_spheres(across):
     box = 0.01
-    p = np.array([[0.0005, 0.0, 0.0], [box - 0.0014, 0.0, 0.0]])   # distance 1.9e-3 across the boundary
+    if across:   # the pair straddles the periodic boundary in x: j is seen through its image (a ghost)
+        p = np.array([[0.0005, 0.0, 0.0], [box - 0.0014, 0.0, 0.0]])
+    else:
+        p = np.array([[0.0050, 0.0, 0.0], [0.0031, 0.0, 0.0]])
+    return p, box
+
+
+@pytest.mark.parametrize("across", [False, True])
+def test_liggghts_dashpot_put_back_to_half_step(across):
+    """The dumped force carries gamma * ddelta with v_i(t) and v_j(t) (or, across the periodic
+    boundary, the ghost's half-step v_j(t - dt/2)); the step used v(t - dt/2) = v - f/m dt/2 for both."""
+    gamma, dt, k, m = 0.1, 2e-7, 1e5, np.array([1e-5, 2e-5])
+    p, box = _two_spheres(across)
     radius = np.array([1e-3, 1e-3])
     v = np.array([[-0.3, 0.1, 0.0], [0.2, 0.0, 0.0]])
     fa = np.array([[5.0, 0.0, 0.0], [-5.0, 1.0, 0.0]])
@@ -96,26 +105,39 @@ def test_liggghts_dashpot_put_back_to_half_step():
     n = d / r
     delta = 2e-3 - r
 
-    def force(vel):
-        dd = -n.dot(vel[0] - vel[1])
-        return (k * delta + gamma * dd) * n
+    def force(vi, vj):
+        return (k * delta + gamma * -n.dot(vi - vj)) * n
 
     vh = v - fa / m[:, None] * (dt / 2)
-    dumped = force(v)[None, :]
-    got = L.dashpot_at_half_step(p, v, fa, m, np.array([True, True]), dt, np.array([0]), np.array([1]), dumped,
-                                 radius, gamma, box, 1.0)
-    assert np.allclose(got[0], force(vh), rtol=1e-12, atol=0)
-    # a fixed particle keeps its velocity (no half kick); no damping: nothing changes
-    got2 = L.dashpot_at_half_step(p, v, fa, m, np.array([True, False]), dt, np.array([0]), np.array([1]), dumped,
-                                  radius, gamma, box, 1.0)
-    vh2 = v.copy()
-    vh2[0] = vh[0]
-    assert np.allclose(got2[0], force(vh2), rtol=1e-12, atol=0)
-    assert L.dashpot_at_half_step(p, v, fa, m, np.array([True, True]), dt, np.array([0]), np.array([1]), dumped,
-                                  radius, 0.0, box, 1.0) is dumped
+    dumped = force(v[0], vh[1] if across else v[1])[None, :]
+    i, j = np.array([0]), np.array([1])
+    got = L.dashpot_at_half_step(p, v, fa, m, np.array([True, True]), dt, i, j, dumped, radius, gamma, box, 1.0)
+    assert np.allclose(got[0], force(vh[0], vh[1]), rtol=1e-12, atol=0)
+    # a fixed particle keeps its velocity (no half kick)
+    vh2 = vh.copy()
+    vh2[1] = v[1]
+    got2 = L.dashpot_at_half_step(p, v, fa, m, np.array([True, False]), dt, i, j,
+                                  force(v[0], v[1])[None, :], radius, gamma, box, 1.0)
+    assert np.allclose(got2[0], force(vh2[0], vh2[1]), rtol=1e-12, atol=0)
+    # no damping: nothing changes
+    assert L.dashpot_at_half_step(p, v, fa, m, np.array([True, True]), dt, i, j, dumped, radius, 0.0, box, 1.0) is dumped
     # an open pair is left alone
     far = p.copy()
-    far[1, 0] = box - 0.003
-    got3 = L.dashpot_at_half_step(far, v, fa, m, np.array([True, True]), dt, np.array([0]), np.array([1]),
-                                  np.zeros((1, 3)), radius, gamma, box, 1.0)
+    far[1, 0] += -0.002 if not across else -0.0015
+    got3 = L.dashpot_at_half_step(far, v, fa, m, np.array([True, True]), dt, i, j, np.zeros((1, 3)), radius, gamma,
+                                  box, 1.0)
     assert np.all(got3 == 0.0) and not math.isnan(got3.sum())
+
+
+def test_pairs_on_first_applies_the_correction_before_reordering():
+    rows = np.array([[2, 1, 1, 1.0, 0.0, 0.0], [1, 2, 1, -1.0, 0.0, 0.0], [1, 3, 1, 0.5, 0.0, 0.0]])
+    seen = []
+
+    def corr(i1, i2, f):
+        seen.append((i1.tolist(), i2.tolist()))
+        return f * 2
+
+    a, b, f = L._pairs_on_first(rows, corr)
+    assert a.tolist() == [0, 0] and b.tolist() == [1, 2]
+    assert seen == [([1, 0], [0, 2])]            # first dumped row of each contact, as dumped
+    assert f[:, 0].tolist() == [-2.0, 1.0]        # force on the lower id after the correction
