@@ -132,12 +132,17 @@ def render(case: dict, system: dict, workdir: str) -> dict:
             s = float(ex["amplitude"]) * lay["d"]
             exl = "displace_atoms  source move %s %s %s units box" % tuple(_g(s * a) for a in axis)
         else:
+            # granwave's velocity drive: the source layers become free particles with an initial
+            # velocity (integrated, interacting with each other), not moved at a constant velocity.
             vv = float(ex["amplitude"])
-            exl = "fix             drive source move linear %s %s %s" % tuple(_g(vv * a) for a in axis)
+            exl = "velocity        source set %s %s %s units box" % tuple(_g(vv * a) for a in axis)
+        vdrive = ex["drive"] != "displacement"
+        exclude = "exclude type 2 2 exclude type 2 3" + ("" if vdrive else " exclude type 3 3")
+        free_types = "1 3" if vdrive else "1"
         deck = _template("crystal.in.tmpl").substitute(
             case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.2 * float(r.min())),
             kn9=nine(c["kn"]), kt9=nine(c["kt"]), gn9=nine(c["gamma_n"]), gt9=nine(c["gamma_t"]),
-            mu9=nine(c["mu_static"]), limit_force="on" if c["normal_tension"] == "clip" else "off",
+            mu9=nine(c["mu_static"]), exclude=exclude, free_types=free_types, limit_force="on" if c["normal_tension"] == "clip" else "off",
             dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps)
         facts.update(lay={k: v for k, v in lay.items() if k != "layer"})
     with open(os.path.join(workdir, "in.case"), "w") as f:
@@ -269,6 +274,9 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         x0 = np.asarray(system["position"], float)
         mass = np.asarray(system["mass"], float)
         gamma_n = float(T.contact_params(case)["gamma_n"])
+        mobile = ~fixed
+        if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
+            mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
         out_rows = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx")}
         for s, cols, rows in atoms:
             p = rows[:, [cols.index("x"), cols.index("y"), cols.index("z")]]
@@ -281,7 +289,7 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             if gamma_n > 0.0 and s > 0:   # step 0: the setup force already saw v(0), as the dump does
                 fa = rows[:, [cols.index("fx"), cols.index("fy"), cols.index("fz")]]
                 correct = lambda i1, i2, ff, p=p, v=v, fa=fa: dashpot_at_half_step(  # noqa: E731
-                    p, v, fa, mass, ~fixed, dt, i1, i2, ff, r, gamma_n, lay["box_x"], lay["box_y"])
+                    p, v, fa, mass, mobile, dt, i1, i2, ff, r, gamma_n, lay["box_x"], lay["box_y"])
             i, j, f = _pairs_on_first(pr, correct) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
             szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
             out_rows["szz"].append(szz)

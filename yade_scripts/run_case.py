@@ -210,6 +210,28 @@ def first_verlet_step(ids, masses, v0, fixed, dt, newton, runner, sampler):
     runner.dead = False
 
 
+def preload_springs(ids, source, axis, shift, kt, newton, runner):
+    """DIAGNOSTIC ONLY (env XC_PRELOAD_SPRINGS=1): load the tangential springs with the source step as
+    granwave's Dynamics::displace does (f_t = -kt (u_i - u_j)_t at t = 0, n of the displaced packing).
+    YADE and LIGGGHTS normally start with f_t = 0 (seed 002 sec. 3.5); this switch only exists to show
+    that the granwave differences of the kt > 0 cases come from that preload (crosscheck/README.md)."""
+    newton.dead = True
+    runner.dead = True
+    O.step()                                  # geometry of the displaced packing (v = 0: no increments)
+    body_index = {i: k for k, i in enumerate(ids)}
+    for it in O.interactions:
+        if not it.isReal:
+            continue
+        k1, k2 = body_index[it.id1], body_index[it.id2]
+        if source[k1] == source[k2]:
+            continue
+        w = np.zeros(3)                       # u_2 - u_1 (the step of the source bodies)
+        w[axis] = shift * ((1.0 if source[k2] else 0.0) - (1.0 if source[k1] else 0.0))
+        nn = np.array(tuple(it.geom.normal), float)
+        wt = w - nn * nn.dot(w)
+        it.phys.shearForce = Vector3(*(-kt * wt))   # the force on id2 (id1 gets its opposite)
+
+
 # ---------------------------------------------------------------------------------------- crystal
 def run_crystal(case, system, dt, nsteps, every):
     c = T.contact_params(case)
@@ -222,6 +244,12 @@ def run_crystal(case, system, dt, nsteps, every):
     fixed = np.asarray(system["fixed"], int).astype(bool)
     layer = lay["layer"]
     n = len(m)
+    # The source: all bottom fixed layers. A displacement drive moves them by a held step; a velocity
+    # drive (granwave: set_mobile) makes them free particles with an initial velocity, integrated from
+    # then on (not moved at a constant velocity), interacting with each other and the first free layer.
+    source = fixed & (layer < lay["fixed_layers"])
+    vdrive = ex["drive"] != "displacement"
+    dyn_fixed = fixed & ~source if vdrive else fixed
     cells = case["crystal"]["cells"]
     if min(int(cells[0]), int(cells[1])) < 3:
         fail("YADE keeps one interaction per particle pair: a periodic layer needs >= 3 particles in x "
@@ -249,7 +277,7 @@ def run_crystal(case, system, dt, nsteps, every):
     ids = []
     for k in range(n):
         b = utils.sphere(Vector3(pos[k, 0], pos[k, 1], pos[k, 2] + zoff), float(r[k]), material=mat,
-                         fixed=bool(fixed[k]))
+                         fixed=bool(dyn_fixed[k]))
         b.state.mass = float(m[k])
         b.state.inertia = Vector3(*([float(inertia[k])] * 3))
         ids.append(O.bodies.append(b))
@@ -261,7 +289,7 @@ def run_crystal(case, system, dt, nsteps, every):
     has_shear = c["kt"] > 0 or c["gamma_t"] > 0
 
     def record():
-        p, v = sync_state(ids, m, dt, np.zeros(n, bool) | fixed)
+        p, v = sync_state(ids, m, dt, np.zeros(n, bool) | dyn_fixed)
         p[:, 2] -= zoff
         real = [it for it in O.interactions if it.isReal]
         ii = [it.id1 for it in real]
@@ -308,7 +336,7 @@ def run_crystal(case, system, dt, nsteps, every):
                     fail("FrictPhys kn/ks = %g/%g, expected %g/%g" % (it.phys.kn, it.phys.ks, c["kn"], c["kt"]), 1)
                 break
     # ... then the source (all bottom fixed layers) makes its step, and the leapfrog starts.
-    src = [k for k in range(n) if fixed[k] and layer[k] < lay["fixed_layers"]]
+    src = [k for k in range(n) if source[k]]
     axis = 2 if ex["mode"] == "P" else 0
     v0 = np.zeros((n, 3))
     if ex["drive"] == "displacement":
@@ -318,12 +346,13 @@ def run_crystal(case, system, dt, nsteps, every):
             p[axis] += shift
             O.bodies[ids[k]].state.pos = p
             x0[k, axis] += 0.0  # displacement outputs are measured from the undisplaced packing
+        if os.environ.get("XC_PRELOAD_SPRINGS") == "1" and c["kt"] > 0:
+            preload_springs(ids, source, axis, shift, c["kt"], newton, runner)
     else:
         for k in src:
-            vv = Vector3(0, 0, 0)
-            vv[axis] = float(ex["amplitude"])
-            O.bodies[ids[k]].state.vel = vv
-    first_verlet_step(ids, m, v0, fixed, dt, newton, runner, sampler)
+            v0[k, axis] = float(ex["amplitude"])
+            O.bodies[ids[k]].state.vel = Vector3(*v0[k])   # F(0) below sees v(0), as LIGGGHTS' setup
+    first_verlet_step(ids, m, v0, dyn_fixed, dt, newton, runner, sampler)
     runner.iterPeriod = every           # fire only on sampled steps (Python per step is costly)
     runner.iterLast = O.iter - 1        # = the step of the t = 0 sample: first fire at physical step `every`
     runner.nDone = max(1, runner.nDone)  # a PeriodicEngine that never ran re-bases iterLast on its first call
