@@ -12,8 +12,6 @@
 // error that acts as negative damping). In the sliding case the spring reset by (7) is then
 // advanced by the next step's displacement, as a sticking spring is.
 #pragma once
-#include <Eigen/Core>
-#include <Eigen/Geometry>  // cross products
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -22,7 +20,34 @@
 
 namespace granwave::contact {
 
-using Vec3 = Eigen::Vector3d;
+// A plain 3-vector. Unlike Eigen::Vector3d it carries no SIMD of its own, so a loop over
+// contacts that calls these laws vectorises across contacts; sums run left to right,
+// (a_0 b_0 + a_1 b_1) + a_2 b_2, the order Eigen used, so results are unchanged.
+struct Vec3 {
+  double vx = 0.0, vy = 0.0, vz = 0.0;
+  Vec3() = default;
+  Vec3(double x, double y, double z) : vx(x), vy(y), vz(z) {}
+  static Vec3 Zero() { return {}; }
+  double x() const { return vx; }
+  double y() const { return vy; }
+  double z() const { return vz; }
+  double dot(const Vec3& b) const { return vx * b.vx + vy * b.vy + vz * b.vz; }
+  double squaredNorm() const { return dot(*this); }
+  double norm() const { return std::sqrt(squaredNorm()); }
+  Vec3 normalized() const { return *this / norm(); }
+  Vec3 cross(const Vec3& b) const { return {vy * b.vz - vz * b.vy, vz * b.vx - vx * b.vz, vx * b.vy - vy * b.vx}; }
+  friend Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.vx + b.vx, a.vy + b.vy, a.vz + b.vz}; }
+  friend Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.vx - b.vx, a.vy - b.vy, a.vz - b.vz}; }
+  friend Vec3 operator-(const Vec3& a) { return {-a.vx, -a.vy, -a.vz}; }
+  friend Vec3 operator*(double s, const Vec3& a) { return {s * a.vx, s * a.vy, s * a.vz}; }
+  friend Vec3 operator*(const Vec3& a, double s) { return {a.vx * s, a.vy * s, a.vz * s}; }
+  friend Vec3 operator/(const Vec3& a, double s) { return {a.vx / s, a.vy / s, a.vz / s}; }
+};
+
+// Componentwise c ? a : b (both sides are computed: branch-free laws vectorise).
+inline Vec3 select(bool c, const Vec3& a, const Vec3& b) {
+  return {c ? a.vx : b.vx, c ? a.vy : b.vy, c ? a.vz : b.vz};
+}
 
 struct TangentialSpringParams {
   double kt = 0.0;          // tangential spring stiffness k_t (N/m), eq. (5)
@@ -48,8 +73,8 @@ struct TangentialSpringParams {
 inline Vec3 project_spring(const Vec3& xi_prev, const Vec3& n) {
   const Vec3 xi_star = xi_prev - n * n.dot(xi_prev);
   const double star2 = xi_star.squaredNorm();
-  if (star2 == 0.0) return Vec3::Zero();
-  return xi_star * std::sqrt(xi_prev.squaredNorm() / star2);  // |xi'| t*, one square root
+  const double scale = std::sqrt(xi_prev.squaredNorm() / star2);  // |xi'|/|xi*|, one root; unused if star2 = 0
+  return select(star2 == 0.0, Vec3::Zero(), xi_star * scale);
 }
 
 // Eq. (4): relative velocity of the two surfaces at the contact, n = (r_i - r_j)/|r_i - r_j|.
@@ -65,8 +90,7 @@ inline Vec3 tangential_velocity(const Vec3& vij, const Vec3& n) { return vij - n
 // Without a spring (k_t = 0) xi stays zero.
 inline Vec3 advance_spring(const TangentialSpringParams& p, const Vec3& xi_prev, const Vec3& n, const Vec3& vt,
                            double dt) {
-  if (p.kt == 0.0) return Vec3::Zero();
-  return project_spring(xi_prev, n) + vt * dt;
+  return select(p.kt == 0.0, Vec3::Zero(), project_spring(xi_prev, n) + vt * dt);
 }
 
 struct TangentialResult {
@@ -85,21 +109,23 @@ inline TangentialResult tangential_force(const TangentialSpringParams& p, const 
   const double f_pos = std::max(f_n, 0.0);
   const double f_static = p.mu_static * f_pos;    // f_C^s
   const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
-  const double magnitude2 = f_test.squaredNorm();  // compared squared: no root while sticking
+  const double magnitude2 = f_test.squaredNorm();  // compared squared
   const double limit = was_sliding ? f_dynamic : f_static;
   const bool sliding = magnitude2 > limit * limit;
-  if (!sliding) return {f_test, xi, false, 0.0};  // static case (1): f^t = f_o^t, spring kept (6)
-  // Sliding case (2); |f_o^t| > f_C^d >= 0, so t is defined.
+  // Static case (1): f^t = f_o^t, spring kept (6). Sliding case (2), computed in any case and
+  // selected (no branch, so a loop over contacts vectorises); when sliding |f_o^t| > f_C^d >= 0,
+  // so t is defined.
   const double magnitude = std::sqrt(magnitude2);
   const Vec3 t = f_test / magnitude;
-  const Vec3 force = f_dynamic * t;  // eq. (8): min(f_C^d, |f_o^t|) t
-  if (p.kt == 0.0) return {force, Vec3::Zero(), true, 0.0};
-  const Vec3 spring = -(f_dynamic * t + p.gamma_t * vt) / p.kt;  // eq. (7)
+  const Vec3 slide_force = f_dynamic * t;                        // eq. (8): min(f_C^d, |f_o^t|) t
+  const Vec3 slide_spring = -(slide_force + p.gamma_t * vt) / p.kt;  // eq. (7)
   // Dissipated by the slip: the Coulomb force times the displacement the reset (7) removes
   // from the spring, |xi - xi'| = (|f_o^t| - f_C^d)/k_t (exact for steady sliding; the
   // elastic energy of the over-stretched trial spring beyond that never acted on the spheres).
   const double slip_loss = f_dynamic * (magnitude - f_dynamic) / p.kt;
-  return {force, spring, true, slip_loss};
+  const bool spring = p.kt != 0.0;  // without one, xi stays zero
+  return {select(sliding, slide_force, f_test), select(sliding, select(spring, slide_spring, Vec3::Zero()), xi),
+          sliding, sliding && spring ? slip_loss : 0.0};
 }
 
 // Torques from f^t acting at the contact point: on i at -a_i n, on j (force -f^t) at +a_j n;

@@ -128,7 +128,21 @@ void Dynamics::rebuild() {
   ++rebuilds;
 }
 
+// body(c0, c1) over [0, n) in blocks, on OpenMP threads from parallel_min_particles on.
+template <class Body>
+void Dynamics::in_blocks(std::int64_t n, const Body& body) const {
+  constexpr std::int64_t block = 1024;
+  const std::int64_t nb = (n + block - 1) / block;
+#pragma omp parallel for schedule(static) if (threaded())
+  for (std::int64_t b = 0; b < nb; ++b) {
+    const Body local = body;  // a private copy, kept in registers (the shared one is reloaded)
+    local(b * block, std::min(n, (b + 1) * block));
+  }
+}
+
 // Friction: tangential forces at all; Lossy: dashpots or clipping can dissipate normally.
+// Branch-free (an open contact's values are computed and discarded), so the loop vectorises
+// across contacts; every contact writes only its own entries.
 template <bool Friction, bool Lossy>
 void Dynamics::contact_pass(double inc, bool dashpots) {
   ContactList& C = contacts;
@@ -136,86 +150,125 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
   const contact::LinearSpringDashpotParams nrm{normal_.kn, dashpots ? normal_.gamma_n : 0.0, normal_.clip_tension};
   const contact::TangentialSpringParams tan{tangential_.kt, dashpots ? tangential_.gamma_t : 0.0,
                                             tangential_.mu_static, tangential_.mu_dynamic};
-  const double* px = x.data(); const double* py = y.data(); const double* pz = z.data();
-  const double* pvx = vx.data(); const double* pvy = vy.data(); const double* pvz = vz.data();
+  const std::int32_t* ci = C.i.data();
+  const std::int32_t* cj = C.j.data();
+  const double* shx = C.shift_x.data();
+  const double* shy = C.shift_y.data();
+  const double* px = x.data();
+  const double* py = y.data();
+  const double* pz = z.data();
+  const double* pvx = vx.data();
+  const double* pvy = vy.data();
+  const double* pvz = vz.data();
+  const double* pwx = wx.data();
+  const double* pwy = wy.data();
+  const double* pwz = wz.data();
   const double* pa = radius.data();
-#pragma omp parallel for schedule(static) if (threaded())
-  for (std::int64_t c = 0; c < nc; ++c) {
-    const int i = C.i[c], j = C.j[c];
-    const double bx = px[j] + C.shift_x[c] - px[i];
-    const double by = py[j] + C.shift_y[c] - py[i];
+  double* cdelta = C.delta.data();
+  double* cfx = C.f_x.data();
+  double* cfy = C.f_y.data();
+  double* cfz = C.f_z.data();
+  double* cnx = C.nf_x.data();
+  double* cny = C.nf_y.data();
+  double* cnz = C.nf_z.data();
+  double* xix = C.xi_x.data();
+  double* xiy = C.xi_y.data();
+  double* xiz = C.xi_z.data();
+  std::int32_t* slide = C.sliding.data();
+  double* diss = C.dissipated.data();
+  // Pointers are captured by value (OpenMP would share them by reference, which the
+  // vectoriser cannot see through); blocks keep every contact's arithmetic the same.
+  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
+#pragma GCC ivdep
+  for (std::int64_t c = c0; c < c1; ++c) {
+    const int i = ci[c], j = cj[c];
+    const double bx = px[j] + shx[c] - px[i];
+    const double by = py[j] + shy[c] - py[i];
     const double bz = pz[j] - pz[i];
     const double r2 = bx * bx + by * by + bz * bz;
     const double reach = pa[i] + pa[j];
     const double r = std::sqrt(r2);
-    C.delta[c] = reach - r;
-    if (r >= reach) {  // open: no force; a spring that existed is lost
-      if constexpr (Friction) {
-        const double xi2 = C.xi_x[c] * C.xi_x[c] + C.xi_y[c] * C.xi_y[c] + C.xi_z[c] * C.xi_z[c];
-        C.dissipated[c] += 0.5 * tan.kt * xi2;
-        C.xi_x[c] = C.xi_y[c] = C.xi_z[c] = 0.0;
-        C.sliding[c] = 0;
-        C.nf_x[c] = C.nf_y[c] = C.nf_z[c] = 0.0;
-      }
-      C.f_x[c] = C.f_y[c] = C.f_z[c] = 0.0;
-      continue;
-    }
     const double delta = reach - r;
+    cdelta[c] = delta;
+    const bool open = r >= reach;  // no force; a spring that existed is lost
     const double inv_r = 1.0 / r;
-    const double nx = -bx * inv_r, ny = -by * inv_r, nz = -bz * inv_r;  // n = (r_i - r_j)/|r_i - r_j|
+    const contact::Vec3 n(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
     const double dvx = pvx[i] - pvx[j], dvy = pvy[i] - pvy[j], dvz = pvz[i] - pvz[j];
-    const double delta_dot = -(nx * dvx + ny * dvy + nz * dvz);
+    const double delta_dot = -(n.x() * dvx + n.y() * dvy + n.z() * dvz);
     const double f_n = contact::normal_force(nrm, delta, delta_dot);  // eq. (1) text
     // dissipated = work of (f_n - k delta) against the approach (dashpot, or clipped pull)
     double loss = Lossy ? (f_n - nrm.kn * delta) * delta_dot * inc : 0.0;
-    double fxc = f_n * nx, fyc = f_n * ny, fzc = f_n * nz;
+    contact::Vec3 f = f_n * n;
     if constexpr (Friction) {
-      const Vec3 n(nx, ny, nz);
-      const Vec3 vij = contact::relative_surface_velocity(Vec3(pvx[i], pvy[i], pvz[i]), Vec3(pvx[j], pvy[j], pvz[j]),
-                                                          Vec3(wx[i], wy[i], wz[i]), Vec3(wx[j], wy[j], wz[j]),
-                                                          pa[i], pa[j], n);  // eq. (4)
-      const Vec3 vt = contact::tangential_velocity(vij, n);                  // eq. (3)
-      const Vec3 xi = contact::advance_spring(tan, Vec3(C.xi_x[c], C.xi_y[c], C.xi_z[c]), n, vt, inc);  // (2), (6)
-      const auto res = contact::tangential_force(tan, xi, vt, f_n, C.sliding[c] != 0);  // (5), (7), (8)
-      C.xi_x[c] = res.spring.x();
-      C.xi_y[c] = res.spring.y();
-      C.xi_z[c] = res.spring.z();
-      C.sliding[c] = res.sliding;
-      const Vec3 nf = n.cross(res.force);
-      C.nf_x[c] = nf.x();
-      C.nf_y[c] = nf.y();
-      C.nf_z[c] = nf.z();
-      fxc += res.force.x();
-      fyc += res.force.y();
-      fzc += res.force.z();
+      const contact::Vec3 xi_prev(xix[c], xiy[c], xiz[c]);
+      const contact::Vec3 vij = contact::relative_surface_velocity(
+          {pvx[i], pvy[i], pvz[i]}, {pvx[j], pvy[j], pvz[j]}, {pwx[i], pwy[i], pwz[i]}, {pwx[j], pwy[j], pwz[j]}, pa[i],
+          pa[j], n);                                                        // eq. (4)
+      const contact::Vec3 vt = contact::tangential_velocity(vij, n);       // eq. (3)
+      const contact::Vec3 xi = contact::advance_spring(tan, xi_prev, n, vt, inc);  // (2), (6)
+      const auto res = contact::tangential_force(tan, xi, vt, f_n, slide[c] != 0);  // (5), (7), (8)
+      const contact::Vec3 nf = n.cross(res.force);
+      f = f + res.force;
       loss += tan.kt == 0.0 ? -res.force.dot(vt) * inc : tan.gamma_t * vt.squaredNorm() * inc + res.slip_loss;
+      const contact::Vec3 spring = contact::select(open, contact::Vec3::Zero(), res.spring);
+      xix[c] = spring.x();
+      xiy[c] = spring.y();
+      xiz[c] = spring.z();
+      slide[c] = !open && res.sliding;
+      cnx[c] = open ? 0.0 : nf.x();
+      cny[c] = open ? 0.0 : nf.y();
+      cnz[c] = open ? 0.0 : nf.z();
+      diss[c] += open ? 0.5 * tan.kt * xi_prev.squaredNorm() : loss;
+    } else if constexpr (Lossy) {
+      diss[c] = open ? diss[c] : diss[c] + loss;
     }
-    C.f_x[c] = fxc;
-    C.f_y[c] = fyc;
-    C.f_z[c] = fzc;
-    if (Friction || Lossy) C.dissipated[c] += loss;
+    cfx[c] = open ? 0.0 : f.x();
+    cfy[c] = open ? 0.0 : f.y();
+    cfz[c] = open ? 0.0 : f.z();
   }
+  };
+  in_blocks(nc, range);
 }
 
-void Dynamics::particle_pass() {
+// Sum of each particle's contact forces and torques in contact order; with Kick, the half
+// kick of velocity Verlet follows at once (the forces are then still in cache).
+template <bool Kick>
+void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
   const std::int64_t n = static_cast<std::int64_t>(size());
   const bool fr = friction_;
+  const std::int32_t* __restrict first = C.first.data();
+  const std::int32_t* __restrict entries = C.entries.data();
+  const double* __restrict cfx = C.f_x.data();
+  const double* __restrict cfy = C.f_y.data();
+  const double* __restrict cfz = C.f_z.data();
+  const double* __restrict cnx = C.nf_x.data();
+  const double* __restrict cny = C.nf_y.data();
+  const double* __restrict cnz = C.nf_z.data();
 #pragma omp parallel for schedule(static) if (threaded())
   for (std::int64_t p = 0; p < n; ++p) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
-    for (std::int32_t k = C.first[p]; k < C.first[p + 1]; ++k) {
-      const std::int32_t e = C.entries[k];
-      const bool is_i = e >= 0;
-      const std::int32_t c = is_i ? e : ~e;
-      const double s = is_i ? 1.0 : -1.0;
-      sx += s * C.f_x[c];
-      sy += s * C.f_y[c];
-      sz += s * C.f_z[c];
-      if (fr) {  // both spheres feel -a n x f^t (contact::tangential_torque)
-        nx += C.nf_x[c];
-        ny += C.nf_y[c];
-        nz += C.nf_z[c];
+    const std::int32_t k0 = first[p], k1 = first[p + 1];
+    if (fr) {  // both spheres feel -a n x f^t (contact::tangential_torque)
+      for (std::int32_t k = k0; k < k1; ++k) {
+        const std::int32_t e = entries[k];
+        const std::int32_t c = e >= 0 ? e : ~e;
+        const double s = e >= 0 ? 1.0 : -1.0;
+        sx += s * cfx[c];
+        sy += s * cfy[c];
+        sz += s * cfz[c];
+        nx += cnx[c];
+        ny += cny[c];
+        nz += cnz[c];
+      }
+    } else {
+      for (std::int32_t k = k0; k < k1; ++k) {
+        const std::int32_t e = entries[k];
+        const std::int32_t c = e >= 0 ? e : ~e;
+        const double s = e >= 0 ? 1.0 : -1.0;
+        sx += s * cfx[c];
+        sy += s * cfy[c];
+        sz += s * cfz[c];
       }
     }
     fx[p] = sx;
@@ -224,58 +277,56 @@ void Dynamics::particle_pass() {
     tx[p] = -radius[p] * nx;
     ty[p] = -radius[p] * ny;
     tz[p] = -radius[p] * nz;
+    if (Kick && mobile[p]) {
+      vx[p] += h * sx * inv_mass[p];
+      vy[p] += h * sy * inv_mass[p];
+      vz[p] += h * sz * inv_mass[p];
+      if (fr) {
+        wx[p] += h * tx[p] * inv_inertia[p];
+        wy[p] += h * ty[p] * inv_inertia[p];
+        wz[p] += h * tz[p] * inv_inertia[p];
+      }
+    }
   }
 }
 
-void Dynamics::compute_forces(double inc, bool dashpots) {
+void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
   const bool lossy = (dashpots && normal_.gamma_n > 0.0) || normal_.clip_tension;
   if (friction_)
     lossy ? contact_pass<true, true>(inc, dashpots) : contact_pass<true, false>(inc, dashpots);
   else
     lossy ? contact_pass<false, true>(inc, dashpots) : contact_pass<false, false>(inc, dashpots);
-  particle_pass();
-}
-
-void Dynamics::kick(double h) {
-  const std::int64_t n = static_cast<std::int64_t>(size());
-#pragma omp parallel for schedule(static) if (threaded())
-  for (std::int64_t p = 0; p < n; ++p) {
-    if (!mobile[p]) continue;
-    vx[p] += h * fx[p] * inv_mass[p];
-    vy[p] += h * fy[p] * inv_mass[p];
-    vz[p] += h * fz[p] * inv_mass[p];
-    if (friction_) {
-      wx[p] += h * tx[p] * inv_inertia[p];
-      wy[p] += h * ty[p] * inv_inertia[p];
-      wz[p] += h * tz[p] * inv_inertia[p];
-    }
-  }
+  kick ? particle_pass<true>(0.5 * dt_) : particle_pass<false>(0.0);
 }
 
 void Dynamics::step() {
   const double h = 0.5 * dt_;
   const std::int64_t n = static_cast<std::int64_t>(size());
-  // First half kick and drift (translation; sphere orientation is not needed).
-#pragma omp parallel for schedule(static) if (threaded())
+  // First half kick and drift (translation; sphere orientation is not needed), with the
+  // largest displacement since the list was built (a max: exact in any order).
+  double m2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : m2) if (threaded())
   for (std::int64_t p = 0; p < n; ++p) {
-    if (!mobile[p]) continue;
-    vx[p] += h * fx[p] * inv_mass[p];
-    vy[p] += h * fy[p] * inv_mass[p];
-    vz[p] += h * fz[p] * inv_mass[p];
-    x[p] += dt_ * vx[p];
-    y[p] += dt_ * vy[p];
-    z[p] += dt_ * vz[p];
-    if (friction_) {
-      wx[p] += h * tx[p] * inv_inertia[p];
-      wy[p] += h * ty[p] * inv_inertia[p];
-      wz[p] += h * tz[p] * inv_inertia[p];
+    if (mobile[p]) {
+      vx[p] += h * fx[p] * inv_mass[p];
+      vy[p] += h * fy[p] * inv_mass[p];
+      vz[p] += h * fz[p] * inv_mass[p];
+      x[p] += dt_ * vx[p];
+      y[p] += dt_ * vy[p];
+      z[p] += dt_ * vz[p];
+      if (friction_) {
+        wx[p] += h * tx[p] * inv_inertia[p];
+        wy[p] += h * ty[p] * inv_inertia[p];
+        wz[p] += h * tz[p] * inv_inertia[p];
+      }
     }
+    const double dx = x[p] - x_build_[p], dy = y[p] - y_build_[p], dz = z[p] - z_build_[p];
+    m2 = std::max(m2, dx * dx + dy * dy + dz * dz);
   }
   time += dt_;
   ++steps;
-  if (max_displacement_since_build() > 0.5 * skin_) rebuild();
-  compute_forces(dt_, true);
-  kick(h);
+  if (std::sqrt(m2) > 0.5 * skin_) rebuild();
+  compute_forces(dt_, true, true);  // forces at t + dt and the second half kick
 }
 
 void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double dy, double dz) {

@@ -25,7 +25,7 @@ struct ContactList {
   std::vector<std::int16_t> image_x, image_y;
   std::vector<double> shift_x, shift_y;    // image offsets of j (m)
   std::vector<double> xi_x, xi_y, xi_z;    // tangential spring xi' (m), eqs. (6)/(7)
-  std::vector<std::uint8_t> sliding;       // 1 = dynamic (sliding) case active
+  std::vector<std::int32_t> sliding;       // 1 = dynamic (sliding) case active (int: vectorises with doubles)
   std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
   std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N
   std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -a_i n x f^t, on j = -a_j n x f^t)
@@ -88,12 +88,14 @@ class Dynamics {
   double max_displacement_since_build() const;
 
  private:
-  void compute_forces(double increment_time, bool dashpots);
+  void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
   bool threaded() const { return size() >= parallel_min_particles; }
+  template <class Body>
+  void in_blocks(std::int64_t n, const Body& body) const;
   template <bool Friction, bool Lossy>
   void contact_pass(double increment_time, bool dashpots);
-  void particle_pass();
-  void kick(double h);
+  template <bool Kick>
+  void particle_pass(double h);
 
   Packing packing_;
   contact::LinearSpringDashpotParams normal_;
