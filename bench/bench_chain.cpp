@@ -9,6 +9,7 @@
 
 #include "chain/chain.hpp"
 #include "config/case.hpp"
+#include "../tests/physics/chain_cases.hpp"  // the Table 1 materials
 
 using namespace granwave;
 
@@ -29,20 +30,7 @@ int main(int argc, char** argv) {
   const std::string text = R"([case]
 name = "bench"
 model = "chain"
-[materials.large_steel]
-mass = 3.63e-3
-youngs_modulus = 193e9
-poisson_ratio = 0.30
-radius = 4.76e-3
-[materials.aluminium]
-mass = 1.26e-3
-youngs_modulus = 72.4e9
-poisson_ratio = 0.33
-radius = 4.76e-3
-[materials.brass]
-youngs_modulus = 90.2e9
-poisson_ratio = 0.34
-[chain]
+)" + std::string(chain_test::kMaterials) + R"([chain]
 striker = { material = "large_steel", velocity = 0.443 }
 wall = "brass"
 cell = ["large_steel", "aluminium"]

@@ -12,6 +12,7 @@
 
 #include "chain/chain.hpp"
 #include "config/case.hpp"
+#include "../physics/chain_cases.hpp"
 
 using namespace granwave;
 
@@ -19,28 +20,10 @@ namespace {
 
 const std::string kGolden = std::string(GRANWAVE_SOURCE_DIR) + "/data/reference/chain_golden.csv";
 
-const char* kCase = R"([case]
+const std::string kCase = std::string(R"([case]
 name = "chain_golden"
 model = "chain"
-[materials.large_steel]
-mass = 3.63e-3
-youngs_modulus = 193e9
-poisson_ratio = 0.30
-radius = 4.76e-3
-[materials.small_steel]
-mass = 0.45e-3
-youngs_modulus = 193e9
-poisson_ratio = 0.30
-radius = 2.38e-3
-[materials.aluminium]
-mass = 1.26e-3
-youngs_modulus = 72.4e9
-poisson_ratio = 0.33
-radius = 4.76e-3
-[materials.brass]
-youngs_modulus = 90.2e9
-poisson_ratio = 0.34
-[chain]
+)") + chain_test::kMaterials + R"([chain]
 striker = { material = "large_steel", velocity = 1.0 }
 wall = "brass"
 cell = ["large_steel", "aluminium"]

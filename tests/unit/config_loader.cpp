@@ -5,27 +5,14 @@
 #include <string>
 
 #include "config/case.hpp"
+#include "../physics/chain_cases.hpp"
 #include "core/error.hpp"
 
 using namespace granwave;
 using namespace granwave::config;
 
 namespace {
-const std::string kMaterials = R"(
-[materials.large_steel]
-mass = 3.63e-3
-youngs_modulus = 193e9
-poisson_ratio = 0.30
-radius = 4.76e-3
-[materials.aluminium]
-mass = 1.26e-3
-youngs_modulus = 72.4e9
-poisson_ratio = 0.33
-radius = 4.76e-3
-[materials.brass]
-youngs_modulus = 90.2e9
-poisson_ratio = 0.34
-)";
+const std::string kMaterials = chain_test::kMaterials;
 
 std::string chain_case(const std::string& chain_extra = "", const std::string& segments = "[[chain.segment]]\nspins = \"1101\"\n",
                        const std::string& tail = "[integrator]\ndt = 1e-8\nt_end = 1e-4\n") {
