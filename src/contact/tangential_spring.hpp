@@ -5,6 +5,7 @@
 // Order of operations per contact and time step (velocity Verlet):
 //   xi   = advance_spring(xi', n, v_t, dt)    eq. (2) projection, then eq. (6) increment
 //   f, xi', sliding = tangential_force(...)   eqs. (5), (7), (8) and the stick-slip rule
+//                   = tangential_test(...), then sliding_force(...) if it slides
 // In velocity Verlet the velocity available at the force evaluation at t_{n+1} is the
 // half-step velocity, i.e. the velocity over the step just taken, so its increment (6) belongs
 // to that step and is applied before the test force (5). Applying it after (5), literally as
@@ -100,32 +101,46 @@ struct TangentialResult {
   double slip_loss;  // energy dissipated by the slip in this step (J); 0 when sticking
 };
 
-// Eqs. (5), (7), (8) with the stick-slip switching of the text: a sticking contact starts to
-// slide when |f_o^t| > mu^s f^n; a sliding one sticks again when |f_o^t| <= mu^d f^n.
-// f_n is the normal force (a pulling normal force gives no friction).
-inline TangentialResult tangential_force(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
-                                         bool was_sliding) {
+// Eq. (5) with the stick-slip switching of the text: a sticking contact starts to slide when
+// |f_o^t| > mu^s f^n; a sliding one sticks again when |f_o^t| <= mu^d f^n. f_n is the normal
+// force (a pulling normal force gives no friction). Branch- and root-free: it vectorises.
+struct TangentialTest {
+  Vec3 force;         // f_o^t, eq. (5): f^t in the static case (1)
+  double magnitude2;  // |f_o^t|^2 (compared squared)
+  double f_dynamic;   // f_C^d = mu^d max(f_n, 0)
+  bool sliding;       // the dynamic case (2) applies
+};
+inline TangentialTest tangential_test(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
+                                      bool was_sliding) {
   const Vec3 f_test = -p.kt * xi - p.gamma_t * vt;  // eq. (5)
   const double f_pos = std::max(f_n, 0.0);
   const double f_static = p.mu_static * f_pos;    // f_C^s
   const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
-  const double magnitude2 = f_test.squaredNorm();  // compared squared
+  const double magnitude2 = f_test.squaredNorm();
   const double limit = was_sliding ? f_dynamic : f_static;
-  const bool sliding = magnitude2 > limit * limit;
-  // Static case (1): f^t = f_o^t, spring kept (6). Sliding case (2), computed in any case and
-  // selected (no branch, so a loop over contacts vectorises); when sliding |f_o^t| > f_C^d >= 0,
-  // so t is defined.
-  const double magnitude = std::sqrt(magnitude2);
-  const Vec3 t = f_test / magnitude;
-  const Vec3 slide_force = f_dynamic * t;                        // eq. (8): min(f_C^d, |f_o^t|) t
-  const Vec3 slide_spring = -(slide_force + p.gamma_t * vt) / p.kt;  // eq. (7)
+  return {f_test, magnitude2, f_dynamic, magnitude2 > limit * limit};
+}
+
+// Sliding case (2) of a test that slides; |f_o^t| > f_C^d >= 0, so t is defined.
+inline TangentialResult sliding_force(const TangentialSpringParams& p, const TangentialTest& test, const Vec3& vt) {
+  const double magnitude = std::sqrt(test.magnitude2);
+  const Vec3 t = test.force / magnitude;
+  const Vec3 force = test.f_dynamic * t;  // eq. (8): min(f_C^d, |f_o^t|) t
+  if (p.kt == 0.0) return {force, Vec3::Zero(), true, 0.0};
+  const Vec3 spring = -(force + p.gamma_t * vt) / p.kt;  // eq. (7)
   // Dissipated by the slip: the Coulomb force times the displacement the reset (7) removes
   // from the spring, |xi - xi'| = (|f_o^t| - f_C^d)/k_t (exact for steady sliding; the
   // elastic energy of the over-stretched trial spring beyond that never acted on the spheres).
-  const double slip_loss = f_dynamic * (magnitude - f_dynamic) / p.kt;
-  const bool spring = p.kt != 0.0;  // without one, xi stays zero
-  return {select(sliding, slide_force, f_test), select(sliding, select(spring, slide_spring, Vec3::Zero()), xi),
-          sliding, sliding && spring ? slip_loss : 0.0};
+  const double slip_loss = test.f_dynamic * (magnitude - test.f_dynamic) / p.kt;
+  return {force, spring, true, slip_loss};
+}
+
+// Eqs. (5), (7), (8): static case (1), f^t = f_o^t with the spring kept (6), or case (2).
+inline TangentialResult tangential_force(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
+                                         bool was_sliding) {
+  const TangentialTest test = tangential_test(p, xi, vt, f_n, was_sliding);
+  if (!test.sliding) return {test.force, xi, false, 0.0};
+  return sliding_force(p, test, vt);
 }
 
 // Torques from f^t acting at the contact point: on i at -a_i n, on j (force -f^t) at +a_j n;

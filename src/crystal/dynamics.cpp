@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "crystal/neighbors.hpp"
@@ -12,6 +13,10 @@
 namespace granwave::crystal {
 
 using contact::Vec3;
+
+namespace {
+constexpr std::int64_t kBlock = 1024;  // contacts per block of the contact pass
+}  // namespace
 
 Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, double dt)
     : packing_(packing), dt_(dt) {
@@ -131,18 +136,18 @@ void Dynamics::rebuild() {
 // body(c0, c1) over [0, n) in blocks, on OpenMP threads from parallel_min_particles on.
 template <class Body>
 void Dynamics::in_blocks(std::int64_t n, const Body& body) const {
-  constexpr std::int64_t block = 1024;
-  const std::int64_t nb = (n + block - 1) / block;
+  const std::int64_t nb = (n + kBlock - 1) / kBlock;
 #pragma omp parallel for schedule(static) if (threaded())
   for (std::int64_t b = 0; b < nb; ++b) {
     const Body local = body;  // a private copy, kept in registers (the shared one is reloaded)
-    local(b * block, std::min(n, (b + 1) * block));
+    local(b * kBlock, std::min(n, (b + 1) * kBlock));
   }
 }
 
 // Friction: tangential forces at all; Lossy: dashpots or clipping can dissipate normally.
 // Branch-free (an open contact's values are computed and discarded), so the loop vectorises
-// across contacts; every contact writes only its own entries.
+// across contacts; every contact writes only its own entries, with the same arithmetic
+// whichever sweep evaluates it.
 template <bool Friction, bool Lossy>
 void Dynamics::contact_pass(double inc, bool dashpots) {
   ContactList& C = contacts;
@@ -176,11 +181,12 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
   double* xiz = C.xi_z.data();
   std::int32_t* slide = C.sliding.data();
   double* diss = C.dissipated.data();
-  // Pointers are captured by value (OpenMP would share them by reference, which the
-  // vectoriser cannot see through); blocks keep every contact's arithmetic the same.
-  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
-#pragma GCC ivdep
-  for (std::int64_t c = c0; c < c1; ++c) {
+  // One contact. With Defer (the vectorised sweep) a sliding contact is left untouched and
+  // reported: the roots and divisions of the sliding case (2) are then paid only by the few
+  // contacts that slide, in a second, scalar sweep over them. Pointers are captured by value
+  // (OpenMP would share them by reference, which the vectoriser cannot see through).
+  auto one = [=](std::int64_t c, auto defer) __attribute__((always_inline)) -> bool {
+    constexpr bool Defer = decltype(defer)::value;
     const int i = ci[c], j = cj[c];
     const double bx = px[j] + shx[c] - px[i];
     const double by = py[j] + shy[c] - py[i];
@@ -189,7 +195,6 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
     const double reach = pa[i] + pa[j];
     const double r = std::sqrt(r2);
     const double delta = reach - r;
-    cdelta[c] = delta;
     const bool open = r >= reach;  // no force; a spring that existed is lost
     const double inv_r = 1.0 / r;
     const contact::Vec3 n(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
@@ -199,6 +204,7 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
     // dissipated = work of (f_n - k delta) against the approach (dashpot, or clipped pull)
     double loss = Lossy ? (f_n - nrm.kn * delta) * delta_dot * inc : 0.0;
     contact::Vec3 f = f_n * n;
+    bool deferred = false;
     if constexpr (Friction) {
       const contact::Vec3 xi_prev(xix[c], xiy[c], xiz[c]);
       const contact::Vec3 vij = contact::relative_surface_velocity(
@@ -206,26 +212,53 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
           pa[j], n);                                                        // eq. (4)
       const contact::Vec3 vt = contact::tangential_velocity(vij, n);       // eq. (3)
       const contact::Vec3 xi = contact::advance_spring(tan, xi_prev, n, vt, inc);  // (2), (6)
-      const auto res = contact::tangential_force(tan, xi, vt, f_n, slide[c] != 0);  // (5), (7), (8)
-      const contact::Vec3 nf = n.cross(res.force);
-      f = f + res.force;
-      loss += tan.kt == 0.0 ? -res.force.dot(vt) * inc : tan.gamma_t * vt.squaredNorm() * inc + res.slip_loss;
-      const contact::Vec3 spring = contact::select(open, contact::Vec3::Zero(), res.spring);
-      xix[c] = spring.x();
-      xiy[c] = spring.y();
-      xiz[c] = spring.z();
-      slide[c] = !open && res.sliding;
+      contact::Vec3 ft = contact::Vec3::Zero(), spring = xi;  // (5), (7), (8)
+      bool sliding = false;
+      double slip_loss = 0.0;
+      if constexpr (Defer) {
+        const contact::TangentialTest test = contact::tangential_test(tan, xi, vt, f_n, slide[c] != 0);
+        deferred = test.sliding;
+        ft = test.force;
+      } else {
+        const contact::TangentialResult res = contact::tangential_force(tan, xi, vt, f_n, slide[c] != 0);
+        ft = res.force;
+        spring = res.spring;
+        sliding = res.sliding;
+        slip_loss = res.slip_loss;
+      }
+      const contact::Vec3 nf = n.cross(ft);
+      f = f + ft;
+      loss += tan.kt == 0.0 ? -ft.dot(vt) * inc : tan.gamma_t * vt.squaredNorm() * inc + slip_loss;
+      // History is kept for a deferred contact (the scalar sweep starts from it again).
+      const contact::Vec3 kept = contact::select(deferred, xi_prev, contact::select(open, contact::Vec3::Zero(), spring));
+      xix[c] = kept.x();
+      xiy[c] = kept.y();
+      xiz[c] = kept.z();
+      slide[c] = deferred ? slide[c] : (!open & sliding);
       cnx[c] = open ? 0.0 : nf.x();
       cny[c] = open ? 0.0 : nf.y();
       cnz[c] = open ? 0.0 : nf.z();
-      diss[c] += open ? 0.5 * tan.kt * xi_prev.squaredNorm() : loss;
+      diss[c] = deferred ? diss[c] : diss[c] + (open ? 0.5 * tan.kt * xi_prev.squaredNorm() : loss);
     } else if constexpr (Lossy) {
       diss[c] = open ? diss[c] : diss[c] + loss;
     }
+    cdelta[c] = delta;
     cfx[c] = open ? 0.0 : f.x();
     cfy[c] = open ? 0.0 : f.y();
     cfz[c] = open ? 0.0 : f.z();
-  }
+    return deferred;
+  };
+  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
+    std::int32_t deferred[kBlock];
+    std::int32_t any = 0;
+#pragma GCC ivdep
+    for (std::int64_t c = c0; c < c1; ++c) {
+      deferred[c - c0] = one(c, std::true_type{});
+      any |= deferred[c - c0];
+    }
+    if (Friction && any)
+      for (std::int64_t c = c0; c < c1; ++c)
+        if (deferred[c - c0]) one(c, std::false_type{});
   };
   in_blocks(nc, range);
 }
