@@ -180,6 +180,11 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
             return lim, "FAIL", "not measurable in one of the codes; " + why
         return lim, ("PASS" if value <= lim else "FAIL"), why
 
+    for c in codes:
+        if c not in measures:
+            rows.append(dict(pair=c, quantity="ruler", what="granwave analyze --json", value=None, tol=None,
+                             status="FAIL", why="the ruler could not measure this trace: first peaks, arrival "
+                             "times and speeds are not compared (see the code's detail)"))
     for a in range(len(codes)):
         for b in range(a + 1, len(codes)):
             ca, cb = codes[a], codes[b]
@@ -424,8 +429,8 @@ def run(args) -> int:
                     traces[code] = T.read_trace(r["trace"])
                     measures[code] = R.measure(r["trace"], granwave or "granwave")
                 except R.RulerError as e:
-                    r["status"], r["detail"] = "failed", "not measurable: %s" % e
-                    traces.pop(code, None)
+                    # the traces are still compared; the missing measures are FAIL rows (compare_case)
+                    r["detail"] = "not measurable: %s" % e
                 except Exception as e:  # noqa: BLE001
                     r["status"], r["detail"] = "failed", "unreadable trace: %s" % e
                     traces.pop(code, None)
@@ -438,6 +443,7 @@ def run(args) -> int:
             json.dump(dict(runs=res["runs"], rows=res["rows"],
                            measures={c: {k: v for k, v in m.items() if k != "granwave_analyze"} for c, m in measures.items()}),
                       f, indent=1, default=str)
+        write_report(report_dir, results, started)   # after every case: a long suite that is stopped keeps its report
     verdict = write_report(report_dir, results, started)
     print("\n| case | status | detail |\n|---|---|---|")
     for v in verdict:
