@@ -15,7 +15,12 @@
 #  * In a PyRunner placed after NewtonIntegrator, forces belong to the time t of the step,
 #    positions to t + dt and velocities to t + dt/2. The writer labels the sample with t and
 #    shifts positions x(t) = x - v dt and velocities v(t) = v - F(t)/m dt/2 (exact for the scheme).
-#  * Both normal dashpots (ViscEl) see the velocity half a step behind the force, as LIGGGHTS.
+#  * Crystals (dashpots possible): the leapfrog start above would give the first dashpot force the
+#    velocity v(-dt/2) instead of v(0), so `first_verlet_step` evaluates F(0) with v(0), does the
+#    first half kick and drift itself and takes the t = 0 sample from that state; from then on the
+#    dashpots (ViscEl) see the velocity half a step behind the force, as granwave and LIGGGHTS.
+#  * Crystal shear increments: Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False) (the default
+#    scales the translational part by (r1+r2)/(r1+r2-delta): kt 1e-3 too stiff here).
 import json
 import math
 import os
@@ -392,8 +397,10 @@ def main(argv):
         times, data, wall, n, nreal, cost = run_crystal(case, system, dt, nsteps, every)
         summary["contacts"] = nreal
         law = "crystal: CundallStrack (FrictPhys) undamped / ViscEl (material k,c = 2x contact) damped"
-    conv = ("synchronous: leapfrog started from v(-dt/2) = v(0) - F(0)/m dt/2 (F(0) evaluated with "
-            "NewtonIntegrator dead); samples taken by a PyRunner after NewtonIntegrator are labelled "
+    start = ("leapfrog started from v(-dt/2) = v(0) - F(0)/m dt/2 (F(0) evaluated with NewtonIntegrator dead)"
+             if model == "chain" else "F(0) with v(0) (NewtonIntegrator dead), first half kick and drift by the "
+             "script, t = 0 sampled from that state")
+    conv = ("synchronous: " + start + "; samples taken by a PyRunner after NewtonIntegrator are labelled "
             "with the force time t, positions shifted x(t) = x(t+dt) - v(t+dt/2) dt, velocities "
             "v(t) = v(t+dt/2) - F(t)/m dt/2")
     T.write_trace(out_path, code="yade", code_version=yade_version(), case_text=text,
