@@ -1,3 +1,5 @@
+// 512-bit vectors for the contact loop (8 contacts per instruction; lane-wise IEEE: same results).
+#pragma GCC target("prefer-vector-width=512")
 #include "crystal/dynamics.hpp"
 
 #include <algorithm>
