@@ -26,6 +26,7 @@ import os
 import subprocess
 import sys
 import time
+import tomllib
 
 from . import harness as H
 from . import ruler as R
@@ -63,7 +64,11 @@ def make_case(template_path: str, name: str, changes: dict, out_dir: str) -> str
 def run_point(case_path: str, casedir: str, codes, granwave, timeout, fixture, ruler_args) -> dict:
     """One case through the harness steps; returns {code: {"status", "wall_s", "raw"}}."""
     out = {}
-    system, _ = H.build_system(case_path, casedir, granwave, fixture, timeout)
+    try:
+        system, _ = H.build_system(case_path, casedir, granwave, fixture, timeout)
+    except Exception as e:  # noqa: BLE001 -- a point that cannot be built is a row, not a crash
+        _log("%s: system not built: %s" % (os.path.basename(case_path), e))
+        return {code: dict(status="failed", wall_s=None, detail="system not built: %s" % e) for code in codes}
     for code in codes:
         t = time.time()
         r = H.run_code(code, case_path, system, os.path.join(casedir, code), timeout, granwave)
@@ -178,7 +183,6 @@ def friction(a, report_dir, granwave, tol) -> int:
             name = "sweep_friction_%s_%s_kt%s" % (a.size, mode, ("%g" % r).replace(".", "p"))
             tmpl = os.path.join(H.REPO, size["template_" + mode])
             with open(tmpl, "rb") as f:
-                import tomllib
                 kn = float(tomllib.load(f)["contact"]["kn"])
             ch = {("contact", "kt"): r * kn, ("contact", "gamma_n"): 0.0, ("contact", "mu_static"): 0.5,
                   ("contact", "mu_dynamic"): 0.5, ("excitation", "mode"): mode}
