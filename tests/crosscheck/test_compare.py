@@ -84,3 +84,37 @@ def test_choose_layers_and_contacts():
     small = C.choose_layers((np.arange(40) - 1) * l0, l0, 40, 2)
     assert 11 in small and len(small) >= 2
     assert C.choose_contacts(41, True) == [0, 9, 10, 20, 39, 40]
+
+
+def _chain_trace(scale):
+    t = np.arange(0, 200) * 1e-6
+    cf = np.zeros((len(t), 12))
+    for j in range(12):
+        cf[:, j] = scale * np.exp(-((t - (20 + 10 * j) * 1e-6) / 5e-6) ** 2)
+    return {"time": t, "/chain/contact_force": cf, "system_attrs": {"wall": "free"}}
+
+
+def test_expected_pairs_only_exempt_those_pairs_and_a_missing_ruler_is_a_fail_row():
+    from xclib import harness as Hh
+    tol = {"default": {"chain": {"trace_max_rel": 1e-4, "trace_l2_rel": 1e-4}},
+           "case": {"c": {"expected_disagreement": "granwave differs on purpose",
+                          "expected_pairs": ["granwave-yade", "granwave-liggghts"]}}}
+    traces = {"granwave": _chain_trace(1.1), "yade": _chain_trace(1.0), "liggghts": _chain_trace(1.0 + 1e-6)}
+    rows = Hh.compare_case({}, "c", "chain", traces, {}, tol)
+    st = {}
+    for r in rows:
+        st.setdefault((r["pair"], r["quantity"]), set()).add(r["status"])
+    assert st[("granwave-yade", "trace_max_rel")] == {"EXPECTED-DIFF"}
+    assert st[("granwave-liggghts", "trace_l2_rel")] == {"EXPECTED-DIFF"}
+    assert st[("yade-liggghts", "trace_max_rel")] == {"PASS"}
+    # no measures at all (no ruler): one FAIL row per code, the traces are still compared
+    assert {r["pair"] for r in rows if r["quantity"] == "ruler"} == {"granwave", "yade", "liggghts"}
+    assert all(r["status"] == "FAIL" for r in rows if r["quantity"] == "ruler")
+    # without expected_pairs the whole case is expected
+    del tol["case"]["c"]["expected_pairs"]
+    rows = Hh.compare_case({}, "c", "chain", traces, {}, tol)
+    assert {r["status"] for r in rows if r["quantity"] != "ruler"} == {"EXPECTED-DIFF"}
+    # and a pair outside expected_pairs that disagrees fails
+    tol["case"]["c"]["expected_pairs"] = ["granwave-yade"]
+    rows = Hh.compare_case({}, "c", "chain", traces, {}, tol)
+    assert "FAIL" in {r["status"] for r in rows if r["pair"] == "granwave-liggghts" and r["quantity"] == "trace_max_rel"}
