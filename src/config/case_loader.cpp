@@ -1,7 +1,4 @@
-// The case loader: TOML -> validated structs. The only translation unit that includes toml++.
-// Every error names the file (with line:column where known), the key, and what is allowed.
-#include <toml++/toml.h>
-
+// The case loader: TOML -> validated structs. Reading and error messages: config/toml_reader.hpp.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -10,156 +7,17 @@
 #include <sstream>
 
 #include "config/case.hpp"
+#include "config/toml_reader.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 
 namespace granwave::config {
 namespace {
 
-class Reader {
- public:
-  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& what, const toml::node* where = nullptr) const {
-    std::ostringstream msg;
-    msg << origin_;
-    if (where && where->source().begin) {
-      msg << ":" << where->source().begin.line << ":" << where->source().begin.column;
-    }
-    msg << ": " << (key.empty() ? std::string("case") : "key '" + key + "'") << ": " << what;
-    throw InputError(msg.str());
-  }
-
-  // Only these keys may appear in `table` (whose dotted name is `path`).
-  void allow_only(const toml::table& table, const std::string& path, std::initializer_list<std::string_view> keys) const {
-    for (auto&& [k, v] : table) {
-      if (std::find(keys.begin(), keys.end(), k.str()) == keys.end()) {
-        std::string allowed;
-        for (auto a : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(a);
-        fail(join(path, std::string(k.str())), "unknown key (allowed here: " + allowed + ")", &v);
-      }
-    }
-  }
-
-  static std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
-
-  const toml::table* table(const toml::table& parent, const std::string& path, const std::string& key, bool required) const {
-    const toml::node* n = parent.get(key);
-    if (!n) {
-      if (required) fail(join(path, key), "missing (a table is required)");
-      return nullptr;
-    }
-    if (!n->is_table()) fail(join(path, key), "must be a table", n);
-    return n->as_table();
-  }
-
-  std::optional<double> number(const toml::table& t, const std::string& path, const std::string& key, bool required) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) fail(join(path, key), "missing (a number is required)");
-      return std::nullopt;
-    }
-    if (auto d = n->value_exact<double>()) {
-      if (!std::isfinite(*d)) fail(join(path, key), "must be a finite number", n);
-      return *d;
-    }
-    if (auto i = n->value_exact<int64_t>()) return static_cast<double>(*i);
-    fail(join(path, key), "must be a number", n);
-  }
-
-  // A number with a range check: `ok` decides, `allowed` describes the range in the message.
-  template <class Pred>
-  std::optional<double> number_in(const toml::table& t, const std::string& path, const std::string& key, bool required,
-                                  Pred ok, const std::string& allowed) const {
-    auto v = number(t, path, key, required);
-    if (v && !ok(*v)) {
-      std::ostringstream s;
-      s << "must be " << allowed << " (got " << *v << ")";
-      fail(join(path, key), s.str(), t.get(key));
-    }
-    return v;
-  }
-
-  std::optional<int64_t> integer(const toml::table& t, const std::string& path, const std::string& key, bool required) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) fail(join(path, key), "missing (an integer is required)");
-      return std::nullopt;
-    }
-    if (auto i = n->value_exact<int64_t>()) return *i;
-    fail(join(path, key), "must be an integer", n);
-  }
-
-  std::optional<std::string> string(const toml::table& t, const std::string& path, const std::string& key, bool required) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) fail(join(path, key), "missing (a string is required)");
-      return std::nullopt;
-    }
-    if (auto s = n->value_exact<std::string>()) return *s;
-    fail(join(path, key), "must be a string", n);
-  }
-
-  std::string choice(const toml::table& t, const std::string& path, const std::string& key, std::initializer_list<std::string_view> options,
-                     std::string fallback) const {
-    auto s = string(t, path, key, false);
-    if (!s) return fallback;
-    if (std::find(options.begin(), options.end(), *s) == options.end()) {
-      std::string allowed;
-      for (auto o : options) allowed += (allowed.empty() ? "\"" : ", \"") + std::string(o) + "\"";
-      fail(join(path, key), "must be one of " + allowed + " (got \"" + *s + "\")", t.get(key));
-    }
-    return *s;
-  }
-
-  std::optional<bool> boolean(const toml::table& t, const std::string& path, const std::string& key) const {
-    const toml::node* n = t.get(key);
-    if (!n) return std::nullopt;
-    if (auto b = n->value_exact<bool>()) return *b;
-    fail(join(path, key), "must be true or false", n);
-  }
-
-  std::vector<std::string> strings(const toml::table& t, const std::string& path, const std::string& key, bool required) const {
-    const toml::node* n = t.get(key);
-    std::vector<std::string> out;
-    if (!n) {
-      if (required) fail(join(path, key), "missing (an array of strings is required)");
-      return out;
-    }
-    const toml::array* a = n->as_array();
-    if (!a) fail(join(path, key), "must be an array of strings", n);
-    for (auto&& e : *a) {
-      auto s = e.value_exact<std::string>();
-      if (!s) fail(join(path, key), "must be an array of strings", &e);
-      out.push_back(*s);
-    }
-    return out;
-  }
-
-  std::vector<int64_t> integers(const toml::table& t, const std::string& path, const std::string& key) const {
-    const toml::node* n = t.get(key);
-    std::vector<int64_t> out;
-    if (!n) return out;
-    const toml::array* a = n->as_array();
-    if (!a) fail(join(path, key), "must be an array of integers", n);
-    for (auto&& e : *a) {
-      auto i = e.value_exact<int64_t>();
-      if (!i) fail(join(path, key), "must be an array of integers", &e);
-      out.push_back(*i);
-    }
-    return out;
-  }
-
-  const std::string& origin() const { return origin_; }
-
- private:
-  std::string origin_;
-};
-
 constexpr double kPi = 3.14159265358979323846;
 
 // ---- materials ------------------------------------------------------------------------------
-std::vector<Material> read_materials(const Reader& r, const toml::table& root) {
+std::vector<Material> read_materials(const TomlReader& r, const toml::table& root) {
   std::vector<Material> out;
   const toml::table* mats = r.table(root, "", "materials", true);
   if (mats->empty()) r.fail("materials", "needs at least one material", mats);
@@ -201,7 +59,7 @@ std::string material_list(const std::vector<Material>& mats) {
 }
 
 // A bead material: must exist and have mass and radius.
-void require_bead(const Reader& r, const std::vector<Material>& mats, const std::string& key, const std::string& name,
+void require_bead(const TomlReader& r, const std::vector<Material>& mats, const std::string& key, const std::string& name,
                   const toml::node* where) {
   const Material* m = find_material(mats, name);
   if (!m) r.fail(key, "unknown material \"" + name + "\" (defined: " + material_list(mats) + ")", where);
@@ -221,7 +79,7 @@ std::string draw_spins(int count, int n_up, std::uint64_t seed) {
   return s;
 }
 
-ChainCase read_chain(const Reader& r, const toml::table& root, const std::vector<Material>& mats, const toml::node* chain_node) {
+ChainCase read_chain(const TomlReader& r, const toml::table& root, const std::vector<Material>& mats, const toml::node* chain_node) {
   const toml::table& t = *chain_node->as_table();
   r.allow_only(t, "chain", {"striker", "wall", "cell", "precompression", "segment"});
   ChainCase c;
@@ -330,7 +188,7 @@ int chain_bead_count(const ChainCase& c) {
 }
 
 // ---- crystal --------------------------------------------------------------------------------
-CrystalCase read_crystal(const Reader& r, const toml::table& t) {
+CrystalCase read_crystal(const TomlReader& r, const toml::table& t) {
   r.allow_only(t, "crystal", {"lattice", "cells", "radius", "density", "overlap", "polydispersity", "fixed_layers", "seed",
                               "relax_tolerance"});
   CrystalCase c;
@@ -361,7 +219,7 @@ CrystalCase read_crystal(const Reader& r, const toml::table& t) {
   return c;
 }
 
-ContactParams read_contact(const Reader& r, const toml::table& t) {
+ContactParams read_contact(const TomlReader& r, const toml::table& t) {
   r.allow_only(t, "contact", {"kn", "gamma_n", "kt", "gamma_t", "mu_static", "mu_dynamic", "normal_tension"});
   ContactParams p;
   auto nonneg = [](double v) { return v >= 0; };
@@ -380,7 +238,7 @@ ContactParams read_contact(const Reader& r, const toml::table& t) {
   return p;
 }
 
-Excitation read_excitation(const Reader& r, const toml::table& t) {
+Excitation read_excitation(const TomlReader& r, const toml::table& t) {
   r.allow_only(t, "excitation", {"mode", "drive", "amplitude"});
   Excitation e;
   e.mode = r.choice(t, "excitation", "mode", {"P", "S"}, "P") == "S" ? Excitation::Mode::S : Excitation::Mode::P;
@@ -406,15 +264,8 @@ const Material& Case::material(const std::string& n) const {
 }
 
 Case parse_case(const std::string& toml_text, const std::string& origin) {
-  Reader r(origin);
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, origin);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << origin << ":" << e.source().begin.line << ":" << e.source().begin.column << ": not valid TOML: " << e.description();
-    throw InputError(msg.str());
-  }
+  const TomlReader r(origin);
+  const toml::table root = parse_toml(toml_text, origin);
   r.allow_only(root, "", {"case", "materials", "chain", "crystal", "contact", "excitation", "integrator", "stop", "output"});
 
   Case c;
@@ -424,8 +275,7 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
   r.allow_only(*head, "case", {"name", "model"});
   c.name = *r.string(*head, "case", "name", true);
   if (c.name.empty()) r.fail("case.name", "must not be empty", head->get("name"));
-  c.model = r.choice(*head, "case", "model", {"chain", "crystal"}, "") == "crystal" ? Model::crystal : Model::chain;
-  if (!head->contains("model")) r.fail("case.model", "missing (\"chain\" or \"crystal\")");
+  c.model = r.choice(*head, "case", "model", {"chain", "crystal"}) == "crystal" ? Model::crystal : Model::chain;
 
   if (c.model == Model::chain) {
     for (const char* k : {"crystal", "contact", "excitation"}) {

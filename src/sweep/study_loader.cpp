@@ -1,126 +1,16 @@
-// The study file (data/SCHEMA.md §4): TOML -> a validated SpinStudy. The sweep's only toml++
-// translation unit. Errors name the file (line:column), the key and what is allowed, like the
-// case loader's.
-#include <toml++/toml.h>
-
-#include <algorithm>
-#include <climits>
-#include <cmath>
+// The study file (data/SCHEMA.md §4): TOML -> a validated SpinStudy. Reading and error messages:
+// config/toml_reader.hpp, shared with the case loader.
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "config/toml_reader.hpp"
 #include "core/error.hpp"
 #include "sweep/spin_study.hpp"
 
 namespace granwave::sweep {
 namespace {
-
-class Reader {
- public:
-  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& what, const toml::node* where = nullptr) const {
-    std::ostringstream msg;
-    msg << origin_;
-    if (where && where->source().begin) msg << ":" << where->source().begin.line << ":" << where->source().begin.column;
-    msg << ": key '" << key << "': " << what;
-    throw InputError(msg.str());
-  }
-
-  void allow_only(const toml::table& t, const std::string& path, std::initializer_list<std::string_view> keys) const {
-    for (auto&& [k, v] : t)
-      if (std::find(keys.begin(), keys.end(), k.str()) == keys.end()) {
-        std::string allowed;
-        for (auto a : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(a);
-        fail(join(path, std::string(k.str())), "unknown key (allowed here: " + allowed + ")", &v);
-      }
-  }
-  static std::string join(const std::string& p, const std::string& k) { return p.empty() ? k : p + "." + k; }
-
-  const toml::table* table(const toml::table& parent, const std::string& key, bool required) const {
-    const toml::node* n = parent.get(key);
-    if (!n) {
-      if (required) fail(key, "missing (a table is required)");
-      return nullptr;
-    }
-    if (!n->is_table()) fail(key, "must be a table", n);
-    return n->as_table();
-  }
-
-  std::optional<double> number(const toml::table& t, const std::string& path, const std::string& key, bool required,
-                               bool (*ok)(double), const char* allowed) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) fail(join(path, key), std::string("missing (a number ") + allowed + " is required)");
-      return std::nullopt;
-    }
-    double v;
-    if (auto d = n->value_exact<double>()) v = *d;
-    else if (auto i = n->value_exact<int64_t>()) v = static_cast<double>(*i);
-    else fail(join(path, key), std::string("must be a number ") + allowed, n);
-    if (!std::isfinite(v) || !ok(v)) {
-      std::ostringstream s;
-      s << "must be " << allowed << " (got " << v << ")";
-      fail(join(path, key), s.str(), n);
-    }
-    return v;
-  }
-
-  std::optional<std::int64_t> integer(const toml::table& t, const std::string& path, const std::string& key, bool required,
-                                      std::int64_t lo, std::int64_t hi) const {
-    const toml::node* n = t.get(key);
-    std::ostringstream range;
-    range << "an integer in [" << lo << ", " << hi << "]";
-    if (!n) {
-      if (required) fail(join(path, key), "missing (" + range.str() + " is required)");
-      return std::nullopt;
-    }
-    auto i = n->value_exact<int64_t>();
-    if (!i) fail(join(path, key), "must be " + range.str(), n);
-    if (*i < lo || *i > hi) fail(join(path, key), "must be " + range.str() + " (got " + std::to_string(*i) + ")", n);
-    return *i;
-  }
-
-  std::optional<std::string> string(const toml::table& t, const std::string& path, const std::string& key, bool required) const {
-    const toml::node* n = t.get(key);
-    if (!n) {
-      if (required) fail(join(path, key), "missing (a string is required)");
-      return std::nullopt;
-    }
-    auto s = n->value_exact<std::string>();
-    if (!s) fail(join(path, key), "must be a string", n);
-    return *s;
-  }
-
-  std::optional<bool> boolean(const toml::table& t, const std::string& path, const std::string& key) const {
-    const toml::node* n = t.get(key);
-    if (!n) return std::nullopt;
-    auto b = n->value_exact<bool>();
-    if (!b) fail(join(path, key), "must be true or false", n);
-    return *b;
-  }
-
-  std::vector<std::int64_t> int_array(const toml::table& t, const std::string& path, const std::string& key,
-                                      std::int64_t lo, std::int64_t hi) const {
-    const toml::node* n = t.get(key);
-    if (!n) return {};
-    const toml::array* a = n->as_array();
-    std::ostringstream what;
-    what << "must be a non-empty array of integers in [" << lo << ", " << hi << "]";
-    if (!a || a->empty()) fail(join(path, key), what.str(), n);
-    std::vector<std::int64_t> out;
-    for (const auto& e : *a) {
-      auto i = e.value_exact<int64_t>();
-      if (!i || *i < lo || *i > hi) fail(join(path, key), what.str(), &e);
-      out.push_back(*i);
-    }
-    return out;
-  }
-
- private:
-  std::string origin_;
-};
 
 std::string read_text(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
@@ -133,21 +23,14 @@ std::string read_text(const std::string& path, const std::string& what) {
 }  // namespace
 
 SpinStudy parse_spin_study(const std::string& text, const std::string& origin) {
-  Reader r(origin);
-  toml::table root;
-  try {
-    root = toml::parse(text, origin);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << origin << ":" << e.source().begin.line << ":" << e.source().begin.column << ": TOML syntax error: " << e.description();
-    throw InputError(msg.str());
-  }
+  const config::TomlReader r(origin);
+  const toml::table root = config::parse_toml(text, origin);
   r.allow_only(root, "", {"study", "spin_chain", "run"});
   SpinStudy s;
   s.path = origin;
   s.text = text;
 
-  const toml::table& st = *r.table(root, "study", true);
+  const toml::table& st = *r.table(root, "", "study", true);
   r.allow_only(st, "study", {"name", "kind", "case", "case_toml", "seed", "configurations", "batch", "bootstrap"});
   s.name = *r.string(st, "study", "name", true);
   if (s.name.empty()) r.fail("study.name", "must not be empty", st.get("name"));
@@ -169,25 +52,25 @@ SpinStudy parse_spin_study(const std::string& text, const std::string& origin) {
   }
   if (s.base.model != config::Model::chain || !s.base.chain)
     r.fail("study.case", "the base case must be a chain case (model = \"chain\")", st.get("case"));
-  s.seed = static_cast<std::uint64_t>(*r.integer(st, "study", "seed", true, 0, INT64_MAX));
-  s.configurations = static_cast<int>(r.integer(st, "study", "configurations", false, 1, 100000).value_or(20));
-  s.batch = static_cast<std::size_t>(r.integer(st, "study", "batch", false, 1, 100000).value_or(32));
-  s.bootstrap = static_cast<std::size_t>(r.integer(st, "study", "bootstrap", false, 0, 1000000).value_or(1000));
+  s.seed = static_cast<std::uint64_t>(*r.integer_in(st, "study", "seed", true, 0, INT64_MAX));
+  s.configurations = static_cast<int>(r.integer_in(st, "study", "configurations", false, 1, 100000).value_or(20));
+  s.batch = static_cast<std::size_t>(r.integer_in(st, "study", "batch", false, 1, 100000).value_or(32));
+  s.bootstrap = static_cast<std::size_t>(r.integer_in(st, "study", "bootstrap", false, 0, 1000000).value_or(1000));
 
-  const toml::table* sc = r.table(root, "spin_chain", true);
+  const toml::table* sc = r.table(root, "", "spin_chain", true);
   r.allow_only(*sc, "spin_chain", {"layout", "n_total", "tail_dimers", "measure_beads", "profile_interval",
                                    "decay_skip_beads", "transmission_dimers"});
   const std::string layout = r.string(*sc, "spin_chain", "layout", false).value_or("tail");
   if (layout == "tail") s.layout = SpinStudy::Layout::tail;
   else if (layout == "base") s.layout = SpinStudy::Layout::base;
   else r.fail("spin_chain.layout", "must be \"tail\" (N_total flippable dimers + tail_dimers fixed ones) or \"base\" (the base case's segments)", sc->get("layout"));
-  for (auto n : r.int_array(*sc, "spin_chain", "n_total", 2, 100000)) s.n_total.push_back(static_cast<int>(n));
+  for (auto n : r.integers_in(*sc, "spin_chain", "n_total", 2, 100000)) s.n_total.push_back(static_cast<int>(n));
   if (s.layout == SpinStudy::Layout::tail && s.n_total.empty()) r.fail("spin_chain.n_total", "missing (layout \"tail\" needs the chain lengths)");
   if (s.layout == SpinStudy::Layout::base && !s.n_total.empty())
     r.fail("spin_chain.n_total", "not allowed with layout \"base\" (N_total = the base case's cells that count for M)", sc->get("n_total"));
-  s.tail_dimers = static_cast<int>(r.integer(*sc, "spin_chain", "tail_dimers", false, 0, 100000).value_or(15));
+  s.tail_dimers = static_cast<int>(r.integer_in(*sc, "spin_chain", "tail_dimers", false, 0, 100000).value_or(15));
   if (const toml::node* n = sc->get("measure_beads")) {
-    auto mb = r.int_array(*sc, "spin_chain", "measure_beads", 1, 1000);
+    auto mb = r.integers_in(*sc, "spin_chain", "measure_beads", 1, 1000);
     if (mb.size() != 2 || mb[0] > mb[1]) r.fail("spin_chain.measure_beads", "must be [first, last] with 1 <= first <= last", n);
     s.measure_first = static_cast<int>(mb[0]);
     s.measure_last = static_cast<int>(mb[1]);
@@ -195,17 +78,17 @@ SpinStudy parse_spin_study(const std::string& text, const std::string& origin) {
   if (s.layout == SpinStudy::Layout::tail && s.tail_dimers * 2 < s.measure_last)
     r.fail("spin_chain.tail_dimers", "the tail must hold the measured beads (2 tail_dimers >= " + std::to_string(s.measure_last) + ")", sc->get("tail_dimers"));
   s.profile_interval =
-      r.number(*sc, "spin_chain", "profile_interval", false, [](double v) { return v > 0 && v < 1e-3; }, "in (0, 1e-3) s").value_or(2e-6);
-  s.decay_skip_beads = static_cast<int>(r.integer(*sc, "spin_chain", "decay_skip_beads", false, 0, 100000).value_or(10));
-  s.transmission_dimers = static_cast<int>(r.integer(*sc, "spin_chain", "transmission_dimers", false, 10, 100000).value_or(60));
+      r.number_in(*sc, "spin_chain", "profile_interval", false, [](double v) { return v > 0 && v < 1e-3; }, "in (0, 1e-3) s").value_or(2e-6);
+  s.decay_skip_beads = static_cast<int>(r.integer_in(*sc, "spin_chain", "decay_skip_beads", false, 0, 100000).value_or(10));
+  s.transmission_dimers = static_cast<int>(r.integer_in(*sc, "spin_chain", "transmission_dimers", false, 10, 100000).value_or(60));
 
-  if (const toml::table* run = r.table(root, "run", false)) {
+  if (const toml::table* run = r.table(root, "", "run", false)) {
     r.allow_only(*run, "run", {"dt", "stop", "margin_beads", "front_threshold", "max_time_per_bead"});
-    s.dt = r.number(*run, "run", "dt", false, [](double v) { return v > 0 && v < 1e-4; }, "in (0, 1e-4) s");
+    s.dt = r.number_in(*run, "run", "dt", false, [](double v) { return v > 0 && v < 1e-4; }, "in (0, 1e-4) s");
     s.stop = r.boolean(*run, "run", "stop").value_or(true);
-    s.margin_beads = static_cast<int>(r.integer(*run, "run", "margin_beads", false, 1, 100000).value_or(10));
-    s.front_threshold = r.number(*run, "run", "front_threshold", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)").value_or(1e-3);
-    s.max_time_per_bead = r.number(*run, "run", "max_time_per_bead", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1) s").value_or(4e-5);
+    s.margin_beads = static_cast<int>(r.integer_in(*run, "run", "margin_beads", false, 1, 100000).value_or(10));
+    s.front_threshold = r.number_in(*run, "run", "front_threshold", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)").value_or(1e-3);
+    s.max_time_per_bead = r.number_in(*run, "run", "max_time_per_bead", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1) s").value_or(4e-5);
   }
   if (!s.dt && !s.base.integrator.dt && !s.base.integrator.dt_over_tc)
     r.fail("run.dt", "missing: neither the study nor the base case gives a time step");
