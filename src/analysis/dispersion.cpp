@@ -5,12 +5,29 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <string>
 
 #include "core/error.hpp"
 
 namespace granwave::analysis {
+namespace {
+// FFTW's planner and fftw_destroy_plan are not thread-safe (only fftw_execute is), and studies
+// measure their members on several OpenMP threads at once.
+std::mutex fftw_planner_mutex;
+
+struct PlanDeleter {
+  void operator()(fftw_plan_s* p) const {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex);
+    fftw_destroy_plan(p);
+  }
+};
+struct FftwFree {
+  void operator()(void* p) const { fftw_free(p); }
+};
+}  // namespace
 
 DispersionResult dispersion(const std::vector<double>& field, std::size_t nt, std::size_t nz, double dt, double dz,
                             const DispersionOptions& opt) {
@@ -28,13 +45,20 @@ DispersionResult dispersion(const std::vector<double>& field, std::size_t nt, st
 
   // FFTW r2c halves the last dimension: put time last, [nz][nt] -> [nz][nt/2 + 1].
   const std::size_t nw = nt / 2 + 1;
-  double* in = fftw_alloc_real(nt * nz);
-  fftw_complex* out = fftw_alloc_complex(nz * nw);
+  const std::unique_ptr<double, FftwFree> in_buf(fftw_alloc_real(nt * nz));
+  const std::unique_ptr<fftw_complex, FftwFree> out_buf(fftw_alloc_complex(nz * nw));
+  double* in = in_buf.get();
+  fftw_complex* out = out_buf.get();
   if (!in || !out) throw RunError("dispersion: FFTW allocation failed");
-  fftw_plan plan = fftw_plan_dft_r2c_2d(static_cast<int>(nz), static_cast<int>(nt), in, out, FFTW_ESTIMATE);
+  std::unique_ptr<fftw_plan_s, PlanDeleter> plan;
+  {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex);
+    plan.reset(fftw_plan_dft_r2c_2d(static_cast<int>(nz), static_cast<int>(nt), in, out, FFTW_ESTIMATE));
+  }
+  if (!plan) throw RunError("dispersion: FFTW could not plan the transform");
   for (std::size_t n = 0; n < nt; ++n)
     for (std::size_t p = 0; p < nz; ++p) in[p * nt + n] = field[n * nz + p];
-  fftw_execute(plan);
+  fftw_execute(plan.get());
   // |F(omega_m, k_s)| for signed s: FFTW's forward sign is e^{-i k z}; ours is e^{+i k z}, so the
   // column of wavenumber s is FFTW's row (-s) mod nz.
   auto amp = [&](long s, std::size_t m) {
@@ -69,9 +93,7 @@ DispersionResult dispersion(const std::vector<double>& field, std::size_t nt, st
     r.omega_max.push_back(den > 0.0 ? num / den : 0.0);
     r.weight.push_back(power);
   }
-  fftw_destroy_plan(plan);
-  fftw_free(in);
-  fftw_free(out);
+  plan.reset();
 
   // Least squares omega_max = omega_0 s_k, s_k = sin(k dz/2): linear in omega_0.
   const double k_edge = std::numbers::pi / dz;

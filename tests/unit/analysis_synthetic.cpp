@@ -292,3 +292,19 @@ TEST_CASE("chain trace: per-contact measures and front speed", "[analysis]") {
   CHECK(std::abs(a.v_first_peak.value - rate * pitch) <= rate * pitch * 3 * eps_p / span_t);
   CHECK(a.contacts[10].peak_value.value == Approx(40.0).epsilon(hc * hc / (8 * sigma * sigma)));
 }
+
+TEST_CASE("dispersion: concurrent calls (study members on OpenMP threads) give the serial result", "[analysis]") {
+  // FFTW's planner is not thread-safe; dispersion() serialises planning. Unserialised, this
+  // corrupted the heap now and then when a crystal study measured two members at once (and
+  // crashed this test in 2 of 6 runs with 64 calls).
+  const std::size_t nt = 64, nz = 32;
+  std::vector<double> f(nt * nz);
+  CounterRng rng(11, 0);
+  for (double& v : f) v = rng.uniform() - 0.5;
+  const auto serial = dispersion(f, nt, nz, 1e-6, l0);
+  constexpr int kCalls = 256;
+  std::vector<std::vector<double>> omega(kCalls);
+#pragma omp parallel for schedule(dynamic) num_threads(4)
+  for (int c = 0; c < kCalls; ++c) omega[c] = dispersion(f, nt, nz, 1e-6, l0).omega_max;
+  for (const auto& o : omega) CHECK(o == serial.omega_max);
+}
