@@ -215,28 +215,6 @@ def first_verlet_step(ids, masses, v0, fixed, dt, newton, runner, sampler):
     runner.dead = False
 
 
-def preload_springs(ids, source, axis, shift, kt, newton, runner):
-    """DIAGNOSTIC ONLY (env XC_PRELOAD_SPRINGS=1): load the tangential springs with the source step as
-    granwave's Dynamics::displace does (f_t = -kt (u_i - u_j)_t at t = 0, n of the displaced packing).
-    YADE and LIGGGHTS normally start with f_t = 0 (seed 002 sec. 3.5); this switch only exists to show
-    that the granwave differences of the kt > 0 cases come from that preload (crosscheck/README.md)."""
-    newton.dead = True
-    runner.dead = True
-    O.step()                                  # geometry of the displaced packing (v = 0: no increments)
-    body_index = {i: k for k, i in enumerate(ids)}
-    for it in O.interactions:
-        if not it.isReal:
-            continue
-        k1, k2 = body_index[it.id1], body_index[it.id2]
-        if source[k1] == source[k2]:
-            continue
-        w = np.zeros(3)                       # u_2 - u_1 (the step of the source bodies)
-        w[axis] = shift * ((1.0 if source[k2] else 0.0) - (1.0 if source[k1] else 0.0))
-        nn = np.array(tuple(it.geom.normal), float)
-        wt = w - nn * nn.dot(w)
-        it.phys.shearForce = Vector3(*(-kt * wt))   # the force on id2 (id1 gets its opposite)
-
-
 # ---------------------------------------------------------------------------------------- crystal
 def run_crystal(case, system, dt, nsteps, every):
     c = T.contact_params(case)
@@ -351,8 +329,6 @@ def run_crystal(case, system, dt, nsteps, every):
             p[axis] += shift
             O.bodies[ids[k]].state.pos = p
             x0[k, axis] += 0.0  # displacement outputs are measured from the undisplaced packing
-        if os.environ.get("XC_PRELOAD_SPRINGS") == "1" and c["kt"] > 0:
-            preload_springs(ids, source, axis, shift, c["kt"], newton, runner)
     else:
         for k in src:
             v0[k, axis] = float(ex["amplitude"])

@@ -366,17 +366,15 @@ void Dynamics::step() {
 
 void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double dy, double dz) {
   const double before = potential_energy() + dissipated_energy();
-  // Static update: every particle at rest except the moved ones, whose "velocity" is the step
-  // itself over a unit time, so that eq. (6) advances the springs by the step; no dashpots.
+  // Static update with every particle at rest: the step is a jump of position, not a motion, so
+  // the tangential springs (eq. (6) integrates v_t dt) do not see it and f_t = 0 at t = 0, as
+  // seed 002 sec. 3.5 prepares its runs and as YADE and LIGGGHTS do; no dashpots.
   const auto keep = std::array{vx, vy, vz, wx, wy, wz};
   for (auto* v : {&vx, &vy, &vz, &wx, &wy, &wz}) std::fill(v->begin(), v->end(), 0.0);
   for (std::size_t p : which) {
     x[p] += dx;
     y[p] += dy;
     z[p] += dz;
-    vx[p] = dx;
-    vy[p] = dy;
-    vz[p] = dz;
   }
   if (max_displacement_since_build() > 0.5 * skin_) rebuild();
   compute_forces(1.0, false);

@@ -63,8 +63,9 @@ class Dynamics {
   // Start (or stop) integrating particle p (velocity drive makes the source mobile).
   void set_mobile(std::size_t p, bool on);
   // Rigid step of the particles in `which` by (dx, dy, dz), held afterwards: the contacts are
-  // updated statically (springs advanced by the step, no dashpot) and the change of stored plus
-  // dissipated energy is booked as work_in.
+  // updated statically (normal overlaps only: a jump does not stretch the tangential springs, so
+  // f_t = 0 at t = 0 as in seed 002; no dashpot) and the change of stored plus dissipated energy
+  // is booked as work_in.
   void displace(const std::vector<std::size_t>& which, double dx, double dy, double dz);
   // Recompute the contact list from scratch (keeps history of pairs that persist).
   void rebuild();

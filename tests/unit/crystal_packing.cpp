@@ -164,3 +164,44 @@ TEST_CASE("ParaView snapshots: .vtp every vtk_every samples and a .pvd collectio
   CHECK(snap.find("Name=\"stress\" NumberOfComponents=\"9\"") != std::string::npos);
   for (const char* k : {"_000000.vtp", "_000001.vtp", "_000002.vtp", ".pvd", ".h5"}) std::filesystem::remove(base + k);
 }
+
+TEST_CASE("the source step does not stretch the tangential springs: f_t = 0 at t = 0", "[crystal][excitation]") {
+  // Seed 002 sec. 3.5 prepares its friction runs "such that f_t = 0 at t = 0"; YADE and LIGGGHTS
+  // move the source without a velocity. So the step changes overlaps only: with kt = k the forces
+  // on every particle right after it equal the frictionless crystal's, and the work booked is the
+  // normal springs' energy change.
+  config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
+  const crystal::Packing p = crystal::make_packing(c);
+  std::vector<std::size_t> source;
+  for (std::size_t q = 0; q < p.size(); ++q)
+    if (p.layer[q] < p.fixed_layers) source.push_back(q);
+  const double step = 1e-4 * p.d;
+  auto stepped = [&](double kt, bool p_mode) {
+    config::ContactParams cp = c.contact;
+    cp.kt = kt;
+    cp.mu_static = cp.mu_dynamic = 0.5;
+    crystal::Dynamics dyn(p, cp, *c.integrator.dt);
+    dyn.displace(source, p_mode ? 0.0 : step, 0.0, p_mode ? step : 0.0);
+    dyn.compute_forces();
+    return dyn;
+  };
+  for (bool p_mode : {true, false}) {
+    CAPTURE(p_mode);
+    const auto frictional = stepped(c.contact.kn, p_mode), frictionless = stepped(0.0, p_mode);
+    const auto& C = frictional.contacts;
+    for (std::size_t k = 0; k < C.size(); ++k) {
+      CHECK(C.xi_x[k] == 0.0);
+      CHECK(C.xi_y[k] == 0.0);
+      CHECK(C.xi_z[k] == 0.0);
+    }
+    REQUIRE(frictional.size() == frictionless.size());
+    for (std::size_t q = 0; q < frictional.size(); ++q) {
+      CHECK(frictional.fx[q] == frictionless.fx[q]);
+      CHECK(frictional.fz[q] == frictionless.fz[q]);
+      CHECK(frictional.tx[q] == 0.0);
+      CHECK(frictional.ty[q] == 0.0);
+    }
+    CHECK(frictional.work_in > 0.0);
+    CHECK(frictional.work_in == frictionless.work_in);
+  }
+}
