@@ -284,26 +284,17 @@ void Dynamics::particle_pass(double h) {
   for (std::int64_t p = 0; p < n; ++p) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     const std::int32_t k0 = first[p], k1 = first[p + 1];
-    if (fr) {  // both spheres feel -a n x f^t (contact::tangential_torque)
-      for (std::int32_t k = k0; k < k1; ++k) {
-        const std::int32_t e = entries[k];
-        const std::int32_t c = e >= 0 ? e : ~e;
-        const double s = e >= 0 ? 1.0 : -1.0;
-        sx += s * cfx[c];
-        sy += s * cfy[c];
-        sz += s * cfz[c];
+    for (std::int32_t k = k0; k < k1; ++k) {
+      const std::int32_t e = entries[k];
+      const std::int32_t c = e >= 0 ? e : ~e;
+      const double s = e >= 0 ? 1.0 : -1.0;
+      sx += s * cfx[c];
+      sy += s * cfy[c];
+      sz += s * cfz[c];
+      if (fr) {  // both spheres feel -a n x f^t (contact::tangential_torque); the loop is unswitched
         nx += cnx[c];
         ny += cny[c];
         nz += cnz[c];
-      }
-    } else {
-      for (std::int32_t k = k0; k < k1; ++k) {
-        const std::int32_t e = entries[k];
-        const std::int32_t c = e >= 0 ? e : ~e;
-        const double s = e >= 0 ? 1.0 : -1.0;
-        sx += s * cfx[c];
-        sy += s * cfy[c];
-        sz += s * cfz[c];
       }
     }
     fx[p] = sx;
