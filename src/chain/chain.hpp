@@ -166,7 +166,7 @@ class Stepper {
   // Velocity Verlet keeps the forces of the current state from its step (bit-identical to
   // evaluating them again); RK4's stages leave other forces behind.
   double contact_force(std::size_t j) const {
-    return forces_current_ ? F_[j + 1] : contact::hertz_force(A_[j], overlap(j));
+    return scheme_ == config::Scheme::verlet ? F_[j + 1] : contact::hertz_force(A_[j], overlap(j));
   }
   // Forces of all ncontacts() contacts, then the beads' mean contact forces.
   void contact_forces(double* out) const;
@@ -200,7 +200,6 @@ class Stepper {
   // until the front reaches them, so the step skips them; the result is bit-identical to the
   // full loop. A precompressed chain (every bead loaded) integrates all beads (front_ = n).
   std::size_t front_ = 0;
-  bool forces_current_ = false;  // F_[j + 1] is contact j's force at the current state
 };
 
 // ---- files (data/SCHEMA.md §2, §3) ----

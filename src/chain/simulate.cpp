@@ -35,7 +35,6 @@ Stepper::Stepper(const ChainSystem& sys, config::Scheme scheme, double dt)
     tmp_u_.assign(n_ + 1, 0.0);  // tmp_u_[n] = 0: the wall
   }
   accelerations(u_.data(), a_.data());
-  forces_current_ = scheme_ == config::Scheme::verlet;
   // The resting region starts after the last bead that moves or is pushed; none exists when any
   // contact starts loaded (precompression), since a loaded bead's balance is only approximate.
   const bool unloaded = sys.precompression == 0.0 && std::all_of(g_.begin(), g_.end(), [](double g) { return g <= 0.0; });
