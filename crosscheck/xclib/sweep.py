@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
+import math
 import os
 import subprocess
 import sys
@@ -112,7 +113,7 @@ def judge(value, lim, pair, tsec):
 # ------------------------------------------------------------------------------------------ damping
 def damping(a, report_dir, granwave, tol) -> int:
     size = SIZES[a.size]
-    gammas = [float(x) for x in a.values.split(",")] if a.values else list(GAMMAS)
+    gammas = _parse_values(a.values, "--values") or list(GAMMAS)
     codes = [c.strip() for c in a.codes.split(",") if c.strip()]
     ruler_args = ["--layers", size["layers"]] if size["layers"] else []
     points = []
@@ -160,6 +161,7 @@ def damping(a, report_dir, granwave, tol) -> int:
                     for p in points for z in size["positions"])
         st = judge(w, lim, pair, tsec)
         verdict.append((pair, "peak_rel (max over the sweep)", w, lim, st))
+    verdict += _run_failures(points, codes)
     status = _verdict_md(md, verdict, why, tsec)
     _timings_md(md, points, codes)
     png = os.path.join(report_dir, "damping.png")
@@ -173,7 +175,7 @@ def damping(a, report_dir, granwave, tol) -> int:
 # ----------------------------------------------------------------------------------------- friction
 def friction(a, report_dir, granwave, tol) -> int:
     size = SIZES[a.size]
-    kts = [float(x) for x in a.values.split(",")] if a.values else list(KT_OVER_K)
+    kts = _parse_values(a.values, "--values") or list(KT_OVER_K)
     modes = [m.strip() for m in a.modes.split(",") if m.strip()]
     codes = [c.strip() for c in a.codes.split(",") if c.strip()]
     ruler_args = ["--layers", size["layers"]] if size["layers"] else []
@@ -220,6 +222,7 @@ def friction(a, report_dir, granwave, tol) -> int:
             w = M.worst(M.pairwise({c: p["speeds"].get(c, {}).get(which) for c in codes}, codes).get(pair)
                         for p in points)
             verdict.append((pair, "speed_rel %s (max over the sweep)" % which, w, lim, judge(w, lim, pair, tsec)))
+    verdict += _run_failures(points, codes)
     status = _verdict_md(md, verdict, why, tsec)
     _timings_md(md, points, codes)
     png = os.path.join(report_dir, "friction.png")
@@ -233,6 +236,17 @@ def friction(a, report_dir, granwave, tol) -> int:
 # ------------------------------------------------------------------------------------------ output
 def _fmtv(v):
     return "-" if v is None else "%.5g" % v
+
+
+def _run_failures(points, codes):
+    """A code that failed, crashed or timed out at any point is a FAIL row (the sweep cannot pass)."""
+    rows = []
+    for c in codes:
+        bad = [p for p in points if p["runs"].get(c, {}).get("status") != "ok"]
+        if bad:
+            rows.append((c, "runs not ok: %d of %d (%s)" % (len(bad), len(points), bad[0]["runs"].get(c, {}).get("status")),
+                         None, None, "FAIL"))
+    return rows
 
 
 def _verdict_md(md, verdict, why, tsec) -> int:
@@ -314,7 +328,31 @@ def _plot_friction(points, codes, modes, path):
     plt.close(fig)
 
 
+def _parse_values(text: str, option: str):
+    """Comma-separated finite numbers >= 0, or None (the defaults); ValueError names the option."""
+    if not text:
+        return None
+    out = []
+    for x in text.split(","):
+        try:
+            v = float(x)
+        except ValueError:
+            raise ValueError("%s: '%s' is not a number (allowed: comma-separated numbers >= 0)" % (option, x)) from None
+        if not math.isfinite(v) or v < 0:
+            raise ValueError("%s: %s is outside the allowed range (finite, >= 0)" % (option, x))
+        out.append(v)
+    return out
+
+
 def main_sweep(a) -> int:
+    try:
+        _parse_values(a.values, "--values")
+        modes = [m.strip() for m in a.modes.split(",") if m.strip()]
+        if not modes or any(m not in ("P", "S") for m in modes):
+            raise ValueError("--modes: '%s' (allowed: P, S or P,S)" % a.modes)
+    except ValueError as e:
+        print("crosscheck sweep: %s" % e, file=sys.stderr)
+        return 2
     tol = H.load_tolerances(a.tolerances)
     bad = [c for c in a.codes.split(",") if c.strip() and c.strip() not in H.CODES]
     if bad:
