@@ -307,9 +307,12 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         for key, name in (("szz", "layer_stress_zz"), ("szx", "layer_stress_zx"), ("uz", "layer_displacement_z"),
                           ("ux", "layer_displacement_x"), ("vz", "layer_velocity_z"), ("vx", "layer_velocity_x")):
             data["/crystal/" + name] = np.array(out_rows[key])
+    extra = {"dt": dt, "deck": open(os.path.join(workdir, "in.case")).read()}
+    if "/crystal/layer_z" in data:
+        extra["lever_arm"] = T.lever_arm_used(T.contact_params(case), "LIGGGHTS")
     T.write_trace(out, code="liggghts", code_version=version, case_text=case_text, case_name=case["case"]["name"],
                   system_path=system_path, time_convention=TIME_CONVENTION, time=times, datasets=data,
-                  extra_attrs={"dt": dt, "deck": open(os.path.join(workdir, "in.case")).read()})
+                  extra_attrs=extra)
 
 
 def liggghts_version(log: str) -> str:

@@ -379,9 +379,12 @@ def main(argv):
     conv = ("synchronous: " + start + "; samples taken by a PyRunner after NewtonIntegrator are labelled "
             "with the force time t, positions shifted x(t) = x(t+dt) - v(t+dt/2) dt, velocities "
             "v(t) = v(t+dt/2) - F(t)/m dt/2")
+    extra = {"contact_law": law, "dt": dt}
+    if model != "chain":
+        extra["lever_arm"] = T.lever_arm_used(T.contact_params(case), "YADE")
     T.write_trace(out_path, code="yade", code_version=yade_version(), case_text=text,
                   case_name=case["case"]["name"], system_path=system_path, time_convention=conv,
-                  time=times, datasets=data, extra_attrs={"contact_law": law, "dt": dt})
+                  time=times, datasets=data, extra_attrs=extra)
     solver = max(wall - cost, 1e-9)
     summary.update(wall_s=wall, sampling_s=cost, solver_s=solver, particles=n,
                    particle_steps_per_s=n * nsteps / solver,

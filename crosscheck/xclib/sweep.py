@@ -186,8 +186,9 @@ def friction(a, report_dir, granwave, tol) -> int:
             tmpl = os.path.join(H.REPO, size["template_" + mode])
             with open(tmpl, "rb") as f:
                 kn = float(tomllib.load(f)["contact"]["kn"])
+            # lever_arm: the contact point, the one convention all three codes can run (SCHEMA.md).
             ch = {("contact", "kt"): r * kn, ("contact", "gamma_n"): 0.0, ("contact", "mu_static"): 0.5,
-                  ("contact", "mu_dynamic"): 0.5, ("excitation", "mode"): mode}
+                  ("contact", "mu_dynamic"): 0.5, ("contact", "lever_arm"): "contact_point", ("excitation", "mode"): mode}
             if size["t_end"]:
                 ch[("integrator", "t_end")] = size["t_end"]
             casedir = H.fresh_dir(os.path.join(report_dir, name))

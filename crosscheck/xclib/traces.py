@@ -8,6 +8,7 @@ from __future__ import annotations
 import datetime as _dt
 import math
 import os
+import sys
 import subprocess
 import tomllib
 
@@ -32,9 +33,26 @@ def load_case(path: str) -> tuple[dict, str]:
 
 
 def contact_params(case: dict) -> dict:
-    c = dict(kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5, normal_tension="allow")
+    c = dict(kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5, normal_tension="allow",
+             lever_arm="radius")
     c.update(case.get("contact", {}))
     return c
+
+
+# YADE (ScGeom: contact point in the middle of the overlap) and LIGGGHTS take the lever arm of the
+# tangential force as a - delta/2, in the surface velocity and the torque; neither can take the
+# radius a of seed 002 eq. (4). Their writers record the arm they used (root attribute `lever_arm`).
+FIXED_LEVER_ARM = "contact_point"
+
+
+def lever_arm_used(c: dict, code: str) -> str:
+    """The arm YADE or LIGGGHTS will use for this case; a note on stderr when the case asks for the
+    other one with friction on (the crosscheck then reports that pair as a convention difference)."""
+    if c.get("lever_arm", "radius") != FIXED_LEVER_ARM and (c["kt"] > 0 or c["gamma_t"] > 0):
+        sys.stderr.write("%s: the case asks for lever_arm = \"%s\" (seed 002 eq. (4)); %s always uses the contact "
+                         "point a - delta/2, and its trace says lever_arm = \"%s\"\n"
+                         % (code, c.get("lever_arm"), code, FIXED_LEVER_ARM))
+    return FIXED_LEVER_ARM
 
 
 def excitation(case: dict) -> dict:

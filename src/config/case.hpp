@@ -57,6 +57,10 @@ struct ChainCase {
 
 // ---- crystal (seed 002) ----
 enum class NormalTension { allow, clip };
+// Lever arm of the tangential force: seed 002 eq. (4) takes the radius a_i (the default);
+// YADE (ScGeom) and LIGGGHTS put the contact point in the middle of the overlap, a_i - delta/2,
+// in the surface velocity and in the torque alike.
+enum class LeverArm { radius, contact_point };
 
 struct CrystalCase {
   std::string lattice = "fcc";
@@ -78,6 +82,7 @@ struct ContactParams {
   double mu_static = 0.5;
   double mu_dynamic = 0.5;
   NormalTension normal_tension = NormalTension::allow;
+  LeverArm lever_arm = LeverArm::radius;
 };
 
 struct Excitation {

@@ -220,7 +220,7 @@ CrystalCase read_crystal(const TomlReader& r, const toml::table& t) {
 }
 
 ContactParams read_contact(const TomlReader& r, const toml::table& t) {
-  r.allow_only(t, "contact", {"kn", "gamma_n", "kt", "gamma_t", "mu_static", "mu_dynamic", "normal_tension"});
+  r.allow_only(t, "contact", {"kn", "gamma_n", "kt", "gamma_t", "mu_static", "mu_dynamic", "normal_tension", "lever_arm"});
   ContactParams p;
   auto nonneg = [](double v) { return v >= 0; };
   p.kn = *r.number_in(t, "contact", "kn", true, [](double v) { return v > 0; }, "> 0 (N/m)");
@@ -235,6 +235,9 @@ ContactParams read_contact(const TomlReader& r, const toml::table& t) {
     r.fail("contact.mu_dynamic", s.str(), t.get("mu_dynamic"));
   }
   p.normal_tension = r.choice(t, "contact", "normal_tension", {"allow", "clip"}, "allow") == "clip" ? NormalTension::clip : NormalTension::allow;
+  p.lever_arm = r.choice(t, "contact", "lever_arm", {"radius", "contact_point"}, "radius") == "contact_point"
+                    ? LeverArm::contact_point
+                    : LeverArm::radius;
   return p;
 }
 

@@ -27,6 +27,7 @@ Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, doub
   normal_.validate();
   tangential_.validate();
   friction_ = tangential_.active();
+  arm_shift_ = cp.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
   if (!(dt > 0.0)) throw InputError("integrator.dt must be > 0");
   const std::size_t n = packing.size();
   x = x0 = packing.x;
@@ -183,6 +184,7 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
   double* xiz = C.xi_z.data();
   std::int32_t* slide = C.sliding.data();
   double* diss = C.dissipated.data();
+  const double arm_shift = arm_shift_;
   // One contact. With Defer (the vectorised sweep) a sliding contact is left untouched and
   // reported: the roots and divisions of the sliding case (2) are then paid only by the few
   // contacts that slide, in a second, scalar sweep over them. Pointers are captured by value
@@ -209,9 +211,11 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
     bool deferred = false;
     if constexpr (Friction) {
       const contact::Vec3 xi_prev(xix[c], xiy[c], xiz[c]);
+      // Lever arms: a - 0 * delta = a exactly for the seed's eq. (4) (the default).
+      const double arm_i = pa[i] - arm_shift * delta, arm_j = pa[j] - arm_shift * delta;
       const contact::Vec3 vij = contact::relative_surface_velocity(
-          {pvx[i], pvy[i], pvz[i]}, {pvx[j], pvy[j], pvz[j]}, {pwx[i], pwy[i], pwz[i]}, {pwx[j], pwy[j], pwz[j]}, pa[i],
-          pa[j], n);                                                        // eq. (4)
+          {pvx[i], pvy[i], pvz[i]}, {pvx[j], pvy[j], pvz[j]}, {pwx[i], pwy[i], pwz[i]}, {pwx[j], pwy[j], pwz[j]}, arm_i,
+          arm_j, n);                                                        // eq. (4)
       const contact::Vec3 vt = contact::tangential_velocity(vij, n);       // eq. (3)
       const contact::Vec3 xi = contact::advance_spring(tan, xi_prev, n, vt, inc);  // (2), (6)
       contact::Vec3 ft = contact::Vec3::Zero(), spring = xi;  // (5), (7), (8)
@@ -266,8 +270,10 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
 }
 
 // Sum of each particle's contact forces and torques in contact order; with Kick, the half
-// kick of velocity Verlet follows at once (the forces are then still in cache).
-template <bool Kick>
+// kick of velocity Verlet follows at once (the forces are then still in cache). The torque of
+// contact c on p is -arm n x f^t with arm = a_p (eq. (4)), or a_p - delta_c/2 with
+// ContactPointArm: then -a_p sum(n x f^t) + (1/2) sum(delta_c n x f^t).
+template <bool Kick, bool ContactPointArm>
 void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
   const std::int64_t n = static_cast<std::int64_t>(size());
@@ -280,9 +286,11 @@ void Dynamics::particle_pass(double h) {
   const double* __restrict cnx = C.nf_x.data();
   const double* __restrict cny = C.nf_y.data();
   const double* __restrict cnz = C.nf_z.data();
+  const double* __restrict cdelta = C.delta.data();
 #pragma omp parallel for schedule(static) if (threaded())
   for (std::int64_t p = 0; p < n; ++p) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
+    double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
     const std::int32_t k0 = first[p], k1 = first[p + 1];
     for (std::int32_t k = k0; k < k1; ++k) {
       const std::int32_t e = entries[k];
@@ -295,14 +303,25 @@ void Dynamics::particle_pass(double h) {
         nx += cnx[c];
         ny += cny[c];
         nz += cnz[c];
+        if constexpr (ContactPointArm) {
+          dnx += cdelta[c] * cnx[c];
+          dny += cdelta[c] * cny[c];
+          dnz += cdelta[c] * cnz[c];
+        }
       }
     }
     fx[p] = sx;
     fy[p] = sy;
     fz[p] = sz;
-    tx[p] = -radius[p] * nx;
-    ty[p] = -radius[p] * ny;
-    tz[p] = -radius[p] * nz;
+    if constexpr (ContactPointArm) {
+      tx[p] = -radius[p] * nx + 0.5 * dnx;
+      ty[p] = -radius[p] * ny + 0.5 * dny;
+      tz[p] = -radius[p] * nz + 0.5 * dnz;
+    } else {
+      tx[p] = -radius[p] * nx;
+      ty[p] = -radius[p] * ny;
+      tz[p] = -radius[p] * nz;
+    }
     if (Kick && mobile[p]) {
       vx[p] += h * sx * inv_mass[p];
       vy[p] += h * sy * inv_mass[p];
@@ -322,7 +341,10 @@ void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
     lossy ? contact_pass<true, true>(inc, dashpots) : contact_pass<true, false>(inc, dashpots);
   else
     lossy ? contact_pass<false, true>(inc, dashpots) : contact_pass<false, false>(inc, dashpots);
-  kick ? particle_pass<true>(0.5 * dt_) : particle_pass<false>(0.0);
+  if (arm_shift_ != 0.0 && friction_)
+    kick ? particle_pass<true, true>(0.5 * dt_) : particle_pass<false, true>(0.0);
+  else
+    kick ? particle_pass<true, false>(0.5 * dt_) : particle_pass<false, false>(0.0);
 }
 
 void Dynamics::step() {

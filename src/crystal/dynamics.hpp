@@ -28,7 +28,7 @@ struct ContactList {
   std::vector<std::int32_t> sliding;       // 1 = dynamic (sliding) case active (int: vectorises with doubles)
   std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
   std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N
-  std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -a_i n x f^t, on j = -a_j n x f^t)
+  std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t)
   std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
   // Per particle: its contacts, as c (particle is i) or ~c (particle is j), in contact order.
   std::vector<std::int32_t> first, entries;
@@ -59,6 +59,8 @@ class Dynamics {
   const contact::LinearSpringDashpotParams& normal() const { return normal_; }
   const contact::TangentialSpringParams& tangential() const { return tangential_; }
   bool friction() const { return friction_; }
+  // Lever arm of f^t (config::LeverArm): arm_i = a_i - contact_point_shift() * delta, 0 or 1/2.
+  double contact_point_shift() const { return arm_shift_; }
 
   // Start (or stop) integrating particle p (velocity drive makes the source mobile).
   void set_mobile(std::size_t p, bool on);
@@ -95,13 +97,14 @@ class Dynamics {
   void in_blocks(std::int64_t n, const Body& body) const;
   template <bool Friction, bool Lossy>
   void contact_pass(double increment_time, bool dashpots);
-  template <bool Kick>
+  template <bool Kick, bool ContactPointArm>
   void particle_pass(double h);
 
   Packing packing_;
   contact::LinearSpringDashpotParams normal_;
   contact::TangentialSpringParams tangential_;
   bool friction_ = false;
+  double arm_shift_ = 0.0;  // 0: arm a_i (eq. (4)); 1/2: arm a_i - delta/2 (contact point)
   double dt_ = 0.0;
   double skin_ = 0.0;
   double dissipated_before_ = 0.0;  // folded in at rebuilds

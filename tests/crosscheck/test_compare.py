@@ -118,3 +118,20 @@ def test_expected_pairs_only_exempt_those_pairs_and_a_missing_ruler_is_a_fail_ro
     tol["case"]["c"]["expected_pairs"] = ["granwave-yade"]
     rows = Hh.compare_case({}, "c", "chain", traces, {}, tol)
     assert "FAIL" in {r["status"] for r in rows if r["pair"] == "granwave-liggghts" and r["quantity"] == "trace_max_rel"}
+
+
+def test_a_lever_arm_mismatch_with_friction_is_a_convention_difference_not_a_fail():
+    """The traces record the lever arm of f^t; YADE and LIGGGHTS can only take the contact point.
+    Two runs with different arms are reported as EXPECTED-DIFF with the reason, whatever the
+    tolerance, and only when friction makes the arm matter."""
+    from xclib import harness as Hh
+    case = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 1e5}}
+    a = {"attrs": {"lever_arm": "radius"}}
+    b = {"attrs": {"lever_arm": "contact_point"}}
+    why = Hh.convention_difference(case, a, b)
+    assert why and "lever_arm = radius and contact_point" in why
+    assert Hh.convention_difference(case, b, dict(b)) is None
+    assert Hh.convention_difference(case, {"attrs": {}}, a) is None          # missing attr = the default, radius
+    frictionless = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 0.0}}
+    assert Hh.convention_difference(frictionless, a, b) is None
+    assert Hh.convention_difference({"case": {"model": "chain"}}, a, b) is None

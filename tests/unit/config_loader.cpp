@@ -96,6 +96,15 @@ TEST_CASE("a good crystal case resolves with defaults", "[config]") {
   CHECK(c.contact.mu_static == 0.5);
   CHECK(c.excitation.mode == Excitation::Mode::P);
   CHECK(c.excitation.amplitude == 1e-4);
+  CHECK(c.contact.lever_arm == LeverArm::radius);  // seed 002 eq. (4)
+}
+
+TEST_CASE("the lever arm of the tangential force is a case option with two values", "[config]") {
+  std::string t = kCrystal;
+  t.replace(t.find("kn = 1e5"), 8, "kn = 1e5\nlever_arm = \"contact_point\"");
+  CHECK(parse_case(t, "c.toml").contact.lever_arm == LeverArm::contact_point);
+  t.replace(t.find("\"contact_point\""), 15, "\"surface\"");
+  require_refused(t, {"contact.lever_arm", "radius", "contact_point"});
 }
 
 TEST_CASE("bad case files are refused with the key and the allowed range", "[config]") {

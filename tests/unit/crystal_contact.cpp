@@ -181,3 +181,31 @@ TEST_CASE("sphere on sphere with spin: eq. (4) surface velocity and torques on b
   const double overlap = 2e-6;
   CHECK((total - (-overlap * n.cross(f_t))).norm() < 1e-12 * torque.norm());
 }
+
+TEST_CASE("contact-point lever arm: a - delta/2 in eq. (4) and in both torques; angular momentum exact",
+          "[crystal][contact]") {
+  config::ContactParams cp;
+  cp.kn = 1e5;
+  cp.kt = 5e4;
+  cp.mu_static = cp.mu_dynamic = 0.5;
+  cp.lever_arm = config::LeverArm::contact_point;
+  const double dt = 1e-8, a = 1e-3, overlap = 2e-6;
+  crystal::Dynamics dyn(two_spheres(-overlap), cp, dt);
+  REQUIRE(dyn.contact_point_shift() == 0.5);
+  dyn.wx = {0.0, 10.0};
+  dyn.compute_forces();
+  // YADE's and LIGGGHTS' convention: the arm is the distance to the middle of the overlap.
+  const double arm = a - overlap / 2;
+  const Vec3 n(0, 0, -1);
+  const Vec3 f_t = -cp.kt * (arm * n.cross(Vec3(10.0, 0, 0))) * dt;
+  CHECK(dyn.fy[0] == Approx(f_t.y()).epsilon(1e-12));
+  CHECK(dyn.fy[1] == Approx(-f_t.y()).epsilon(1e-12));
+  const Vec3 torque = -arm * n.cross(f_t);
+  CHECK(dyn.tx[0] == Approx(torque.x()).epsilon(1e-12));
+  CHECK(dyn.tx[1] == Approx(torque.x()).epsilon(1e-12));
+  // Both arms end at one point, so (r_0 - r_1) x f + T_0 + T_1 = 0 (with the radius it is -delta n x f).
+  const Vec3 r01(0, 0, dyn.z[0] - dyn.z[1]);
+  const Vec3 total = r01.cross(Vec3(dyn.fx[0], dyn.fy[0], dyn.fz[0])) + Vec3(dyn.tx[0], dyn.ty[0], dyn.tz[0]) +
+                     Vec3(dyn.tx[1], dyn.ty[1], dyn.tz[1]);
+  CHECK(total.norm() < 1e-12 * torque.norm());
+}
