@@ -410,14 +410,16 @@ def run(args) -> int:
         print("crosscheck: unknown code(s) %s (choose from %s)" % (bad, ",".join(CODES)), file=sys.stderr)
         return 2
     cases = list(args.cases)
+    studies = []
     if args.suite:
-        with open(os.path.join(XC_DIR, "suites.toml"), "rb") as f:
+        with open(args.suites or os.path.join(XC_DIR, "suites.toml"), "rb") as f:
             suites = tomllib.load(f)
         if args.suite not in suites:
             print("crosscheck: unknown suite %s (have %s)" % (args.suite, ", ".join(suites)), file=sys.stderr)
             return 2
-        cases += [os.path.join(REPO, p) for p in suites[args.suite]["cases"]]
-    if not cases:
+        cases += [os.path.join(REPO, p) for p in suites[args.suite].get("cases", [])]
+        studies = [] if args.no_studies else list(suites[args.suite].get("studies", []))
+    if not cases and not studies:
         print("crosscheck: no case given", file=sys.stderr)
         return 2
     started = _dt.datetime.now().strftime("%Y%m%d-%H%M%S")
@@ -464,6 +466,20 @@ def run(args) -> int:
                       f, indent=1, default=str)
         write_report(report_dir, results, started)   # after every case: a long suite that is stopped keeps its report
     verdict = write_report(report_dir, results, started)
+    for st in studies:   # the suite's parameter studies (crosscheck sweep), each with its own report
+        from .sweep import main_sweep
+        sa = argparse.Namespace(name=st["name"], size=st.get("size", "small"), values=st.get("values"),
+                                modes=st.get("modes", "P,S"),
+                                codes=args.codes, report=os.path.join(report_dir, "sweep_%s" % st["name"]),
+                                timeout=args.timeout, granwave=args.granwave, tolerances=args.tolerances,
+                                fixture_system=args.fixture_system)
+        print("crosscheck: study: sweep %s --size %s ..." % (sa.name, sa.size), file=sys.stderr, flush=True)
+        rc = main_sweep(sa)
+        verdict.append(("sweep %s (%s)" % (sa.name, sa.size), "FAIL" if rc else "PASS",
+                        "report: %s" % os.path.join(sa.report, "sweep_%s.md" % sa.name)))
+        with open(os.path.join(report_dir, "report.md"), "a") as f:
+            f.write("| sweep %s (%s) | %s | sweep_%s/sweep_%s.md |\n" % (sa.name, sa.size, "FAIL" if rc else "PASS",
+                                                                    sa.name, sa.name))
     print("\n| case | status | detail |\n|---|---|---|")
     for v in verdict:
         print("| %s | %s | %s |" % v)
@@ -485,7 +501,10 @@ def main(argv=None) -> int:
     sub = ap.add_subparsers(dest="verb")
     r = sub.add_parser("run", help="run and compare")
     r.add_argument("cases", nargs="*", help="case files (TOML)")
-    r.add_argument("--suite", help="a suite of crosscheck/suites.toml (default, paper)")
+    r.add_argument("--suite", help="a suite of crosscheck/suites.toml (default, fixtures, paper: its cases, then its "
+                   "studies, the sweeps at the seed's size)")
+    r.add_argument("--no-studies", action="store_true", help="with --suite: the cases only, not the suite's sweeps")
+    r.add_argument("--suites", help="suite file (default crosscheck/suites.toml)")
     r.add_argument("--codes", default="granwave,yade,liggghts")
     r.add_argument("--report", help="report directory (default crosscheck-report-DATE; never overwritten)")
     r.add_argument("--timeout", type=float, default=900, help="seconds per code run")

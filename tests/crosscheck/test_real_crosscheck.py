@@ -117,3 +117,20 @@ def test_sliding_agrees_in_three_codes_with_the_contact_point_arm(tmp_path):
     assert "| xc_crystal_small_sliding | EXPECTED-DIFF | granwave-liggghts: lever-arm convention" in p2.stdout
     tr = T.read_trace(str(tmp_path / "rep2" / "sliding_radius" / "liggghts" / "traces.h5"))
     assert tr["attrs"]["lever_arm"] == "contact_point"
+
+
+def test_a_suite_runs_its_cases_then_its_studies(tmp_path):
+    """`run --suite` with `studies`: the sweep runs after the cases, with its own report, and its
+    verdict is a row of the run's table (granwave alone: seconds)."""
+    gw = harness.find_granwave(None)
+    if gw is None:
+        pytest.skip("granwave not built")
+    suites = tmp_path / "suites.toml"
+    suites.write_text('[mini]\ncases = ["tests/crosscheck/cases/crystal_small.toml"]\n'
+                      'studies = [{ name = "damping", size = "small", values = "0,0.1" }]\n')
+    p = subprocess.run([XC, "run", "--suite", "mini", "--suites", str(suites), "--codes", "granwave", "--granwave", gw,
+                        "--report", str(tmp_path / "rep")], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "| sweep damping (small) | PASS |" in p.stdout
+    assert (tmp_path / "rep" / "sweep_damping" / "sweep_damping.md").exists()
+    assert "| sweep damping (small) | PASS |" in (tmp_path / "rep" / "report.md").read_text()
