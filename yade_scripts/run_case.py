@@ -302,6 +302,15 @@ def run_crystal(case, system, dt, nsteps, every):
     newton.dead = True
     runner.dead = True
     O.step()
+    # Drain this step's forces. YADE's ForceContainer (OpenMP build) accumulates into per-thread
+    # buffers that only sync() (NewtonIntegrator, or f(id, True)) adds up and zeroes; ForceResetter
+    # zeroes the summed array only. With NewtonIntegrator dead nothing syncs here, so the F(0) that
+    # first_verlet_step reads after its own O.step() would be the sum of both steps' forces: measured
+    # on the relaxed polydisperse 4x4x40 crystal (residual forces up to 2.0e-5 N on free particles)
+    # F(0) = F(undisplaced) + F(displaced) to 5e-12 N, i.e. a doubled first half kick (2.4e-7 m/s,
+    # layer-mean v_z off by 6e-8 m/s from the first sample, sigma_zz 8.4e-4 of the peak at z/l0 = 36).
+    # Invisible on perfect (monodisperse) crystals, where the undisplaced packing has zero net forces.
+    O.forces.f(ids[0], True)
     nreal = sum(1 for it in O.interactions if it.isReal)
     if damped:
         for it in O.interactions:
