@@ -73,6 +73,9 @@ class Dynamics {
   void rebuild();
   // Forces and torques at the current positions and velocities (advances springs by v_t dt).
   void compute_forces() { compute_forces(dt_, true); }
+  // The same for a state set from outside (initial velocities): dashpots see the velocities,
+  // springs are not advanced (no time has passed).
+  void compute_forces_of_state() { compute_forces(0.0, true); }
   // One velocity-Verlet step of translation and rotation.
   void step();
 

@@ -203,11 +203,13 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   } else {
     // Initial source velocity, no displacement control afterwards: the source is integrated.
     for (std::size_t p : source) dyn.set_mobile(p, true);
-    dyn.compute_forces();
     for (std::size_t p : source) {
       (p_mode ? dyn.vz[p] : dyn.vx[p]) = c.excitation.amplitude;
       dyn.work_in += 0.5 * dyn.mass[p] * c.excitation.amplitude * c.excitation.amplitude;
     }
+    // F(0) of the state (x(0), v(0)): the dashpots see the source's initial velocity, as in
+    // LIGGGHTS' setup and YADE's first step (before: F(0) at rest, 9e-4 of the peak off).
+    dyn.compute_forces_of_state();
   }
   const double budget = e_start + std::abs(dyn.work_in);
 
