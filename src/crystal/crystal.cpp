@@ -50,6 +50,12 @@ void check(const config::Case& c, std::ostream& out) {
   out << "  prestress sigma_0 = 2 sqrt(2) k delta / d'^2 = " << d.sigma_0 << " Pa\n";
   out << "  predicted speeds along z (eq. 10, branch d'): V_p = " << d.v_p << " m/s"
       << (c.contact.kt > 0.0 ? " (affine, sqrt(1 + kt/k))" : "") << ", V_s = " << d.v_s << " m/s (frictionless)\n";
+  if (c.contact.kt > 0.0 || c.contact.gamma_t > 0.0)
+    out << "  tangential: kt = " << c.contact.kt << " N/m, mu_s = " << c.contact.mu_static
+        << ", mu_d = " << c.contact.mu_dynamic << ", lever arm "
+        << (c.contact.lever_arm == config::LeverArm::contact_point ? "a - delta/2 (contact point, as YADE and LIGGGHTS)"
+                                                                   : "a (seed 002 eq. (4))")
+        << "\n";
   if (k.polydispersity > 0.0)
     out << "  polydisperse: radii a +- " << k.polydispersity * p.delta << " m (seed " << k.seed
         << "); relaxed until E_kin/E_pot < " << k.relax_tolerance << "\n";
