@@ -144,6 +144,8 @@ def render(case: dict, system: dict, workdir: str) -> dict:
             kn9=nine(c["kn"]), kt9=nine(c["kt"]), gn9=nine(c["gamma_n"]), gt9=nine(c["gamma_t"]),
             mu9=nine(c["mu_static"]), exclude=exclude, free_types=free_types, limit_force="on" if c["normal_tension"] == "clip" else "off",
             dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps)
+        if c["kt"] > 0:
+            deck = _with_shear_history(deck)
         facts.update(lay={k: v for k, v in lay.items() if k != "layer"})
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
@@ -182,17 +184,20 @@ def read_dump(path: str):
 def _pairs_on_first(rows: np.ndarray, correct=None):
     """(i, j, force on i) with each physical contact once, i < j. pair/gran/local rows are id1 id2 flag
     fx fy fz (force on id1); with newton off a contact across a periodic boundary is listed from both
-    sides. `correct(id1, id2, f)` (optional) adjusts the forces of the chosen rows before reordering."""
-    i, j, f = _unique_rows(rows)
+    sides. `correct(id1, id2, f)` (optional) adjusts the forces of the chosen rows before reordering;
+    when the rows carry the shear history (columns 6:9), it is called as correct(id1, id2, f, shear)."""
+    i, j, fh = _unique_rows(rows)
+    f, shear = fh[:, :3], (fh[:, 3:6] if fh.shape[1] >= 6 else None)
     if correct is not None:
-        f = correct(i, j, f)
+        f = correct(i, j, f) if shear is None else correct(i, j, f, shear)
     a = np.minimum(i, j)
     b = np.maximum(i, j)
     sgn = np.where(i == a, 1.0, -1.0)
     return a, b, f * sgn[:, None]
 
 
-def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y):
+def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y, kn=0.0,
+                         clip=False):
     """The force each contact applied in the step, from the force `compute pair/gran/local` dumps.
 
     The compute recomputes the contact forces at dump time (after final_integrate), so its normal
@@ -205,7 +210,15 @@ def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gam
     (verified: the corrected pair forces sum to the dumped per-atom forces to 1e-16 N). Only the
     normal dashpot is corrected (gamma_t = 0 in every case here; a tangential dashpot would also need
     the angular velocities). p, v, f_atoms [n, 3]; i (id1 of the dumped row, owned), j (id2),
-    f_pair: force on i, rows as dumped (not reordered); one MPI rank."""
+    f_pair: force on i, rows as dumped (not reordered); one MPI rank.
+
+    clip (normal_tension = "clip", `limitForce on`): the step's normal force was max(kn delta +
+    gamma_n ddelta_half, 0) and the dump's max(kn delta + gamma_n ddelta_used, 0); where either one
+    was cut to zero the difference is not the dashpot difference, so the normal force of the step is
+    computed whole (kn: the contact stiffness). Measured on the prestressed velocity drive with
+    "clip" (contacts opening with the dashpot pulling): LIGGGHTS vs granwave and YADE 4.2e-5 at
+    z/l0 = 10 with the additive correction, with the same dynamics (layer velocities 1e-10); 5.6e-10
+    computed whole."""
     if gamma_n == 0.0 or len(i) == 0:
         return f_pair
     vh = np.array(v, float, copy=True)
@@ -223,17 +236,66 @@ def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gam
     vj_used = np.where(ghost_j[:, None], vh[j], v[j])
     dd_used = -np.sum(n * (v[i] - vj_used), axis=1)
     dd_half = -np.sum(n * (vh[i] - vh[j]), axis=1)
+    if clip:
+        fn_step = np.where(touching, np.maximum(kn * (radius[i] + radius[j] - r) + gamma_n * dd_half, 0.0), 0.0)
+        return f_pair + (fn_step - np.sum(f_pair * n, axis=1))[:, None] * n
     corr = np.where(touching, gamma_n * (dd_half - dd_used), 0.0)
     return f_pair + corr[:, None] * n
 
 
+# The pair dump of a crystal with a tangential spring also carries each contact's shear history
+# (3 values, `compute pair/gran/local ... history`), from which the converter takes the tangential
+# force of the step (tangential_at_step). Added to the rendered deck here rather than in the template
+# so that frictionless decks stay as they were.
+_CPL_LINES = (("compute         cpl all pair/gran/local id force\n",
+               "compute         cpl all pair/gran/local id force history\n"),
+              ("c_cpl[4] c_cpl[5] c_cpl[6]\n", "c_cpl[4] c_cpl[5] c_cpl[6] c_cpl[7] c_cpl[8] c_cpl[9]\n"),
+              ('dump_modify     dpl format "%.17g %.17g %.17g %.17g %.17g %.17g"\n',
+               'dump_modify     dpl format "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g"\n'))
+
+
+def _with_shear_history(deck: str) -> str:
+    for old, new in _CPL_LINES:
+        if deck.count(old) != 1:
+            raise ValueError("crystal template: expected one line %r to add the shear history to" % old.strip())
+        deck = deck.replace(old, new)
+    return deck
+
+
+def tangential_at_step(p, i, j, f_pair, shear, kt, box_x, box_y):
+    """The force each contact applied in the step: the normal part of the dumped force plus the
+    tangential force -kt * shear of the history the step left.
+
+    `compute pair/gran/local` recomputes the force at dump time with shearupdate = 0: it does not
+    increment the history, but it applies the Coulomb test again, mu |Fn|, with the normal force of
+    the dump, whose dashpot sees the owned atom at v(t) instead of the step's v(t - dt/2)
+    (dashpot_at_half_step). Where a contact slides, or is near the limit, the dumped tangential force
+    is therefore cut to mu |Fn(dump)| instead of the step's mu |Fn(step)|. With gamma_t = 0 the step's
+    tangential force is exactly -kt * shear: not sliding, the spring alone; sliding, LIGGGHTS 3.8
+    (tangential_model_history.h, surfacesIntersect) rescales the force to mu |Fn| and sets the history
+    to -Ft / kt. Measured on the prestressed velocity drive (4x4x40, gamma_n = 0.1, kt = k, mu = 0.5,
+    1e-3 m/s: contacts open with the dashpot pulling), granwave with LIGGGHTS' Coulomb limit mu |f_n|
+    vs LIGGGHTS: 3.0e-5 (max/peak, z/l0 = 10; the layer velocities equal to 1e-10, i.e. the record
+    only) -> 5.6e-10.
+    p [n, 3]; i (owned, id1 of the row), j; f_pair: force on i; shear [rows, 3]: i's history."""
+    if len(i) == 0:
+        return f_pair
+    d = p[i] - p[j]
+    d[:, 0] -= box_x * np.round(d[:, 0] / box_x)
+    d[:, 1] -= box_y * np.round(d[:, 1] / box_y)
+    n = d / np.linalg.norm(d, axis=1)[:, None]
+    fn = np.sum(f_pair * n, axis=1)
+    return fn[:, None] * n - kt * shear
+
+
 def _unique_rows(rows: np.ndarray):
-    """(id1, id2, force on id1) of the first dumped row of each physical contact, as dumped."""
+    """(id1, id2, force on id1) of the first dumped row of each physical contact, as dumped (the
+    force and, with `history` in the compute, the shear history after it: columns 3:9)."""
     i = rows[:, 0].astype(int) - 1
     j = rows[:, 1].astype(int) - 1
     key = np.minimum(i, j).astype(np.int64) * (1 << 32) + np.maximum(i, j)
     _, first = np.unique(key, return_index=True)
-    return i[first], j[first], rows[first, 3:6]
+    return i[first], j[first], rows[first, 3:9] if rows.shape[1] >= 9 else rows[first, 3:6]
 
 
 def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str, facts: dict, version: str) -> None:
@@ -278,7 +340,9 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         layer = lay["layer"]
         x0 = np.asarray(system["position"], float)
         mass = np.asarray(system["mass"], float)
-        gamma_n = float(T.contact_params(case)["gamma_n"])
+        cp = T.contact_params(case)
+        gamma_n, gamma_t, kt = float(cp["gamma_n"]), float(cp["gamma_t"]), float(cp["kt"])
+        kn, clip = float(cp["kn"]), cp["normal_tension"] == "clip"
         mobile = ~fixed
         if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
             mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
@@ -293,8 +357,12 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             correct = None
             if gamma_n > 0.0 and s > 0:   # step 0: the setup force already saw v(0), as the dump does
                 fa = rows[:, [cols.index("fx"), cols.index("fy"), cols.index("fz")]]
-                correct = lambda i1, i2, ff, p=p, v=v, fa=fa: dashpot_at_half_step(  # noqa: E731
-                    p, v, fa, mass, mobile, dt, i1, i2, ff, r, gamma_n, lay["box_x"], lay["box_y"])
+
+                def correct(i1, i2, ff, shear=None, p=p, v=v, fa=fa):
+                    if shear is not None and gamma_t == 0.0:   # the Coulomb test of the step, not the dump's
+                        ff = tangential_at_step(p, i1, i2, ff, shear, kt, lay["box_x"], lay["box_y"])
+                    return dashpot_at_half_step(p, v, fa, mass, mobile, dt, i1, i2, ff, r, gamma_n,
+                                                lay["box_x"], lay["box_y"], kn, clip)
             i, j, f = _pairs_on_first(pr, correct) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
             szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
             out_rows["szz"].append(szz)
