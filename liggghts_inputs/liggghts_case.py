@@ -139,13 +139,14 @@ def render(case: dict, system: dict, workdir: str) -> dict:
         vdrive = ex["drive"] != "displacement"
         exclude = "exclude type 2 2 exclude type 2 3" + ("" if vdrive else " exclude type 3 3")
         free_types = "1 3" if vdrive else "1"
+        ncol = 9 if c["kt"] > 0 else 6   # id1 id2 flag f(3) [shear history(3)]
         deck = _template("crystal.in.tmpl").substitute(
             case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.2 * float(r.min())),
             kn9=nine(c["kn"]), kt9=nine(c["kt"]), gn9=nine(c["gamma_n"]), gt9=nine(c["gamma_t"]),
             mu9=nine(c["mu_static"]), exclude=exclude, free_types=free_types, limit_force="on" if c["normal_tension"] == "clip" else "off",
-            dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps)
-        if c["kt"] > 0:
-            deck = _with_shear_history(deck)
+            dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps,
+            history=" history" if c["kt"] > 0 else "", pair_columns=" ".join("c_cpl[%d]" % k for k in range(1, ncol + 1)),
+            pair_format=" ".join(["%.17g"] * ncol))
         facts.update(lay={k: v for k, v in lay.items() if k != "layer"})
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
@@ -241,25 +242,6 @@ def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gam
         return f_pair + (fn_step - np.sum(f_pair * n, axis=1))[:, None] * n
     corr = np.where(touching, gamma_n * (dd_half - dd_used), 0.0)
     return f_pair + corr[:, None] * n
-
-
-# The pair dump of a crystal with a tangential spring also carries each contact's shear history
-# (3 values, `compute pair/gran/local ... history`), from which the converter takes the tangential
-# force of the step (tangential_at_step). Added to the rendered deck here rather than in the template
-# so that frictionless decks stay as they were.
-_CPL_LINES = (("compute         cpl all pair/gran/local id force\n",
-               "compute         cpl all pair/gran/local id force history\n"),
-              ("c_cpl[4] c_cpl[5] c_cpl[6]\n", "c_cpl[4] c_cpl[5] c_cpl[6] c_cpl[7] c_cpl[8] c_cpl[9]\n"),
-              ('dump_modify     dpl format "%.17g %.17g %.17g %.17g %.17g %.17g"\n',
-               'dump_modify     dpl format "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g"\n'))
-
-
-def _with_shear_history(deck: str) -> str:
-    for old, new in _CPL_LINES:
-        if deck.count(old) != 1:
-            raise ValueError("crystal template: expected one line %r to add the shear history to" % old.strip())
-        deck = deck.replace(old, new)
-    return deck
 
 
 def tangential_at_step(p, i, j, f_pair, shear, kt, box_x, box_y):
