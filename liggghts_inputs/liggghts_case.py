@@ -359,7 +359,10 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             data["/crystal/" + name] = np.array(out_rows[key])
     extra = {"dt": dt, "deck": open(os.path.join(workdir, "in.case")).read()}
     if "/crystal/layer_z" in data:
-        extra["lever_arm"] = T.lever_arm_used(T.contact_params(case), "LIGGGHTS")
+        cp = T.contact_params(case)
+        extra["lever_arm"] = T.lever_arm_used(cp, "LIGGGHTS")
+        extra["normal_tension"] = cp["normal_tension"]          # limitForce off / on: both available
+        extra["coulomb_normal"] = T.coulomb_normal_used(cp, "LIGGGHTS")
     T.write_trace(out, code="liggghts", code_version=version, case_text=case_text, case_name=case["case"]["name"],
                   system_path=system_path, time_convention=TIME_CONVENTION, time=times, datasets=data,
                   extra_attrs=extra)

@@ -416,6 +416,7 @@ def main(argv):
     if model != "chain":
         cp = T.contact_params(case)
         extra["lever_arm"] = T.lever_arm_used(cp, "YADE")
+        extra["coulomb_normal"] = T.coulomb_normal_used(cp, "YADE")
         # the law's tension convention (see run_crystal): ViscEl (damped) clips; without a dashpot
         # (CundallStrack) the normal force kn delta cannot pull, so both conventions are the same law
         if cp["gamma_n"] > 0 or cp["gamma_t"] > 0:

@@ -163,20 +163,40 @@ def _traces_for(trace: dict, case: dict):
     return out
 
 
+# Contact-law conventions a trace records as root attributes (data/SCHEMA.md §3): when two traces
+# differ in one that matters for the case, their comparison is a convention difference.
+CONVENTIONS = (
+    ("lever_arm", "radius", lambda c: c["kt"] > 0 or c["gamma_t"] > 0,
+     "Seed 002 eq. (4) takes the radius a; YADE and LIGGGHTS always take the contact point a - delta/2 (S speeds "
+     "then differ by 1e-5 .. 2e-4). Set [contact] lever_arm = \"contact_point\" to compare like with like."),
+    ("normal_tension", None, lambda c: c["gamma_n"] > 0,
+     "YADE's damped law (ViscEl) clips a pulling dashpot and cannot run \"allow\"; the difference shows where "
+     "contacts open under a dashpot. Set [contact] normal_tension = \"clip\" to compare like with like."),
+    ("coulomb_normal", "compressive",
+     lambda c: (c["kt"] > 0 or c["gamma_t"] > 0) and c["gamma_n"] > 0 and c["normal_tension"] == "allow",
+     "granwave's default Coulomb limit is mu max(f_n, 0); LIGGGHTS and YADE take mu |f_n|: they differ where a "
+     "dashpot makes f_n pull. Set [contact] coulomb_normal = \"magnitude\" to compare like with like."),
+)
+
+
 def convention_difference(case: dict, trace_a: dict, trace_b: dict) -> str | None:
-    """A model convention the two traces record differently, which no tolerance may cover: the
-    lever arm of the tangential force (root attribute `lever_arm`; with friction only). None if the
-    two runs used the same conventions."""
+    """The model conventions the two traces record differently where they matter for this case (no
+    tolerance may cover one), as a reason; None if the two runs used the same conventions. A trace
+    without the attribute ran the case's value."""
+    if case.get("case", {}).get("model") != "crystal":
+        return None
     c = T.contact_params(case)
-    if case.get("case", {}).get("model") != "crystal" or not (float(c["kt"]) > 0 or float(c["gamma_t"]) > 0):
-        return None
-    la = trace_a.get("attrs", {}).get("lever_arm", "radius")
-    lb = trace_b.get("attrs", {}).get("lever_arm", "radius")
-    if la == lb:
-        return None
-    return ("lever-arm convention: the traces say lever_arm = %s and %s. Seed 002 eq. (4) takes the radius a; "
-            "YADE and LIGGGHTS always take the contact point a - delta/2 (S speeds then differ by 1e-5 .. 2e-4). "
-            "Set [contact] lever_arm = \"contact_point\" in the case to compare like with like." % (la, lb))
+    c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n")})
+    out = []
+    for key, default, matters, why in CONVENTIONS:
+        if not matters(c):
+            continue
+        own = c.get(key, default)
+        va = trace_a.get("attrs", {}).get(key, own)
+        vb = trace_b.get("attrs", {}).get(key, own)
+        if va != vb:
+            out.append("%s convention: the traces say %s = %s and %s. %s" % (key.replace("_", "-"), key, va, vb, why))
+    return " ".join(out) or None
 
 
 def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict):

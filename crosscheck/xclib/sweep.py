@@ -119,7 +119,9 @@ def damping(a, report_dir, granwave, tol) -> int:
     points = []
     for g in gammas:
         name = "sweep_damping_%s_g%s" % (a.size, ("%g" % g).replace(".", "p"))
-        ch = {("contact", "gamma_n"): g, ("contact", "kt"): 0.0, ("excitation", "mode"): "P"}
+        # normal_tension: "clip", the one convention with a dashpot all three codes have (SCHEMA.md)
+        ch = {("contact", "gamma_n"): g, ("contact", "kt"): 0.0, ("contact", "normal_tension"): "clip",
+              ("excitation", "mode"): "P"}
         if size["t_end"]:
             ch[("integrator", "t_end")] = size["t_end"]
         casedir = H.fresh_dir(os.path.join(report_dir, name))

@@ -34,7 +34,7 @@ def load_case(path: str) -> tuple[dict, str]:
 
 def contact_params(case: dict) -> dict:
     c = dict(kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5, normal_tension="allow",
-             lever_arm="radius")
+             lever_arm="radius", coulomb_normal="compressive")
     c.update(case.get("contact", {}))
     return c
 
@@ -53,6 +53,17 @@ def lever_arm_used(c: dict, code: str) -> str:
                          "point a - delta/2, and its trace says lever_arm = \"%s\"\n"
                          % (code, c.get("lever_arm"), code, FIXED_LEVER_ARM))
     return FIXED_LEVER_ARM
+
+
+def coulomb_normal_used(c: dict, code: str) -> str:
+    """LIGGGHTS (tangential_model_history.h: xmu * fabs(Fn)) and YADE (ViscEl, CundallStrack: the norm of
+    the normal force) take mu |f_n| as the Coulomb limit; granwave's default is mu max(f_n, 0). They
+    differ only where a dashpot makes the normal force pull (normal_tension = "allow", gamma_n > 0)."""
+    if (c.get("coulomb_normal", "compressive") != "magnitude" and (c["kt"] > 0 or c["gamma_t"] > 0)
+            and c["gamma_n"] > 0 and c["normal_tension"] == "allow"):
+        sys.stderr.write("%s: the case asks for coulomb_normal = \"%s\"; %s takes mu |f_n| (\"magnitude\"), "
+                         "which differs only where the dashpot pulls\n" % (code, c.get("coulomb_normal"), code))
+    return "magnitude"
 
 
 def excitation(case: dict) -> dict:

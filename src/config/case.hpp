@@ -61,6 +61,10 @@ enum class NormalTension { allow, clip };
 // YADE (ScGeom) and LIGGGHTS put the contact point in the middle of the overlap, a_i - delta/2,
 // in the surface velocity and in the torque alike.
 enum class LeverArm { radius, contact_point };
+// The normal force in the Coulomb limits f_C = mu f^n when a dashpot makes it pull (f^n < 0,
+// normal_tension = allow): compressive, mu max(f^n, 0) (no friction under tension, the default);
+// magnitude, mu |f^n| (LIGGGHTS' tangential history model). The same law whenever f^n >= 0.
+enum class CoulombNormal { compressive, magnitude };
 
 struct CrystalCase {
   std::string lattice = "fcc";
@@ -83,6 +87,7 @@ struct ContactParams {
   double mu_dynamic = 0.5;
   NormalTension normal_tension = NormalTension::allow;
   LeverArm lever_arm = LeverArm::radius;
+  CoulombNormal coulomb_normal = CoulombNormal::compressive;
 };
 
 struct Excitation {

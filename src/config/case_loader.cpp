@@ -220,7 +220,8 @@ CrystalCase read_crystal(const TomlReader& r, const toml::table& t) {
 }
 
 ContactParams read_contact(const TomlReader& r, const toml::table& t) {
-  r.allow_only(t, "contact", {"kn", "gamma_n", "kt", "gamma_t", "mu_static", "mu_dynamic", "normal_tension", "lever_arm"});
+  r.allow_only(t, "contact", {"kn", "gamma_n", "kt", "gamma_t", "mu_static", "mu_dynamic", "normal_tension", "lever_arm",
+                                 "coulomb_normal"});
   ContactParams p;
   auto nonneg = [](double v) { return v >= 0; };
   p.kn = *r.number_in(t, "contact", "kn", true, [](double v) { return v > 0; }, "> 0 (N/m)");
@@ -238,6 +239,9 @@ ContactParams read_contact(const TomlReader& r, const toml::table& t) {
   p.lever_arm = r.choice(t, "contact", "lever_arm", {"radius", "contact_point"}, "radius") == "contact_point"
                     ? LeverArm::contact_point
                     : LeverArm::radius;
+  p.coulomb_normal = r.choice(t, "contact", "coulomb_normal", {"compressive", "magnitude"}, "compressive") == "magnitude"
+                         ? CoulombNormal::magnitude
+                         : CoulombNormal::compressive;
   return p;
 }
 

@@ -55,6 +55,7 @@ struct TangentialSpringParams {
   double gamma_t = 0.0;     // tangential dashpot gamma_t (kg/s), eq. (5)
   double mu_static = 0.5;   // mu^s: Coulomb limit of the static case
   double mu_dynamic = 0.5;  // mu^d: Coulomb limit of the sliding case
+  bool coulomb_on_magnitude = false;  // f_C = mu |f_n| (LIGGGHTS) instead of mu max(f_n, 0)
 
   void validate() const {
     if (!(kt >= 0.0) || !std::isfinite(kt)) throw InputError("contact.kt = " + std::to_string(kt) + ": must be >= 0");
@@ -103,7 +104,8 @@ struct TangentialResult {
 
 // Eq. (5) with the stick-slip switching of the text: a sticking contact starts to slide when
 // |f_o^t| > mu^s f^n; a sliding one sticks again when |f_o^t| <= mu^d f^n. f_n is the normal
-// force (a pulling normal force gives no friction). Branch- and root-free: it vectorises.
+// force (a pulling normal force gives no friction, unless coulomb_on_magnitude: then mu |f_n|).
+// Branch- and root-free: it vectorises.
 struct TangentialTest {
   Vec3 force;         // f_o^t, eq. (5): f^t in the static case (1)
   double magnitude2;  // |f_o^t|^2 (compared squared)
@@ -113,7 +115,7 @@ struct TangentialTest {
 inline TangentialTest tangential_test(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
                                       bool was_sliding) {
   const Vec3 f_test = -p.kt * xi - p.gamma_t * vt;  // eq. (5)
-  const double f_pos = std::max(f_n, 0.0);
+  const double f_pos = p.coulomb_on_magnitude ? std::abs(f_n) : std::max(f_n, 0.0);
   const double f_static = p.mu_static * f_pos;    // f_C^s
   const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
   const double magnitude2 = f_test.squaredNorm();

@@ -23,7 +23,7 @@ constexpr std::int64_t kBlock = 1024;  // contacts per block of the contact pass
 Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, double dt)
     : packing_(packing), dt_(dt) {
   normal_ = {cp.kn, cp.gamma_n, cp.normal_tension == config::NormalTension::clip};
-  tangential_ = {cp.kt, cp.gamma_t, cp.mu_static, cp.mu_dynamic};
+  tangential_ = {cp.kt, cp.gamma_t, cp.mu_static, cp.mu_dynamic, cp.coulomb_normal == config::CoulombNormal::magnitude};
   normal_.validate();
   tangential_.validate();
   friction_ = tangential_.active();
@@ -157,7 +157,8 @@ void Dynamics::contact_pass(double inc, bool dashpots) {
   const std::int64_t nc = static_cast<std::int64_t>(C.size());
   const contact::LinearSpringDashpotParams nrm{normal_.kn, dashpots ? normal_.gamma_n : 0.0, normal_.clip_tension};
   const contact::TangentialSpringParams tan{tangential_.kt, dashpots ? tangential_.gamma_t : 0.0,
-                                            tangential_.mu_static, tangential_.mu_dynamic};
+                                            tangential_.mu_static, tangential_.mu_dynamic,
+                                            tangential_.coulomb_on_magnitude};
   const std::int32_t* ci = C.i.data();
   const std::int32_t* cj = C.j.data();
   const double* shx = C.shift_x.data();

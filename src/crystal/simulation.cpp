@@ -17,7 +17,8 @@ Derived derive(const config::Case& c) {
   const contact::LinearSpringDashpotParams normal{c.contact.kn, c.contact.gamma_n,
                                                   c.contact.normal_tension == config::NormalTension::clip};
   const contact::TangentialSpringParams tangential{c.contact.kt, c.contact.gamma_t, c.contact.mu_static,
-                                                   c.contact.mu_dynamic};
+                                                   c.contact.mu_dynamic,
+                                                   c.contact.coulomb_normal == config::CoulombNormal::magnitude};
   normal.validate();
   tangential.validate();
   Derived d;
@@ -282,7 +283,11 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, co
   w.attr("/", "case_name", c.name);
   w.attr("/", "case_toml", c.toml_text);
   w.attr("/", "time_convention", std::string("synchronous"));
+  // The contact-law conventions the crosscheck compares (data/SCHEMA.md §3).
   w.attr("/", "lever_arm", std::string(c.contact.lever_arm == config::LeverArm::contact_point ? "contact_point" : "radius"));
+  w.attr("/", "normal_tension", std::string(c.contact.normal_tension == config::NormalTension::clip ? "clip" : "allow"));
+  w.attr("/", "coulomb_normal",
+         std::string(c.contact.coulomb_normal == config::CoulombNormal::magnitude ? "magnitude" : "compressive"));
   w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
   write_system(w, p, c.name, "/system");
   const Traces& t = r.traces;

@@ -135,3 +135,20 @@ def test_a_lever_arm_mismatch_with_friction_is_a_convention_difference_not_a_fai
     frictionless = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 0.0}}
     assert Hh.convention_difference(frictionless, a, b) is None
     assert Hh.convention_difference({"case": {"model": "chain"}}, a, b) is None
+
+
+def test_tension_and_coulomb_conventions_matter_only_where_a_dashpot_can_pull():
+    from xclib import harness as Hh
+    damped = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 1e5, "gamma_n": 0.1}}
+    yade = {"attrs": {"lever_arm": "contact_point", "normal_tension": "clip", "coulomb_normal": "magnitude"}}
+    gw = {"attrs": {"lever_arm": "contact_point", "normal_tension": "allow", "coulomb_normal": "compressive"}}
+    lig = {"attrs": {"lever_arm": "contact_point", "normal_tension": "allow", "coulomb_normal": "magnitude"}}
+    why = Hh.convention_difference(damped, gw, yade)
+    assert "normal_tension = allow and clip" in why and "coulomb_normal = compressive and magnitude" in why
+    assert Hh.convention_difference(damped, gw, lig).startswith("coulomb-normal convention")
+    # clipped, the Coulomb rule under tension never applies: only the tension convention is compared
+    clipped = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 1e5, "gamma_n": 0.1, "normal_tension": "clip"}}
+    assert Hh.convention_difference(clipped, dict(gw, attrs=dict(gw["attrs"], normal_tension="clip")), yade) is None
+    # without a dashpot the normal force cannot pull: none of the two matters
+    undamped = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 1e5}}
+    assert Hh.convention_difference(undamped, gw, yade) is None

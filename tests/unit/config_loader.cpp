@@ -107,6 +107,15 @@ TEST_CASE("the lever arm of the tangential force is a case option with two value
   require_refused(t, {"contact.lever_arm", "radius", "contact_point"});
 }
 
+TEST_CASE("the normal force in the Coulomb limit under tension is a case option", "[config]") {
+  CHECK(parse_case(kCrystal, "c.toml").contact.coulomb_normal == CoulombNormal::compressive);
+  std::string t = kCrystal;
+  t.replace(t.find("kn = 1e5"), 8, "kn = 1e5\ncoulomb_normal = \"magnitude\"");
+  CHECK(parse_case(t, "c.toml").contact.coulomb_normal == CoulombNormal::magnitude);
+  t.replace(t.find("\"magnitude\""), 11, "\"abs\"");
+  require_refused(t, {"contact.coulomb_normal", "compressive", "magnitude"});
+}
+
 TEST_CASE("bad case files are refused with the key and the allowed range", "[config]") {
   SECTION("not TOML") { require_refused("[case\nname=", {"not valid TOML"}); }
   SECTION("unknown top-level key") { require_refused(chain_case() + "[extra]\nx = 1\n", {"'extra'", "unknown key"}); }

@@ -147,6 +147,22 @@ TEST_CASE("tangential spring: sticking -kt xi, sliding at mu f_n, stick-slip swi
   r = contact::tangential_force(pd, Vec3(1e-7, 0, 0), Vec3(0, 0.01, 0), -1.0, false);
   CHECK(r.sliding);
   CHECK(r.force.norm() == 0.0);
+  // LIGGGHTS' convention (coulomb_normal = "magnitude"): the limit is mu |f_n| under tension too.
+  contact::TangentialSpringParams pm = pd;
+  pm.coulomb_on_magnitude = true;
+  r = contact::tangential_force(pm, Vec3(1e-7, 0, 0), Vec3(0, 0.01, 0), -1.0, false);
+  CHECK_FALSE(r.sliding);  // |f_o| = 0.022 < 0.5 * |-1|
+  CHECK((r.force - Vec3(-0.01, -0.02, 0)).norm() < 1e-15);
+  r = contact::tangential_force(pm, Vec3(1e-7, 0, 0), Vec3(0, 0.01, 0), -0.01, false);
+  CHECK(r.sliding);
+  CHECK(r.force.norm() == Approx(0.005).epsilon(1e-14));
+  // ... and for a pushing normal force the two conventions are one law.
+  for (const double f_n : {0.0, 0.01, 1.0}) {
+    const auto a = contact::tangential_force(pd, Vec3(1e-7, 0, 0), Vec3(0, 0.01, 0), f_n, false);
+    const auto b = contact::tangential_force(pm, Vec3(1e-7, 0, 0), Vec3(0, 0.01, 0), f_n, false);
+    CHECK(a.sliding == b.sliding);
+    CHECK((a.force - b.force).norm() == 0.0);
+  }
 }
 
 TEST_CASE("sphere on sphere with spin: eq. (4) surface velocity and torques on both", "[crystal][contact]") {
