@@ -99,21 +99,25 @@ TEST_CASE("a good crystal case resolves with defaults", "[config]") {
   CHECK(c.contact.lever_arm == LeverArm::radius);  // seed 002 eq. (4)
 }
 
-TEST_CASE("the lever arm of the tangential force is a case option with two values", "[config]") {
-  std::string t = kCrystal;
-  t.replace(t.find("kn = 1e5"), 8, "kn = 1e5\nlever_arm = \"contact_point\"");
-  CHECK(parse_case(t, "c.toml").contact.lever_arm == LeverArm::contact_point);
-  t.replace(t.find("\"contact_point\""), 15, "\"surface\"");
-  require_refused(t, {"contact.lever_arm", "radius", "contact_point"});
-}
-
-TEST_CASE("the normal force in the Coulomb limit under tension is a case option", "[config]") {
-  CHECK(parse_case(kCrystal, "c.toml").contact.coulomb_normal == CoulombNormal::compressive);
-  std::string t = kCrystal;
-  t.replace(t.find("kn = 1e5"), 8, "kn = 1e5\ncoulomb_normal = \"magnitude\"");
-  CHECK(parse_case(t, "c.toml").contact.coulomb_normal == CoulombNormal::magnitude);
-  t.replace(t.find("\"magnitude\""), 11, "\"abs\"");
-  require_refused(t, {"contact.coulomb_normal", "compressive", "magnitude"});
+TEST_CASE("contact-law conventions are case options: each value parses, others are refused", "[config]") {
+  const Case defaults = parse_case(kCrystal, "c.toml");
+  CHECK(defaults.contact.lever_arm == LeverArm::radius);                // seed 002 eq. (4)
+  CHECK(defaults.contact.coulomb_normal == CoulombNormal::compressive);  // no friction under tension
+  struct Option {
+    std::string key, value, allowed_other;
+    bool (*is_set)(const ContactParams&);
+  };
+  const Option options[] = {
+      {"lever_arm", "contact_point", "radius", [](const ContactParams& p) { return p.lever_arm == LeverArm::contact_point; }},
+      {"coulomb_normal", "magnitude", "compressive",
+       [](const ContactParams& p) { return p.coulomb_normal == CoulombNormal::magnitude; }}};
+  for (const Option& o : options) {
+    std::string t = kCrystal;
+    t.replace(t.find("kn = 1e5"), 8, "kn = 1e5\n" + o.key + " = \"" + o.value + "\"");
+    CHECK(o.is_set(parse_case(t, "c.toml").contact));
+    t.replace(t.find("\"" + o.value + "\""), o.value.size() + 2, "\"other\"");
+    require_refused(t, {"contact." + o.key, o.value, o.allowed_other});
+  }
 }
 
 TEST_CASE("bad case files are refused with the key and the allowed range", "[config]") {
