@@ -86,12 +86,42 @@ class Sampler:
         self.cost += _time.time() - t
 
 
-def sync_state(ids, masses, dt, fixed):
-    """Positions and velocities at the force time t (see the header)."""
-    st = [O.bodies[i].state for i in ids]
-    pos = np.array([(v[0], v[1], v[2]) for v in [s.pos for s in st]])
-    vel = np.array([(v[0], v[1], v[2]) for v in [s.vel for s in st]])
-    frc = np.array([(v[0], v[1], v[2]) for v in [O.forces.f(i, True) for i in ids]])
+# Fast crystal sampling. The per-sample record() used to rebuild everything through YADE's Python API:
+# measured on the paper packing (3200 particles, 19 136 contacts, machine under load 2): listing the
+# real interactions 28 ms, their ids 15 ms, phys 16 ms, reading normalForce 24-70 ms and turning the
+# Vector3s into floats with v[0], v[1], v[2] 27-43 ms (as much again for shearForce), sync_state 43 ms,
+# T.layer_stress 34 ms (np.add.at): 0.19 s per sample, 232 of the 317 s of crystal_p. YADE 2023.02a
+# has no bulk accessor for interaction forces (O.interactions.all(True) still makes one Python object
+# per interaction, 12 ms), and any C++ summary (utils.bodyStressTensors) sums in another order and with
+# other arms: the P cases' sigma_zx, u_x, v_x are pure round-off (1e-7 Pa, 1e-17 m), so only the same
+# arithmetic on the same numbers keeps every dataset within 1e-12 of its peak. So record() now
+#  * keeps the list of real interactions, their ids and phys objects while the contact set is unchanged
+#    (checked every sample: same container size, same countReal(), every kept interaction still real:
+#    10 ms; InteractionContainer::requestErase resets geom and phys of an opening contact at once, so
+#    a stale force is never read; any change re-reads everything in container order, as before. The
+#    fixtures' polydisperse packing re-reads 50 times in 201 samples, the others once);
+#  * converts Vector3s with map(itemgetter(0, 1, 2), map(attrgetter(...), objs)) (no Python loop:
+#    63 ms instead of 70 + 43 ms for the normal forces) and keeps the State objects of the bodies;
+#  * T.layer_stress and T.layer_mean sum with np.bincount instead of np.add.at: the same sequential
+#    double additions in the same order (bitwise equal).
+# Result on crystal_p (same system, same load): 194 -> 68.5 ms per sample, YADE wall 317 -> 167 s (its
+# own stepping 85 s either way); every trace dataset bitwise equal to the old driver's, also on the four
+# crystal fixtures (undamped, damped, sliding, polydisperse).
+_XYZ = itemgetter(0, 1, 2)
+
+
+def vec3_array(vectors):
+    """[n, 3] float array from an iterable of YADE Vector3 (same values as (v[0], v[1], v[2]))."""
+    return np.array(list(map(_XYZ, vectors)), float).reshape(-1, 3)
+
+
+def sync_state(ids, masses, dt, fixed, states=None):
+    """Positions and velocities at the force time t (see the header). `states`: the bodies' State
+    objects, if the caller keeps them (they live as long as the bodies)."""
+    st = states if states is not None else [O.bodies[i].state for i in ids]
+    pos = vec3_array(map(attrgetter("pos"), st))
+    vel = vec3_array(map(attrgetter("vel"), st))
+    frc = vec3_array(map(O.forces.f, ids, repeat(True)))
     pos = pos - vel * dt
     vs = vel - frc / masses[:, None] * (0.5 * dt)
     vs[fixed] = vel[fixed]
@@ -233,40 +263,10 @@ def first_verlet_step(ids, masses, v0, fixed, dt, newton, runner, sampler):
 
 
 # ---------------------------------------------------------------------------------------- crystal
-# Fast crystal sampling. The per-sample record() used to rebuild everything through YADE's Python API:
-# measured on the paper packing (3200 particles, 19 136 contacts, machine under load 2): listing the
-# real interactions 28 ms, their ids 15 ms, phys 16 ms, reading normalForce 24-70 ms and turning the
-# Vector3s into floats with v[0], v[1], v[2] 27-43 ms (as much again for shearForce), sync_state 43 ms,
-# T.layer_stress 34 ms (np.add.at): 0.19 s per sample, 232 of the 317 s of crystal_p. YADE 2023.02a
-# has no bulk accessor for interaction forces (O.interactions.all(True) still makes one Python object
-# per interaction, 12 ms), and any C++ summary (utils.bodyStressTensors) sums in another order and with
-# other arms: the P cases' sigma_zx, u_x, v_x are pure round-off (1e-7 Pa, 1e-17 m), so only the same
-# arithmetic on the same numbers keeps every dataset within 1e-12 of its peak. So record() now
-#  * keeps the list of real interactions, their ids and phys objects while the contact set is unchanged
-#    (checked every sample: same container size, same countReal(), every kept interaction still real:
-#    10 ms; InteractionContainer::requestErase resets geom and phys of an opening contact at once, so
-#    a stale force is never read; any change re-reads everything in container order, as before. The
-#    fixtures' polydisperse packing re-reads 50 times in 201 samples, the others once);
-#  * converts Vector3s with map(itemgetter(0, 1, 2), map(attrgetter(...), objs)) (no Python loop:
-#    63 ms instead of 70 + 43 ms for the normal forces) and keeps the State objects of the bodies;
-#  * sums with np.bincount instead of np.add.at: the same sequential double additions in the same
-#    order (bitwise equal; checked against T.layer_stress at every re-read of the contact set).
-# Result on crystal_p (same system, same load): 194 -> 68.5 ms per sample, YADE wall 317 -> 167 s (its
-# own stepping 85 s either way); every trace dataset bitwise equal to the old driver's, also on the four
-# crystal fixtures (undamped, damped, sliding, polydisperse).
-_XYZ = itemgetter(0, 1, 2)
-
-
-def vec3_array(vectors):
-    """[n, 3] float array from an iterable of YADE Vector3 (same values as (v[0], v[1], v[2]))."""
-    return np.array(list(map(_XYZ, vectors)), float).reshape(-1, 3)
-
-
 class CrystalContacts:
     """The real interactions in YADE's container order, re-read only when the set changes."""
 
-    def __init__(self, fixed, layer, radius):
-        self.fixed, self.layer, self.radius = fixed, layer, radius
+    def __init__(self):
         self.real = None
         self.rereads = 0
 
@@ -280,12 +280,6 @@ class CrystalContacts:
         self.ii = np.array([it.id1 for it in self.real], int)
         self.jj = np.array([it.id2 for it in self.real], int)
         self.phys = [it.phys for it in self.real]
-        # the constant parts of T.layer_stress for this contact set
-        keep = ~(self.fixed[self.ii] & self.fixed[self.jj])
-        self.keep = keep
-        self.i, self.j = self.ii[keep], self.jj[keep]
-        self.ri, self.rj = self.radius[self.i], self.radius[self.j]
-        self.lij = np.concatenate([self.layer[self.i], self.layer[self.j]])
         return True
 
     def forces_on_id1(self, has_shear):
@@ -295,23 +289,6 @@ class CrystalContacts:
             ff -= vec3_array(map(attrgetter("shearForce"), self.phys))
         return ff
 
-    def layer_stress(self, pos, f_on_i, box_x, box_y, l0, nlayers):
-        """T.layer_stress with the same operations in the same order (bitwise equal), np.bincount
-        for np.add.at (one sequential pass over the id1 terms, then the id2 terms, as the two add.at)."""
-        i, j, f = self.i, self.j, f_on_i[self.keep]
-        dx = pos[j] - pos[i]
-        dx[:, 0] -= box_x * np.round(dx[:, 0] / box_x)
-        dx[:, 1] -= box_y * np.round(dx[:, 1] / box_y)
-        dist = np.linalg.norm(dx, axis=1)
-        n = dx / dist[:, None]
-        ri, rj = self.ri, self.rj
-        overlap = ri + rj - dist
-        bi = n * (ri - overlap / 2)[:, None]
-        bj = bi - dx
-        vol = box_x * box_y * l0
-        szz = np.bincount(self.lij, np.concatenate([-bi[:, 2] * f[:, 2], -bj[:, 2] * -f[:, 2]]), nlayers)
-        szx = np.bincount(self.lij, np.concatenate([-bi[:, 2] * f[:, 0], -bj[:, 2] * -f[:, 0]]), nlayers)
-        return szz / vol, szx / vol
 
 
 def run_crystal(case, system, dt, nsteps, every):
@@ -380,38 +357,22 @@ def run_crystal(case, system, dt, nsteps, every):
 
     states = None                       # the bodies' State objects (made by O.bodies.append, kept)
     dyn_fixed_mask = np.zeros(n, bool) | dyn_fixed
-    contacts = CrystalContacts(fixed, layer, r)
-    layer_count = np.maximum(np.bincount(layer, minlength=nl), 1).astype(float)
-    fget = O.forces.f
-
-    def layer_mean(values):
-        # T.layer_mean (np.add.at from zeros) as one np.bincount: the same sums, bitwise
-        return np.bincount(layer, values, nl) / layer_count
+    contacts = CrystalContacts()
 
     def record():
         nonlocal states
         if states is None:
             states = [O.bodies[i].state for i in ids]
-        # sync_state with bulk conversions (same arithmetic)
-        p = vec3_array(map(attrgetter("pos"), states))
-        v = vec3_array(map(attrgetter("vel"), states))
-        frc = vec3_array(map(fget, ids, repeat(True)))
-        p = p - v * dt
-        vs = v - frc / m[:, None] * (0.5 * dt)
-        vs[dyn_fixed_mask] = v[dyn_fixed_mask]
-        v = vs
+        p, v = sync_state(ids, m, dt, dyn_fixed_mask, states)
         p[:, 2] -= zoff
-        reread = contacts.current()
+        contacts.current()
         ff = contacts.forces_on_id1(has_shear)
         # positions of id2 across the periodic boundary: layer_stress takes the minimum image in x, y
-        szz, szx = contacts.layer_stress(p, ff, lay["box_x"], lay["box_y"], lay["l0"], nl)
-        if reread:   # the fast sums are T.layer_stress's, bitwise: checked whenever the contact set is read
-            ref = T.layer_stress(p, r, layer, fixed, contacts.ii, contacts.jj, ff, lay["box_x"], lay["box_y"],
-                                 lay["l0"], nl)
-            if not (np.array_equal(ref[0], szz) and np.array_equal(ref[1], szx)):
-                fail("fast layer stress differs from T.layer_stress", 1)
+        szz, szx = T.layer_stress(p, r, layer, fixed, contacts.ii, contacts.jj, ff, lay["box_x"], lay["box_y"],
+                                  lay["l0"], nl)
         du = p - x0
-        return (szz, szx, layer_mean(du[:, 2]), layer_mean(du[:, 0]), layer_mean(v[:, 2]), layer_mean(v[:, 0]))
+        return (szz, szx, T.layer_mean(du[:, 2], layer, nl), T.layer_mean(du[:, 0], layer, nl),
+                T.layer_mean(v[:, 2], layer, nl), T.layer_mean(v[:, 0], layer, nl))
 
     sampler = Sampler(every, record, ids, dt)
     runner = PyRunner(command="__import__('builtins').xc_sampler()", iterPeriod=1)

@@ -32,13 +32,21 @@ def test_chain_deck(tmp_path, cases_dir):
 
 def test_crystal_deck(tmp_path, cases_dir):
     facts, deck, data = _render(tmp_path, cases_dir, "crystal_small_damped.toml")
-    assert "hooke/stiffness tangential history absolute_damping on limitForce off" in deck
+    # the fixture says normal_tension = "clip" (the convention YADE's damped law shares): limitForce on
+    assert "hooke/stiffness tangential history absolute_damping on limitForce on" in deck
+    # kt > 0: the pair dump carries the shear history (the converter's step force), full precision
+    assert "compute         cpl all pair/gran/local id force history" in deck
+    assert "c_cpl[9]" in deck and 'dpl format "' + " ".join(["%.17g"] * 9) + '"' in deck
     assert "gamman_abs peratomtypepair 3 " + " ".join(["0.1"] * 9) in deck
     assert "kn peratomtypepair 3 " + " ".join(["100000.0"] * 9) in deck
     assert "displace_atoms  source move 0.0 0.0 2.0000000000000002e-07 units box" in deck   # 1e-4 * d, exact
     assert deck.index("run             1") < deck.index("displace_atoms") < deck.index("fix             integr free")
     assert "boundary        p p f" in deck and "exclude type 2 2" in deck
     assert "640 atoms" in data
+    # frictionless: six columns, no history, and the seed's "allow" (limitForce off)
+    (tmp_path / "kt0").mkdir()
+    facts, deck, data = _render(tmp_path / "kt0", cases_dir, "crystal_small.toml")
+    assert "limitForce off" in deck and "history\n" not in deck and "c_cpl[7]" not in deck
 
 
 def test_dump_reader_and_pair_dedup(tmp_path):
