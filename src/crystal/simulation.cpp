@@ -209,7 +209,7 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
       dyn.work_in += 0.5 * dyn.mass[p] * c.excitation.amplitude * c.excitation.amplitude;
     }
     // F(0) of the state (x(0), v(0)): the dashpots see the source's initial velocity, as in
-    // LIGGGHTS' setup and YADE's first step (before: F(0) at rest, 9e-4 of the peak off).
+    // LIGGGHTS' setup and the YADE driver's first step (before: F(0) of the source at rest).
     dyn.compute_forces_of_state();
   }
   const double budget = e_start + std::abs(dyn.work_in);
