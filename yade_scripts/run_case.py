@@ -290,7 +290,6 @@ class CrystalContacts:
         return ff
 
 
-
 def run_crystal(case, system, dt, nsteps, every):
     c = T.contact_params(case)
     ex = T.excitation(case)
@@ -355,14 +354,11 @@ def run_crystal(case, system, dt, nsteps, every):
     x0 = pos.copy()
     has_shear = c["kt"] > 0 or c["gamma_t"] > 0
 
-    states = None                       # the bodies' State objects (made by O.bodies.append, kept)
+    states = [O.bodies[i].state for i in ids]   # kept: they live as long as the bodies
     dyn_fixed_mask = np.zeros(n, bool) | dyn_fixed
     contacts = CrystalContacts()
 
     def record():
-        nonlocal states
-        if states is None:
-            states = [O.bodies[i].state for i in ids]
         p, v = sync_state(ids, m, dt, dyn_fixed_mask, states)
         p[:, 2] -= zoff
         contacts.current()

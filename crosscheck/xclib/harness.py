@@ -164,15 +164,16 @@ def _traces_for(trace: dict, case: dict):
 
 
 # Contact-law conventions a trace records as root attributes (data/SCHEMA.md §3): when two traces
-# differ in one that matters for the case, their comparison is a convention difference.
+# differ in one that matters for the case, their comparison is a convention difference. Defaults:
+# traces.contact_params.
 CONVENTIONS = (
-    ("lever_arm", "radius", lambda c: c["kt"] > 0 or c["gamma_t"] > 0,
+    ("lever_arm", lambda c: c["kt"] > 0 or c["gamma_t"] > 0,
      "Seed 002 eq. (4) takes the radius a; YADE and LIGGGHTS always take the contact point a - delta/2 (S speeds "
      "then differ by 1e-5 .. 2e-4). Set [contact] lever_arm = \"contact_point\" to compare like with like."),
-    ("normal_tension", None, lambda c: c["gamma_n"] > 0,
+    ("normal_tension", lambda c: c["gamma_n"] > 0,
      "YADE's damped law (ViscEl) clips a pulling dashpot and cannot run \"allow\"; the difference shows where "
      "contacts open under a dashpot. Set [contact] normal_tension = \"clip\" to compare like with like."),
-    ("coulomb_normal", "compressive",
+    ("coulomb_normal",
      lambda c: (c["kt"] > 0 or c["gamma_t"] > 0) and c["gamma_n"] > 0 and c["normal_tension"] == "allow",
      "granwave's default Coulomb limit is mu max(f_n, 0); LIGGGHTS and YADE take mu |f_n|: they differ where a "
      "dashpot makes f_n pull. Set [contact] coulomb_normal = \"magnitude\" to compare like with like."),
@@ -188,12 +189,11 @@ def convention_difference(case: dict, trace_a: dict, trace_b: dict) -> str | Non
     c = T.contact_params(case)
     c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n")})
     out = []
-    for key, default, matters, why in CONVENTIONS:
+    for key, matters, why in CONVENTIONS:
         if not matters(c):
             continue
-        own = c.get(key, default)
-        va = trace_a.get("attrs", {}).get(key, own)
-        vb = trace_b.get("attrs", {}).get(key, own)
+        va = trace_a.get("attrs", {}).get(key, c[key])
+        vb = trace_b.get("attrs", {}).get(key, c[key])
         if va != vb:
             out.append("%s convention: the traces say %s = %s and %s. %s" % (key.replace("_", "-"), key, va, vb, why))
     return " ".join(out) or None
