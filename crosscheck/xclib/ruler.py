@@ -1,5 +1,5 @@
 """The ruler: `granwave analyze TRACES --json`, the one implementation of the measures of
-DESIGN.md §2.4 (src/analysis/measures.hpp), applied identically to every code's trace file.
+docs/design.md §2.4 (src/analysis/measures.hpp), applied identically to every code's trace file.
 
 There is deliberately no second (Python) copy of the measures: a crosscheck that measured each code
 with its own ruler could hide a difference of definition. `measure()` runs the analyzer and

@@ -136,7 +136,7 @@ def crystal_layout(system: dict) -> dict:
                 d=float(a.get("d", 2 * np.mean(system["radius"]))), layer_z=zc - zc[nf - 1], layer=layer)
 
 
-# ---------------------------------------------------------------- the layer stress (DESIGN §2.2)
+# ---------------------------------------------------------------- the layer stress (docs/design.md §2.2)
 def layer_stress(pos, radius, layer, fixed, i, j, f_on_i, box_x, box_y, l0, nlayers):
     """sigma_zz and sigma_zx per layer, compression positive, contact part only:
 

@@ -1,4 +1,4 @@
-// The measures of DESIGN.md §2.4. Every verb, test and code comparison goes through these.
+// The measures of docs/design.md §2.4. Every verb, test and code comparison goes through these.
 #include "analysis/measures.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The measures of DESIGN.md §2.4, defined once and used by every verb and test.
+// The measures of docs/design.md §2.4, defined once and used by every verb and test.
 // Signals are baseline-subtracted by the caller (e.g. sigma - sigma(t = 0)).
 #pragma once
 #include <cstddef>

@@ -94,7 +94,7 @@ void peak_errors(std::span<const double> t, std::span<const double> y, const Pea
 
 Measured measured(double v, double e) { return {v, e}; }
 
-// All DESIGN §2.4 measures of one baseline-subtracted signal, with their errors.
+// All docs/design.md §2.4 measures of one baseline-subtracted signal, with their errors.
 struct Signal {
   bool arrived = false;
   Measured peak_time, peak_value, half, one, duration, leading;
@@ -267,7 +267,7 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   const std::span<const double> t(tr.time.data(), nt);
   a.dt = (t[nt - 1] - t[0]) / (nt - 1);
 
-  // Measures on sigma - sigma(0) (DESIGN §2.4): sigma_zz for P, sigma_zx for S.
+  // Measures on sigma - sigma(0) (docs/design.md §2.4): sigma_zz for P, sigma_zx for S.
   const bool S = tr.mode == 'S';
   const std::vector<double>* mf = S ? &tr.stress_zx : &tr.stress_zz;
   a.measure_field = S ? "layer_stress_zx" : "layer_stress_zz";

@@ -1,5 +1,5 @@
 // The analysis of a trace file (data/SCHEMA.md §3) of any code — granwave, YADE or LIGGGHTS:
-// one ruler for all three. Crystal traces (seed 002): per-layer measures of DESIGN.md §2.4 on
+// one ruler for all three. Crystal traces (seed 002): per-layer measures of docs/design.md §2.4 on
 // sigma - sigma(t = 0), speed fits with standard errors, local speeds, the 2D-FFT dispersion fit
 // and the wavelength estimates of sec. 3.4. Chain traces (seed 001): per-contact measures and the
 // front speed. Every measure comes from analysis/measures.hpp; nothing here knows which code

@@ -6,7 +6,7 @@
 //   chain::ChainTrace tr = chain::simulate(sys, opt);   // observed arrays, in memory
 //   chain::Stepper st(sys, scheme, dt); st.advance(n);   // raw state access (tests, benchmarks)
 //
-// Indexing (DESIGN.md §2.2): bead 0 is the striker; contact j joins bead j and bead j + 1; with a
+// Indexing (docs/design.md §2.2): bead 0 is the striker; contact j joins bead j and bead j + 1; with a
 // wall, the last contact (j = nbeads - 1) is the wall's. A precompressed chain (F0 > 0, needs a
 // wall) is held by a constant force F0 on the striker towards the wall, so it starts in equilibrium. Positions and velocities point from the
 // striker towards the wall. The integrator works on displacements u from the built positions, so

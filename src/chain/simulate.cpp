@@ -47,7 +47,7 @@ Stepper::Stepper(const ChainSystem& sys, config::Scheme scheme, double dt)
   }
 }
 
-// Eq. (13) with DESIGN §2.2 indexing: m_i a_i = F_{i-1} - F_i, F_j = A_j max(delta_j, 0)^(3/2),
+// Eq. (13) with docs/design.md §2.2 indexing: m_i a_i = F_{i-1} - F_i, F_j = A_j max(delta_j, 0)^(3/2),
 // delta_j = g_j + u_j - u_{j+1}. F_[0] stands for the striker's missing left neighbour (0, or the
 // static load F0 of a precompressed chain).
 inline void Stepper::accelerations(const double* __restrict u, double* __restrict a) {

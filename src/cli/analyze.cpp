@@ -15,7 +15,7 @@ namespace {
 constexpr const char* kHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--t-max T]
 
 Measures a trace file of any code (granwave, yade, liggghts; data/SCHEMA.md §3) with the one set
-of measures of DESIGN.md §2.4.
+of measures of docs/design.md §2.4.
 
 Crystal traces (seed 002):
   per layer (on sigma - sigma(t=0): sigma_zz for P, sigma_zx for S, sign-normalised so the pulse

@@ -1,4 +1,4 @@
-// granwave: one verb per file in src/cli/. Exit codes (DESIGN.md §2.3): 0 success,
+// granwave: one verb per file in src/cli/. Exit codes (docs/design.md §2.3): 0 success,
 // 2 bad input, 1 a failed run or check.
 #include <cstring>
 #include <iostream>

@@ -1,4 +1,4 @@
-// The case file (DESIGN.md §2.1, data/SCHEMA.md): typed, validated structs.
+// The case file (docs/design.md §2.1, data/SCHEMA.md): typed, validated structs.
 // The loader (case_loader.cpp) is the single source of truth for what a case may say;
 // everything downstream trusts these values.
 #pragma once

@@ -1,4 +1,4 @@
-// Hertz normal contact (seed 001, eq. (13); DESIGN.md §3): small, stateless, inline.
+// Hertz normal contact (seed 001, eq. (13); docs/design.md §3): small, stateless, inline.
 //   F = A max(delta, 0)^(3/2),  A = (4/3) E* sqrt(R*),
 //   1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,  R* = R1 R2 / (R1 + R2)  (R* = R for a flat wall).
 // Eq. (13) writes A_{j,j+1} = 4 E_j E_{j+1} sqrt(R_j R_{j+1}/(R_j + R_{j+1})) /

@@ -1,4 +1,4 @@
-// Errors that carry their exit code (DESIGN.md §2.3): 2 = bad input, 1 = failed run.
+// Errors that carry their exit code (docs/design.md §2.3): 2 = bad input, 1 = failed run.
 #pragma once
 #include <stdexcept>
 #include <string>

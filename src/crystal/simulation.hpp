@@ -1,5 +1,5 @@
 // A wave run of the crystal (secs. 2.2 B and 3.1): excitation of the bottom fixed layers,
-// the time loop, and the observers of DESIGN.md §2.2 sampled at the output interval.
+// the time loop, and the observers of docs/design.md §2.2 sampled at the output interval.
 #pragma once
 #include <functional>
 #include <string>
@@ -65,7 +65,7 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
 // "synchronous", root attribute status = "complete" or "failed: ..."), written via NAME.tmp.
 void write_trace(const config::Case& c, const Packing& packing, const RunResult& result, const std::string& path);
 
-// Front speeds of the measures of DESIGN.md §2.4 on sigma - sigma(t = 0) of each layer with
+// Front speeds of the measures of docs/design.md §2.4 on sigma - sigma(t = 0) of each layer with
 // z/l0 in [z_min, z_max] (sigma_zz for P, sigma_zx for S); layers whose signal has no first
 // peak are left out. Speeds in m/s with their standard errors.
 struct FrontSpeeds {

@@ -1,4 +1,4 @@
-// Closed forms for Hertz contacts (DESIGN.md §3): two-body impact and Nesterenko's solitary wave.
+// Closed forms for Hertz contacts (docs/design.md §3): two-body impact and Nesterenko's solitary wave.
 #pragma once
 #include <limits>
 

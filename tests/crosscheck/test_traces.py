@@ -31,7 +31,7 @@ def test_fcc_prestress_matches_design(tmp_path, cases_dir):
     szz, szx = T.layer_stress(pos, r, lay["layer"], s["fixed"].astype(bool), ii, jj, ff, lay["box_x"], lay["box_y"],
                               lay["l0"], lay["nlayers"])
     dp = s["attrs"]["d_prime"]
-    sigma0 = 2 * math.sqrt(2) * kn * s["attrs"]["delta"] / dp ** 2   # DESIGN §3
+    sigma0 = 2 * math.sqrt(2) * kn * s["attrs"]["delta"] / dp ** 2   # docs/design.md §3
     assert abs(sigma0 - 1.417e5) / 1.417e5 < 1e-3
     free = slice(lay["fixed_layers"] + 1, lay["nlayers"] - lay["fixed_layers"] - 1)
     assert np.allclose(szz[free], sigma0, rtol=1e-9)
@@ -70,7 +70,7 @@ def test_chain_fixture_hertz_constant(tmp_path, cases_dir):
     sp = str(tmp_path / "sys.h5")
     sysbuild.build(case, sp)
     s = T.read_system(sp)
-    # steel-steel reference (DESIGN §3): K = 6.8978e9 for two 4.76 mm steel beads
+    # steel-steel reference (docs/design.md §3): K = 6.8978e9 for two 4.76 mm steel beads
     e, nu, r = 193e9, 0.3, 4.76e-3
     k = 4 / 3 * (e / (2 * (1 - nu ** 2))) * math.sqrt(r / 2)
     assert abs(k - 6.8978e9) / 6.8978e9 < 1e-4

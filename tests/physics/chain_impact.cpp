@@ -1,4 +1,4 @@
-// Two-body Hertz impact against the closed forms of DESIGN §3 (peak overlap, peak force, contact
+// Two-body Hertz impact against the closed forms of docs/design.md §3 (peak overlap, peak force, contact
 // time with 2.86827), for steel-steel, steel-aluminium and steel on the brass wall.
 #include <catch2/catch.hpp>
 
@@ -62,7 +62,7 @@ beads = ["large_steel"]
 dt = 1e-9
 t_end = 1e-4
 )", 3.63e-3);
-  // The published numbers (DESIGN §3) directly.
+  // The published numbers (docs/design.md §3) directly.
   const auto sys = chain::build_chain(chain_test::steel_chain(1, 0.443, "free"));
   const auto th = theory::hertz_impact(sys.hertz_constant[0], 3.63e-3, 3.63e-3, 0.443);
   const auto m = impact(sys, th.contact_time / 20000);
@@ -104,6 +104,6 @@ t_end = 1e-4
   CHECK_THAT(m.max_overlap, WithinRel(th.max_overlap, 1e-4));
   CHECK_THAT(m.peak_force, WithinRel(th.peak_force, 1e-4));
   CHECK_THAT(m.contact_time, WithinRel(th.contact_time, 1e-4));
-  // ../shared/notes/yade-liggghts.md: the correct wall peak is 123.2 N (YADE's R/2 gives 107.2 N).
+  // docs/design.md §5: the correct wall peak is 123.2 N (YADE's R/2 gives 107.2 N).
   CHECK_THAT(m.peak_force, WithinRel(123.2, 1e-3));
 }

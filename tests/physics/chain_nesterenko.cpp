@@ -1,4 +1,4 @@
-// Homogeneous Hertz chain (DESIGN §3): the solitary wave runs 1.0124 x Nesterenko's long-wave speed
+// Homogeneous Hertz chain (docs/design.md §3): the solitary wave runs 1.0124 x Nesterenko's long-wave speed
 // V_s = 0.6802 (2E / (D rho^(3/2) (1 - nu^2)))^(1/3) F_m^(1/6) (rho = bead mass / bead volume);
 // at the peak contact the two neighbouring contacts carry 24-25 % of the peak; F_m ~ v0^(6/5) and
 // V_s ~ v0^(1/5) over 0.1-5 m/s.

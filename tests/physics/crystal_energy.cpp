@@ -1,4 +1,4 @@
-// Energy audit of the crystal (DESIGN.md §2.2): E_kin + E_pot + dissipated - work_in stays at
+// Energy audit of the crystal (docs/design.md §2.2): E_kin + E_pot + dissipated - work_in stays at
 // its initial value. Velocity Verlet conserves E_kin + E_pot - dt^2/8 sum |F|^2/m exactly for
 // linear forces, so with that correction the balance closes to round-off plus the geometric
 // nonlinearity of the contacts; without it, to O((omega dt)^2) of the wave energy.

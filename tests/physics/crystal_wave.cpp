@@ -1,5 +1,5 @@
 // The 3200-particle crystal of seed 002 (data/cases/crystal_*.toml): P and S front speeds with
-// the measures of DESIGN.md §2.4 against theory (eq. 10) and the published/other-code numbers.
+// the measures of docs/design.md §2.4 against theory (eq. 10) and the published/other-code numbers.
 #include <catch2/catch.hpp>
 #include <cstdio>
 

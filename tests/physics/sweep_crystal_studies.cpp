@@ -61,7 +61,7 @@ TEST_CASE("damping study: first-peak amplitude falls with gamma_0 and with dista
     CHECK(v[cv_restitution] == Approx(std::exp(-eta0 * tc)).epsilon(1e-12));
     if (g > 0) CHECK(v[cv_t_gamma] == Approx(m_ij / g).epsilon(1e-12));
   }
-  // The seed's numbers at gamma_0 = 0.1 kg/s (Fig. 3 caption): r = 0.78 (DESIGN §3: 0.784),
+  // The seed's numbers at gamma_0 = 0.1 kg/s (Fig. 3 caption): r = 0.78 (docs/design.md §3: 0.784),
   // t_c = 2.039e-5 s, t_gamma = 4.19e-5 s (all quoted to the last digit given).
   const auto& g01 = r[2].values;
   CHECK(std::abs(g01[cv_restitution] - 0.784) < 5e-4);

@@ -85,7 +85,7 @@ TEST_CASE("linear contact, normal_tension = allow: t_c = pi/omega, r = exp(-eta_
 
 TEST_CASE("linear contact, normal_tension = clip: the contact ends early", "[crystal][contact]") {
   const Collision c = collide(0.1, config::NormalTension::clip, 1e-8);
-  // DESIGN.md §3: t_c = 1.939e-5 s, r = 0.793 when the dashpot may not pull.
+  // docs/design.md §3: t_c = 1.939e-5 s, r = 0.793 when the dashpot may not pull.
   CHECK(c.t_c == Approx(1.939e-5).margin(0.0005e-5));
   CHECK(c.r == Approx(0.793).margin(0.0005));
 }

@@ -1,4 +1,4 @@
-// The measures of DESIGN.md §2.4 on signals whose answers are known in closed form.
+// The measures of docs/design.md §2.4 on signals whose answers are known in closed form.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Eq. (10) of seed 002 on synthetic FCC networks, against DESIGN.md §3 reference values.
+// Eq. (10) of seed 002 on synthetic FCC networks, against docs/design.md §3 reference values.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -35,7 +35,7 @@ TEST_CASE("frictionless FCC: anisotropy ratios and speeds with branch length d",
   CHECK_THAT(p.ratio_xxxx_zzzz, WithinRel(1.25, 1e-12));
   CHECK_THAT(p.ratio_zxzx_yxyx, WithinRel(2.0, 1e-12));
   CHECK_THAT(p.ratio_zzzz_zxzx, WithinRel(2.0, 1e-12));
-  // DESIGN.md §3: 218.51 and 154.51 m/s (the seed's 218.5, 154.5), omega_0 = 309019 1/s.
+  // docs/design.md §3: 218.51 and 154.51 m/s (the seed's 218.5, 154.5), omega_0 = 309019 1/s.
   CHECK_THAT(p.V_pz, WithinRel(218.51, 1e-4));
   CHECK_THAT(p.V_sz, WithinRel(154.51, 1e-4));
   CHECK_THAT(p.V_sy, WithinRel(154.51, 1e-4));
@@ -93,7 +93,7 @@ TEST_CASE("Voigt form of the frictionless FCC tensor", "[theory]") {
 
 TEST_CASE("contact time and restitution of sec. 2.1", "[theory]") {
   const double mij = m / 2;
-  // DESIGN.md §3: t_c = 2.033e-5 s; gamma_0 = 0.1 kg/s: r = 0.784, t_c = 2.039e-5 s (allow),
+  // docs/design.md §3: t_c = 2.033e-5 s; gamma_0 = 0.1 kg/s: r = 0.784, t_c = 2.039e-5 s (allow),
   // clip: t_c = 1.939e-5 s, r = 0.793.
   CHECK_THAT(linear_contact_time(k, 0.0, mij, false).t_c, WithinRel(2.033e-5, 5e-4));
   CHECK(linear_contact_time(k, 0.0, mij, false).restitution == 1.0);
