@@ -74,14 +74,44 @@ def fig6(d, out):
     ax.plot(g["M"], g["median"], "o-", color="k", ms=4, label="median")
     ax.set_xlabel("M")
     ax.set_ylabel("peak force / peak force (M = 1)")
-    ax.set_title("Fig. 6: N_total = 20 (experiment chain), M_c = %.2f [%.2f, %.2f]" % (g["mc"], g["mc_lo"], g["mc_hi"]), fontsize=9)
+    draw_mc(ax, g)
+    ax.set_title("Fig. 6: N_total = 20 (experiment chain), %s" % mc_label(g, 2), fontsize=8)
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "fig6.png"), dpi=130)
 
 
-def hinge(M, g):
-    return g["mc_plateau"] + g["mc_slope"] * np.maximum(M - g["mc"], 0.0)
+def hinge(M, g, law):
+    """The fitted hinge of one rise law ("line" or "exp"), as written by granwave sweep."""
+    h = np.maximum(M - g["mc_" + law], 0.0)
+    if law == "line":
+        return g["mc_line_plateau"] + g["mc_line_slope"] * h
+    return g["mc_exp_plateau"] * np.exp(g["mc_exp_slope"] * h)
+
+
+def mc_label(g, digits=3):
+    """M_c [interval] and the law it comes from: the interval spans both laws (src/sweep/stats.hpp)."""
+    f = "%%.%df" % digits
+    s = ("M_c = " + f + " [" + f + ", " + f + "]") % (g["mc"], g["mc_lo"], g["mc_hi"])
+    if "mc_rise" in g:
+        rise = g["mc_rise"].decode() if isinstance(g["mc_rise"], bytes) else str(g["mc_rise"])
+        other = "exp" if rise == "line" else "line"
+        s += ("\n(%s rise; %s: " + f + ")") % ("straight" if rise == "line" else "exponential",
+                                             "straight" if other == "line" else "exponential", g["mc_" + other])
+    return s
+
+
+def draw_mc(ax, g):
+    """Both laws' fits, each threshold, and the reported interval (the union of both laws' intervals)."""
+    MM = np.linspace(0, 1, 400)
+    ax.axvspan(g["mc_lo"], g["mc_hi"], color="r", alpha=0.15, label="95 % interval (both laws)")
+    if "mc_line" not in g:  # a study file from before the two laws
+        ax.axvline(g["mc"], color="r", lw=0.8)
+        return
+    for law, style, name in [("line", "--", "straight"), ("exp", "-", "exponential")]:
+        ax.plot(MM, hinge(MM, g, law), "r" + style, lw=1,
+                label="%s rise: M_c = %.3f, lack of fit %.1f" % (name, g["mc_" + law], g["mc_%s_lack_of_fit" % law]))
+        ax.axvline(g["mc_" + law], color="r", ls=style, lw=0.7)
 
 
 def fig7(d, out):
@@ -96,11 +126,8 @@ def fig7(d, out):
         sel = m["n_total"] == n
         ax.plot(m["M"][sel], m["measure_norm"][sel], ".", ms=2, alpha=0.3, color="0.5")
         ax.errorbar(g["M"], g["mean"], yerr=g["stderr"], fmt="o", ms=3, label="mean +- s.e.")
-        MM = np.linspace(0, 1, 200)
-        ax.plot(MM, hinge(MM, g), "r-", lw=1, label="hinge fit")
-        ax.axvspan(g["mc_lo"], g["mc_hi"], color="r", alpha=0.15)
-        ax.axvline(g["mc"], color="r", lw=0.8)
-        ax.set_title("N_total = %d: M_c = %.3f [%.3f, %.3f]" % (n, g["mc"], g["mc_lo"], g["mc_hi"]), fontsize=9)
+        draw_mc(ax, g)
+        ax.set_title("N_total = %d: %s" % (n, mc_label(g)), fontsize=8)
         ax.set_xlabel("M")
         ax.set_ylabel("normalised peak force")
         ax.legend(fontsize=7)
@@ -132,7 +159,8 @@ def app3(d, out):
     a2.plot(g["M"], g["predicted_decay_rate"], "k--", lw=1,
             label="-(3/5) ln T (1-M)/4, T = %.3f" % tr["T"])
     a2.plot(g["M"], 0.6 * np.log(tr["T"]) * -(1 - g["M"]), ":", color="0.4", lw=1, label="seed's count x_s(1-M)")
-    a2.axvline(g["mc"], color="r", lw=0.8, label="M_c = %.2f" % g["mc"])
+    a2.axvspan(g["mc_lo"], g["mc_hi"], color="r", alpha=0.15)
+    a2.axvline(g["mc"], color="r", lw=0.8, label=mc_label(g, 2))
     a2.set_xlabel("M")
     a2.set_ylabel("decay rate 1/gamma (per bead)")
     a2.set_title("Appendix 3: F ~ exp(-x/gamma)", fontsize=9)
@@ -144,6 +172,7 @@ def app3(d, out):
     ax.semilogy(g["M"], g["median"], "o", ms=4, label="ensemble median")
     ax.semilogy(g["M"], g["predicted_minority"], "k--", label="T^(3n/5), n = N(1-M)/2 minority dimers")
     ax.semilogy(g["M"], g["predicted_blocks"], "g:", label="T^(3n/5), n = reversed blocks")
+    ax.axvspan(g["mc_lo"], g["mc_hi"], color="r", alpha=0.15)
     ax.axvline(g["mc"], color="r", lw=0.8)
     ax.set_xlabel("M")
     ax.set_ylabel("peak force / peak force (M = 1)")
@@ -166,11 +195,13 @@ def table(d, out):
                             ["%.5g" % g[c][k] for c in ["mean", "median", "stderr", "q25", "q75", "decay_rate_mean",
                                                         "decay_rate_stderr", "predicted_decay_rate", "predicted_minority",
                                                         "predicted_blocks"]] +
-                            ["%.4f" % g["mc"], "%.4f" % g["mc_lo"], "%.4f" % g["mc_hi"], "%.5f" % tr["T"]])
+                            ["%.4f" % g["mc"], "%.4f" % g["mc_lo"], "%.4f" % g["mc_hi"]] +
+                            ["%.4f" % g.get(k, np.nan) for k in ["mc_line", "mc_exp"]] + ["%.5f" % tr["T"]])
     with open(os.path.join(out, "chain_table.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["study", "n_total", "M", "runs", "mean", "median", "stderr", "q25", "q75", "decay_rate", "decay_rate_se",
-                    "predicted_decay_rate", "predicted_minority", "predicted_blocks", "mc", "mc_lo", "mc_hi", "T"])
+                    "predicted_decay_rate", "predicted_minority", "predicted_blocks", "mc", "mc_lo", "mc_hi", "mc_line",
+                    "mc_exp", "T"])
         w.writerows(rows)
 
 

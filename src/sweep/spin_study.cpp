@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <iomanip>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -455,13 +457,25 @@ void write_spin_study(const std::string& path, const SpinStudy& s, const SpinStu
     w.attr(G, "stop_bead", static_cast<std::int64_t>(g.stop_bead));
     w.attr(G, "max_time", g.max_time);
     w.attr(G, "nbeads", static_cast<std::int64_t>(g.sys.nbeads()));
+    // M_c: the headline law's threshold, the interval spanning both laws (sweep/stats.hpp).
     w.attr(G, "mc", ga.mc.fit.x_c);
     w.attr(G, "mc_lo", ga.mc.lo);
     w.attr(G, "mc_hi", ga.mc.hi);
     w.attr(G, "mc_sd", ga.mc.sd);
+    w.attr(G, "mc_rise", std::string(rise_name(ga.mc.fit.rise)));
     w.attr(G, "mc_plateau", ga.mc.fit.plateau);
     w.attr(G, "mc_slope", ga.mc.fit.slope);
     w.attr(G, "mc_replicas", static_cast<std::int64_t>(ga.mc.replicas));
+    for (const auto& [tag, f, lo, hi] : {std::tuple{"line", &ga.mc.line, ga.mc.line_lo, ga.mc.line_hi},
+                                         std::tuple{"exp", &ga.mc.exponential, ga.mc.exp_lo, ga.mc.exp_hi}}) {
+      const std::string k = std::string("mc_") + tag;
+      w.attr(G, k, f->x_c);
+      w.attr(G, k + "_lo", lo);
+      w.attr(G, k + "_hi", hi);
+      w.attr(G, k + "_plateau", f->plateau);
+      w.attr(G, k + "_slope", f->slope);
+      w.attr(G, k + "_lack_of_fit", f->lack_of_fit);
+    }
     std::vector<double> cnt, mean, med, se, q25, q75, kmean, kse;
     for (std::size_t k = 0; k < ga.M.size(); ++k) {
       cnt.push_back(static_cast<double>(ga.norm[k].count));
@@ -503,10 +517,19 @@ std::string spin_study_markdown(const SpinStudy& s, const SpinStudyResult& r) {
   o << "Single reversed dimer in an ordered chain of " << s.transmission_dimers << " dimers (defect at dimer " << t.defect_dimer
     << ", pulse energy counted over +-" << t.window_beads << " beads around the peak contact when it reaches bead "
     << t.measure_bead << "): T = " << t.T << " (from the peak force, (F/F0)^(5/3): " << t.T_peak << ").\n\n";
-  o << "| N_total | reference measure (N) | M_c | 95 % interval | plateau | slope |\n|---|---|---|---|---|---|\n";
-  for (const auto& g : r.groups)
-    o << "| " << g.n_total << " | " << g.reference << " | " << g.mc.fit.x_c << " | [" << g.mc.lo << ", " << g.mc.hi << "] | "
-      << g.mc.fit.plateau << " | " << g.mc.fit.slope << " |\n";
+  // M_c: the law with the less structured residuals; the interval spans both laws' 95 % bootstrap
+  // intervals, so it holds the misfit of the straight rise (sweep/stats.hpp).
+  o << "M_c: threshold of the law (straight or exponential rise above M_c) whose residuals are less structured; "
+       "the 95 % interval spans both laws' bootstrap intervals. Lack of fit ~ 1: the law describes the means.\n\n";
+  o << "| N_total | reference measure (N) | M_c | 95 % interval | law | straight rise: M_c [95 %] lack of fit | "
+       "exponential rise: M_c [95 %] lack of fit |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& g : r.groups) {
+    const auto& m = g.mc;
+    o << "| " << g.n_total << " | " << g.reference << " | " << m.fit.x_c << " | [" << m.lo << ", " << m.hi << "] | "
+      << rise_name(m.fit.rise) << " | " << m.line.x_c << " [" << m.line_lo << ", " << m.line_hi << "] " << std::setprecision(2)
+      << m.line.lack_of_fit << std::setprecision(4) << " | " << m.exponential.x_c << " [" << m.exp_lo << ", " << m.exp_hi
+      << "] " << std::setprecision(2) << m.exponential.lack_of_fit << std::setprecision(4) << " |\n";
+  }
   for (const auto& g : r.groups) {
     o << "\n## N_total = " << g.n_total << "\n\n";
     o << "| M | runs | mean | median | s.e. | q25 | q75 | decay rate (1/bead) | predicted decay rate | T^(3n/5), n = N(1-M)/2 | mean T^(3n/5), n = blocks |\n"

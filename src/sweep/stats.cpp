@@ -47,105 +47,195 @@ Summary summarize(std::span<const double> v) {
 
 namespace {
 
-// Linear least squares y = a + b h(x), h = max(x - xc, 0), closed form.
-HingeFit hinge_at(std::span<const double> x, std::span<const double> y, double xc) {
-  const std::size_t n = x.size();
-  double sh = 0, shh = 0, sy = 0, shy = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double h = std::max(x[i] - xc, 0.0);
-    sh += h;
-    shh += h * h;
-    sy += y[i];
-    shy += h * y[i];
+// The points grouped by x (the configurations of one M). The least-squares fit over every point
+// depends on each group's count and mean only: SSE = pure error + sum_g n_g (mean_g - fit(x_g))^2.
+struct Grouped {
+  std::vector<double> x, n, mean;  // distinct x, ascending
+  double pure_error = 0.0;         // sum over the points of (y - its group's mean)^2
+  std::size_t points = 0;
+};
+
+// One group from its values (two passes: the pure error of near-identical values stays exact).
+void add_group(Grouped& g, double x, std::span<const double> v) {
+  double mean = 0.0;
+  for (double y : v) mean += y;
+  mean /= static_cast<double>(v.size());
+  double ss = 0.0;
+  for (double y : v) ss += (y - mean) * (y - mean);
+  g.x.push_back(x);
+  g.n.push_back(static_cast<double>(v.size()));
+  g.mean.push_back(mean);
+  g.pure_error += ss;
+  g.points += v.size();
+}
+
+struct LineAt {
+  bool ok = false;
+  double a = 0.0, b = 0.0, misfit = 0.0;  // misfit = sum_g n_g (mean_g - a - b h_g)^2
+};
+
+// Weighted least squares of the group means on h = (x - xc)_+, closed form.
+LineAt line_at(const Grouped& g, double xc) {
+  double sw = 0, sh = 0, shh = 0, sy = 0, shy = 0;
+  for (std::size_t k = 0; k < g.x.size(); ++k) {
+    const double h = std::max(g.x[k] - xc, 0.0), w = g.n[k];
+    sw += w;
+    sh += w * h;
+    shh += w * h * h;
+    sy += w * g.mean[k];
+    shy += w * h * g.mean[k];
   }
-  const double nn = static_cast<double>(n);
-  const double det = nn * shh - sh * sh;
-  HingeFit f;
-  f.x_c = xc;
-  if (!(det > 1e-300)) return f;
-  f.slope = (nn * shy - sh * sy) / det;
-  f.plateau = (sy - f.slope * sh) / nn;
-  double sse = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double r = y[i] - f.plateau - f.slope * std::max(x[i] - xc, 0.0);
-    sse += r * r;
+  LineAt f;
+  const double det = sw * shh - sh * sh;
+  if (!(det > 1e-14 * sw * shh)) return f;  // no point on the rise
+  f.b = (sw * shy - sh * sy) / det;
+  f.a = (sy - f.b * sh) / sw;
+  for (std::size_t k = 0; k < g.x.size(); ++k) {
+    const double r = g.mean[k] - f.a - f.b * std::max(g.x[k] - xc, 0.0);
+    f.misfit += g.n[k] * r * r;
   }
-  f.sse = sse;
   f.ok = true;
   return f;
 }
 
-}  // namespace
-
-HingeFit fit_hinge(std::span<const double> x, std::span<const double> y) {
-  std::vector<double> xs(x.begin(), x.end());
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+HingeFit fit_grouped(const Grouped& g, Rise rise) {
   HingeFit best;
-  if (xs.size() < 3 || x.size() != y.size()) return best;
+  best.rise = rise;
+  if (g.x.size() < 3) return best;
   // x_c from the lowest x to the second-highest: at least two distinct x on the rise.
-  const double lo = xs.front(), hi = xs[xs.size() - 2];
+  const double lo = g.x.front(), hi = g.x[g.x.size() - 2];
   const int ngrid = 400;
-  double best_sse = std::numeric_limits<double>::infinity();
-  int kbest = 0;
+  double best_misfit = std::numeric_limits<double>::infinity(), best_xc = lo;
+  int kbest = -1;
   for (int k = 0; k <= ngrid; ++k) {
     const double xc = lo + (hi - lo) * k / ngrid;
-    auto f = hinge_at(x, y, xc);
-    if (f.ok && f.sse < best_sse) {
-      best_sse = f.sse;
-      best = f;
+    const auto f = line_at(g, xc);
+    if (f.ok && f.misfit < best_misfit) {
+      best_misfit = f.misfit;
+      best_xc = xc;
       kbest = k;
     }
   }
-  if (!best.ok) return best;
+  if (kbest < 0) return best;
   // Golden section in the bracket around the best grid point (SSE is continuous in x_c).
   double a = lo + (hi - lo) * std::max(kbest - 1, 0) / ngrid, b = lo + (hi - lo) * std::min(kbest + 1, ngrid) / ngrid;
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - g * (b - a), d = a + g * (b - a);
-  auto sse = [&](double xc) {
-    auto f = hinge_at(x, y, xc);
-    return f.ok ? f.sse : std::numeric_limits<double>::infinity();
+  const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
+  auto misfit = [&](double xc) {
+    const auto f = line_at(g, xc);
+    return f.ok ? f.misfit : std::numeric_limits<double>::infinity();
   };
-  double fc = sse(c), fd = sse(d);
+  double c = b - gr * (b - a), d = a + gr * (b - a);
+  double fc = misfit(c), fd = misfit(d);
   for (int it = 0; it < 60; ++it) {
     if (fc < fd) {
-      b = d; d = c; fd = fc; c = b - g * (b - a); fc = sse(c);
+      b = d; d = c; fd = fc; c = b - gr * (b - a); fc = misfit(c);
     } else {
-      a = c; c = d; fc = fd; d = a + g * (b - a); fd = sse(d);
+      a = c; c = d; fc = fd; d = a + gr * (b - a); fd = misfit(d);
     }
   }
-  auto f = hinge_at(x, y, 0.5 * (a + b));
-  if (f.ok && f.sse <= best.sse) best = f;
+  if (misfit(0.5 * (a + b)) <= best_misfit) best_xc = 0.5 * (a + b);
+  const auto f = line_at(g, best_xc);
+  best.ok = true;
+  best.x_c = best_xc;
+  best.plateau = rise == Rise::exponential ? std::exp(f.a) : f.a;
+  best.slope = f.b;
+  best.sse = g.pure_error + f.misfit;
+  const double G = static_cast<double>(g.x.size()), n = static_cast<double>(g.points);
+  best.lack_of_fit = (G > 3.0 && n > G && g.pure_error > 0.0) ? (f.misfit / (G - 3.0)) / (g.pure_error / (n - G))
+                                                               : std::numeric_limits<double>::quiet_NaN();
   return best;
+}
+
+// The points of each distinct x (ascending), as indices into the data.
+std::vector<std::pair<double, std::vector<std::size_t>>> groups_of(std::span<const double> x) {
+  std::map<double, std::vector<std::size_t>> m;
+  for (std::size_t i = 0; i < x.size(); ++i) m[x[i]].push_back(i);
+  return {m.begin(), m.end()};
+}
+
+// The law whose residuals are less structured; the straight one when that cannot be told.
+const HingeFit& headline(const HingeFit& line, const HingeFit& exponential) {
+  if (!exponential.ok) return line;
+  if (!line.ok) return exponential;
+  if (std::isfinite(line.lack_of_fit) && std::isfinite(exponential.lack_of_fit) &&
+      exponential.lack_of_fit < line.lack_of_fit)
+    return exponential;
+  return line;
+}
+
+}  // namespace
+
+const char* rise_name(Rise r) { return r == Rise::line ? "line" : "exponential"; }
+
+double hinge_value(const HingeFit& f, double x) {
+  const double h = std::max(x - f.x_c, 0.0);
+  return f.rise == Rise::line ? f.plateau + f.slope * h : f.plateau * std::exp(f.slope * h);
+}
+
+HingeFit fit_hinge(std::span<const double> x, std::span<const double> y, Rise rise) {
+  HingeFit bad;
+  bad.rise = rise;
+  if (x.size() != y.size()) return bad;
+  Grouped g;
+  std::vector<double> v;
+  for (const auto& [xv, idx] : groups_of(x)) {
+    v.clear();
+    for (std::size_t i : idx) {
+      if (rise == Rise::exponential && (!(y[i] > 0.0) || !std::isfinite(y[i]))) return bad;
+      v.push_back(rise == Rise::exponential ? std::log(y[i]) : y[i]);
+    }
+    add_group(g, xv, v);
+  }
+  return fit_grouped(g, rise);
 }
 
 HingeBootstrap bootstrap_hinge(std::span<const double> x, std::span<const double> y, std::size_t replicas, std::uint64_t seed,
                                double level) {
   HingeBootstrap out;
-  out.fit = fit_hinge(x, y);
+  out.line = fit_hinge(x, y, Rise::line);
+  out.exponential = fit_hinge(x, y, Rise::exponential);
+  out.fit = headline(out.line, out.exponential);
   if (!out.fit.ok || replicas == 0) return out;
-  std::map<double, std::vector<double>> groups;  // x -> the y of its configurations
-  for (std::size_t i = 0; i < x.size(); ++i) groups[x[i]].push_back(y[i]);
-  std::vector<double> bx, by, xcs;
-  bx.reserve(x.size());
-  by.reserve(x.size());
+  const auto groups = groups_of(x);
+  std::vector<double> xc_line, xc_exp, xc_head;
+  const bool use_exp = out.exponential.ok;  // ln y exists for every point
+  std::vector<double> vy, vl;
   for (std::size_t r = 0; r < replicas; ++r) {
     CounterRng rng(seed, r);
-    bx.clear();
-    by.clear();
-    for (const auto& [xv, ys] : groups)
-      for (std::size_t k = 0; k < ys.size(); ++k) {
-        bx.push_back(xv);
-        by.push_back(ys[rng.below(ys.size())]);
+    Grouped gl, ge;
+    for (const auto& [xv, idx] : groups) {
+      vy.clear();
+      vl.clear();
+      for (std::size_t k = 0; k < idx.size(); ++k) {
+        const std::size_t i = idx[rng.below(idx.size())];
+        vy.push_back(y[i]);
+        if (use_exp) vl.push_back(std::log(y[i]));
       }
-    auto f = fit_hinge(bx, by);
-    if (f.ok) xcs.push_back(f.x_c);
+      add_group(gl, xv, vy);
+      if (use_exp) add_group(ge, xv, vl);
+    }
+    const auto fl = fit_grouped(gl, Rise::line);
+    if (fl.ok) xc_line.push_back(fl.x_c);
+    if (use_exp) {
+      const auto fe = fit_grouped(ge, Rise::exponential);
+      if (fe.ok) xc_exp.push_back(fe.x_c);
+      if (out.fit.rise == Rise::exponential && fe.ok) xc_head.push_back(fe.x_c);
+    }
+    if (out.fit.rise == Rise::line && fl.ok) xc_head.push_back(fl.x_c);
   }
-  out.replicas = xcs.size();
-  if (xcs.empty()) return out;
-  out.lo = quantile(xcs, 0.5 * (1.0 - level));
-  out.hi = quantile(xcs, 1.0 - 0.5 * (1.0 - level));
-  out.sd = summarize(xcs).stderr_mean * std::sqrt(static_cast<double>(xcs.size()));
+  out.replicas = xc_head.size();
+  const double plo = 0.5 * (1.0 - level), phi = 1.0 - 0.5 * (1.0 - level);
+  out.line_lo = quantile(xc_line, plo);
+  out.line_hi = quantile(xc_line, phi);
+  out.exp_lo = quantile(xc_exp, plo);
+  out.exp_hi = quantile(xc_exp, phi);
+  out.lo = out.line_lo;
+  out.hi = out.line_hi;
+  if (!xc_exp.empty()) {
+    out.lo = xc_line.empty() ? out.exp_lo : std::min(out.lo, out.exp_lo);
+    out.hi = xc_line.empty() ? out.exp_hi : std::max(out.hi, out.exp_hi);
+  }
+  if (!xc_head.empty()) out.sd = summarize(xc_head).stderr_mean * std::sqrt(static_cast<double>(xc_head.size()));
   return out;
 }
 

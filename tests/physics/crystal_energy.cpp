@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "config/case.hpp"
 #include "crystal/packing.hpp"
@@ -109,9 +110,12 @@ TEST_CASE("energy audit closes for the velocity drive (freed source layers with 
     REQUIRE_FALSE(r.failed);
     const crystal::Traces& t = r.traces;
     const std::size_t last = t.samples() - 1;
-    double kick = 0.0;
-    for (std::size_t q = 0; q < p.size(); ++q)
-      if (p.fixed[q] && p.layer[q] < p.fixed_layers) kick += 0.5 * p.mass[q] * 1e-3 * 1e-3;
+    // The kick, from the case alone (not from the packing's arrays that work_in sums): a layer is
+    // a cells[0] x cells[1] square net (sec. 2.2), so the source (the fixed bottom layers) holds
+    // cells[0] cells[1] fixed_layers particles of mass rho (4/3) pi a^3, each at v(0) = amplitude.
+    const auto& k = *c.crystal;
+    const double n_source = static_cast<double>(k.cells[0]) * k.cells[1] * k.fixed_layers;
+    const double kick = 0.5 * n_source * (k.density * 4.0 / 3.0 * std::numbers::pi * std::pow(k.radius, 3)) * 1e-3 * 1e-3;
     auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
     double residual = 0.0;
     for (std::size_t k = 0; k < t.samples(); ++k)

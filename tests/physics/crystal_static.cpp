@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "../test_support.hpp"
 #include "config/case.hpp"
 #include "core/rng.hpp"
 #include "crystal/dynamics.hpp"
@@ -134,6 +135,13 @@ TEST_CASE("same forces after a shift across the periodic faces and after reorder
 }
 
 TEST_CASE("results do not depend on the number of threads", "[crystal][static]") {
+  // The threaded run must really use threads: ask for two (whatever OMP_NUM_THREADS says) and skip,
+  // loudly, when OpenMP cannot give them (no OpenMP, OMP_THREAD_LIMIT=1): never a vacuous pass.
+#ifdef _OPENMP
+  omp_set_num_threads(2);
+#endif
+  const int got = test_support::openmp_threads(2);
+  if (got < 2) test_support::skip("OpenMP gives " + std::to_string(got) + " thread(s): thread invariance untested");
   config::Case c = load("crystal_small");
   c.contact.kt = 1e5;
   c.contact.gamma_n = 0.1;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "sweep/crystal_study.hpp"
+#include "theory/crystal_theory.hpp"
 
 using namespace granwave;
 using namespace granwave::sweep;
@@ -16,6 +17,35 @@ namespace fs = std::filesystem;
 
 namespace {
 const std::string kCase = std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_p.toml";
+// crystal_p.toml: radius 1 mm, density 2000 kg/m^3, two equal particles: m_ij = m/2.
+const double kMij = 0.5 * 2000.0 * 4.0 / 3.0 * std::numbers::pi * 1e-9;
+
+// Two particles meet at 1 m/s with the linear spring-dashpot of sec. 2.1, integrated by RK4 with
+// t_c/20000 steps: the contact ends when delta returns to 0 ("allow") or when the normal force
+// k delta + gamma_0 delta_dot reaches 0 ("clip"), located by linear interpolation; r = -v'/v.
+struct Collision {
+  double t_c = 0.0, r = 0.0;
+};
+Collision collide(double k, double gamma, double m, bool clip) {
+  auto acc = [&](double d, double v) { return -(k * d + gamma * v) / m; };
+  auto end_value = [&](double d, double v) { return clip ? k * d + gamma * v : d; };
+  const double h = std::numbers::pi * std::sqrt(m / k) / 20000.0;
+  double d = 0.0, v = 1.0, t = 0.0;
+  double prev = end_value(d, v);
+  for (;;) {
+    const double k1d = v, k1v = acc(d, v);
+    const double k2d = v + 0.5 * h * k1v, k2v = acc(d + 0.5 * h * k1d, v + 0.5 * h * k1v);
+    const double k3d = v + 0.5 * h * k2v, k3v = acc(d + 0.5 * h * k2d, v + 0.5 * h * k2v);
+    const double k4d = v + h * k3v, k4v = acc(d + h * k3d, v + h * k3v);
+    const double dn = d + h / 6 * (k1d + 2 * k2d + 2 * k3d + k4d), vn = v + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    const double now = end_value(dn, vn);
+    if (t > 0.0 && now <= 0.0) {
+      const double f = prev / (prev - now);
+      return {t + f * h, -(v + f * (vn - v))};
+    }
+    d = dn, v = vn, t += h, prev = now;
+  }
+}
 
 CrystalStudy small(const std::string& vary, const std::string& values, const std::string& modes, int layers, double t_end) {
   auto s = parse_crystal_study("[study]\nname = \"" + vary + "\"\nkind = \"crystal\"\ncase = \"" + kCase + "\"\nvary = \"" + vary +
@@ -38,7 +68,7 @@ std::vector<MemberResult> run(const CrystalStudy& s, const std::string& tag) {
 }
 }  // namespace
 
-TEST_CASE("damping study: first-peak amplitude falls with gamma_0 and with distance; r = exp(-eta_0 t_c)") {
+TEST_CASE("damping study: first-peak amplitude falls with gamma_0 and with distance, r = exp(-eta_0 t_c)") {
   // 3 x 3 x 40 crystal, 0.2 ms: the first peak passes z/l0 = 20 at ~0.13 ms.
   const auto s = small("gamma_n", "[0.0, 0.01, 0.1, 1.0]", "[\"P\"]", 40, 2.0e-4);
   const auto r = run(s, "damp");
@@ -54,19 +84,34 @@ TEST_CASE("damping study: first-peak amplitude falls with gamma_0 and with dista
       CHECK(amp10 < r[i - 1].values[cv_count + 0]);
       CHECK(amp20 < r[i - 1].values[cv_count + 1]);
     }
-    // Sec. 2.1 closed forms, on the members' own gamma grid.
-    const double g = v[cv_value], m_ij = v[cv_m_ij], eta0 = g / (2 * m_ij);
-    const double tc = std::numbers::pi / std::sqrt(k / m_ij - eta0 * eta0);
-    CHECK(v[cv_t_c] == Approx(tc).epsilon(1e-12));
-    CHECK(v[cv_restitution] == Approx(std::exp(-eta0 * tc)).epsilon(1e-12));
-    if (g > 0) CHECK(v[cv_t_gamma] == Approx(m_ij / g).epsilon(1e-12));
+    // Sec. 2.1's t_c and r, against the collision integrated here (not the closed forms under test).
+    const double g = v[cv_value], m_ij = v[cv_m_ij];
+    CHECK(m_ij == Approx(kMij).epsilon(1e-12));
+    const auto c = collide(k, g, m_ij, false);
+    INFO("gamma_0 = " << g << ": t_c " << v[cv_t_c] << " (integrated " << c.t_c << "), r " << v[cv_restitution]
+                      << " (integrated " << c.r << ")");
+    CHECK(v[cv_t_c] == Approx(c.t_c).epsilon(1e-6));
+    CHECK(v[cv_restitution] == Approx(c.r).epsilon(1e-6));
+    if (g > 0) CHECK(v[cv_t_gamma] == Approx(kMij / g).epsilon(1e-12));
   }
-  // The seed's numbers at gamma_0 = 0.1 kg/s (Fig. 3 caption): r = 0.78 (docs/design.md §3: 0.784),
-  // t_c = 2.039e-5 s, t_gamma = 4.19e-5 s (all quoted to the last digit given).
+  // The seed's numbers (sec. 2.2 and Fig. 3 caption, each to the last digit given; docs/design.md §3):
+  // gamma_0 = 0: t_c = 2.033e-5 s; gamma_0 = 0.1 kg/s: r = 0.78 (0.784), t_c = 2.039e-5 s,
+  // t_gamma = m_ij/gamma_0 = 4.19e-5 s.
+  CHECK(std::abs(r[0].values[cv_t_c] - 2.033e-5) < 5e-9);
+  CHECK(r[0].values[cv_restitution] == 1.0);
   const auto& g01 = r[2].values;
   CHECK(std::abs(g01[cv_restitution] - 0.784) < 5e-4);
   CHECK(std::abs(g01[cv_t_c] - 2.039e-5) < 5e-9);
   CHECK(std::abs(g01[cv_t_gamma] - 4.19e-5) < 5e-8);
+  // normal_tension = "clip" (no attractive dashpot force): the contact ends when k delta + gamma_0
+  // delta_dot reaches zero, earlier; docs/design.md §3: t_c = 1.939e-5 s, r = 0.793.
+  const auto clip = theory::linear_contact_time(k, 0.1, kMij, true);
+  const auto cc = collide(k, 0.1, kMij, true);
+  INFO("clip: t_c " << clip.t_c << " (integrated " << cc.t_c << "), r " << clip.restitution << " (integrated " << cc.r << ")");
+  CHECK(clip.t_c == Approx(cc.t_c).epsilon(1e-6));
+  CHECK(clip.restitution == Approx(cc.r).epsilon(1e-6));
+  CHECK(std::abs(clip.t_c - 1.939e-5) < 5e-9);
+  CHECK(std::abs(clip.restitution - 0.793) < 5e-4);
 }
 
 TEST_CASE("friction study: P speed at kt/k = 1 is V_pz(0) sqrt(2) (affine tangential springs)") {

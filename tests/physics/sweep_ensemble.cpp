@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "io/h5.hpp"
+#include "../test_support.hpp"
 #include "sweep/spin_study.hpp"
 
 using namespace granwave;
@@ -40,6 +41,10 @@ std::filesystem::path scratch(const std::string& name) {
 }  // namespace
 
 TEST_CASE("results do not depend on the thread count") {
+  // Vacuous unless OpenMP really runs two threads (a build without OpenMP, OMP_THREAD_LIMIT=1):
+  // then the test is skipped, loudly, rather than passed.
+  const int got = test_support::openmp_threads(2);
+  if (got < 2) test_support::skip("OpenMP gives " + std::to_string(got) + " thread(s) for num_threads(2): thread invariance untested");
   const auto s = parse_spin_study(smoke_text(), "smoke");
   SweepOptions o;
   o.progress = false;
@@ -150,13 +155,20 @@ TEST_CASE("a reduced study (N_total = 16, K = 4) end to end") {
   REQUIRE(g.M.size() == 9);
   for (std::size_t k = 0; k + 1 < g.M.size(); ++k) REQUIRE(g.norm[k].count == 4);
   REQUIRE(g.norm.back().count == 1);
-  REQUIRE(g.norm.back().mean == 1.0);  // normalised by the M = 1 run itself
-  REQUIRE(g.mc.fit.ok);
-  REQUIRE(g.mc.lo <= g.mc.hi);
-  REQUIRE(g.mc.fit.x_c >= 0.0);
-  REQUIRE(g.mc.fit.x_c <= 1.0);
+  REQUIRE(g.mc.fit.ok);  // M_c itself is validated against the seed in sweep_mc_validation.cpp
   // Disorder lowers the transmitted peak: the M = 0 median is below the ordered chain's.
   REQUIRE(g.norm.front().median < 1.0);
+  // Seed 001, Appendix 3: each reversed dimer passes a fraction T of the pulse energy and E ~ F^(5/3)
+  // (Nesterenko), so one reversed dimer (M = 1 - 2/N_total) leaves F/F(M = 1) = T^(3/5). T comes
+  // from another computation (one defect in a 30-dimer ordered chain, the pulse energy counted in a
+  // window). 5 %: here the defect can sit 3 beads before the measured ones, where the transmitted
+  // pulse has not re-formed (measured: 0.8537 +- 0.0124 against T^(3/5) = 0.8766; at N_total = 50,
+  // K = 20: 0.8723 +- 0.0029).
+  const auto& one_defect = g.norm[g.M.size() - 2];
+  REQUIRE(g.M[g.M.size() - 2] == Approx(1.0 - 2.0 / 16.0));
+  const double predicted = std::pow(r.transmission.T, 0.6);
+  INFO("one reversed dimer: mean " << one_defect.mean << " +- " << one_defect.stderr_mean << ", T^(3/5) = " << predicted);
+  CHECK(std::abs(one_defect.mean / predicted - 1.0) < 0.05);
   // The file holds what the analysis printed.
   io::H5Reader h5(o.output);
   REQUIRE(h5.attr_string("/", "kind") == "spin_chain");

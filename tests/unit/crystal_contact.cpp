@@ -198,7 +198,7 @@ TEST_CASE("sphere on sphere with spin: eq. (4) surface velocity and torques on b
   CHECK((total - (-overlap * n.cross(f_t))).norm() < 1e-12 * torque.norm());
 }
 
-TEST_CASE("contact-point lever arm: a - delta/2 in eq. (4) and in both torques; angular momentum exact",
+TEST_CASE("contact-point lever arm: a - delta/2 in eq. (4) and in both torques, angular momentum exact",
           "[crystal][contact]") {
   config::ContactParams cp;
   cp.kn = 1e5;

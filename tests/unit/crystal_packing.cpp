@@ -99,7 +99,7 @@ TEST_CASE("system file round trip and reuse by a run", "[crystal][packing]") {
   for (const char* f : {"a.h5", "b.h5", "system.h5"}) std::filesystem::remove(temp_path(f));
 }
 
-TEST_CASE("check refuses unstable dt, mu_d > mu_s, negative stiffness; warns above t_c/50", "[crystal][check]") {
+TEST_CASE("check refuses unstable dt, mu_d > mu_s, negative stiffness, warns above t_c/50", "[crystal][check]") {
   config::Case c = small_case();
   std::ostringstream out;
   crystal::check(c, out);

@@ -8,7 +8,7 @@
 
 using namespace granwave;
 
-TEST_CASE("datasets and attributes round-trip; the file appears only on commit", "[io]") {
+TEST_CASE("datasets and attributes round-trip, the file appears only on commit", "[io]") {
   const std::string path = (std::filesystem::temp_directory_path() / "granwave_io_roundtrip.h5").string();
   std::filesystem::remove(path);
   {

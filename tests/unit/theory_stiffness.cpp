@@ -56,7 +56,7 @@ TEST_CASE("frictionless FCC at the actual contact distance d' = d (1 - 1e-3)", "
   CHECK_THAT(p.omega0_p, WithinRel(309019.0, 1e-4));
 }
 
-TEST_CASE("the kt term: major but not minor symmetry; V_pz(kt) = V_pz(0) sqrt(1 + kt/k)", "[theory]") {
+TEST_CASE("the kt term: major but not minor symmetry, V_pz(kt) = V_pz(0) sqrt(1 + kt/k)", "[theory]") {
   for (double ratio : {0.2, 0.5, 1.0, 2.0}) {
     const auto p = crystal_prediction(fcc_network(4, 4, 10, d, m, k, ratio * k));
     CHECK(p.major_asymmetry < 1e-14);
