@@ -279,6 +279,9 @@ def render(case: dict, system: dict, workdir: str) -> dict:
     dt = T.timestep(case, system)
     nsteps, every = T.sampling(case, dt)
     facts = dict(model=model, dt=dt, nsteps=nsteps, every=every, n=len(system["mass"]))
+    scheme = case.get("integrator", {}).get("scheme", "verlet")
+    if scheme != "verlet":
+        sys.stderr.write("lammps_case: the case says scheme = \"%s\"; LAMMPS runs velocity Verlet at the same dt\n" % scheme)
     deck = (render_chain if model == "chain" else render_crystal)(case, system, workdir, facts)
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
@@ -432,16 +435,27 @@ def lammps_version(log: str) -> str:
     return "LAMMPS"
 
 
+def _die_with_parent():
+    """LAMMPS gets SIGKILL if this driver dies (Linux prctl PR_SET_PDEATHSIG): a harness that kills
+    the driver never leaves a LAMMPS running. Its Open MPI singleton helper (orted) exits with it."""
+    try:
+        import ctypes
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)
+    except Exception:  # noqa: BLE001 -- not Linux: the process group below still holds
+        pass
+
+
 def run_lammps(exe, work, timeout):
-    """(status, returncode, wall): the whole process group is killed at the timeout."""
+    """(status, returncode, wall). LAMMPS stays in this driver's process group (the harness kills
+    the group at its own timeout) and dies with the driver; at this driver's timeout it is killed."""
     t = time.time()
     with open(os.path.join(work, "log.stdout"), "w") as lo:
         p = subprocess.Popen([exe, "-in", "in.case", "-log", "log.lammps", "-nocite"], cwd=work, stdout=lo,
-                             stderr=subprocess.STDOUT, start_new_session=True)
+                             stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
         try:
             rc = p.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGKILL)
+            p.kill()
             p.wait()
             return "timeout", None, time.time() - t
     return "ok", rc, time.time() - t
