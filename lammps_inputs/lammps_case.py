@@ -413,6 +413,9 @@ def convert_crystal(workdir, case, system, facts):
                          % unrecovered)
     extra = dict(facts["conventions"])
     extra.update(pair_style=facts["pair_style"], tangential_unrecovered_rows=unrecovered)
+    if facts["tangential"]:
+        # measured: a contact that opens loses its spring; touching again it starts from f_t = 0
+        extra["history_on_contact_loss"] = "zeroed"
     return np.array(times), data, extra
 
 

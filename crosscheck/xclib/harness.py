@@ -223,6 +223,40 @@ def _fmt(v):
     return str(v)
 
 
+def summary_md(results) -> list:
+    """Two compact tables: each code's wall time per case, and per case and pair the largest value of
+    each compared quantity with the pair's status (FAIL > EXPECTED-DIFF > PASS)."""
+    names = []
+    for res in results:
+        names += [c for c in res.get("runs", {}) if c not in names]
+    md = ["## Summary", "", "Wall time per code (s; the driver's whole run: solver, conversion, files):", "",
+          "| case | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
+    for res in results:
+        runs = res.get("runs", {})
+        md.append("| %s | %s |" % (res["case_name"], " | ".join(
+            ("%.1f" % runs[c]["wall_s"] if runs[c].get("wall_s") is not None else "-") + ("" if runs[c]["status"] == "ok"
+                                                                                        else " " + runs[c]["status"].upper())
+            if c in runs else "" for c in names)))
+    qs = ("trace_max_rel", "peak_rel", "speed_rel")
+    md += ["", "Largest difference per pair (traces: max |diff| / peak; first peaks and speeds: relative):", "",
+           "| case | pair | traces | first peaks | speeds | status |", "|---|---|---|---|---|---|"]
+    rank = {"FAIL": 3, "EXPECTED-DIFF": 2, "INFO": 1, "PASS": 0}
+    for res in results:
+        pairs = []
+        for r in res.get("rows", []):
+            if r["pair"] not in pairs and "-" in r["pair"]:
+                pairs.append(r["pair"])
+        for pair in pairs:
+            rows = [r for r in res["rows"] if r["pair"] == pair]
+            cells = []
+            for q in qs:
+                v = [r["value"] for r in rows if r["quantity"] == q and r["value"] is not None]
+                cells.append(_fmt(max(v)) if v else "-")
+            st = max((r["status"] for r in rows), key=lambda x: rank.get(x, 0))
+            md.append("| %s | %s | %s | %s |" % (res["case_name"], pair, " | ".join(cells), st))
+    return md + [""]
+
+
 def write_report(report_dir, results, started):
     md = ["# granwave crosscheck", "", "Started %s; codes run in fresh directories under this report." % started, ""]
     verdict = []
@@ -292,6 +326,7 @@ def write_report(report_dir, results, started):
     if not [v for v in verdict if v[1] not in ("EXPECTED-DIFF", "PASS")]:
         md.append("All comparisons within tolerance.")
     md += ["| case | status | detail |", "|---|---|---|"] + ["| %s | %s | %s |" % v for v in verdict]
+    md += [""] + summary_md(results)
     with open(os.path.join(report_dir, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     return verdict
