@@ -20,13 +20,20 @@ GW = RN.find_granwave(None)
 needs_granwave = pytest.mark.skipif(GW is None, reason="granwave not built (cmake --build build --target granwave)")
 
 
-def _alive(pid: int) -> bool:
-    """True while the process exists and is not a zombie (a killed child of a dead parent waits for init)."""
-    try:
-        with open("/proc/%d/stat" % pid) as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except OSError:
-        return False
+def _alive(pid: int, grace: float = 5.0) -> bool:
+    """True if the process still runs after `grace` seconds (a zombie, a killed child of a dead
+    parent waiting for init, counts as dead; SIGKILL takes effect asynchronously)."""
+    end = time.time() + grace
+    while True:
+        try:
+            with open("/proc/%d/stat" % pid) as f:
+                if f.read().rsplit(")", 1)[1].split()[0] == "Z":
+                    return False
+        except OSError:
+            return False
+        if time.time() > end:
+            return True
+        time.sleep(0.05)
 
 
 def _fake_lmp(tmp_path, body):
