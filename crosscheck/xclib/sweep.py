@@ -145,7 +145,9 @@ def judge_pairs(points, pairs, value_sets, lim, tsec, quantity):
             continue
         if judged:
             w = M.worst(judged)
-            note = ("%d values with a convention difference not judged" % len(conv)) if conv else ""
+            wc = M.worst(conv)
+            note = ("%d values with a convention difference not judged (largest %s)"
+                    % (len(conv), "-" if wc is None else "%.2g" % wc)) if conv else ""
             rows.append((name, quantity, w, lim, judge(w, lim, name, tsec), note))
         else:
             rows.append((name, quantity, M.worst(conv), lim, "EXPECTED-DIFF", why[:300]))
