@@ -268,7 +268,7 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
         case_name=case["case"]["name"], mass_lines=mass_lines(m), skin=_g(0.2 * float(r.min())), exclude=exclude,
         free_types="1 3" if vdrive else "1", pair_comment=sty["comment"], pair_lines=sty["lines"], dt=_g(facts["dt"]),
         excitation_line=exl, tangential_columns=" p1 p2 p3" if sty["tangential"] else "",
-        force_columns=" fx fy fz" if facts["damped"] else "", every=facts["every"],
+        every=facts["every"],
         thermo=max(1, facts["nsteps"] // 10), nsteps=facts["nsteps"])
 
 
@@ -295,22 +295,27 @@ def tangential_at_step(fs_dump, fn_dump, fn_step, mu):
     gran/hooke/history's single() rebuilds f_t = -kt xi from the history the step left (not
     incremented: exact with gamma_t = 0), then applies the Coulomb test again with the dump-time
     normal force, whose dashpot sees v(t): where |f_t| > mu |f_n(dump)| it is cut to that. The step's
-    force was -kt xi with |kt xi| <= mu |f_n(step)| (equality when it slid). So a row the dump did not
-    cut is the step's force; a cut row with |f_n(step)| <= |f_n(dump)| slid in the step and its force
-    is mu |f_n(step)| along the dumped direction; a cut row with |f_n(step)| > |f_n(dump)| lies
-    between the two limits and cannot be recovered: those are counted (returned) and left as dumped.
-    Returns (force rows, number of unrecoverable rows)."""
+    force was -kt xi with |kt xi| <= mu |f_n(step)|, equal when the contact slid. So a row the dump did
+    not cut is the step's force, and a row it cut slid in the step when |f_n(step)| <= |f_n(dump)|:
+    mu |f_n(step)| along the dumped direction. A cut row with |f_n(step)| > |f_n(dump)| has
+    mu |f_n(dump)| <= |kt xi| <= mu |f_n(step)|: it is taken as sliding too (mu |f_n(step)|), and
+    returned as `assumed` for the check against the per-atom forces (convert_crystal).
+    Returns (force rows, assumed [rows] bool)."""
     if len(fs_dump) == 0 or mu <= 0.0:
-        return fs_dump, 0
+        return fs_dump, np.zeros(len(fs_dump), bool)
     fs = np.linalg.norm(fs_dump, axis=1)
-    lim_dump = mu * np.abs(fn_dump)
-    cut = fs >= lim_dump * (1.0 - 1e-12)
-    cut &= fs > 0.0
-    lower = cut & (np.abs(fn_step) <= np.abs(fn_dump))
-    out = fs_dump.copy()
-    scale = np.where(lower, np.abs(fn_step) / np.where(np.abs(fn_dump) > 0, np.abs(fn_dump), 1.0), 1.0)
-    out *= scale[:, None]
-    return out, int(np.count_nonzero(cut & ~lower & (np.abs(fn_step) != np.abs(fn_dump))))
+    cut = (fs >= mu * np.abs(fn_dump) * (1.0 - 1e-12)) & (fs > 0.0)
+    assumed = cut & (np.abs(fn_step) > np.abs(fn_dump))
+    scale = np.where(cut, np.abs(fn_step) / np.where(np.abs(fn_dump) > 0, np.abs(fn_dump), 1.0), 1.0)
+    return fs_dump * scale[:, None], assumed
+
+
+def atom_forces(n, a, b, f_on_a):
+    """Per-atom sums of the contact forces (f on a, -f on b)."""
+    out = np.empty((n, 3))
+    for k in range(3):
+        out[:, k] = np.bincount(a, f_on_a[:, k], n) - np.bincount(b, f_on_a[:, k], n)
+    return out
 
 
 def convert_chain(workdir, system, facts):
@@ -367,28 +372,40 @@ def convert_crystal(workdir, case, system, facts):
     ncol = 6 if facts["tangential"] else 3
     times = []
     out = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx", "coord")}
-    unrecovered = 0
+    assumed_rows = unrecovered = 0
+    balance = 0.0
+    n_atoms = len(r)
     nfree = max(int(np.count_nonzero(~fixed)), 1)
     for s, cols, rows, pr in D.lockstep(os.path.join(workdir, "dump.atoms"), os.path.join(workdir, "dump.pairs")):
         p = D.columns(cols, rows, ["x", "y", "z"])
         v = D.columns(cols, rows, ["vx", "vy", "vz"])
+        fa = D.columns(cols, rows, ["fx", "fy", "fz"])
         if len(pr):
             i, j, fr = D.unique_rows(pr, 2, ncol)
         else:
             i, j, fr = np.zeros(0, int), np.zeros(0, int), np.zeros((0, ncol))
         fnorm = fr[:, :3]                                   # compute pair/local fx fy fz: the normal force on i
         f = fnorm + fr[:, 3:6] if facts["tangential"] else fnorm.copy()
+        assumed = np.zeros(len(i), bool)
         if gamma_n > 0.0 and s > 0 and len(i):   # step 0: the setup force already saw v(0), as the dump does
-            fa = D.columns(cols, rows, ["fx", "fy", "fz"])
             n_ij, _, _ = D.contact_normals(p, i, j, bx, by)
             fn_dump = np.sum(fnorm * n_ij, axis=1)
             f_step = D.dashpot_at_half_step(p, v, fa, mass, mobile, dt, i, j, fnorm, r, gamma_n, bx, by, kn, clip)
             if facts["tangential"]:
                 fn_step = np.sum(f_step * n_ij, axis=1)
-                ft, bad = tangential_at_step(fr[:, 3:6], fn_dump, fn_step, float(cp["mu_static"]))
-                unrecovered += bad
+                ft, assumed = tangential_at_step(fr[:, 3:6], fn_dump, fn_step, float(cp["mu_static"]))
                 f_step = f_step + ft
             f = f_step
+        # The contact forces must add up to the forces LAMMPS applied (dumped per atom): checks the rows,
+        # the dashpot alignment and every "assumed" sliding row (exact only if it slid).
+        if len(i):
+            miss = np.abs(atom_forces(n_atoms, i, j, f) - fa).max(axis=1)
+            scale = float(np.abs(f).max())
+            balance = max(balance, float(miss.max()) / scale)
+            if assumed.any():
+                off = miss > 1e-9 * scale
+                assumed_rows += int(np.count_nonzero(assumed))
+                unrecovered += int(np.count_nonzero(assumed & (off[i] | off[j])))
         a, b, fab = D.on_lower_id(i, j, f)
         szz, szx = T.layer_stress(p, r, layer, fixed, a, b, fab, bx, by, lay["l0"], nl)
         du = p - x0
@@ -408,11 +425,12 @@ def convert_crystal(workdir, case, system, facts):
                       ("ux", "layer_displacement_x"), ("vz", "layer_velocity_z"), ("vx", "layer_velocity_x")):
         data["/crystal/" + name] = np.array(out[key]).reshape(len(times), nl)
     if unrecovered:
-        sys.stderr.write("lammps_case: %d contact rows (all samples) were cut by the dump-time Coulomb test and lie "
-                         "between the two limits: left as dumped (trace attribute tangential_unrecovered_rows)\n"
-                         % unrecovered)
+        sys.stderr.write("lammps_case: %d of %d contact rows cut by the dump-time Coulomb test do not add up to the "
+                         "per-atom forces when taken as sliding in the step (trace attribute "
+                         "tangential_unrecovered_rows)\n" % (unrecovered, assumed_rows))
     extra = dict(facts["conventions"])
-    extra.update(pair_style=facts["pair_style"], tangential_unrecovered_rows=unrecovered)
+    extra.update(pair_style=facts["pair_style"], tangential_assumed_rows=assumed_rows,
+                 tangential_unrecovered_rows=unrecovered, force_balance_residual=balance)
     if facts["tangential"]:
         # measured: a contact that opens loses its spring; touching again it starts from f_t = 0
         extra["history_on_contact_loss"] = "zeroed"

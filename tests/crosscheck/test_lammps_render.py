@@ -66,7 +66,7 @@ def test_crystal_frictionless_uses_pair_granular_with_an_absolute_dashpot(tmp_pa
     assert "set             atom 1*640 mass" in deck        # one line: equal masses
     (tmp_path / "x").mkdir()
     facts, deck, _ = _render(tmp_path / "x", cases_dir, "crystal_small.toml")
-    assert "damping velocity\n" in deck and "limit_damping" not in deck and "vx vy vz\n" in deck
+    assert "damping velocity\n" in deck and "limit_damping" not in deck
 
 
 def test_crystal_friction_uses_gran_hooke_history_and_says_its_conventions(tmp_path, cases_dir):
@@ -99,13 +99,18 @@ def test_tangential_force_of_the_step_from_the_dump():
     mu = 0.5
     fs = np.array([[0.3, 0.0, 0.0],     # not cut at dump time: the step's force
                    [0.5, 0.0, 0.0],     # cut at dump (|f_n(dump)| = 1), step |f_n| = 0.8: slid, 0.4
-                   [0.0, 0.5, 0.0]])    # cut at dump, step |f_n| = 1.2 > 1: between 0.5 and 0.6, unknown
+                   [0.0, 0.5, 0.0]])    # cut at dump, step |f_n| = 1.2 > 1: taken as sliding (0.6), flagged
     fn_dump = np.array([1.0, 1.0, 1.0])
     fn_step = np.array([0.9, 0.8, 1.2])
-    out, bad = LM.tangential_at_step(fs, fn_dump, fn_step, mu)
+    out, assumed = LM.tangential_at_step(fs, fn_dump, fn_step, mu)
     assert out[0].tolist() == [0.3, 0.0, 0.0]
     assert out[1] == pytest.approx([0.4, 0.0, 0.0], rel=1e-15)
-    assert out[2].tolist() == [0.0, 0.5, 0.0] and bad == 1
+    assert out[2] == pytest.approx([0.0, 0.6, 0.0], rel=1e-15) and assumed.tolist() == [False, False, True]
+
+
+def test_atom_forces_add_each_contact_to_both_atoms():
+    f = LM.atom_forces(3, np.array([0, 1]), np.array([1, 2]), np.array([[1.0, 0, 0], [0, 2.0, 0]]))
+    assert f.tolist() == [[1.0, 0, 0], [-1.0, 2.0, 0], [0, -2.0, 0]]
 
 
 def test_lockstep_reads_both_dumps_a_frame_at_a_time_and_refuses_a_gap(tmp_path):
