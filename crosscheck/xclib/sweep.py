@@ -1,7 +1,7 @@
 """crosscheck sweep damping|friction: one parameter over a range, every code, one ruler.
 
-    crosscheck/crosscheck sweep damping  [--size small|paper] [--codes ...] [--report DIR]
-    crosscheck/crosscheck sweep friction [--size small|paper] [--modes P,S] [--codes ...] [--report DIR]
+    crosscheck/crosscheck sweep damping  [--size small|paper] [--codes ...] [--report DIR [--resume]]
+    crosscheck/crosscheck sweep friction [--size small|paper] [--modes P,S] [--codes ...] [--report DIR [--resume]]
 
 damping:  first-peak amplitude (ruler: `granwave analyze --json`) at five z/l0 positions over
           gamma_0 = 0, 0.025, 0.05, 0.1, 0.2 kg/s (seed 002 fig. 3 right), per code; relative
@@ -13,10 +13,12 @@ friction: P and S front speeds (first peak and half peak) over kt/k = 0, 0.2, 0.
 Each point is a case derived from a template (small: tests/crosscheck/cases/crystal_small.toml,
 4x4x40; paper: data/cases/crystal_p.toml / crystal_s.toml, 4x4x200) with only the swept keys
 changed (sweepmath.derive_case); the derived case files are kept in the report. Every point goes
-through the crosscheck harness's own steps (granwave build, each code in a fresh directory, the
-ruler), so a sweep point is exactly a `crosscheck run` of that case. Pairs are judged against
-[sweep.<name>] in tolerances.toml (measured values, each with its reason); `expected_pairs`
-there lists pairs reported as EXPECTED-DIFF (a documented difference, never a pass).
+through the crosscheck harness's own steps (runners: granwave build, each code in a fresh directory,
+granwave's convention twins, the ruler), so a sweep point is exactly a `crosscheck run` of that case,
+and with --resume a sweep finishes point by point (and code by code) in its report directory.
+Pairs are judged against [sweep.<name>] in tolerances.toml (measured values, each with its reason)
+on the points where their two codes ran the same conventions; `expected_pairs` there lists pairs
+reported as EXPECTED-DIFF (a documented difference, never a pass).
 """
 from __future__ import annotations
 
@@ -189,7 +191,7 @@ def damping(a, report_dir, granwave, tol) -> int:
     points = []
     for g in gammas:
         name = "sweep_damping_%s_g%s" % (a.size, ("%g" % g).replace(".", "p"))
-        # normal_tension: "clip", the one convention with a dashpot all three codes have (SCHEMA.md)
+        # normal_tension: "clip", the one convention with a dashpot every code has (SCHEMA.md; LAMMPS: limit_damping)
         ch = {("contact", "gamma_n"): g, ("contact", "kt"): 0.0, ("contact", "normal_tension"): "clip",
               ("excitation", "mode"): "P"}
         if size["t_end"]:
