@@ -185,3 +185,28 @@ def test_polydisperse_crystal_agrees_in_three_codes(tmp_path):
     assert p.returncode == 0 and "| xc_crystal_small_poly2 | PASS |" in p.stdout, p.stdout + p.stderr
     speeds = [ln for ln in report.splitlines() if "| speed_rel |" in ln]
     assert len(speeds) == 6 and all(float(r.split("|")[4]) < 1e-6 for r in speeds), speeds
+
+
+@needs_lammps
+def test_lammps_conventions_are_what_the_driver_assumes():
+    """lammps_inputs/probe_conventions.py on the installed LAMMPS: the conventions lammps_case.py
+    writes into every trace (and MAPPING.md quotes) are measured, not assumed. A LAMMPS release that
+    changes one of them fails here, not silently in a crosscheck."""
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "lammps_inputs"))
+    import lammps_case as LM
+    import probe_conventions as P
+    res = P.probe(harness.RN.find_lammps())
+    ghh = res["gran/hooke/history"]
+    assert (ghh["lever_arm"]["velocity"], ghh["lever_arm"]["torque"]) == ("radius", "radius")
+    assert ghh["tension"]["convention"] == LM.FRICTION_STYLE_CONVENTIONS["normal_tension"] == "allow"
+    assert ghh["coulomb"]["convention"] == LM.FRICTION_STYLE_CONVENTIONS["coulomb_normal"] == "magnitude"
+    assert LM.FRICTION_STYLE_CONVENTIONS["lever_arm"] == "radius"
+    assert ghh["history"]["convention"] == "zeroed"
+    gr = res["granular hooke linear_history"]
+    # the mixed arm is why pair granular is not used with friction
+    assert (gr["lever_arm"]["velocity"], gr["lever_arm"]["torque"]) == ("radius", "contact_point")
+    assert gr["tension_limit_damping"]["convention"] == "clip"
+    # hertz/material's unlike-type mixing is not eq. (13): the chain deck gives hertz k per type pair
+    assert res["hertz_mixing"]["force_over_eq13"] > 10
+    assert abs(res["wall_mixing"]["nu=0"] - 1) < 1e-12 and abs(res["wall_mixing"]["nu=0.34"] - 1.34) < 1e-12
