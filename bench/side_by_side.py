@@ -677,9 +677,7 @@ def main(argv=None) -> int:
                 raise BenchError("side_by_side: granwave binary not found: %s (build it: cmake --build build --target "
                                  "granwave, or pass --%s PATH)" % (path, key))
             gw_facts[key] = granwave_build_facts(exe)
-            title = "granwave" if key == "granwave" else "granwave (2nd build)"
-            if gw_facts[key]["no_avx512"]:
-                title += " -mno-avx512f"
+            title = "granwave [%s]" % gw_facts[key]["flags"].replace("-O3 ", "")
             runners.append(Runner(key, "granwave", exe, title))
         versions = {}
         for code, exe_name, pkg in (("lammps", a.lammps, "lammps"), ("liggghts", a.liggghts, "liggghts")):
@@ -743,6 +741,11 @@ def main(argv=None) -> int:
               "(other / granwave, same repetition; > 1: granwave faster)" % a.reps)
     md.append("- machine load: before `%s`; after `%s`; %.0f s in all" % (load0["uptime"], load1["uptime"],
                                                                         time.time() - t_start))
+    util = [x["cpu"] / x["wall"] for res in results for runs in res["runs"].values() for x in runs if x["wall"] > 0]
+    if util:
+        md.append("- CPU time / wall time of the runs: median %.2f, range %.2f-%.2f (1.00: a process never waited; "
+                  "lower: it waited for a CPU (a busy machine) or for the disk, and its wall time carries that wait)"
+                  % (statistics.median(util), min(util), max(util)))
     md += ["- " + n for n in notes]
     md.append("")
     md.append(table(results, runners, codes))
