@@ -9,9 +9,9 @@ What is timed
 -------------
 Each code runs the same system (the file `granwave build` writes; the other two read it as a LAMMPS
 data file rendered from it, not timed) in a fresh directory, one process, one thread
-(OMP_NUM_THREADS=1 for every code; Debian's LAMMPS and LIGGGHTS are serial MPI builds here, and
-Debian's LAMMPS has no OPENMP, KOKKOS or INTEL package: a generic build, its gran styles have no
-accelerated variant in it). The time is the whole process, start-up, input, run and output
+(OMP_NUM_THREADS=1 for every code; Debian's LAMMPS and LIGGGHTS are MPI builds, run here as one
+process without mpirun; Debian's LAMMPS has no OPENMP, KOKKOS or INTEL package: a generic build, its
+gran styles have no accelerated variant in it). The time is the whole process, start-up, input, run and output
 included: wall time, and CPU time (user + system, from the child's rusage). Every code writes the
 six per-layer fields of a granwave trace (data/SCHEMA.md §3: sigma_zz, sigma_zx, mean velocity z
 and x, mean displacement z and x) every 5 steps (the seed's 1 us at dt = 2e-7 s); granwave's trace
@@ -42,8 +42,9 @@ LAMMPS (bench/decks/lammps_crystal.in.tmpl):
     `gran/hooke/history kn kt 0 0 mu 0` and `fix nve/sphere`. LAMMPS's tangential arm is the radius a
     (pair_gran_hooke_history.cpp: radi * omega, radi * torque), i.e. granwave's lever_arm = "radius";
     granwave times its (dearer) "contact_point" here, as LIGGGHTS uses.
-  * `newton on`: each pair once, ghosts included (measured faster than `off` on the 3200-particle
-    crystal: loop 4.1 s against 5.3 s frictionless, 4.8 against 5.2 s with friction).
+  * `newton on`: each pair once, ghosts included (faster than `off` on the 3200-particle crystal,
+    one run each on a busy machine: loop 4.1 s against 5.3 s frictionless, 4.8 against 5.2 s with
+    friction).
   * neighbours: skin 0.2 a (`bin`), so the list holds the 12 touching neighbours and nothing else
     (the next shell is 0.83 a beyond contact); the atoms move about 1e-4 d, far below skin/2, so
     `neigh_modify delay 0 every 10 check yes` never rebuilds (the log's "Neighbor list builds" is
@@ -55,10 +56,11 @@ LAMMPS (bench/decks/lammps_crystal.in.tmpl):
     the per-atom virial is tallied only on the output steps.
 LIGGGHTS (bench/decks/liggghts_crystal.in.tmpl): `gran model hooke/stiffness` with `tangential
   no_history` frictionless (`fix nve`) or `tangential history` with friction (`fix nve/sphere`);
-  the same neighbour settings; `newton on` frictionless (loop 6.6 s against 8.5 s with `off`), `off`
+  the same neighbour settings; `newton on` frictionless (loop 6.6 s against 8.5 s with `off`, measured
+  as for LAMMPS), `off`
   with friction (LIGGGHTS refuses shear history with `newton on`); per-layer output
   by `compute stress/atom pair` + `fix ave/spatial 5 1 5 z` (LIGGGHTS 3.8 has no chunk commands), no
-  per-pair dumps (the crosscheck's dumps are 2.4 GB on this crystal and were half of its run).
+  per-pair dumps (the crosscheck's dumps are 2.4 GB on this crystal, 138 s of a 250 s run).
 
 Physics check
 -------------
