@@ -3,11 +3,13 @@
 #include "sweep/distributed.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <stdexcept>
+#include <thread>
 
 #include "core/error.hpp"
 
@@ -120,11 +122,31 @@ struct Bytes {
   }
 };
 
+// Waiting ranks sleep instead of spinning (Open MPI's blocking calls poll at 100 % CPU): a rank
+// that finished its share must not take a core from ranks or threads still computing on it.
+void wait(MPI_Request& r) {
+  int done = 0;
+  for (int k = 0;; ++k) {
+    MPI_Test(&r, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(k < 100 ? 50 : 1000));
+  }
+}
+void bcast(void* buf, int count, MPI_Datatype type) {
+  MPI_Request r;
+  MPI_Ibcast(buf, count, type, 0, MPI_COMM_WORLD, &r);
+  wait(r);
+}
+
 void send_bytes(const std::vector<char>& b, int to) {
   std::uint64_t n = b.size();
-  MPI_Send(&n, 1, MPI_UINT64_T, to, kTagDoneSize, MPI_COMM_WORLD);
-  for (std::size_t o = 0; o < b.size(); o += kChunk)
-    MPI_Send(b.data() + o, static_cast<int>(std::min(kChunk, b.size() - o)), MPI_CHAR, to, kTagDoneData, MPI_COMM_WORLD);
+  MPI_Request r;
+  MPI_Isend(&n, 1, MPI_UINT64_T, to, kTagDoneSize, MPI_COMM_WORLD, &r);
+  wait(r);
+  for (std::size_t o = 0; o < b.size(); o += kChunk) {
+    MPI_Isend(b.data() + o, static_cast<int>(std::min(kChunk, b.size() - o)), MPI_CHAR, to, kTagDoneData, MPI_COMM_WORLD, &r);
+    wait(r);
+  }
 }
 std::vector<char> recv_bytes(int from) {
   std::uint64_t n = 0;
@@ -139,12 +161,12 @@ std::vector<char> recv_bytes(int from) {
 // Rank 0's error (kind, message) on every rank.
 void share_error(int& kind, std::string& what) {
   int k = kind;
-  MPI_Bcast(&k, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  bcast(&k, 1, MPI_INT);
   std::uint64_t n = what.size();
-  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  bcast(&n, 1, MPI_UINT64_T);
   std::string w = what;
   w.resize(n);
-  if (n) MPI_Bcast(w.data(), static_cast<int>(std::min<std::uint64_t>(n, kChunk)), MPI_CHAR, 0, MPI_COMM_WORLD);
+  if (n) bcast(w.data(), static_cast<int>(std::min<std::uint64_t>(n, kChunk)), MPI_CHAR);
   kind = k;
   what = w;
 }
@@ -180,7 +202,13 @@ MpiSession::MpiSession(int* argc, char*** argv) {
 
 MpiSession::~MpiSession() {
 #ifdef GRANWAVE_MPI
-  if (g_world.active) MPI_Finalize();
+  if (!g_world.active) return;
+  if (g_world.size > 1) {  // ranks done early wait here, asleep, while rank 0 writes
+    MPI_Request r;
+    MPI_Ibarrier(MPI_COMM_WORLD, &r);
+    wait(r);
+  }
+  MPI_Finalize();
 #endif
 }
 
@@ -225,7 +253,7 @@ bool root_value(bool v) {
 #ifdef GRANWAVE_MPI
   if (g_world.active && g_world.size > 1) {
     int x = v ? 1 : 0;
-    MPI_Bcast(&x, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    bcast(&x, 1, MPI_INT);
     return x != 0;
   }
 #endif
@@ -270,7 +298,7 @@ void MemberTeam::share_done(std::vector<char>& done) const {
 #ifdef GRANWAVE_MPI
   if (size_ > 1)
     for (std::size_t o = 0; o < done.size(); o += kChunk)
-      MPI_Bcast(done.data() + o, static_cast<int>(std::min(kChunk, done.size() - o)), MPI_CHAR, 0, MPI_COMM_WORLD);
+      bcast(done.data() + o, static_cast<int>(std::min(kChunk, done.size() - o)), MPI_CHAR);
 #else
   (void)done;
 #endif
@@ -316,7 +344,7 @@ void MemberTeam::finish(std::vector<MemberResult>& results, std::size_t& compute
   std::string what;
   int kind = kind_of(error, what);
   if (rank_ != 0) {
-    if (!s.requests.empty()) MPI_Waitall(static_cast<int>(s.requests.size()), s.requests.data(), MPI_STATUSES_IGNORE);
+    for (auto& r : s.requests) wait(r);
     Bytes b;
     b.put(static_cast<std::uint64_t>(computed));
     b.put(work);
@@ -343,7 +371,11 @@ void MemberTeam::finish(std::vector<MemberResult>& results, std::size_t& compute
     int first_kind = kind;
     for (int left = size_ - 1; left > 0;) {
       MPI_Status st;
-      MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+      int flag = 0;
+      for (int k = 0; !flag; ++k) {  // MPI_Probe, asleep between looks
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+        if (!flag) std::this_thread::sleep_for(std::chrono::microseconds(k < 100 ? 50 : 1000));
+      }
       if (st.MPI_TAG == kTagProgress) {
         s.take_progress(st);
         tick(computed + s.others());
