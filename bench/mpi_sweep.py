@@ -4,7 +4,7 @@ per rank), alternating, median of --repeat runs each; the load average before an
 machine may be shared). Also checks that every run's study file has the datasets of the first.
 
   /usr/bin/python3 bench/mpi_sweep.py [--study data/studies/app3_n50.toml] [--ranks 2] [--repeat 3]
-      [--granwave build/granwave] [--work /tmp/granwave_mpi_bench]
+      [--granwave build/granwave] [--work /tmp/granwave_mpi_bench] [--bind-to-none]
 
 Prints one table row per set-up: member phase (the `runs:` line's wall time, rank 0), whole
 command (start-up, members, analysis, writing), and the speed-up of each against 1 thread.
@@ -36,6 +36,8 @@ def main():
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--work", default="/tmp/granwave_mpi_bench")
+    ap.add_argument("--bind-to-none", action="store_true",
+                    help="also run mpirun --bind-to none (on a shared machine, pinned ranks cannot dodge other jobs)")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     out = os.path.join(a.work, "study.h5")
@@ -47,6 +49,9 @@ def main():
     if mpirun:
         setups.append(("mpirun -n %d, 1 thread each" % a.ranks,
                        [mpirun, "-n", str(a.ranks), "--oversubscribe"] + setups[0][1][:]))
+        if a.bind_to_none:
+            setups.append(("mpirun -n %d --bind-to none, 1 thread each" % a.ranks,
+                           [mpirun, "-n", str(a.ranks), "--oversubscribe", "--bind-to", "none"] + setups[0][1][:]))
     env = sweep_ranks.mpi_env()
     times = {name: ([], []) for name, _ in setups}
     print("load average before: %s (%d cores)" % (loadavg(), os.cpu_count()))
