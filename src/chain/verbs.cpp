@@ -126,7 +126,10 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
 }
 
 void build(const config::Case& c, const std::string& system_path) {
-  const ChainSystem sys = build_chain(c);
+  ResourceLimits no_step_limit;  // build does not run: only the chain's memory and meaning count
+  no_step_limit.max_steps = std::numeric_limits<double>::infinity();
+  ChainSystem sys;
+  enforce(assess(c, no_step_limit, &sys), c.path);
   io::H5Writer w(system_path);
   io::write_provenance(w);
   w.attr("/", "case_toml", c.toml_text);

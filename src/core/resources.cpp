@@ -46,7 +46,7 @@ std::string bytes_text(double b) {
   const char* unit[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
   int u = 0;
   while (b >= 1000.0 && u < 6) b /= 1000.0, ++u;
-  return num(b, b < 10 ? "%.2g" : "%.0f") + " " + unit[u];
+  return num(b, b < 10 ? "%.2g" : b < 1000 ? "%.0f" : "%.3g") + " " + unit[u];
 }
 
 void Assessment::require_finite(const std::string& name, double value, const std::string& keys, bool positive) {

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
+#include "core/error.hpp"
 #include "crystal/simulation.hpp"
 
 namespace granwave::crystal {
@@ -27,9 +29,18 @@ constexpr double kFixedBytes = 20e6, kBytesPerParticle = 1300.0, kSeriesFactor =
 }  // namespace
 
 Assessment assess(const config::Case& c, const ResourceLimits& limits) {
-  const Derived d = derive(c);  // refuses bad contact parameters (overdamped, negative, ...)
+  if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
   const config::CrystalCase& k = *c.crystal;
   Assessment a;
+  {  // what derive() divides by, so that its refusals name the right keys
+    const double m = k.density * 4.0 / 3.0 * std::numbers::pi * k.radius * k.radius * k.radius;
+    a.require_finite("the particle mass m = density 4/3 pi a^3", m, "crystal.radius, crystal.density");
+    a.require_finite("k/m", c.contact.kn / m, "contact.kn, crystal.radius, crystal.density");
+    const double a_min = k.radius - k.polydispersity * k.overlap * 2.0 * k.radius;
+    a.require_finite("the smallest radius a - polydispersity delta", a_min, "crystal.polydispersity, crystal.overlap");
+    if (!a.refusals.empty()) return a;
+  }
+  const Derived d = derive(c);  // refuses bad contact parameters (overdamped, negative, ...)
   ResourceEstimate& e = a.estimate;
   const double layers = k.cells[2];
   const double n = static_cast<double>(k.cells[0]) * k.cells[1] * layers;
