@@ -21,7 +21,10 @@ Crystal traces (seed 002):
   oscillation, leading-pulse maximum, local speed, lambda = V T, k(z) = (2/l0) arccos(V/V(k->0));
   speeds: least-squares z against arrival time (first peak, half peak, 1 %) with standard errors
   over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20)), shortened, with a note, where
-  the first peak has not arrived before the end of the trace;
+  the first peak has not arrived before the end of the trace. A layer has arrived when its first
+  peak lies before the last sample and it is on the front: from the first layer that arrived
+  outwards, every nearer layer arrived and peaked no later (beyond the front, noise or a
+  precursor can show a local maximum); layers that have not arrived have no measures;
   local speed: slowness = (1,2,2,1)/6-weighted mean of the four first-peak delays over layers
   i-2..i+2 (= least squares with layer weights 1,2,3,2,1). It needs the refined peak time error
   well below a layer delay l0/V: `delay_samples` in the JSON is (l0/V)/dt. For a pulse of rms
@@ -38,7 +41,10 @@ Crystal traces (seed 002):
   it stays at the step height to the end of the record, the window cuts it, and the resulting
   |F| ~ 1/omega dominates |F|^4 (omega_0 = 2.0e4 1/s instead of 3.09e5 on the 3200-particle run).
 Chain traces (seed 001): per contact the same measures on the contact force minus its t = 0 value,
-  front speed over contacts LO..HI (default 5 .. ncontacts - 7) in contacts/s and m/s.
+  arrivals as for layers, front speed over contacts LO..HI (default 5 .. ncontacts - 7) in
+  contacts/s and m/s (positions: x_j + a_j of /system, the far side of bead j).
+`granwave run` prints the summary of this report (and, with --json, this JSON under "analysis")
+for the trace it writes: the same code, the same numbers.
 
   --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain)
   --field F        dispersion field: velocity (default) | displacement | stress (raw fields)
