@@ -545,7 +545,19 @@ std::string to_text(const TraceFile& f, const ChainAnalysis& a, bool table) {
   o += measured_line("  half peak", a.v_half_peak_contacts, "contacts/s");
   o += measured_line("  first peak", a.v_first_peak, "m/s");
   o += measured_line("  half peak", a.v_half_peak, "m/s");
-  if (!table) return o;
+  if (!table) {  // a few rows of the table: the striker's contact and three along the chain
+    const std::size_t nc = a.contacts.size();
+    o += "first peak force:";
+    std::vector<std::size_t> rows{0, nc / 4, nc / 2, (3 * nc) / 4};
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    for (std::size_t j : rows) {
+      const auto& c = a.contacts[j];
+      o += c.arrived ? sfmt(" contact %zu %.6g N at %.6g s;", j, c.peak_value.value, c.peak_time.value)
+                     : sfmt(" contact %zu not arrived;", j);
+    }
+    o.back() = '\n';
+    return o;
+  }
   o += sfmt("%8s %12s %12s %12s %12s %12s\n", "contact", "t_peak(s)", "F_peak(N)", "t_half(s)", "F_lead(N)", "T(s)");
   for (const auto& c : a.contacts)
     o += sfmt("%8zu %12.6g %12.6g %12.6g %12.6g %12.6g\n", c.contact, c.peak_time.value, c.peak_value.value,

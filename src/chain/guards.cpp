@@ -19,8 +19,9 @@ std::string fmt(const char* f, double x) {
 
 // Measured costs (granwave run on oriented20 and on 10x its t_end, /usr/bin/time maxrss): 21.8 MB
 // at 6001 samples, +0.675 kB per sample of 82 stored columns (8 bytes each, reserved up front).
-// Rounded up: 20 MB fixed (15.3 MB for `granwave check` alone), 400 bytes per bead (system, stepper, RK4 stages), and the stored series
-// once more for the analysis of the written trace (it reads the contact forces back).
+// Rounded up: 20 MB fixed (15.3 MB for `granwave check` alone), 400 bytes per bead (system,
+// stepper, RK4 stages), and the stored series half again for the analysis of the written trace
+// (it reads the contact forces back after the run's series are freed).
 constexpr double kFixedBytes = 20e6, kBytesPerBead = 400.0, kAnalysisFactor = 1.5;
 
 std::string contact_label(const ChainSystem& sys, std::size_t j) {
@@ -91,35 +92,13 @@ void assess_physics(const ChainSystem& sys, double dt, Assessment& a, const std:
                          " s); peak forces will be off by more than about 1e-3");
 }
 
-Assessment assess(const config::Case& c, const ResourceLimits& limits, ChainSystem* built) {
-  if (!c.chain) throw InputError(c.path + ": [chain] is missing");
-  const config::ChainCase& ch = *c.chain;
-  Assessment a;
-  ResourceEstimate& e = a.estimate;
-  // Beads and contacts from the case, before anything is built.
-  double nb = 1.0;  // the striker
-  for (const auto& s : ch.segments)
-    nb += s.kind == config::ChainSegment::Kind::cells ? static_cast<double>(s.count) * static_cast<double>(ch.cell.size())
-                                                      : static_cast<double>(s.repeat) * static_cast<double>(s.beads.size());
-  const bool wall = ch.wall != "free";
-  const double nc = nb - 1.0 + (wall ? 1.0 : 0.0);
-  e.size = fmt("%.0f beads", nb);
-  e.steps_keys = std::string("integrator.t_end or integrator.dt") + (c.stop.enabled ? " (or stop.max_time)" : "");
-  e.memory_keys = "integrator.t_end, output.interval or output.fields, or the chain's length ([[chain.segment]])";
+namespace {
+
+// Steps, samples, memory and output of a run at time step dt (NaN: not known yet, the system only).
+void estimate(const config::Case& c, double nb, double nc, double dt, ResourceEstimate& e) {
   e.memory = kFixedBytes + kBytesPerBead * nb;
-  check_resources(a, limits);
-  if (!a.refusals.empty()) return a;
-
-  ChainSystem sys = build_chain(c);
-  const std::string keys_dt = c.integrator.dt ? "integrator.dt" : "integrator.dt_over_tc";
-  double dt = NAN;
-  {
-    const double tc = shortest_contact_time(sys);
-    dt = c.integrator.dt ? *c.integrator.dt : c.integrator.dt_over_tc.value_or(NAN) * tc;
-  }
-  assess_physics(sys, dt, a, keys_dt);
-  if (!(std::isfinite(dt) && dt > 0.0)) return a;
-
+  e.output = 100.0 * nb;
+  if (!(std::isfinite(dt) && dt > 0.0)) return;
   const double t_stop = c.stop.enabled ? c.stop.max_time.value_or(c.integrator.t_end) : c.integrator.t_end;
   e.steps = std::round(t_stop / dt);
   const double stride = c.output.interval > 0.0 ? std::max(1.0, std::round(c.output.interval / dt)) : 1.0;
@@ -137,10 +116,41 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits, ChainSyst
   const double series = (e.samples + 1.0) * columns * 8.0;
   const double sensors = static_cast<double>(c.output.full_rate_beads.size());
   const double full_rate = sensors > 0.0 ? (e.steps + 1.0) * (sensors + 1.0) * 8.0 : 0.0;
-  e.memory = kFixedBytes + kBytesPerBead * nb + kAnalysisFactor * series + full_rate;
-  e.output = series + full_rate + 100.0 * nb;
-  if (sensors > 0.0) e.memory_keys += ", output.full_rate_beads (stored at every step)";
+  e.memory += kAnalysisFactor * series + full_rate;
+  e.output += series + full_rate;
+}
+
+}  // namespace
+
+Assessment assess(const config::Case& c, const ResourceLimits& limits, ChainSystem* built) {
+  if (!c.chain) throw InputError(c.path + ": [chain] is missing");
+  const config::ChainCase& ch = *c.chain;
+  Assessment a;
+  ResourceEstimate& e = a.estimate;
+  // Beads and contacts from the case, before anything is built; with a given dt the whole
+  // estimate, else (dt_over_tc needs the contact times) the system's memory first.
+  double nb = 1.0;  // the striker
+  for (const auto& s : ch.segments)
+    nb += s.kind == config::ChainSegment::Kind::cells ? static_cast<double>(s.count) * static_cast<double>(ch.cell.size())
+                                                      : static_cast<double>(s.repeat) * static_cast<double>(s.beads.size());
+  const bool wall = ch.wall != "free";
+  const double nc = nb - 1.0 + (wall ? 1.0 : 0.0);
+  e.size = fmt("%.0f beads", nb);
+  e.steps_keys = std::string("integrator.t_end or integrator.dt") + (c.stop.enabled ? " (or stop.max_time)" : "");
+  e.memory_keys = "integrator.t_end, output.interval or output.fields, or the chain's length (chain.segment)";
+  if (!c.output.full_rate_beads.empty()) e.memory_keys += ", output.full_rate_beads (stored at every step)";
+  estimate(c, nb, nc, c.integrator.dt.value_or(NAN), e);
   check_resources(a, limits);
+  if (!a.refusals.empty()) return a;
+
+  ChainSystem sys = build_chain(c);
+  const std::string keys_dt = c.integrator.dt ? "integrator.dt" : "integrator.dt_over_tc";
+  const double dt = c.integrator.dt ? *c.integrator.dt : c.integrator.dt_over_tc.value_or(NAN) * shortest_contact_time(sys);
+  assess_physics(sys, dt, a, keys_dt);
+  if (!c.integrator.dt) {
+    estimate(c, nb, nc, dt, e);
+    check_resources(a, limits);
+  }
   if (built) *built = std::move(sys);
   return a;
 }

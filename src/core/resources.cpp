@@ -58,13 +58,14 @@ void Assessment::require_finite(const std::string& name, double value, const std
 void check_resources(Assessment& a, const ResourceLimits& l) {
   const ResourceEstimate& e = a.estimate;
   if (!(e.steps <= l.max_steps))
-    a.refusals.push_back(num(e.steps, "%.4g") + " time steps (" + e.size + ") exceed the limit of " + num(l.max_steps, "%.4g") +
+    a.refusals.push_back(num(e.steps, "%.6g") + " time steps (" + e.size + ") exceed the limit of " + num(l.max_steps, "%.6g") +
                          " steps; change " + e.steps_keys + ", or raise the limit with --max-steps N");
   std::string source;
   const double limit = memory_limit(l, &source);
   const double need = e.memory * std::max(1, l.parallel_runs);
   if (limit > 0.0 && !(need <= limit))
-    a.refusals.push_back("the run needs about " + bytes_text(need) +
+    a.refusals.push_back("the run (" + e.size + (e.samples > 0 ? ", " + num(e.samples, "%.6g") + " samples" : std::string()) +
+                         ") needs about " + bytes_text(need) +
                          (l.parallel_runs > 1 ? " (" + std::to_string(l.parallel_runs) + " runs at once)" : std::string()) +
                          " of memory, more than the " + bytes_text(limit) + " available (" + source + "); change " +
                          e.memory_keys + (l.parallel_runs > 1 ? ", use fewer --threads" : "") +
