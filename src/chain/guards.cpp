@@ -88,8 +88,8 @@ void assess_physics(const ChainSystem& sys, double dt, Assessment& a, const std:
     a.warnings.push_back("dt = " + fmt("%.4g", dt) + " s is above t_c/50 = " + fmt("%.4g", tc / 50.0) +
                          " s (t_c = shortest two-body contact time at v0), the accuracy criterion of seed 002 sec. 2.2");
   else if (dt > tc / 100.0)
-    a.warnings.push_back("dt = " + fmt("%.4g", dt) + " s is above 1/100 of the shortest contact time (" + fmt("%.4g", tc / 100.0) +
-                         " s); peak forces will be off by more than about 1e-3");
+    a.warnings.push_back("dt = " + fmt("%.4g", dt) + " s is above 1/100 of the shortest contact time (" +
+                         fmt("%.4g", tc / 100.0) + " s); peak forces will be off by more than about 1e-3");
 }
 
 namespace {

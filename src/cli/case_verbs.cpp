@@ -107,7 +107,8 @@ int cmd_run(const Args& args) {
     std::cout << usage << "\n" << kLimitsHelp << "\n";
     return 0;
   }
-  config::Case c = load_single_case(args, {"-o", "--output", "--system", "--max-steps", "--max-memory"}, {"--json", "--quiet"}, usage);
+  config::Case c =
+      load_single_case(args, {"-o", "--output", "--system", "--max-steps", "--max-memory"}, {"--json", "--quiet"}, usage);
   RunRequest req;
   req.limits = limits_of(args);
   req.trace_path = option_value(args, "-o", "--output");

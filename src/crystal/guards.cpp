@@ -75,10 +75,10 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits) {
   const double added = velocity ? std::abs(c.excitation.amplitude) * std::sqrt(d.mass / c.contact.kn)
                                 : std::abs(c.excitation.amplitude) * diameter;
   const double delta = delta0 + added, ratio = delta / a_min;
-  const std::string overlap = "the overlap bound (initial " + fmt("%.4g", delta0) + " m + " + fmt("%.4g", added) + " m from the " +
-                              (velocity ? "velocity drive, |v| sqrt(m/k)" : "displacement step, |amplitude| d") + ") is " +
-                              fmt("%.4g", delta) + " m = " + fmt("%.3g", 100.0 * ratio) + " % of the smallest radius " +
-                              fmt("%.4g", a_min) + " m";
+  const std::string source = velocity ? "velocity drive, |v| sqrt(m/k)" : "displacement step, |amplitude| d";
+  const std::string overlap = "the overlap bound (initial " + fmt("%.4g", delta0) + " m + " + fmt("%.4g", added) +
+                              " m from the " + source + ") is " + fmt("%.4g", delta) + " m = " + fmt("%.3g", 100.0 * ratio) +
+                              " % of the smallest radius " + fmt("%.4g", a_min) + " m";
   const std::string lower = "lower excitation.amplitude or crystal.overlap";
   if (!(ratio < 1.0))
     a.refusals.push_back(overlap + ": contacts (eq. 1) mean nothing there; " + lower);
