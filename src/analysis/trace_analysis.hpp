@@ -65,8 +65,9 @@ struct LayerMeasures {
   double z = 0.0;            // m
   double z_over_l0 = 0.0;
   // First peak found strictly before the end of the trace, on the front: from the first layer
-  // that arrived outwards, every layer before it arrived and peaked no later (trace_analysis.cpp,
-  // keep_causal_arrivals). Layers beyond the front have no measures.
+  // that arrived outwards, every layer before it arrived, and its first peak is not earlier than
+  // the previous layer's 1 % arrival (trace_analysis.cpp, keep_causal_arrivals). Layers beyond
+  // the front have no measures.
   bool arrived = false;
   Measured peak_time;        // s; error: |parabola - Gaussian| vertex of the same 3 samples
   Measured peak_value;       // Pa (signal units)

@@ -23,8 +23,9 @@ Crystal traces (seed 002):
   over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20)), shortened, with a note, where
   the first peak has not arrived before the end of the trace. A layer has arrived when its first
   peak lies before the last sample and it is on the front: from the first layer that arrived
-  outwards, every nearer layer arrived and peaked no later (beyond the front, noise or a
-  precursor can show a local maximum); layers that have not arrived have no measures;
+  outwards, every nearer layer arrived, and its first peak is not earlier than the previous
+  layer's 1 % arrival (beyond the front, noise or a precursor can show a local maximum); layers
+  that have not arrived have no measures;
   local speed: slowness = (1,2,2,1)/6-weighted mean of the four first-peak delays over layers
   i-2..i+2 (= least squares with layer weights 1,2,3,2,1). It needs the refined peak time error
   well below a layer delay l0/V: `delay_samples` in the JSON is (l0/V)/dt. For a pulse of rms

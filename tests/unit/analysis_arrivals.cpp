@@ -93,8 +93,9 @@ TEST_CASE("a run cut before the front crossed the range: only the layers it reac
 }
 
 TEST_CASE("a layer the front never reached is no arrival even right after the last one", "[analysis]") {
-  // The pulse reaches z/l0 <= 120 (all peaked before the end); a spike at 121 at 500 us, earlier
-  // than the first peak at 120 (908 us): the front cannot reach a farther layer first.
+  // The pulse reaches z/l0 <= 120 (all peaked before the end); a spike at 121 at 500 us, before
+  // the pulse at 120 began (1 % arrival 884 us, first peak 908 us): a farther layer cannot peak
+  // before the wave reached the nearer one.
   const std::size_t nt = 1000;
   const auto tr = cut_trace(nt, 120, {{121, 500e-6}, {122, 950e-6}, {140, 300e-6}});
   CrystalAnalysisOptions o;
@@ -117,7 +118,7 @@ TEST_CASE("a layer the front never reached is no arrival even right after the la
 
 TEST_CASE("chain: contacts the front never reached are no arrivals", "[analysis]") {
   // 41 contacts, a force pulse at 50 contacts/ms with a 9.52 mm pitch reaching contacts 0..25;
-  // spikes (1e-10 of the pulse) at contacts 26 (before contact 25's peak), 30 and 38.
+  // spikes (1e-10 of the pulse) at contacts 26 (before contact 25's pulse began), 30 and 38.
   ChainTrace c;
   c.ncontacts = 41;
   c.nt = 2000;
