@@ -5,6 +5,7 @@
 #include <string>
 
 #include "config/case.hpp"
+#include "core/resources.hpp"
 
 namespace granwave {
 
@@ -13,20 +14,22 @@ struct RunRequest {
   std::string system_path;  // optional: a system file from `granwave build` to run instead of building
   bool json = false;        // print a machine-readable summary (one JSON object) on stdout
   bool quiet = false;       // no progress on stderr
+  ResourceLimits limits;    // refused above (--max-steps, --max-memory; core/resources.hpp)
 };
 
 namespace chain {
-// Print the resolved chain and the derived numbers; throws InputError when the case must be
-// refused (e.g. dt above the stability limit). Warnings go to `out` too.
-void check(const config::Case& c, std::ostream& out);
+// Print the resolved chain and the derived numbers; throws InputError, before anything large is
+// allocated, when the case must be refused (chain/guards.hpp). Warnings go to `out` too.
+void check(const config::Case& c, std::ostream& out, const ResourceLimits& limits = {});
 // Resolve the chain (spins, masses, constants, overlaps) and write the system file.
 void build(const config::Case& c, const std::string& system_path);
-// Simulate and write the trace file; prints the summary (text or JSON). Returns the exit code.
+// Simulate and write the trace file; prints the summary (text or JSON) with the measures of
+// `granwave analyze` on the trace it wrote. Warnings go to stderr. Returns the exit code.
 int run(const config::Case& c, const RunRequest& request, std::ostream& out);
 }  // namespace chain
 
 namespace crystal {
-void check(const config::Case& c, std::ostream& out);
+void check(const config::Case& c, std::ostream& out, const ResourceLimits& limits = {});
 void build(const config::Case& c, const std::string& system_path);
 int run(const config::Case& c, const RunRequest& request, std::ostream& out);
 }  // namespace crystal

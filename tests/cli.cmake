@@ -39,3 +39,5 @@ test $rc -eq 2 || { echo \"exit code $rc, expected 2\"; exit 1; }; \
 grep -q -- '--threads must be a positive integer' ${CLI_TMP}/threads.err || { cat ${CLI_TMP}/threads.err; exit 1; }; \
 ! ls ${CLI_TMP}/threads.h5* 2>/dev/null || { echo 'wrote a file'; exit 1; }")
 set_tests_properties("cli: sweep --threads -3 names the option and its range" PROPERTIES LABELS "cli;unit")
+include(${CMAKE_SOURCE_DIR}/tests/cli/guards.cmake)
+include(${CMAKE_SOURCE_DIR}/tests/cli/ruler.cmake)

@@ -64,7 +64,11 @@ struct LayerMeasures {
   std::size_t layer = 0;     // index in the trace (0 = bottom, fixed layers included)
   double z = 0.0;            // m
   double z_over_l0 = 0.0;
-  bool arrived = false;      // first peak found strictly before the end of the trace
+  // First peak found strictly before the end of the trace, on the front: from the first layer
+  // that arrived outwards, every layer before it arrived, and its first peak is not earlier than
+  // the previous layer's 1 % arrival (trace_analysis.cpp, keep_causal_arrivals). Layers beyond
+  // the front have no measures.
+  bool arrived = false;
   Measured peak_time;        // s; error: |parabola - Gaussian| vertex of the same 3 samples
   Measured peak_value;       // Pa (signal units)
   Measured half_peak_time;   // s; error: h^2 |y''| / (8 |y'|), linear-interpolation bound
@@ -120,7 +124,7 @@ std::vector<Measured> local_speeds(const std::vector<double>& peak_times, double
 struct ContactMeasures {
   std::size_t contact = 0;
   double position = kNaN;  // m
-  bool arrived = false;
+  bool arrived = false;    // as LayerMeasures::arrived
   Measured peak_time, peak_value, half_peak_time, one_percent_time, duration, leading_max;  // s, N
 };
 struct ChainAnalysis {
@@ -136,6 +140,20 @@ struct ChainAnalysisOptions {
   int lo = -1, hi = -1;  // contact range (< 0: default 5 .. ncontacts - 7)
 };
 ChainAnalysis analyze_chain(const ChainTrace& trace, const ChainAnalysisOptions& options = {});
+
+// ---- text: the report of `granwave analyze`; `granwave run` prints the same for the trace it
+// wrote. `table`: the per-layer (per-contact) table after the summary lines. ----
+std::string to_text(const TraceFile& file, const CrystalAnalysis& a, bool table = true);
+std::string to_text(const TraceFile& file, const ChainAnalysis& a, bool table = true);
+
+// ---- `granwave analyze PATH` with its default options: what `granwave run` prints for the trace
+// it has just written (one ruler). `text` is the summary without the table; `error` says why the
+// trace cannot be measured (the analysis' InputError, e.g. fewer than 3 layers in the fit range),
+// and then text says so and json is empty. ----
+struct FileReport {
+  std::string text, json, error;
+};
+FileReport report_file(const std::string& path);
 
 // ---- JSON (the crosscheck's ruler: keep stable; schema in `granwave analyze --help`) ----
 std::string to_json(const TraceFile& file, const CrystalAnalysis& a);

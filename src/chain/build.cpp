@@ -222,16 +222,27 @@ double shortest_contact_time(const ChainSystem& sys) {
 }
 
 double stable_dt(const ChainSystem& sys) {
-  // Striker contact's two-body peak overlap sets the stiffness scale: the wave starts there.
-  const double m2 = sys.nbeads() > 1 ? sys.mass[1] : theory::kWallMass;
-  const double delta_s = theory::hertz_impact(sys.hertz_constant[0], sys.mass[0], m2, sys.striker_velocity).max_overlap +
-                         sys.initial_overlap[0];
-  double omega = 0.0;
-  for (const auto& k : contact_kinds(sys)) {
-    const double m_eff = std::isinf(k.m2) ? k.m1 : k.m1 * k.m2 / (k.m1 + k.m2);
-    omega = std::max(omega, std::sqrt(contact::hertz_stiffness(k.hertz_constant, delta_s) / m_eff));
+  // Velocity Verlet is stable for dt < 2/omega_max (RK4 for dt < 2.83/omega_max). omega_max of the
+  // chain linearised about overlaps delta_j, k_j = 1.5 A_j delta_j^(1/2) (eq. 13 differentiated):
+  // delta_j is the striker's whole kinetic energy stored in contact j, the closed-form Hertz
+  // overlap of the striker against a wall of contact j's A (theory/hertz.hpp; energy conservation
+  // bounds every overlap of an unloaded chain by it), plus the static overlap delta_0 of a
+  // precompressed one. Gershgorin on M^-1 K (row i: k_{i-1} + k_i on the diagonal, the same off
+  // it) bounds omega_max^2 by max_i 2 (k_{i-1} + k_i) / m_i.
+  const std::size_t n = sys.nbeads(), nc = sys.ncontacts();
+  std::vector<double> k(nc, 0.0);
+  for (std::size_t j = 0; j < nc; ++j) {
+    const double delta = theory::hertz_impact(sys.hertz_constant[j], sys.mass[0], theory::kWallMass, sys.striker_velocity)
+                             .max_overlap +
+                         sys.initial_overlap[j];
+    k[j] = contact::hertz_stiffness(sys.hertz_constant[j], delta);
   }
-  return 2.0 / omega;
+  double omega2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double left = i > 0 ? k[i - 1] : 0.0, right = i < nc ? k[i] : 0.0;
+    omega2 = std::max(omega2, 2.0 * (left + right) / sys.mass[i]);
+  }
+  return 2.0 / std::sqrt(omega2);
 }
 
 }  // namespace granwave::chain

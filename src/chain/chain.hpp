@@ -91,8 +91,9 @@ struct ContactKind {
   std::size_t first_contact = 0, count = 0;
 };
 std::vector<ContactKind> contact_kinds(const ChainSystem& sys);
-// Largest stable dt: linearised stiffness k = 1.5 A delta^(1/2) at the striker contact's two-body
-// peak overlap, for every contact kind with its (lighter) reduced mass; dt_max = 2/omega_max.
+// Largest stable dt, 2/omega_max: omega_max^2 <= max_i 2 (k_{i-1} + k_i)/m_i (Gershgorin) with the
+// linearised stiffness k_j = 1.5 A_j delta_j^(1/2) at the largest overlap the striker's energy
+// allows in contact j (plus delta_0); build.cpp says why.
 double stable_dt(const ChainSystem& sys);
 // The shortest two-body contact time over the contact kinds.
 double shortest_contact_time(const ChainSystem& sys);

@@ -1,7 +1,5 @@
 // granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--t-max T]: the one ruler for
 // the trace files of granwave, YADE and LIGGGHTS (src/analysis/trace_analysis.hpp).
-#include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <string>
 
@@ -23,7 +21,11 @@ Crystal traces (seed 002):
   oscillation, leading-pulse maximum, local speed, lambda = V T, k(z) = (2/l0) arccos(V/V(k->0));
   speeds: least-squares z against arrival time (first peak, half peak, 1 %) with standard errors
   over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20)), shortened, with a note, where
-  the first peak has not arrived before the end of the trace;
+  the first peak has not arrived before the end of the trace. A layer has arrived when its first
+  peak lies before the last sample and it is on the front: from the first layer that arrived
+  outwards, every nearer layer arrived, and its first peak is not earlier than the previous
+  layer's 1 % arrival (beyond the front, noise or a precursor can show a local maximum); layers
+  that have not arrived have no measures;
   local speed: slowness = (1,2,2,1)/6-weighted mean of the four first-peak delays over layers
   i-2..i+2 (= least squares with layer weights 1,2,3,2,1). It needs the refined peak time error
   well below a layer delay l0/V: `delay_samples` in the JSON is (l0/V)/dt. For a pulse of rms
@@ -40,7 +42,10 @@ Crystal traces (seed 002):
   it stays at the step height to the end of the record, the window cuts it, and the resulting
   |F| ~ 1/omega dominates |F|^4 (omega_0 = 2.0e4 1/s instead of 3.09e5 on the 3200-particle run).
 Chain traces (seed 001): per contact the same measures on the contact force minus its t = 0 value,
-  front speed over contacts LO..HI (default 5 .. ncontacts - 7) in contacts/s and m/s.
+  arrivals as for layers, front speed over contacts LO..HI (default 5 .. ncontacts - 7) in
+  contacts/s and m/s (positions: x_j + a_j of /system, the far side of bead j).
+`granwave run` prints the summary of this report (and, with --json, this JSON under "analysis")
+for the trace it writes: the same code, the same numbers.
 
   --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain)
   --field F        dispersion field: velocity (default) | displacement | stress (raw fields)
@@ -76,10 +81,6 @@ void parse_range(const std::string& s, int* lo, int* hi) {
   if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
 }
 
-void print_measured(const char* name, const analysis::Measured& m, const char* unit) {
-  std::printf("%-16s %.6g +- %.2g %s\n", name, m.value, m.error, unit);
-}
-
 }  // namespace
 
 int cmd_analyze(const Args& args) {
@@ -100,18 +101,7 @@ int cmd_analyze(const Args& args) {
       std::cout << analysis::to_json(file, a);
       return 0;
     }
-    std::printf("%s: chain trace of %s (%s), %zu contacts, %zu samples\n", file.path.c_str(), file.code.c_str(),
-                file.case_name.c_str(), file.chain.ncontacts, file.chain.nt);
-    if (a.shortened) std::printf("note: %s\n", a.note.c_str());
-    std::printf("front speed over contacts %d..%d:\n", a.lo, a.hi);
-    print_measured("  first peak", a.v_first_peak_contacts, "contacts/s");
-    print_measured("  half peak", a.v_half_peak_contacts, "contacts/s");
-    print_measured("  first peak", a.v_first_peak, "m/s");
-    print_measured("  half peak", a.v_half_peak, "m/s");
-    std::printf("%8s %12s %12s %12s %12s %12s\n", "contact", "t_peak(s)", "F_peak(N)", "t_half(s)", "F_lead(N)", "T(s)");
-    for (const auto& c : a.contacts)
-      std::printf("%8zu %12.6g %12.6g %12.6g %12.6g %12.6g\n", c.contact, c.peak_time.value, c.peak_value.value,
-                  c.half_peak_time.value, c.leading_max.value, c.duration.value);
+    std::cout << analysis::to_text(file, a);
     return 0;
   }
 
@@ -131,29 +121,7 @@ int cmd_analyze(const Args& args) {
     std::cout << analysis::to_json(file, a);
     return 0;
   }
-  std::printf("%s: crystal trace of %s (%s), %c wave (%s), %zu layers, %zu samples, dt = %.4g s, l0 = %.6g m\n",
-              file.path.c_str(), file.code.c_str(), file.case_name.c_str(), a.mode, a.mode_source.c_str(),
-              file.crystal.nlayers, file.crystal.nt, a.dt, a.l0);
-  std::printf("measures on %s - its t=0 value (polarity %+g)\n", a.measure_field.c_str(), a.polarity);
-  if (a.shortened) std::printf("note: %s\n", a.note.c_str());
-  std::printf("speeds over z/l0 = %d..%d (n = %zu):\n", a.v_first_peak.lo, a.v_first_peak.hi, a.v_first_peak.n);
-  print_measured("  first peak", a.v_first_peak.speed, "m/s");
-  print_measured("  half peak", a.v_half_peak.speed, "m/s");
-  print_measured("  1 % arrival", a.v_one_percent.speed, "m/s");
-  const auto& d = a.dispersion;
-  std::printf("dispersion (%s, %zu x %zu, domega = %.4g 1/s, %zu k bins, rms %.4g 1/s):\n", a.dispersion_field.c_str(),
-              d.nt, d.nz, d.domega, d.n_fit, d.fit_rms);
-  print_measured("  omega_0", {d.omega0, d.omega0_error}, "1/s");
-  print_measured("  V(k->0)", {d.v_k0, d.v_k0_error}, "m/s");
-  std::printf("local speeds need (l0/V)/dt = %.3g samples per layer delay here\n", a.delay_samples);
-  std::printf("%6s %12s %12s %12s %12s %10s %9s %9s\n", "z/l0", "t_peak(s)", "peak", "t_half(s)", "T(s)", "V(m/s)",
-              "VT/l0", "2pi/kl0");
-  for (const auto& L : a.layers) {
-    const double lk = std::isfinite(L.k_from_speed.value) ? 2 * M_PI / L.k_from_speed.value / a.l0 : NAN;
-    std::printf("%6.0f %12.6g %12.6g %12.6g %12.6g %10.4g %9.3g %9.3g\n", L.z_over_l0, L.peak_time.value,
-                L.peak_value.value, L.half_peak_time.value, L.duration.value, L.local_speed.value,
-                L.lambda_vt.value / a.l0, lk);
-  }
+  std::cout << analysis::to_text(file, a);
   return 0;
 }
 

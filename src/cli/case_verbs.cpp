@@ -2,10 +2,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "cli/verbs.hpp"
 #include "config/case.hpp"
 #include "core/error.hpp"
+#include "core/resources.hpp"
 #include "models.hpp"
 
 namespace granwave::cli {
@@ -30,20 +32,45 @@ config::Case load_single_case(const Args& args, const std::vector<std::string>& 
 
 std::string default_trace_path(const config::Case& c) { return c.name + ".traces.h5"; }
 
+// --max-steps N and --max-memory SIZE (core/resources.hpp): the limits check and run refuse above.
+ResourceLimits limits_of(const Args& args) {
+  ResourceLimits l;
+  if (const auto v = option_value(args, "", "--max-steps"); !v.empty()) l.max_steps = parse_count("--max-steps", v);
+  if (const auto v = option_value(args, "", "--max-memory"); !v.empty()) l.max_memory = parse_bytes("--max-memory", v);
+  return l;
+}
+
+constexpr const char* kLimitsHelp = R"(
+Limits (estimated from the case before anything is allocated; data/SCHEMA.md §1):
+  --max-steps N       refuse a run of more than N time steps (default 1e9)
+  --max-memory SIZE   refuse a run that needs more memory (bytes, or with k, M, G, T; default:
+                      MemAvailable of /proc/meminfo)
+Refused as well (exit 2, naming the keys to change): dt above the stability limit 2/omega_max,
+an overlap bound that reaches the radius (the striker's closed-form Hertz overlap; the crystal's
+initial overlap plus its excitation), a derived number that is not finite, an output larger than
+the free disk space. Warned (check's output, run's stderr): dt above t_c/50 (seed 002's
+criterion), an overlap bound above 5 % of the radius.)";
+
 }  // namespace
 
 int cmd_check(const Args& args) {
-  const char* usage = "usage: granwave check CASE.toml\n  validate a case; print the resolved case and derived numbers";
+  const char* usage =
+      "usage: granwave check CASE.toml [--max-steps N] [--max-memory SIZE]\n"
+      "  validate a case; print the resolved case, the derived numbers and what a run costs";
   if (wants_help(args)) {
-    std::cout << usage << "\n";
+    std::cout << usage << "\n" << kLimitsHelp << "\n";
     return 0;
   }
-  config::Case c = load_single_case(args, {}, {}, usage);
+  config::Case c = load_single_case(args, {"--max-steps", "--max-memory"}, {}, usage);
+  const ResourceLimits limits = limits_of(args);
+  // Printed only once the whole check passed: a refused case prints nothing on stdout.
+  std::ostringstream out;
   if (c.model == config::Model::chain) {
-    chain::check(c, std::cout);
+    chain::check(c, out, limits);
   } else {
-    crystal::check(c, std::cout);
+    crystal::check(c, out, limits);
   }
+  std::cout << out.str();
   return 0;
 }
 
@@ -70,14 +97,20 @@ int cmd_build(const Args& args) {
 int cmd_run(const Args& args) {
   const char* usage =
       "usage: granwave run CASE.toml [-o traces.h5] [--system system.h5] [--json] [--quiet]\n"
+      "                  [--max-steps N] [--max-memory SIZE]\n"
       "  simulate one case; the trace file goes to -o (default NAME.traces.h5), written as\n"
-      "  NAME.tmp and renamed when complete; --json prints a machine-readable summary";
+      "  NAME.tmp and renamed when complete. Then it measures that trace with the code of\n"
+      "  `granwave analyze TRACE` (default options): the same numbers, one ruler.\n"
+      "  --json prints one JSON object (schema \"granwave-run/1\", data/SCHEMA.md §3.1): the run's\n"
+      "  own numbers and, under \"analysis\", exactly what `granwave analyze TRACE --json` prints";
   if (wants_help(args)) {
-    std::cout << usage << "\n";
+    std::cout << usage << "\n" << kLimitsHelp << "\n";
     return 0;
   }
-  config::Case c = load_single_case(args, {"-o", "--output", "--system"}, {"--json", "--quiet"}, usage);
+  config::Case c =
+      load_single_case(args, {"-o", "--output", "--system", "--max-steps", "--max-memory"}, {"--json", "--quiet"}, usage);
   RunRequest req;
+  req.limits = limits_of(args);
   req.trace_path = option_value(args, "-o", "--output");
   if (req.trace_path.empty()) req.trace_path = default_trace_path(c);
   req.system_path = option_value(args, "", "--system");

@@ -17,9 +17,11 @@ constexpr const char* kUsage = R"(granwave — a reference solver for waves in g
 usage: granwave VERB [ARGS] (granwave VERB --help for each verb)
 
   build CASE.toml -o system.h5          resolve spins, radii, relaxation; write the system file
-  run CASE.toml [-o traces.h5] [--system system.h5] [--json] [--quiet]
-                                        simulate one case and write its trace file
-  check CASE.toml                       validate; print the resolved case and derived numbers
+  run CASE.toml [-o traces.h5] [--system system.h5] [--json] [--quiet] [--max-steps N] [--max-memory SIZE]
+                                        simulate one case, write its trace file, print its measures
+                                        (those of `analyze` on that trace)
+  check CASE.toml [--max-steps N] [--max-memory SIZE]
+                                        validate; print the resolved case, derived numbers, costs
   analyze traces.h5 [--json] [--layers LO:HI]
                                         wave speeds, arrivals, peaks, dispersion (any code's traces)
   theory CASE.toml [--json]             stiffness tensor, V_p, V_s, omega_0, t_c

@@ -8,6 +8,7 @@
 
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
+#include "core/resources.hpp"
 #include "sweep/crystal_study.hpp"
 #include "sweep/distributed.hpp"
 #include "sweep/spin_study.hpp"
@@ -26,12 +27,19 @@ M_c from a hinge fit with a bootstrap interval, and the Appendix-3 decay laws.
   --quiet             no progress line (it is shown only when stderr is a terminal)
   --no-stop           run every member to the hard cap (no early stop; for checks)
   --limit N           stop after N members (checkpoint tests); the output is not written
+  --max-steps N       refuse a study with a member of more than N time steps (default 1e9)
+  --max-memory SIZE   refuse a study whose members at once need more memory (default: MemAvailable)
+
+Before any run, every member passes the guards of `granwave check` (granwave check --help): the
+steps, memory, stability limit, overlap bound and finite derived numbers; a refusal exits 2.
 
 Under `mpirun -n R` the members are spread over R ranks (OpenMP threads inside each); the study
 file is the same for any R (README "MPI"). Rank 0 alone prints and writes.
 
 Finished runs are committed in batches under FILE.parts/ (each batch written to a temporary name
-and renamed); after a crash or kill, the same command computes only what is missing.
+and renamed); after a crash or kill, the same command computes only what is missing. Once FILE is
+complete (written as FILE.tmp and renamed), FILE.parts/ is removed; the same command again reads
+FILE back instead of running (same study inputs).
 Prints a Markdown summary and the throughput (bead-steps, bead-steps/s, wall time).
 )";
 
@@ -42,7 +50,7 @@ int cmd_sweep(const Args& args) {
     std::cout << kHelp;
     return 0;
   }
-  const std::vector<std::string> valued{"-o", "--output", "--threads", "--limit"};
+  const std::vector<std::string> valued{"-o", "--output", "--threads", "--limit", "--max-steps", "--max-memory"};
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
     if (std::find(valued.begin(), valued.end(), a) != valued.end()) {
@@ -73,13 +81,15 @@ int cmd_sweep(const Args& args) {
   o.limit = static_cast<std::size_t>(int_option("--limit"));
   o.progress = !has_flag(args, "--quiet");
   o.stop = !has_flag(args, "--no-stop");
+  if (const auto v = option_value(args, "", "--max-steps"); !v.empty()) o.limits.max_steps = parse_count("--max-steps", v);
+  if (const auto v = option_value(args, "", "--max-memory"); !v.empty()) o.limits.max_memory = parse_bytes("--max-memory", v);
 
   {  // [study] kind = "crystal" belongs to the crystal studies (issue 5)
     std::ifstream in(pos[0], std::ios::binary);
     if (!in) throw InputError(pos[0] + ": cannot read the study file");
     std::stringstream ss;
     ss << in.rdbuf();
-    if (sweep::is_crystal_study(ss.str())) return sweep::run_crystal_study(pos[0], o.output, !o.progress, std::cout);
+    if (sweep::is_crystal_study(ss.str())) return sweep::run_crystal_study(pos[0], o.output, !o.progress, std::cout, o.limits);
   }
   const sweep::SpinStudy study = sweep::load_spin_study(pos[0]);
   const auto r = sweep::run_spin_study(study, o);

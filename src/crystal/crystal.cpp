@@ -2,11 +2,15 @@
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
+#include <iostream>
+#include <limits>
 #include <memory>
 #include <ostream>
 #include <sstream>
 
+#include "analysis/trace_analysis.hpp"
 #include "core/error.hpp"
+#include "crystal/guards.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 #include "crystal/vtk.hpp"
@@ -25,14 +29,27 @@ void check_system_matches(const config::Case& c, const Packing& p, const std::st
     throw InputError(path + ": the system's packing (cells, fixed layers, radius) is not the one of " + c.path);
 }
 
+std::string json_string(const std::string& s) {
+  std::string o = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') o += '\\', o += ch;
+    else if (ch == '\n') o += "\\n";
+    else if (static_cast<unsigned char>(ch) < 0x20) o += ' ';
+    else o += ch;
+  }
+  return o + "\"";
+}
+
 std::string trace_path_for(const config::Case& c, const RunRequest& req) {
   return req.trace_path.empty() ? c.name + ".h5" : req.trace_path;
 }
 
 }  // namespace
 
-void check(const config::Case& c, std::ostream& out) {
-  const Derived d = derive(c);  // refuses bad contact parameters and unstable dt
+void check(const config::Case& c, std::ostream& out, const ResourceLimits& limits) {
+  const Assessment a = assess(c, limits);  // before anything is allocated (crystal/guards.hpp)
+  enforce(a, c.path);
+  const Derived d = derive(c);
   const Packing p = lattice_packing(c);  // refuses a packing that does not fit its box
   const auto& k = *c.crystal;
   out << std::setprecision(6);
@@ -59,15 +76,14 @@ void check(const config::Case& c, std::ostream& out) {
   if (k.polydispersity > 0.0)
     out << "  polydisperse: radii a +- " << k.polydispersity * p.delta << " m (seed " << k.seed
         << "); relaxed until E_kin/E_pot < " << k.relax_tolerance << "\n";
-  if (d.dt > d.t_c / 50.0)
-    out << "warning: dt = " << d.dt << " s exceeds t_c/50 = " << d.t_c / 50.0
-        << " s, the accuracy rule of seed 002 sec. 2.2\n";
-  if (d.dt > d.dt_stable)
-    throw InputError(c.path + ": integrator.dt = " + std::to_string(d.dt) + " s exceeds the stability limit " +
-                     std::to_string(d.dt_stable) + " s of velocity Verlet for this crystal");
+  out << "  resources: " << describe(a.estimate, limits) << "\n";
+  for (const auto& w : a.warnings) out << "warning: " << w << "\n";
 }
 
 void build(const config::Case& c, const std::string& system_path) {
+  ResourceLimits no_step_limit;  // build does not run: only the packing's memory and meaning count
+  no_step_limit.max_steps = std::numeric_limits<double>::infinity();
+  enforce(assess(c, no_step_limit), c.path);
   const Packing p = make_packing(c);
   io::H5Writer w(system_path);
   io::write_provenance(w);
@@ -76,8 +92,11 @@ void build(const config::Case& c, const std::string& system_path) {
 }
 
 int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
-  std::ostringstream ignored;
-  check(c, ignored);  // the same refusals as `granwave check`
+  const std::string trace_path = trace_path_for(c, req);
+  Assessment a = assess(c, req.limits);  // the refusals of `granwave check`, before anything is allocated
+  check_output_space(a, trace_path);
+  enforce(a, c.path);
+  for (const auto& w : a.warnings) std::cerr << "granwave run: warning: " << w << "\n";
   Packing packing;
   if (req.system_path.empty()) {
     packing = make_packing(c);
@@ -85,7 +104,6 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
     packing = read_system(req.system_path);
     check_system_matches(c, packing, req.system_path);
   }
-  const std::string trace_path = trace_path_for(c, req);
   std::unique_ptr<VtkSeries> vtk;
   SampleHook hook;
   if (c.output.vtk_every > 0) {
@@ -95,48 +113,58 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
       if (sample % static_cast<std::size_t>(c.output.vtk_every) == 0) vtk->write(dyn);
     };
   }
-  const RunResult r = simulate(c, packing, hook);
-  if (vtk) vtk->finish();
-  write_trace(c, packing, r, trace_path);
-  if (r.failed) throw RunError(r.error + " (samples so far kept in " + trace_path + ")");
+  // What the summary needs from the run; its series are freed before the analysis reads them back.
+  double work_in = 0.0, dissipated = 0.0, residual = 0.0, shadow_residual = 0.0, seconds = 0.0;
+  double coordination0 = 0.0, coordination_end = 0.0;
+  long steps = 0, rebuilds = 0;
+  std::size_t samples = 0;
+  {
+    const RunResult r = simulate(c, packing, hook);
+    if (vtk) vtk->finish();
+    write_trace(c, packing, r, trace_path);
+    if (r.failed) throw RunError(r.error + " (samples so far kept in " + trace_path + ")");
+    const Traces& t = r.traces;
+    const std::size_t last = t.samples() - 1;
+    auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
+    residual = total(last) - total(0);
+    shadow_residual = residual - (t.verlet_correction[last] - t.verlet_correction[0]);
+    work_in = t.work_in[last];
+    dissipated = t.dissipated[last];
+    coordination0 = t.coordination[0];
+    coordination_end = t.coordination[last];
+    steps = r.steps;
+    rebuilds = r.rebuilds;
+    seconds = r.seconds;
+    samples = t.samples();
+  }
 
-  const Traces& t = r.traces;
+  // The measures: `granwave analyze` of the trace just written (one ruler, src/analysis).
+  const analysis::FileReport rep = analysis::report_file(trace_path);
   const Derived d = derive(c);
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;
-  const FrontSpeeds fs = front_speeds(t, packing.l0, shear);
-  const std::size_t last = t.samples() - 1;
-  auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
-  const double residual = total(last) - total(0);
-  const double shadow_residual = residual - (t.verlet_correction[last] - t.verlet_correction[0]);
-  const double pss = static_cast<double>(packing.size()) * r.steps / std::max(r.seconds, 1e-12);
+  const double pss = static_cast<double>(packing.size()) * steps / std::max(seconds, 1e-12);
   if (req.json) {
-    out << std::setprecision(10) << "{\"case\": \"" << c.name << "\", \"model\": \"crystal\", \"trace\": \""
-        << trace_path << "\", \"particles\": " << packing.size() << ", \"steps\": " << r.steps
-        << ", \"samples\": " << t.samples() << ", \"wall_seconds\": " << r.seconds
+    out << std::setprecision(10) << "{\"schema\": \"granwave-run/1\", \"case\": " << json_string(c.name)
+        << ", \"model\": \"crystal\", \"trace\": " << json_string(trace_path) << ", \"particles\": " << packing.size()
+        << ", \"steps\": " << steps << ", \"samples\": " << samples << ", \"wall_seconds\": " << seconds
         << ", \"particle_steps_per_second\": " << pss << ", \"mode\": \"" << (shear ? "S" : "P")
-        << "\", \"layers_fitted\": " << fs.layers << ", \"z_over_l0\": [" << fs.z_min << ", " << fs.z_max
-        << "], \"speed_first_peak\": " << fs.first_peak.slope << ", \"speed_first_peak_error\": "
-        << fs.first_peak.slope_error << ", \"speed_half_peak\": " << fs.half_peak.slope
-        << ", \"speed_half_peak_error\": " << fs.half_peak.slope_error << ", \"speed_theory\": "
-        << (shear ? d.v_s : d.v_p) << ", \"coordination\": " << t.coordination[0]
-        << ", \"work_in\": " << t.work_in[last] << ", \"dissipated\": " << t.dissipated[last]
-        << ", \"energy_residual\": " << residual << ", \"energy_residual_shadow\": " << shadow_residual << "}\n";
+        << "\", \"speed_theory\": " << (shear ? d.v_s : d.v_p) << ", \"coordination\": " << coordination0
+        << ", \"work_in\": " << work_in << ", \"dissipated\": " << dissipated << ", \"energy_residual\": " << residual
+        << ", \"energy_residual_shadow\": " << shadow_residual << ", \"warnings\": [";
+    for (std::size_t i = 0; i < a.warnings.size(); ++i) out << (i ? ", " : "") << json_string(a.warnings[i]);
+    out << "], \"analysis_error\": " << (rep.error.empty() ? "null" : json_string(rep.error))
+        << ",\n\"analysis\": " << (rep.error.empty() ? rep.json : "null\n") << "}\n";
   } else {
     out << std::setprecision(5);
-    out << "crystal " << c.name << ": " << packing.size() << " particles, " << r.steps << " steps in " << r.seconds
-        << " s (" << pss << " particle-steps/s), " << r.rebuilds << " contact-list builds\n";
-    out << "  coordination " << t.coordination[0] << " -> " << t.coordination[last] << "\n";
-    if (fs.layers >= 2)
-      out << "  " << (shear ? "S" : "P") << " front over z/l0 = " << fs.z_min << ".." << fs.z_max << " (" << fs.layers
-          << " layers): first peak " << fs.first_peak.slope << " +- " << fs.first_peak.slope_error
-          << " m/s, half peak " << fs.half_peak.slope << " +- " << fs.half_peak.slope_error << " m/s (theory "
-          << (shear ? d.v_s : d.v_p) << " m/s)\n";
-    else
-      out << "  the front reaches fewer than 2 layers with z/l0 in 10..150: no speed\n";
-    out << "  energy: work_in " << t.work_in[last] << " J, dissipated " << t.dissipated[last]
-        << " J, balance residual " << residual << " J (" << shadow_residual << " J after the Verlet correction)\n";
+    out << "crystal " << c.name << ": " << packing.size() << " particles, " << steps << " steps in " << seconds << " s (" << pss
+        << " particle-steps/s), " << rebuilds << " contact-list builds\n";
+    out << "  coordination " << coordination0 << " -> " << coordination_end << "\n";
+    out << "  theory (eq. 10, branch d'): " << (shear ? "V_s = " : "V_p = ") << (shear ? d.v_s : d.v_p) << " m/s\n";
+    out << "  energy: work_in " << work_in << " J, dissipated " << dissipated << " J, balance residual " << residual
+        << " J (" << shadow_residual << " J after the Verlet correction)\n";
     out << "  trace: " << trace_path << "\n";
     if (vtk) out << "  snapshots: " << vtk->collection_path() << " (" << vtk->files().size() << " files)\n";
+    out << rep.text;
   }
   return 0;
 }

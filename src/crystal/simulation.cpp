@@ -241,31 +241,24 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   return res;
 }
 
-FrontSpeeds front_speeds(const Traces& tr, double l0, bool shear, double z_min, double z_max) {
-  FrontSpeeds out;
-  const std::size_t nt = tr.samples(), nl = tr.nlayers;
-  const std::vector<double>& sigma = shear ? tr.stress_zx : tr.stress_zz;
-  std::vector<double> t_peak, z_peak, t_half, z_half, signal(nt);
-  out.z_min = z_max;
-  for (std::size_t L = 0; L < nl; ++L) {
-    const double zl = tr.layer_z[L] / l0;
-    if (zl < z_min - 1e-9 || zl > z_max + 1e-9 || nt < 3) continue;
-    for (std::size_t k = 0; k < nt; ++k) signal[k] = sigma[k * nl + L] - sigma[L];
-    const analysis::SignalMeasures m = analysis::measure_signal(tr.time, signal);
-    if (!m.first_peak.found) continue;
-    t_peak.push_back(m.first_peak.time);
-    z_peak.push_back(tr.layer_z[L]);
-    if (m.half_peak.found) {
-      t_half.push_back(m.half_peak.time);
-      z_half.push_back(tr.layer_z[L]);
-    }
-    out.z_min = std::min(out.z_min, zl);
-    out.z_max = std::max(out.z_max, zl);
-  }
-  out.layers = t_peak.size();
-  if (t_peak.size() >= 2) out.first_peak = analysis::front_speed(t_peak, z_peak);
-  if (t_half.size() >= 2) out.half_peak = analysis::front_speed(t_half, z_half);
-  return out;
+analysis::CrystalTrace analysis_trace(const config::Case& c, const Packing& packing, const Traces& tr) {
+  analysis::CrystalTrace t;
+  t.time = tr.time;
+  t.layer_z = tr.layer_z;
+  t.nt = tr.samples();
+  t.nlayers = tr.nlayers;
+  t.l0 = packing.l0;
+  t.fixed_layers = packing.fixed_layers;
+  t.mode = c.excitation.mode == config::Excitation::Mode::S ? 'S' : 'P';
+  t.mode_source = "case_toml";
+  t.stress_zz = tr.stress_zz;
+  t.stress_zx = tr.stress_zx;
+  t.displacement_z = tr.displacement_z;
+  t.displacement_x = tr.displacement_x;
+  t.velocity_z = tr.velocity_z;
+  t.velocity_x = tr.velocity_x;
+  t.coordination = tr.coordination;
+  return t;
 }
 
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/measures.hpp"
+#include "analysis/trace_analysis.hpp"
 #include "config/case.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/packing.hpp"
@@ -65,14 +65,8 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
 // "synchronous", root attribute status = "complete" or "failed: ..."), written via NAME.tmp.
 void write_trace(const config::Case& c, const Packing& packing, const RunResult& result, const std::string& path);
 
-// Front speeds of the measures of docs/design.md §2.4 on sigma - sigma(t = 0) of each layer with
-// z/l0 in [z_min, z_max] (sigma_zz for P, sigma_zx for S); layers whose signal has no first
-// peak are left out. Speeds in m/s with their standard errors.
-struct FrontSpeeds {
-  analysis::LineFit first_peak, half_peak;
-  std::size_t layers = 0;  // layers used
-  double z_min = 0.0, z_max = 0.0;  // in units of l0, as used
-};
-FrontSpeeds front_speeds(const Traces& tr, double l0, bool shear, double z_min = 10.0, double z_max = 150.0);
+// The in-memory traces as `granwave analyze` reads them from the trace file (l0, fixed layers
+// and mode of the packing and case), for analysis::analyze_crystal: the one ruler of speeds.
+analysis::CrystalTrace analysis_trace(const config::Case& c, const Packing& packing, const Traces& traces);
 
 }  // namespace granwave::crystal

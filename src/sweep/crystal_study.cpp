@@ -11,12 +11,18 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <set>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "crystal/guards.hpp"
 #include "io/h5.hpp"
 #include "sweep/distributed.hpp"
 #include "theory/crystal_theory.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace granwave::sweep {
 namespace {
@@ -231,8 +237,23 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
                                             const CrystalRunOptions& opt, RunStats* stats) {
   const auto members = crystal_members(s);
   const auto names = crystal_value_names(s);
-  // Refuse a bad member (an overdamped gamma_0, an unstable dt) before any run starts.
-  for (const auto& m : members) (void)crystal::derive(member_case(s, m));
+  // Refuse a bad member (an overdamped gamma_0, an unstable dt, more memory than there is with
+  // the members that run at once) before any run starts: the guards of `granwave check`.
+  {
+    ResourceLimits limits = opt.limits;
+#ifdef _OPENMP
+    limits.parallel_runs = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+#endif
+    limits.parallel_runs = std::max<int>(1, std::min<int>(limits.parallel_runs, static_cast<int>(members.size())));
+    std::set<std::string> warned;
+    for (const auto& m : members) {
+      const config::Case mc = member_case(s, m);
+      const Assessment a = crystal::assess(mc, limits);
+      enforce(a, s.path + " (member " + mc.name + ")");
+      for (const auto& w : a.warnings)
+        if (warned.insert(w).second) std::cerr << "granwave sweep: warning: " << mc.name << ": " << w << "\n";
+    }
+  }
   RunnerOptions ro;
   ro.parts_dir = out_path + ".parts";
   ro.fingerprint = fingerprint({s.text, s.base.toml_text});
@@ -247,7 +268,15 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
     ro.cost.push_back((m.mode == 'S' ? std::numbers::sqrt2 : 1.0) * (s.vary == CrystalVary::polydispersity ? 1.0 + m.value : 1.0));
   std::mutex log_mutex;
   RunStats st;
-  const auto results = run_members(
+  // A finished study file of the same inputs (its batches are gone) is read back, not rerun.
+  std::vector<MemberResult> done;
+  if (std::filesystem::exists(out_path)) {
+    io::H5Reader r(out_path);
+    if (r.has_attr("/", "fingerprint") && r.attr_string("/", "fingerprint") == ro.fingerprint) done = read_members(r, "/members");
+    if (done.size() != members.size()) done.clear();
+  }
+  if (!done.empty()) st.total = st.resumed = done.size();
+  const auto results = !done.empty() ? done : run_members(
       members.size(),
       [&](std::size_t i) {
         CrystalMemberRun r = run_crystal_member(s, i, opt.keep_spectrum);
@@ -283,7 +312,7 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
     w.write("/damping/ratio_t_gamma_t_c", d.ratio_t_gamma_t_c);
     w.attr("/damping", "t_c", d.t_c);
   }
-  w.commit();
+  commit_study(w, ro.parts_dir);
 
   // The table (one line per member), then the study-level numbers.
   out << "crystal study " << s.name << " (vary " << to_string(s.vary) << "): " << results.size() << " runs, " << st.resumed
@@ -309,12 +338,14 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
   return results;
 }
 
-int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out) {
+int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out,
+                      const ResourceLimits& limits) {
   const CrystalStudy s = load_crystal_study(path);
   std::string o = out_path;
   if (o.empty()) o = std::filesystem::path(path).stem().string() + ".h5";
   CrystalRunOptions opt;
   opt.quiet = quiet;
+  opt.limits = limits;
   run_crystal_study(s, o, out, opt);
   return 0;
 }

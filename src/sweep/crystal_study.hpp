@@ -21,6 +21,7 @@
 
 #include "analysis/trace_analysis.hpp"
 #include "config/case.hpp"
+#include "core/resources.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 #include "sweep/study.hpp"
@@ -98,13 +99,15 @@ struct CrystalRunOptions {
   int threads = 0;
   CrystalMemberHook hook;  // members read back from batch files do not call it
   bool keep_spectrum = false;
+  ResourceLimits limits;   // the guards of `granwave check`, applied to every member before any run
 };
 // Run (or resume) the study: batches under OUT.parts, the study file OUT (written as OUT.tmp and
 // renamed) once every member is done. Returns the members ordered by index.
 std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::string& out_path, std::ostream& out,
                                             const CrystalRunOptions& opt = {}, RunStats* stats = nullptr);
 // `granwave sweep STUDY.toml -o OUT` for a crystal study: 0 on success (throws InputError/RunError).
-int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out);
+int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out,
+                      const ResourceLimits& limits = {});
 
 // `granwave figures crystal`: Figs. 2-9 of seed 002 as PNG in out_dir, the data behind them, and
 // summary.md. quick = reduced sizes (about a minute). Progress on `log`.

@@ -5,11 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <iostream>
 #include <map>
 #include <iomanip>
+#include <set>
 #include <sstream>
 #include <tuple>
 
+#include "chain/guards.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "io/h5.hpp"
@@ -357,9 +360,45 @@ SpinStudyResult analyse_spin_study(const SpinStudy& s, const std::vector<SpinGro
   return out;
 }
 
+// The guards of `granwave check` (chain/guards.hpp) before any run starts: each chain length's
+// longest run (steps, memory), then the physics of every member's own arrangement (stability,
+// overlap; O(beads) per member). Warnings once each, on stderr.
+void guard_members(const SpinStudy& s, const std::vector<SpinGroup>& groups, const std::vector<SpinMember>& members,
+                   const ResourceLimits& limits) {
+  const std::string keys_dt = s.dt ? "run.dt" : "the base case's integrator.dt";
+  std::set<std::string> warned;
+  auto warn = [&](const Assessment& a) {
+    for (const auto& w : a.warnings)
+      if (warned.insert(w).second) std::cerr << "granwave sweep: warning: " << w << "\n";
+  };
+  ResourceLimits each = limits;
+  each.parallel_runs = 1;  // a member keeps no series: its memory is its chain
+  for (const auto& g : groups) {
+    config::Case c = g.c;
+    c.integrator.t_end = g.max_time;
+    c.output.fields = {"energy"};
+    c.output.full_rate_beads.clear();
+    const Assessment a = chain::assess(c, each);
+    enforce(a, s.path + " (N_total = " + std::to_string(g.n_total) +
+                   "; a member runs to run.max_time_per_bead x its stop bead at run.dt or the base case's dt)");
+    warn(a);
+  }
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    const auto& m = members[i];
+    const auto& g = groups[m.group];
+    chain::ChainSystem sys = g.sys;
+    chain::apply_spins(sys, member_spins(s, g, m, i));
+    Assessment a;
+    chain::assess_physics(sys, chain::resolve_dt(g.c, sys), a, keys_dt);
+    enforce(a, s.path + " (member " + std::to_string(i) + ", spins " + sys.spins() + ")");
+    warn(a);
+  }
+}
+
 SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
   const auto groups = spin_groups(s);
   const auto members = spin_members(s, groups);
+  guard_members(s, groups, members, o.limits);
   const std::string fp = study_fingerprint(s, o.stop);
   RunnerOptions ro;
   ro.parts_dir = o.output.empty() ? "" : o.output + ".parts";
@@ -408,9 +447,8 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
   SpinStudyResult out = analyse_spin_study(s, groups, members, std::move(results));
   out.stats = stats;
   if (!o.output.empty()) {
-    write_spin_study(o.output, s, out, o.stop);
-    std::error_code ec;
-    std::filesystem::remove_all(ro.parts_dir, ec);
+    write_spin_study(o.output, s, out, o.stop);  // written as NAME.tmp, renamed when complete
+    remove_parts(ro.parts_dir);
   }
   return out;
 }

@@ -15,6 +15,7 @@
 
 #include "chain/chain.hpp"
 #include "config/case.hpp"
+#include "core/resources.hpp"
 #include "sweep/stats.hpp"
 #include "sweep/study.hpp"
 
@@ -143,6 +144,7 @@ struct SweepOptions {
   bool progress = true;
   std::size_t limit = 0;  // stop after this many members (tests)
   bool stop = true;       // early stop (false: every run to the hard cap)
+  ResourceLimits limits;  // the guards of `granwave check`, applied to every member before any run
 };
 SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o);
 SpinStudyResult analyse_spin_study(const SpinStudy& s, const std::vector<SpinGroup>& groups,

@@ -93,6 +93,18 @@ std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string&
 
 // ---- batch files ----
 
+void remove_parts(const std::string& parts_dir) {
+  if (parts_dir.empty()) return;
+  std::error_code ec;
+  fs::remove_all(parts_dir, ec);
+  if (ec) throw RunError("cannot remove " + parts_dir + " (the study file is complete): " + ec.message());
+}
+
+void commit_study(io::H5Writer& w, const std::string& parts_dir) {
+  w.commit();  // throws before the rename on failure: the batches stay for a resume
+  remove_parts(parts_dir);
+}
+
 std::vector<MemberResult> read_parts(const std::string& parts_dir, const std::string& fp) {
   std::vector<MemberResult> out;
   if (parts_dir.empty() || !fs::is_directory(parts_dir)) return out;

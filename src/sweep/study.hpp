@@ -8,7 +8,8 @@
 //
 // Resumable: finished members are committed in batches, each batch written to NAME.tmp and
 // renamed (HDF5 files are not crash-safe in place), so `kill -9` loses at most the batches in
-// flight; a restart reads the batch files and runs only the missing members.
+// flight; a restart reads the batch files and runs only the missing members. Once the study file
+// is complete (renamed into place), commit_study removes the batches.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -67,6 +68,12 @@ std::vector<MemberResult> read_parts(const std::string& parts_dir, const std::st
 void write_members(io::H5Writer& w, const std::string& group, const std::vector<MemberResult>& results,
                    const std::vector<std::string>& value_names);
 std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string& group);
+
+// A finished study: commit `w` (the study file, written as NAME.tmp, renamed to NAME), then remove
+// parts_dir, whose batches the file now holds; resuming needs them only until the rename.
+void commit_study(io::H5Writer& w, const std::string& parts_dir);
+// Remove a parts directory (its batch files and their .tmp leftovers); "" does nothing.
+void remove_parts(const std::string& parts_dir);
 
 // 64-bit FNV-1a of the inputs that define a study (its file and the base case text).
 std::string fingerprint(const std::vector<std::string>& texts);

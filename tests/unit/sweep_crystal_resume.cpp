@@ -1,6 +1,6 @@
 // Crystal study file and resumability (src/sweep/crystal_study.hpp): the [study] kind key that
 // separates crystal from spin-chain studies, loader refusals, and a study resumed after losing one
-// batch recomputes only that batch and writes identical datasets.
+// batch recomputes only the missing members and writes identical datasets.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -57,31 +57,39 @@ TEST_CASE("crystal study loader refuses unknown keys, bad vary and negative valu
   CHECK_THROWS_AS(sweep::parse_crystal_study(study_text("[run]\nlayers = 3\n"), "x.toml"), InputError);
 }
 
-TEST_CASE("a crystal study resumed after losing one batch recomputes only that batch, identically") {
+TEST_CASE("a crystal study resumed after losing one batch recomputes only the missing members, identically") {
   const auto s = tiny();
   const fs::path dir = fresh_dir("cstudy_resume");
   const std::string out = (dir / "study.h5").string();
   std::ostringstream log;
   sweep::CrystalRunOptions opt;
   opt.quiet = true;
-  sweep::RunStats st1, st2;
+  sweep::RunStats st1, st2, st0;
   const auto first = sweep::run_crystal_study(s, out, log, opt, &st1);
   REQUIRE(st1.computed == 3);
   io::H5Reader r1(out);
   const auto values1 = r1.read_double("/members/values");
   const auto profile1 = r1.read_double("/members/profile");
 
-  // Lose the batch of member 1 (batch = 1 member: files batch_<first index>_...).
+  // A finished study removes its batches (tests/unit/sweep_parts_cleanup.cpp): stop a second
+  // study after two members (batches of members 0 and 1 committed, no study file) and lose member
+  // 1's batch (batch = 1 member: files batch_<first index>_...).
+  const std::string out2 = (dir / "study2.h5").string();
+  sweep::CrystalRunOptions stop = opt;
+  stop.limit = 2;
+  sweep::run_crystal_study(s, out2, log, stop, &st0);
+  REQUIRE(st0.computed == 2);
+  REQUIRE(!fs::exists(out2));
   int removed = 0;
-  for (const auto& e : fs::directory_iterator(out + ".parts"))
+  for (const auto& e : fs::directory_iterator(out2 + ".parts"))
     if (e.path().filename().string().rfind("batch_00000001_", 0) == 0) fs::remove(e.path()), ++removed;
   REQUIRE(removed == 1);
-  fs::remove(out);
 
-  const auto second = sweep::run_crystal_study(s, out, log, opt, &st2);
-  CHECK(st2.resumed == 2);
-  CHECK(st2.computed == 1);
-  io::H5Reader r2(out);
+  const auto second = sweep::run_crystal_study(s, out2, log, opt, &st2);
+  CHECK(st2.resumed == 1);
+  CHECK(st2.computed == 2);
+  CHECK(!fs::exists(out2 + ".parts"));
+  io::H5Reader r2(out2);
   const auto values2 = r2.read_double("/members/values");
   const auto profile2 = r2.read_double("/members/profile");
   REQUIRE(values1.size() == values2.size());

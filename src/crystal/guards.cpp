@@ -1,0 +1,111 @@
+// Guards of a crystal case (crystal/guards.hpp).
+#include "crystal/guards.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "core/error.hpp"
+#include "crystal/simulation.hpp"
+
+namespace granwave::crystal {
+namespace {
+
+std::string fmt(const char* f, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+// Measured costs (granwave run, /usr/bin/time maxrss): 18.6 MB with 3200 particles, 72.0 MB with
+// 51200, 245 MB with 204800 (1125 bytes per particle: state, contact list with history, packing),
+// and 9.4 kB per stored sample of the 200-layer crystal (6 layer fields x 8 bytes, in vectors that
+// grow by doubling). Rounded up: 20 MB fixed, 1300 bytes per particle, 2.5 x the stored series (a
+// vector's growth, and the analysis of the written trace, which reads it back and transforms one
+// field), 400 bytes per particle for a VTK snapshot (ASCII).
+constexpr double kFixedBytes = 20e6, kBytesPerParticle = 1300.0, kSeriesFactor = 2.5, kVtkBytesPerParticle = 400.0;
+
+}  // namespace
+
+Assessment assess(const config::Case& c, const ResourceLimits& limits) {
+  if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
+  const config::CrystalCase& k = *c.crystal;
+  Assessment a;
+  {  // what derive() divides by, so that its refusals name the right keys
+    const double m = k.density * 4.0 / 3.0 * std::numbers::pi * k.radius * k.radius * k.radius;
+    a.require_finite("the particle mass m = density 4/3 pi a^3", m, "crystal.radius, crystal.density");
+    a.require_finite("k/m", c.contact.kn / m, "contact.kn, crystal.radius, crystal.density");
+    const double a_min = k.radius - k.polydispersity * k.overlap * 2.0 * k.radius;
+    a.require_finite("the smallest radius a - polydispersity delta", a_min, "crystal.polydispersity, crystal.overlap");
+    if (!a.refusals.empty()) return a;
+  }
+  const Derived d = derive(c);  // refuses bad contact parameters (overdamped, negative, ...)
+  ResourceEstimate& e = a.estimate;
+  const double layers = k.cells[2];
+  const double n = static_cast<double>(k.cells[0]) * k.cells[1] * layers;
+  e.size = fmt("%.6g particles", n);
+  e.steps_keys = "integrator.t_end or integrator.dt";
+  e.memory_keys = "crystal.cells, integrator.t_end or output.interval";
+  const std::string keys_dt = c.integrator.dt ? "integrator.dt" : "integrator.dt_over_tc";
+
+  const std::string material = "crystal.radius, crystal.density";
+  a.require_finite("the particle mass m", d.mass, material);
+  a.require_finite("the contact frequency omega", d.omega, "contact.kn, contact.gamma_n, " + material);
+  a.require_finite("the contact time t_c", d.t_c, "contact.kn, contact.gamma_n, " + material);
+  a.require_finite("the stability limit of velocity Verlet", d.dt_stable,
+                   "contact.kn, contact.kt, contact.gamma_n, contact.gamma_t, crystal.polydispersity, " + material);
+  a.require_finite("integrator.dt (resolved)", d.dt, keys_dt);
+  a.require_finite("the prestress sigma_0", d.sigma_0, "contact.kn, crystal.overlap, crystal.radius", false);
+  a.require_finite("the P-wave speed V_p (eq. 10)", d.v_p, "contact.kn, contact.kt, " + material);
+  if (!a.refusals.empty()) return a;
+
+  if (d.dt > d.dt_stable)
+    a.refusals.push_back("integrator.dt = " + fmt("%.4g", d.dt) + " s is above the stability limit " + fmt("%.4g", d.dt_stable) +
+                         " s of velocity Verlet for this crystal (2/omega_max, omega_max^2 <= 2 z (k + 3.5 k_t)/m_min, z = 12); "
+                         "change " + keys_dt);
+  if (d.dt > d.t_c / 50.0)
+    a.warnings.push_back("dt = " + fmt("%.4g", d.dt) + " s exceeds t_c/50 = " + fmt("%.4g", d.t_c / 50.0) +
+                         " s, the accuracy rule of seed 002 sec. 2.2");
+
+  // The largest overlap: the initial one plus what the source puts into one contact.
+  const double diameter = 2.0 * k.radius, delta0 = k.overlap * diameter;
+  const double a_min = k.radius - k.polydispersity * delta0;
+  const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
+  const double added = velocity ? std::abs(c.excitation.amplitude) * std::sqrt(d.mass / c.contact.kn)
+                                : std::abs(c.excitation.amplitude) * diameter;
+  const double delta = delta0 + added, ratio = delta / a_min;
+  const std::string source = velocity ? "velocity drive, |v| sqrt(m/k)" : "displacement step, |amplitude| d";
+  const std::string overlap = "the overlap bound (initial " + fmt("%.4g", delta0) + " m + " + fmt("%.4g", added) +
+                              " m from the " + source + ") is " + fmt("%.4g", delta) + " m = " + fmt("%.3g", 100.0 * ratio) +
+                              " % of the smallest radius " + fmt("%.4g", a_min) + " m";
+  const std::string lower = "lower excitation.amplitude or crystal.overlap";
+  if (!(ratio < 1.0))
+    a.refusals.push_back(overlap + ": contacts (eq. 1) mean nothing there; " + lower);
+  else if (ratio > kOverlapWarnFraction)
+    a.warnings.push_back(overlap + ", above the " + fmt("%.0f", 100.0 * kOverlapWarnFraction) +
+                         " % within which the small-overlap contact law holds; " + lower + " for a valid model");
+
+  e.steps = std::round(c.integrator.t_end / d.dt);
+  const double every = c.output.interval > 0.0 ? std::max(1.0, std::round(c.output.interval / d.dt)) : 1.0;
+  e.samples = std::floor(e.steps / every) + 1.0;
+  // Stored in memory: the 6 layer fields, coordination and 5 energies per sample; in the file,
+  // only the [output] fields.
+  const double in_memory = e.samples * (6.0 * layers + 7.0) * 8.0;
+  double columns = 0.0;
+  if (c.output.fields.empty()) {
+    columns = 6.0 * layers + 7.0;
+  } else {
+    for (const auto& f : c.output.fields)
+      columns += f.rfind("layer_", 0) == 0 ? layers : f == "energy" ? 5.0 : 1.0;
+    columns += 1.0;  // time
+  }
+  const double snapshots = c.output.vtk_every > 0 ? std::floor(e.samples / c.output.vtk_every) + 1.0 : 0.0;
+  e.memory = kFixedBytes + kBytesPerParticle * n + kSeriesFactor * in_memory + (snapshots > 0 ? kVtkBytesPerParticle * n : 0.0);
+  e.output = e.samples * columns * 8.0 + 120.0 * n + snapshots * kVtkBytesPerParticle * n;
+  if (snapshots > 0) e.memory_keys += ", output.vtk_every";
+  check_resources(a, limits);
+  return a;
+}
+
+}  // namespace granwave::crystal

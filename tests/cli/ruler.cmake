@@ -1,0 +1,23 @@
+# One ruler (issue 12): `granwave run --json` prints under "analysis" exactly what `granwave
+# analyze --json` prints for the trace it wrote (tests/cli/run_equals_analyze.py), for a chain, a
+# crystal and two runs cut before the front crossed the fit range. Included by tests/cli.cmake.
+find_program(GW_SYSTEM_PYTHON3 python3 PATHS /usr/bin NO_DEFAULT_PATH)
+if(NOT GW_SYSTEM_PYTHON3)
+  message(WARNING "no /usr/bin/python3: the cli ruler tests are not registered")
+  return()
+endif()
+set(ruler_script ${CMAKE_SOURCE_DIR}/tests/cli/run_equals_analyze.py)
+set(ruler_tmp ${CMAKE_BINARY_DIR}/cli-tests/ruler)
+foreach(spec
+    "chain oriented20|data/cases/oriented20.toml|"
+    "crystal small|data/cases/crystal_small.toml|"
+    "crystal cut at 160 layers and 0.9 ms (the issue's case)|tests/cli/cases/crystal_p_cut160.toml|--cut"
+    "crystal cut at 160 layers and 0.6 ms, range shortened|tests/cli/cases/crystal_p_cut160_short.toml|--shortened")
+  string(REPLACE "|" ";" parts "${spec}")
+  list(GET parts 0 label)
+  list(GET parts 1 case)
+  list(GET parts 2 flag)
+  add_test(NAME "cli: run and analyze print the same measures: ${label}"
+    COMMAND ${GW_SYSTEM_PYTHON3} ${ruler_script} $<TARGET_FILE:granwave> ${CMAKE_SOURCE_DIR}/${case} ${ruler_tmp} ${flag})
+  set_tests_properties("cli: run and analyze print the same measures: ${label}" PROPERTIES LABELS "cli")
+endforeach()
