@@ -248,22 +248,36 @@ LatticeDispersion lattice_dispersion(const LatticeCell& cell, const Vec3& h_in, 
     at[i] = lattice_modes(cell, h, d.k[i]);
     d.max_hermitian_defect = std::max(d.max_hermitian_defect, hermitian_defect(dynamical_matrix(cell, d.k[i] * h)));
   }
-  // Follow branches outwards from k = 0 by the largest total overlap |<e_prev|e_new>|^2.
-  std::array<int, 6> perm;
-  for (int b = 0; b < 6; ++b) d.branches[b][mid] = at[mid][b];
-  auto follow = [&](int from, int to) {
+  // Follow branches outwards from k = 0 by the largest total overlap |<e_prev|e_new>|^2, on a grid
+  // 16 times finer than the output (eigenvectors turn fast near an avoided crossing).
+  constexpr int kSub = 16;
+  auto match = [](const std::array<Vector6cd, 6>& prev, const std::array<LatticeMode, 6>& next) {
+    std::array<int, 6> perm, best;
     std::iota(perm.begin(), perm.end(), 0);
-    std::array<int, 6> best = perm;
-    double best_sum = -1.0;
+    best = perm;
     double O[6][6];
     for (int b = 0; b < 6; ++b)
-      for (int m = 0; m < 6; ++m) O[b][m] = std::norm(d.branches[b][from].e.dot(at[to][m].e));
+      for (int m = 0; m < 6; ++m) O[b][m] = std::norm(prev[b].dot(next[m].e));
+    double best_sum = -1.0;
     do {
       double s = 0.0;
       for (int b = 0; b < 6; ++b) s += O[b][perm[b]];
       if (s > best_sum + 1e-12) best_sum = s, best = perm;
     } while (std::next_permutation(perm.begin(), perm.end()));
-    for (int b = 0; b < 6; ++b) d.branches[b][to] = at[to][best[b]];
+    return best;
+  };
+  for (int b = 0; b < 6; ++b) d.branches[b][mid] = at[mid][b];
+  auto follow = [&](int from, int to) {
+    std::array<Vector6cd, 6> e;
+    for (int b = 0; b < 6; ++b) e[b] = d.branches[b][from].e;
+    for (int j = 1; j < kSub; ++j) {
+      const double kj = d.k[from] + (d.k[to] - d.k[from]) * j / kSub;
+      const auto sub = lattice_modes(cell, h, kj);
+      const auto p = match(e, sub);
+      for (int b = 0; b < 6; ++b) e[b] = sub[p[b]].e;
+    }
+    const auto p = match(e, at[to]);
+    for (int b = 0; b < 6; ++b) d.branches[b][to] = at[to][p[b]];
   };
   for (int i = mid + 1; i < nk; ++i) follow(i - 1, i);
   for (int i = mid - 1; i >= 0; --i) follow(i + 1, i);
@@ -283,6 +297,7 @@ LatticeDispersion lattice_dispersion(const LatticeCell& cell, const Vec3& h_in, 
       d.min_omega2 = std::min(d.min_omega2, m.omega2);
       flat_zero = flat_zero && std::abs(m.omega2) <= zero;
     }
+    d.zero[b] = flat_zero && !d.acoustic[b];
     if (flat_zero) {
       for (auto& m : br) m.group_velocity = 0.0;  // free rotations (no tangential spring)
     } else if (d.acoustic[b]) {

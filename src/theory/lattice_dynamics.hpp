@@ -107,11 +107,15 @@ struct LatticeDispersion {
   Vec3 direction = Vec3::UnitZ();
   double period = 0.0;            // l0: the zone is [-pi/l0, pi/l0] (m)
   std::vector<double> k;          // ascending, symmetric about 0 (1/m)
-  // branches[b][i]: branch b at k[i]. Branches are followed through crossings by the overlap of
-  // eigenvectors from k = 0 outwards (not sorted by frequency at each k).
+  // branches[b][i]: branch b at k[i]. Branches are followed from k = 0 outwards by the overlap of
+  // eigenvectors on a 16 times finer grid (not sorted by frequency at each k): through the true
+  // crossings of decoupled modes, along the avoided ones.
   std::array<std::vector<LatticeMode>, 6> branches;
   std::array<int, 6> dominant{};  // dominant degree of freedom of each branch at the smallest k > 0
   std::array<bool, 6> acoustic{}; // omega(k = 0) = 0 with translation content > 1/2 there
+  std::array<bool, 6> zero{};     // omega = 0 at every k: a free rotation (no tangential spring)
+  // "acoustic", "optical" or "free rotation"
+  const char* kind(int b) const { return acoustic[b] ? "acoustic" : zero[b] ? "free rotation" : "optical"; }
   double max_hermitian_defect = 0.0;
   double min_omega2 = 0.0;        // over all k and branches (< 0: unstable)
 };

@@ -280,3 +280,26 @@ TEST_CASE("lattice_cell refuses a packing that is not a Bravais lattice", "[theo
   CHECK_THROWS(lattice_dispersion(fcc_cell({}), ez, l0, 4));
   CHECK_THROWS(lattice_dispersion(fcc_cell({}), ez, 0.0, 5));
 }
+
+TEST_CASE("lattice_dispersion: coupled branches never cross (avoided crossings), whatever the grid", "[theory][lattice]") {
+  // kt = k: the x-polarised S block ends with the rotation below the translation at the zone edge
+  // (10 kt/m < (4k + 12 kt)/m); the acoustic branch stays the lower one and ends rotational.
+  const Params p{k, k * delta, 0.5};
+  const LatticeCell cell = fcc_cell(p);
+  for (int nk : {5, 9, 65}) {
+    const auto d = lattice_dispersion(cell, ez, l0, nk);
+    int ac = -1, op = -1;
+    for (int b = 0; b < 6; ++b) {
+      if (d.dominant[b] == 0) ac = b;
+      if (d.dominant[b] == 4) op = b;
+    }
+    REQUIRE(ac >= 0);
+    REQUIRE(op >= 0);
+    const Closed edge = closed_forms(p, std::numbers::pi);
+    INFO("nk = " << nk);
+    CHECK_THAT(d.branches[ac].back().omega2, WithinRel(edge.S_low, 1e-12));
+    CHECK_THAT(d.branches[op].back().omega2, WithinRel(edge.S_high, 1e-12));
+    CHECK(d.branches[ac].back().content[4] > 1 - 1e-12);  // theta_y at the edge
+    for (std::size_t i = 0; i < d.k.size(); ++i) CHECK(d.branches[ac][i].omega < d.branches[op][i].omega);
+  }
+}
