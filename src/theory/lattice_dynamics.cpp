@@ -309,6 +309,69 @@ LatticeDispersion lattice_dispersion(const LatticeCell& cell, const Vec3& h_in, 
   return d;
 }
 
+RidgeComparison compare_ridge(const std::vector<double>& spectrum, const std::vector<double>& k_axis,
+                              const std::vector<double>& omega_axis, const LatticeDispersion& d, int branch,
+                              int k_sign, double vg_fraction) {
+  const std::size_t nw = omega_axis.size(), nkc = k_axis.size();
+  if (nw < 3 || nkc < 1 || spectrum.size() != nw * nkc) throw InputError("compare_ridge: spectrum size differs from its axes");
+  if (branch < 0 || branch >= 6 || d.k.size() < 3) throw InputError("compare_ridge: no such branch");
+  const auto& br = d.branches[branch];
+  // The branch on k >= 0 (omega and v_g are even and odd in k).
+  std::vector<double> kb, wb, vb;
+  double wlo = std::numeric_limits<double>::infinity(), whi = -wlo, vmax = 0.0;
+  for (std::size_t i = 0; i < d.k.size(); ++i) {
+    wlo = std::min(wlo, br[i].omega), whi = std::max(whi, br[i].omega);
+    if (d.k[i] < 0.0) continue;
+    kb.push_back(d.k[i]);
+    wb.push_back(br[i].omega);
+    vb.push_back(std::abs(br[i].group_velocity));
+    if (std::isfinite(vb.back())) vmax = std::max(vmax, vb.back());
+  }
+  auto interp = [&](const std::vector<double>& y, double x) {
+    if (x <= kb.front()) return y.front();
+    if (x >= kb.back()) return y.back();
+    const auto it = std::upper_bound(kb.begin(), kb.end(), x);
+    const std::size_t j = static_cast<std::size_t>(it - kb.begin());
+    const double t = (x - kb[j - 1]) / (kb[j] - kb[j - 1]);
+    return y[j - 1] + t * (y[j] - y[j - 1]);
+  };
+  RidgeComparison r;
+  r.domega = omega_axis[1] - omega_axis[0];
+  std::vector<double> offsets;
+  for (std::size_t c = 0; c < nkc; ++c) {
+    const double kc = k_axis[c];
+    if (kc == 0.0 || (kc > 0.0) != (k_sign > 0)) continue;
+    const double ak = std::abs(kc);
+    if (ak > kb.back() * (1 + 1e-12)) continue;
+    const double vg = interp(vb, ak);
+    if (!(vg >= vg_fraction * vmax)) continue;
+    ++r.columns;
+    double best = -1.0;
+    std::size_t jbest = 0;
+    for (std::size_t j = 1; j + 1 < nw; ++j) {
+      if (!(omega_axis[j] > wlo && omega_axis[j] < whi)) continue;
+      const double a = spectrum[j * nkc + c];
+      if (a > spectrum[(j - 1) * nkc + c] && a >= spectrum[(j + 1) * nkc + c] && a > best) best = a, jbest = j;
+    }
+    if (best < 0.0) continue;
+    ++r.with_ridge;
+    const double wbr = interp(wb, ak);
+    const double off = (omega_axis[jbest] - wbr) / r.domega;
+    if (std::abs(off) <= 1.0) ++r.within_one_bin;
+    r.max_offset_bins = std::max(r.max_offset_bins, std::abs(off));
+    offsets.push_back(std::abs(off));
+    r.k.push_back(kc);
+    r.omega_ridge.push_back(omega_axis[jbest]);
+    r.omega_branch.push_back(wbr);
+  }
+  if (!offsets.empty()) {
+    std::sort(offsets.begin(), offsets.end());
+    const std::size_t n = offsets.size();
+    r.median_offset_bins = n % 2 ? offsets[n / 2] : 0.5 * (offsets[n / 2 - 1] + offsets[n / 2]);
+  }
+  return r;
+}
+
 std::optional<LatticeCell> lattice_cell(const ContactNetwork& net, SlabSelection slab, const LatticeCellOptions& opt,
                                         std::string* why_not) {
   auto fail = [&](const std::string& why) -> std::optional<LatticeCell> {

@@ -125,6 +125,25 @@ LatticeDispersion lattice_dispersion(const LatticeCell& cell, const Vec3& h, dou
 // The smallest nonzero |b.h| of the cell's bonds: the layer spacing along h (0 if none).
 double layer_period(const LatticeCell& cell, const Vec3& h);
 
+// ---- a measured 2D-FFT spectrum against a branch ----
+// |F(omega, k)| row-major [omega][k] on equally spaced omega_axis (ascending, >= 0) and k_axis
+// (signed, ascending), as analysis::DispersionResult keeps it. For each column with k of the given
+// sign whose branch group velocity (the branch at |k|, interpolated) is at least vg_fraction of the
+// branch's largest |v_g| (where it carries energy), the ridge is the largest local maximum of
+// |F| strictly inside the branch's frequency band (min..max of omega over the zone), on the bin
+// grid (no interpolation). Offsets in units of the bin d omega.
+struct RidgeComparison {
+  int columns = 0;          // columns selected
+  int with_ridge = 0;       // of which with a local maximum inside the band
+  int within_one_bin = 0;   // of which |omega_ridge - omega_branch| <= d omega
+  double domega = 0.0;      // 1/s
+  double median_offset_bins = 0.0, max_offset_bins = 0.0;  // |offset| over the columns with a ridge
+  std::vector<double> k, omega_ridge, omega_branch;        // per column with a ridge
+};
+RidgeComparison compare_ridge(const std::vector<double>& spectrum, const std::vector<double>& k_axis,
+                              const std::vector<double>& omega_axis, const LatticeDispersion& d, int branch,
+                              int k_sign, double vg_fraction = 1.0 / 3.0);
+
 // ---- from a packing's contact network ----
 struct LatticeCellOptions {
   // Lever arm arm = a - arm_shift * delta: 0 = the radius (seed 002 eq. (4)), 1/2 = the contact

@@ -303,3 +303,39 @@ TEST_CASE("lattice_dispersion: coupled branches never cross (avoided crossings),
     for (std::size_t i = 0; i < d.k.size(); ++i) CHECK(d.branches[ac][i].omega < d.branches[op][i].omega);
   }
 }
+
+TEST_CASE("compare_ridge: finds a synthetic ridge on the branch, ignores lines outside the band", "[theory][lattice]") {
+  const LatticeCell cell = fcc_cell({2.0 * k, k * delta, 0.5});
+  const auto d = lattice_dispersion(cell, ez, l0, 201);
+  int opt = -1;
+  for (int b = 0; b < 6; ++b)
+    if (d.dominant[b] == 4) opt = b;
+  REQUIRE(opt >= 0);
+  // A spectrum like granwave's: omega >= 0 by rows, signed k by columns.
+  const double dw = 5000.0, dk = std::numbers::pi / l0 / 50;
+  std::vector<double> w_axis, k_axis;
+  for (int j = 0; j < 240; ++j) w_axis.push_back(j * dw);
+  for (int s = -49; s <= 50; ++s) k_axis.push_back(s * dk);
+  std::vector<double> F(w_axis.size() * k_axis.size(), 1e-6);
+  for (std::size_t c = 0; c < k_axis.size(); ++c) {
+    const double kc = k_axis[c];
+    // The optical branch at |k| (closed form, lower sign flipped: the upper root), 0.4 bins high.
+    const double w0 = std::sqrt(closed_forms({2.0 * k, k * delta, 0.5}, std::abs(kc) * l0).S_high) + 0.4 * dw;
+    for (std::size_t j = 0; j < w_axis.size(); ++j) {
+      double& a = F[j * k_axis.size() + c];
+      if (kc < 0) a += std::exp(-0.5 * std::pow((w_axis[j] - w0) / (0.7 * dw), 2));
+      a += 5.0 * std::exp(-0.5 * std::pow((w_axis[j] - 552000.0) / dw, 2));  // a flat line in the gap
+    }
+  }
+  const auto r = compare_ridge(F, k_axis, w_axis, d, opt, -1);
+  CHECK(r.columns > 20);
+  CHECK(r.with_ridge == r.columns);
+  CHECK(r.within_one_bin == r.columns);
+  CHECK(r.max_offset_bins < 0.95);
+  CHECK(r.median_offset_bins == Approx(0.4).margin(0.5));
+  // On the k > 0 side there is no ridge inside the band (the gap line lies below it).
+  const auto rp = compare_ridge(F, k_axis, w_axis, d, opt, +1);
+  CHECK(rp.columns > 20);
+  CHECK(rp.within_one_bin == 0);
+  CHECK_THROWS(compare_ridge(std::vector<double>(3), k_axis, w_axis, d, opt, -1));
+}
