@@ -27,6 +27,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+from xclib import dumps as D  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LIGGGHTS velocity Verlet, dumps after a whole step; positions, "
@@ -155,31 +156,9 @@ def render(case: dict, system: dict, workdir: str) -> dict:
 
 # ------------------------------------------------------------------------------------ dump reading
 def read_dump(path: str):
-    """Yield (timestep, column names, rows [n, ncol]) for each frame of a LIGGGHTS text dump
-    (custom or local). Streams the file frame by frame and parses each body with numpy's C parser:
-    a paper-size crystal writes 2.4 GB of dumps (1200 frames of 3200 atoms and 19 000 contacts)."""
-    import itertools
-    with open(path, "rb") as f:
-        while True:
-            line = f.readline()
-            if not line:
-                return
-            if not line.startswith(b"ITEM: TIMESTEP"):
-                continue
-            step = int(f.readline())
-            f.readline()                               # ITEM: NUMBER OF ATOMS | ENTRIES
-            n = int(f.readline())
-            line = f.readline()
-            while not (line.startswith(b"ITEM: ATOMS") or line.startswith(b"ITEM: ENTRIES")):
-                line = f.readline()
-                if not line:
-                    raise ValueError("%s: truncated frame at step %d" % (path, step))
-            cols = line.decode().split()[2:]
-            body = b"".join(itertools.islice(f, n))
-            vals = np.fromstring(body.decode(), sep=" ") if n else np.zeros(0)   # C parser; size checked
-            if vals.size != n * len(cols):
-                raise ValueError("%s: step %d has %d values, expected %d x %d" % (path, step, vals.size, n, len(cols)))
-            yield step, cols, vals.reshape(n, len(cols))
+    """Yield (timestep, column names, rows [n, ncol]) for each frame of a LIGGGHTS text dump, one
+    frame in memory at a time (xclib.dumps.frames)."""
+    return D.frames(path)
 
 
 def _pairs_on_first(rows: np.ndarray, correct=None):
@@ -197,51 +176,8 @@ def _pairs_on_first(rows: np.ndarray, correct=None):
     return a, b, f * sgn[:, None]
 
 
-def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y, kn=0.0,
-                         clip=False):
-    """The force each contact applied in the step, from the force `compute pair/gran/local` dumps.
-
-    The compute recomputes the contact forces at dump time (after final_integrate), so its normal
-    dashpot sees the velocity of the owned atom i at v(t) -- and, for a pair across a periodic
-    boundary, the ghost image of j at the half-step velocity v(t - dt/2) communicated before the
-    step's force (ghosts are not touched by final_integrate). The step itself (LIGGGHTS' pair
-    compute, granwave, YADE) fed the dashpot v(t - dt/2) = v(t) - f(t)/m dt/2 for both (f: the
-    dumped per-atom total force, the step's). The difference gamma_n (ddelta_half - ddelta_used) n is
-    put back, so the trace carries the forces that moved the particles, as the other codes' traces do
-    (verified: the corrected pair forces sum to the dumped per-atom forces to 1e-16 N). Only the
-    normal dashpot is corrected (gamma_t = 0 in every case here; a tangential dashpot would also need
-    the angular velocities). p, v, f_atoms [n, 3]; i (id1 of the dumped row, owned), j (id2),
-    f_pair: force on i, rows as dumped (not reordered); one MPI rank.
-
-    clip (normal_tension = "clip", `limitForce on`): the step's normal force was max(kn delta +
-    gamma_n ddelta_half, 0) and the dump's max(kn delta + gamma_n ddelta_used, 0); where either one
-    was cut to zero the difference is not the dashpot difference, so the normal force of the step is
-    computed whole (kn: the contact stiffness). Measured on the prestressed velocity drive with
-    "clip" (contacts opening with the dashpot pulling): LIGGGHTS vs granwave and YADE 4.2e-5 at
-    z/l0 = 10 with the additive correction, with the same dynamics (layer velocities 1e-10); 5.6e-10
-    computed whole."""
-    if gamma_n == 0.0 or len(i) == 0:
-        return f_pair
-    vh = np.array(v, float, copy=True)
-    mob = np.asarray(mobile, bool)
-    vh[mob] -= np.asarray(f_atoms, float)[mob] / np.asarray(m, float)[mob][:, None] * (0.5 * dt)
-    d = p[i] - p[j]
-    sx = np.round(d[:, 0] / box_x)
-    sy = np.round(d[:, 1] / box_y)
-    d[:, 0] -= box_x * sx
-    d[:, 1] -= box_y * sy
-    r = np.linalg.norm(d, axis=1)
-    n = d / r[:, None]                      # from j to i
-    touching = r < radius[i] + radius[j]
-    ghost_j = (sx != 0) | (sy != 0)          # j seen through a periodic image: already half-step
-    vj_used = np.where(ghost_j[:, None], vh[j], v[j])
-    dd_used = -np.sum(n * (v[i] - vj_used), axis=1)
-    dd_half = -np.sum(n * (vh[i] - vh[j]), axis=1)
-    if clip:
-        fn_step = np.where(touching, np.maximum(kn * (radius[i] + radius[j] - r) + gamma_n * dd_half, 0.0), 0.0)
-        return f_pair + (fn_step - np.sum(f_pair * n, axis=1))[:, None] * n
-    corr = np.where(touching, gamma_n * (dd_half - dd_used), 0.0)
-    return f_pair + corr[:, None] * n
+# The dashpot alignment is shared with the LAMMPS writer (same dump-time recomputation).
+dashpot_at_half_step = D.dashpot_at_half_step
 
 
 def tangential_at_step(p, i, j, f_pair, shear, kt, box_x, box_y):
@@ -273,48 +209,45 @@ def tangential_at_step(p, i, j, f_pair, shear, kt, box_x, box_y):
 def _unique_rows(rows: np.ndarray):
     """(id1, id2, force on id1) of the first dumped row of each physical contact, as dumped (the
     force and, with `history` in the compute, the shear history after it: columns 3:9)."""
-    i = rows[:, 0].astype(int) - 1
-    j = rows[:, 1].astype(int) - 1
-    key = np.minimum(i, j).astype(np.int64) * (1 << 32) + np.maximum(i, j)
-    _, first = np.unique(key, return_index=True)
-    return i[first], j[first], rows[first, 3:9] if rows.shape[1] >= 9 else rows[first, 3:6]
+    return D.unique_rows(rows, 3, 6 if rows.shape[1] >= 9 else 3)
 
 
 def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str, facts: dict, version: str) -> None:
+    """Dumps -> trace file, one frame of each dump in memory at a time (xclib.dumps.lockstep): the
+    resident size no longer grows with the run (it held every frame: 1.8 GB on crystal_kt10)."""
     system = T.read_system(system_path)
-    dt, every = facts["dt"], facts["every"]
-    atoms = list(read_dump(os.path.join(workdir, "dump.atoms")))
-    pairs = {s: rows for s, _, rows in read_dump(os.path.join(workdir, "dump.pairs"))}
-    steps = [s for s, _, _ in atoms]
-    times = np.array(steps, float) * dt
+    dt = facts["dt"]
+    frames = D.lockstep(os.path.join(workdir, "dump.atoms"), os.path.join(workdir, "dump.pairs"))
     r = np.asarray(system["radius"], float)
     n = len(r)
+    steps = []
     if facts["model"] == "chain":
         lay = T.chain_layout(system)
         nc = lay["ncontacts"]
-        cf = np.zeros((len(steps), nc))
-        ke = np.zeros(len(steps))
-        pe = np.zeros(len(steps))
+        cf_rows, ke, pe = [], [], []
         m = np.asarray(system["mass"], float)
         a = np.asarray(system["hertz_constant"], float)
-        for q, (s, cols, rows) in enumerate(atoms):
+        for s, cols, rows, pr in frames:
+            steps.append(s)
+            cf = np.zeros(nc)
             x = rows[:, cols.index("x")]
             v = rows[:, [cols.index("vx"), cols.index("vy"), cols.index("vz")]]
-            ke[q] = 0.5 * float(np.sum(m * np.sum(v * v, axis=1)))
+            ke.append(0.5 * float(np.sum(m * np.sum(v * v, axis=1))))
             dl = r[:-1] + r[1:] - np.diff(x)
             if lay["has_wall"]:
                 dl = np.append(dl, r[-1] - (lay["wall_x"] - x[-1]))
                 # primitive wall: R* = R, its force from the same Hertz law LIGGGHTS applied
-                cf[q, n - 1] = a[-1] * max(dl[-1], 0.0) ** 1.5
-            pe[q] = float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5))
-            pr = pairs.get(s)
-            if pr is not None and len(pr):
+                cf[n - 1] = a[-1] * max(dl[-1], 0.0) ** 1.5
+            pe.append(float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5)))
+            if len(pr):
                 i, j, f = _pairs_on_first(pr)
                 ok = j == i + 1
                 # force on the striker-side bead points back (-x) when compressed
-                cf[q, i[ok]] = -f[ok, 0]
+                cf[i[ok]] = -f[ok, 0]
+            cf_rows.append(cf)
+        cf = np.array(cf_rows).reshape(len(steps), nc)
         data = {"/chain/contact_force": cf, "/chain/bead_force": T.bead_force_from_contacts(cf, n, lay["has_wall"]),
-                "/energy/kinetic": ke, "/energy/potential": pe}
+                "/energy/kinetic": np.array(ke), "/energy/potential": np.array(pe)}
     else:
         lay = T.crystal_layout(system)
         nl = lay["nlayers"]
@@ -329,13 +262,13 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
             mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
         out_rows = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx")}
-        for s, cols, rows in atoms:
+        for s, cols, rows, pr in frames:
+            steps.append(s)
             p = rows[:, [cols.index("x"), cols.index("y"), cols.index("z")]]
             v = rows[:, [cols.index("vx"), cols.index("vy"), cols.index("vz")]]
             du = p - x0
             du[:, 0] -= lay["box_x"] * np.round(du[:, 0] / lay["box_x"])
             du[:, 1] -= lay["box_y"] * np.round(du[:, 1] / lay["box_y"])
-            pr = pairs.get(s, np.zeros((0, 6)))
             correct = None
             if gamma_n > 0.0 and s > 0:   # step 0: the setup force already saw v(0), as the dump does
                 fa = rows[:, [cols.index("fx"), cols.index("fy"), cols.index("fz")]]
@@ -356,7 +289,8 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         data = {"/crystal/layer_z": lay["layer_z"]}
         for key, name in (("szz", "layer_stress_zz"), ("szx", "layer_stress_zx"), ("uz", "layer_displacement_z"),
                           ("ux", "layer_displacement_x"), ("vz", "layer_velocity_z"), ("vx", "layer_velocity_x")):
-            data["/crystal/" + name] = np.array(out_rows[key])
+            data["/crystal/" + name] = np.array(out_rows[key]).reshape(len(steps), nl)
+    times = np.array(steps, float) * dt
     extra = {"dt": dt, "deck": open(os.path.join(workdir, "in.case")).read()}
     if "/crystal/layer_z" in data:
         cp = T.contact_params(case)
@@ -386,14 +320,24 @@ def main(argv) -> int:
     ap.add_argument("--render-only", action="store_true")
     ap.add_argument("--liggghts", default="liggghts")
     ap.add_argument("--keep-dumps", action="store_true", help="keep dump.atoms / dump.pairs after the conversion")
+    ap.add_argument("--convert-only", action="store_true", help="convert the dumps already in --workdir (kept with "
+                    "--keep-dumps) without running LIGGGHTS")
     a = ap.parse_args(argv)
     if os.path.exists(a.out):
         print("liggghts_case: %s exists: nothing is overwritten" % a.out, file=sys.stderr)
         return 2
     work = a.workdir or (a.out + ".liggghts")
-    os.makedirs(work, exist_ok=False)
     case, text = T.load_case(a.case)
     system = T.read_system(a.system)
+    if a.convert_only:
+        import tempfile
+        facts = render(case, system, tempfile.mkdtemp(prefix="liggghts_render_"))
+        t = time.time()
+        convert(work, case, text, a.system, a.out, facts, "LIGGGHTS (converted from kept dumps)")
+        print("XC_SUMMARY " + json.dumps(dict(code="liggghts", case=case["case"]["name"], convert_s=time.time() - t,
+                                              trace=a.out)))
+        return 0
+    os.makedirs(work, exist_ok=False)
     facts = render(case, system, work)
     if a.render_only:
         print("rendered %s" % work)

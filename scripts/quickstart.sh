@@ -7,5 +7,5 @@ mkdir -p out
 echo "==> granwave run data/cases/oriented20.toml"
 ./build/granwave run data/cases/oriented20.toml -o out/oriented20.traces.h5
 
-echo "==> crosscheck: the default case set in granwave, YADE and LIGGGHTS (a few minutes)"
+echo "==> crosscheck: the default case set in granwave, YADE, LIGGGHTS and LAMMPS (a few minutes)"
 crosscheck/crosscheck run --suite default --granwave build/granwave --report out/crosscheck

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # README command 2 (and .ci/run): install, build, and run every test:
-#   1. ctest on the Release build (labels unit, physics, regression, cli, slow),
+#   1. ctest on the Release build (labels unit, physics, regression, cli, slow, mpi),
 #   2. the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
-#   3. pytest for the cross-code harness (real YADE and LIGGGHTS runs).
+#   3. pytest for the cross-code harness (real YADE, LIGGGHTS and LAMMPS runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

@@ -1,11 +1,15 @@
-"""granwave cross-code validation library (YADE, LIGGGHTS, granwave).
+"""granwave cross-code validation library (granwave, YADE, LIGGGHTS, LAMMPS).
 
-Modules:
-  traces   -- case/system reading, trace writing (data/SCHEMA.md §2-3), the layer-stress definition
-  sysbuild -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
-  compare  -- comparison maths (max |diff|/peak, relative L2, measures) on traces
-  ruler    -- the one measuring ruler: `granwave analyze --json`, translated
-  runners  -- running each code in a fresh directory with a timeout
-  report   -- Markdown + PNG report
+Modules (each imports only those listed before it, so there is no import cycle):
+  traces      -- case/system reading, trace writing (data/SCHEMA.md §2-3), the layer-stress definition
+  dumps       -- LIGGGHTS/LAMMPS text dumps read frame by frame; the dumped forces put back to the step's
+  sysbuild    -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
+  compare     -- comparison maths (max |diff|/peak, relative L2, measures) on traces
+  ruler       -- the one measuring ruler: `granwave analyze --json`, translated
+  sweepmath   -- sweep maths and tables (derived cases, peaks at positions, pairwise differences)
+  conventions -- the contact-law conventions traces record; differences; granwave's convention twins
+  runners     -- running each code in a fresh directory with a timeout; results kept for resuming
+  sweep       -- `crosscheck sweep damping|friction`
+  harness     -- `crosscheck run`: cases and suites, comparison, report
 """
 SCHEMA_VERSION = 1

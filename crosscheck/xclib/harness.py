@@ -5,29 +5,20 @@ import argparse
 import datetime as _dt
 import json
 import os
-import shutil
-import subprocess
 import sys
-import time
 import tomllib
 
 import numpy as np
 
 from . import compare as C
+from . import conventions as CV
 from . import ruler as R
+from . import runners as RN
 from . import traces as T
-
-XC_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))      # crosscheck/
-REPO = os.path.dirname(XC_DIR)
-CODES = ("granwave", "yade", "liggghts")
-
+from .sweep import main_sweep
+from .runners import CODES, REPO, XC_DIR, build_system, find_granwave, fresh_dir, load_tolerances, run_code  # noqa: F401
 
 # ------------------------------------------------------------------------------ tolerances
-def load_tolerances(path: str | None = None) -> dict:
-    with open(path or os.path.join(XC_DIR, "tolerances.toml"), "rb") as f:
-        return tomllib.load(f)
-
-
 def tolerance(tol: dict, model: str, case_name: str, quantity: str):
     """(value, why) for a quantity; a case table overrides the model default."""
     case = tol.get("case", {}).get(case_name, {})
@@ -49,96 +40,6 @@ def expected_disagreement(tol: dict, case_name: str, pair: str | None = None) ->
     if pairs is not None and pair is not None and pair not in pairs:
         return None
     return why
-
-
-# ------------------------------------------------------------------------------ running
-def find_granwave(explicit: str | None) -> str | None:
-    cands = [explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave",
-                                          os.path.join(REPO, "build", "granwave"), os.path.join(REPO, "build-xc", "granwave")]
-    for c in cands:
-        if not c:
-            continue
-        p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)
-        if p:
-            return os.path.abspath(p)
-    return None
-
-
-def _run(cmd, cwd, timeout, log_name):
-    """Run a command; returns (status, rc, wall_s, stdout). status: ok | failed | timeout | missing."""
-    t = time.time()
-    log = os.path.join(cwd, log_name)
-    try:
-        with open(log, "w") as lo:
-            p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=lo, text=True, start_new_session=True)
-            try:
-                out, _ = p.communicate(timeout=timeout)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, 9)   # the whole process group we started (yade spawns threads/children)
-                p.communicate()
-                return "timeout", None, time.time() - t, ""
-    except FileNotFoundError:
-        return "missing", None, 0.0, ""
-    with open(os.path.join(cwd, "stdout.txt"), "w") as f:
-        f.write(out)
-    return ("ok" if p.returncode == 0 else "failed"), p.returncode, time.time() - t, out
-
-
-def _summary(stdout: str) -> dict:
-    for ln in stdout.splitlines()[::-1]:
-        if ln.startswith("XC_SUMMARY "):
-            return json.loads(ln[len("XC_SUMMARY "):])
-    try:
-        return json.loads(stdout)
-    except Exception:
-        return {}
-
-
-def run_code(code, case_path, system_path, workdir, timeout, granwave):
-    os.makedirs(workdir)
-    out = os.path.join(workdir, "traces.h5")
-    if code == "granwave":
-        if not granwave:
-            return dict(status="missing", detail="granwave executable not found (build it, or --granwave PATH)")
-        cmd = [granwave, "run", case_path, "-o", out, "--system", system_path, "--json"]
-    elif code == "yade":
-        exe = shutil.which("yade")
-        if not exe:
-            return dict(status="missing", detail="yade not installed (apt-get install yade)")
-        cmd = [exe, "-n", "-x", os.path.join(REPO, "yade_scripts", "run_case.py"), case_path, system_path, out]
-    else:
-        if not shutil.which("liggghts"):
-            return dict(status="missing", detail="liggghts not installed (apt-get install liggghts)")
-        cmd = ["/usr/bin/python3", os.path.join(REPO, "liggghts_inputs", "liggghts_case.py"), case_path, system_path,
-               out, "--workdir", os.path.join(workdir, "liggghts"), "--timeout", str(timeout)]
-    status, rc, wall, stdout = _run(cmd, workdir, timeout, "stderr.txt")
-    res = dict(status=status, rc=rc, wall_s=wall, command=" ".join(cmd), trace=out)
-    res["summary"] = _summary(stdout) if status == "ok" else {}
-    if status == "ok" and not os.path.exists(out):
-        res["status"] = "failed"
-        res["detail"] = "exit 0 but no trace file"
-    if status != "ok":
-        try:
-            tail = open(os.path.join(workdir, "stderr.txt")).read().strip().splitlines()[-3:]
-        except OSError:
-            tail = []
-        res["detail"] = (res.get("detail") or "") + " " + " ".join(tail)[-400:]
-    return res
-
-
-def build_system(case_path, casedir, granwave, fixture, timeout):
-    path = os.path.join(casedir, "system.h5")
-    if fixture:
-        from . import sysbuild
-        case, _ = T.load_case(case_path)
-        sysbuild.build(case, path)
-        return path, "python fixture builder (crosscheck/xclib/sysbuild.py) -- TEST ONLY"
-    if not granwave:
-        raise RuntimeError("granwave not found: the system file comes from `granwave build` (or --fixture-system)")
-    st, rc, _, _ = _run([granwave, "build", case_path, "-o", path], casedir, timeout, "build.log")
-    if st != "ok" or not os.path.exists(path):
-        raise RuntimeError("granwave build failed (%s): see %s" % (st, os.path.join(casedir, "build.log")))
-    return path, "granwave build"
 
 
 # ------------------------------------------------------------------------------ comparing
@@ -163,46 +64,26 @@ def _traces_for(trace: dict, case: dict):
     return out
 
 
-# Contact-law conventions a trace records as root attributes (data/SCHEMA.md §3): when two traces
-# differ in one that matters for the case, their comparison is a convention difference. Defaults:
-# traces.contact_params.
-CONVENTIONS = (
-    ("lever_arm", lambda c: c["kt"] > 0 or c["gamma_t"] > 0,
-     "Seed 002 eq. (4) takes the radius a; YADE and LIGGGHTS always take the contact point a - delta/2 (S speeds "
-     "then differ by 1e-5 .. 2e-4). Set [contact] lever_arm = \"contact_point\" to compare like with like."),
-    ("normal_tension", lambda c: c["gamma_n"] > 0,
-     "YADE's damped law (ViscEl) clips a pulling dashpot and cannot run \"allow\"; the difference shows where "
-     "contacts open under a dashpot. Set [contact] normal_tension = \"clip\" to compare like with like."),
-    ("coulomb_normal",
-     lambda c: (c["kt"] > 0 or c["gamma_t"] > 0) and c["gamma_n"] > 0 and c["normal_tension"] == "allow",
-     "granwave's default Coulomb limit is mu max(f_n, 0); LIGGGHTS and YADE take mu |f_n|: they differ where a "
-     "dashpot makes f_n pull. Set [contact] coulomb_normal = \"magnitude\" to compare like with like."),
-)
-
-
 def convention_difference(case: dict, trace_a: dict, trace_b: dict) -> str | None:
-    """The model conventions the two traces record differently where they matter for this case (no
-    tolerance may cover one), as a reason; None if the two runs used the same conventions. A trace
-    without the attribute ran the case's value."""
-    if case.get("case", {}).get("model") != "crystal":
-        return None
-    c = T.contact_params(case)
-    c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n")})
-    out = []
-    for key, matters, why in CONVENTIONS:
-        if not matters(c):
-            continue
-        va = trace_a.get("attrs", {}).get(key, c[key])
-        vb = trace_b.get("attrs", {}).get(key, c[key])
-        if va != vb:
-            out.append("%s convention: the traces say %s = %s and %s. %s" % (key.replace("_", "-"), key, va, vb, why))
-    return " ".join(out) or None
+    """The conventions two traces (read_trace dicts) record differently where they matter for the
+    case, as a reason (conventions.difference); None if they ran the same law."""
+    return CV.difference(case, trace_a.get("attrs", {}), trace_b.get("attrs", {}))
 
 
-def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict):
-    """Rows: dict(pair, quantity, what, value, tol, status, why)."""
+def pairs_of(codes, twins=None) -> list:
+    """Every pair of the codes (in CODES order), then each convention twin with the codes it stands for."""
+    cs = [c for c in CODES if c in codes]
+    out = [(cs[a], cs[b]) for a in range(len(cs)) for b in range(a + 1, len(cs))]
+    for name, members in (twins or {}).items():
+        out += [(name, m) for m in members if m in codes]
+    return out
+
+
+def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict, twins: dict | None = None):
+    """Rows: dict(pair, quantity, what, value, tol, status, why). `twins` maps a convention twin
+    (`granwave~lammps`, a key of traces) to the codes it is compared with."""
     rows = []
-    codes = [c for c in CODES if c in traces]
+    codes = [c for c in CODES if c in traces] + [t for t in (twins or {}) if t in traces]
     cur = {"pair": None, "convention": None}
 
     def judge(value, q):
@@ -221,74 +102,72 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
             rows.append(dict(pair=c, quantity="ruler", what="granwave analyze --json", value=None, tol=None,
                              status="FAIL", why="the ruler could not measure this trace: first peaks, arrival "
                              "times and speeds are not compared (see the code's detail)"))
-    for a in range(len(codes)):
-        for b in range(a + 1, len(codes)):
-            ca, cb = codes[a], codes[b]
-            pair = "%s-%s" % (ca, cb)
-            cur["pair"] = pair
-            cur["convention"] = convention_difference(case, traces[ca], traces[cb])
-            sa, sb = _traces_for(traces[ca], case), _traces_for(traces[cb], case)
-            for label in sa:
-                if label not in sb:
-                    continue
-                ta, ya = sa[label]
-                tb, yb = sb[label]
-                ia, ib = C.common_grid(ta, tb)
-                if len(ia) < 3:
-                    rows.append(dict(pair=pair, quantity="trace", what=label, value=None, tol=None, status="FAIL",
-                                     why="no common sample times (different output intervals?)"))
-                    continue
-                m = C.trace_metrics(ya[ia], yb[ib])
-                for q, key in (("trace_max_rel", "max_rel"), ("trace_l2_rel", "l2_rel")):
-                    lim, st, why = judge(m[key], q)
-                    rows.append(dict(pair=pair, quantity=q, what=label, value=m[key], tol=lim, status=st, why=why,
-                                     extra="max |diff| = %.3g, peak = %.4g" % (m["max_abs"], m["peak"])))
-            ma, mb = measures.get(ca), measures.get(cb)
-            if not ma or not mb:
+    for ca, cb in pairs_of([c for c in codes if c in CODES], {t: m for t, m in (twins or {}).items() if t in traces}):
+        pair = "%s-%s" % (ca, cb)
+        cur["pair"] = pair
+        cur["convention"] = convention_difference(case, traces[ca], traces[cb])
+        sa, sb = _traces_for(traces[ca], case), _traces_for(traces[cb], case)
+        for label in sa:
+            if label not in sb:
                 continue
-            if model == "chain":
-                ka, kb = ma["contacts"], mb["contacts"]
-                for j in sorted(set(ka) & set(kb)):
-                    if j not in C.choose_contacts(len(traces[ca]["/chain/contact_force"][0]),
-                                                  str(traces[ca].get("system_attrs", {}).get("wall", "free")) != "free"):
-                        continue
-                    lim, st, why = judge(C.rel_diff(ka[j]["peak"], kb[j]["peak"]), "peak_rel")
-                    rows.append(dict(pair=pair, quantity="peak_rel", what="contact %d first peak" % j,
-                                     value=C.rel_diff(ka[j]["peak"], kb[j]["peak"]), tol=lim, status=st, why=why,
-                                     extra="%.6g N / %.6g N" % (ka[j]["peak"], kb[j]["peak"])))
-                    d = abs(ka[j]["peak_time"] - kb[j]["peak_time"])
+            ta, ya = sa[label]
+            tb, yb = sb[label]
+            ia, ib = C.common_grid(ta, tb)
+            if len(ia) < 3:
+                rows.append(dict(pair=pair, quantity="trace", what=label, value=None, tol=None, status="FAIL",
+                                 why="no common sample times (different output intervals?)"))
+                continue
+            m = C.trace_metrics(ya[ia], yb[ib])
+            for q, key in (("trace_max_rel", "max_rel"), ("trace_l2_rel", "l2_rel")):
+                lim, st, why = judge(m[key], q)
+                rows.append(dict(pair=pair, quantity=q, what=label, value=m[key], tol=lim, status=st, why=why,
+                                 extra="max |diff| = %.3g, peak = %.4g" % (m["max_abs"], m["peak"])))
+        ma, mb = measures.get(ca), measures.get(cb)
+        if not ma or not mb:
+            continue
+        if model == "chain":
+            ka, kb = ma["contacts"], mb["contacts"]
+            for j in sorted(set(ka) & set(kb)):
+                if j not in C.choose_contacts(len(traces[ca]["/chain/contact_force"][0]),
+                                              str(traces[ca].get("system_attrs", {}).get("wall", "free")) != "free"):
+                    continue
+                lim, st, why = judge(C.rel_diff(ka[j]["peak"], kb[j]["peak"]), "peak_rel")
+                rows.append(dict(pair=pair, quantity="peak_rel", what="contact %d first peak" % j,
+                                 value=C.rel_diff(ka[j]["peak"], kb[j]["peak"]), tol=lim, status=st, why=why,
+                                 extra="%.6g N / %.6g N" % (ka[j]["peak"], kb[j]["peak"])))
+                d = abs(ka[j]["peak_time"] - kb[j]["peak_time"])
+                lim, st, why = judge(d, "arrival_abs")
+                rows.append(dict(pair=pair, quantity="arrival_abs", what="contact %d first-peak time" % j,
+                                 value=d, tol=lim, status=st, why=why,
+                                 extra="%.7g s / %.7g s" % (ka[j]["peak_time"], kb[j]["peak_time"])))
+            spd = [("front_speed", "front speed (contacts/s, first-peak times)")]
+        else:
+            la, lb = ma["layers"], mb["layers"]
+            sl = _traces_for(traces[ca], case)
+            for label in sl:
+                pass
+            spd = [("speed_peak", "front speed from first-peak times (m/s)"),
+                   ("speed_half", "front speed from half-peak crossings (m/s)")]
+            sa_ = traces[ca].get("system_attrs", {})
+            z = traces[ca]["/crystal/layer_z"]
+            for k in C.choose_layers(z, float(sa_["l0"]), len(z), int(sa_.get("fixed_layers", 2))):
+                if k in la and k in lb:
+                    v = C.rel_diff(la[k]["peak"], lb[k]["peak"])
+                    lim, st, why = judge(v, "peak_rel")
+                    rows.append(dict(pair=pair, quantity="peak_rel", what="layer %d first peak" % k, value=v,
+                                     tol=lim, status=st, why=why,
+                                     extra="%.6g Pa / %.6g Pa" % (la[k]["peak"], lb[k]["peak"])))
+                    d = abs(la[k]["peak_time"] - lb[k]["peak_time"])
                     lim, st, why = judge(d, "arrival_abs")
-                    rows.append(dict(pair=pair, quantity="arrival_abs", what="contact %d first-peak time" % j,
+                    rows.append(dict(pair=pair, quantity="arrival_abs", what="layer %d first-peak time" % k,
                                      value=d, tol=lim, status=st, why=why,
-                                     extra="%.7g s / %.7g s" % (ka[j]["peak_time"], kb[j]["peak_time"])))
-                spd = [("front_speed", "front speed (contacts/s, first-peak times)")]
-            else:
-                la, lb = ma["layers"], mb["layers"]
-                sl = _traces_for(traces[ca], case)
-                for label in sl:
-                    pass
-                spd = [("speed_peak", "front speed from first-peak times (m/s)"),
-                       ("speed_half", "front speed from half-peak crossings (m/s)")]
-                sa_ = traces[ca].get("system_attrs", {})
-                z = traces[ca]["/crystal/layer_z"]
-                for k in C.choose_layers(z, float(sa_["l0"]), len(z), int(sa_.get("fixed_layers", 2))):
-                    if k in la and k in lb:
-                        v = C.rel_diff(la[k]["peak"], lb[k]["peak"])
-                        lim, st, why = judge(v, "peak_rel")
-                        rows.append(dict(pair=pair, quantity="peak_rel", what="layer %d first peak" % k, value=v,
-                                         tol=lim, status=st, why=why,
-                                         extra="%.6g Pa / %.6g Pa" % (la[k]["peak"], lb[k]["peak"])))
-                        d = abs(la[k]["peak_time"] - lb[k]["peak_time"])
-                        lim, st, why = judge(d, "arrival_abs")
-                        rows.append(dict(pair=pair, quantity="arrival_abs", what="layer %d first-peak time" % k,
-                                         value=d, tol=lim, status=st, why=why,
-                                         extra="%.7g s / %.7g s" % (la[k]["peak_time"], lb[k]["peak_time"])))
-            for key, what in spd:
-                va, vb = ma.get(key), mb.get(key)
-                v = C.rel_diff(va, vb) if (va is not None and vb is not None) else None
-                lim, st, why = judge(v, "speed_rel")
-                rows.append(dict(pair=pair, quantity="speed_rel", what=what, value=v, tol=lim, status=st, why=why,
-                                 extra="%s / %s" % (("%.6g" % va) if va else "-", ("%.6g" % vb) if vb else "-")))
+                                     extra="%.7g s / %.7g s" % (la[k]["peak_time"], lb[k]["peak_time"])))
+        for key, what in spd:
+            va, vb = ma.get(key), mb.get(key)
+            v = C.rel_diff(va, vb) if (va is not None and vb is not None) else None
+            lim, st, why = judge(v, "speed_rel")
+            rows.append(dict(pair=pair, quantity="speed_rel", what=what, value=v, tol=lim, status=st, why=why,
+                             extra="%s / %s" % (("%.6g" % va) if va else "-", ("%.6g" % vb) if vb else "-")))
     return rows
 
 
@@ -300,13 +179,14 @@ def _plot(case_name, case, traces, path):
         import matplotlib.pyplot as plt
     except Exception:
         return None
-    codes = [c for c in CODES if c in traces]
+    codes = [c for c in CODES if c in traces] + sorted(c for c in traces if c not in CODES)
     if not codes:
         return None
     sig = {c: _traces_for(traces[c], case) for c in codes}
     labels = list(sig[codes[0]])
     fig, axes = plt.subplots(len(labels), 2, figsize=(12, 2.6 * len(labels)), squeeze=False)
-    styles = {"granwave": ("k", "-", 2.5), "yade": ("tab:orange", "--", 1.5), "liggghts": ("tab:blue", ":", 1.5)}
+    styles = {"granwave": ("k", "-", 2.5), "yade": ("tab:orange", "--", 1.5), "liggghts": ("tab:blue", ":", 1.5),
+              "lammps": ("tab:red", "-.", 1.5)}
     for r, lab in enumerate(labels):
         ax, axd = axes[r]
         ref = None
@@ -314,7 +194,7 @@ def _plot(case_name, case, traces, path):
             if lab not in sig[c]:
                 continue
             t, y = sig[c][lab]
-            col, ls, lw = styles[c]
+            col, ls, lw = styles.get(c, ("tab:gray", "-", 1.0))
             ax.plot(t * 1e3, y, color=col, ls=ls, lw=lw, label=c)
             if ref is None:
                 ref = (c, t, y)
@@ -343,6 +223,40 @@ def _fmt(v):
     return str(v)
 
 
+def summary_md(results) -> list:
+    """Two compact tables: each code's wall time per case, and per case and pair the largest value of
+    each compared quantity with the pair's status (FAIL > EXPECTED-DIFF > PASS)."""
+    names = []
+    for res in results:
+        names += [c for c in res.get("runs", {}) if c not in names]
+    md = ["## Summary", "", "Wall time per code (s; the driver's whole run: solver, conversion, files):", "",
+          "| case | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
+    for res in results:
+        runs = res.get("runs", {})
+        md.append("| %s | %s |" % (res["case_name"], " | ".join(
+            ("%.1f" % runs[c]["wall_s"] if runs[c].get("wall_s") is not None else "-") + ("" if runs[c]["status"] == "ok"
+                                                                                        else " " + runs[c]["status"].upper())
+            if c in runs else "" for c in names)))
+    qs = ("trace_max_rel", "peak_rel", "speed_rel")
+    md += ["", "Largest difference per pair (traces: max |diff| / peak; first peaks and speeds: relative):", "",
+           "| case | pair | traces | first peaks | speeds | status |", "|---|---|---|---|---|---|"]
+    rank = {"FAIL": 3, "EXPECTED-DIFF": 2, "INFO": 1, "PASS": 0}
+    for res in results:
+        pairs = []
+        for r in res.get("rows", []):
+            if r["pair"] not in pairs and "-" in r["pair"]:
+                pairs.append(r["pair"])
+        for pair in pairs:
+            rows = [r for r in res["rows"] if r["pair"] == pair]
+            cells = []
+            for q in qs:
+                v = [r["value"] for r in rows if r["quantity"] == q and r["value"] is not None]
+                cells.append(_fmt(max(v)) if v else "-")
+            st = max((r["status"] for r in rows), key=lambda x: rank.get(x, 0))
+            md.append("| %s | %s | %s | %s |" % (res["case_name"], pair, " | ".join(cells), st))
+    return md + [""]
+
+
 def write_report(report_dir, results, started):
     md = ["# granwave crosscheck", "", "Started %s; codes run in fresh directories under this report." % started, ""]
     verdict = []
@@ -360,8 +274,15 @@ def write_report(report_dir, results, started):
             solver = s.get("wall_seconds") or s.get("solver_s")
             pss = (s.get("particle_steps_per_second") or s.get("bead_steps_per_second") or s.get("particle_steps_per_s")
                    or s.get("bead_steps_per_s"))
+            detail = r.get("detail") or ""
+            if r.get("twin_of"):
+                detail = ("granwave with the conventions %s record (%s); compared with %s only. " % (
+                    ", ".join(r["twin_of"]), ", ".join("%s = %s" % kv for kv in r["conventions"].items()),
+                    ", ".join(r["twin_of"]))) + detail
+            if r.get("resumed"):
+                detail = "(reused from an earlier run of this report) " + detail
             md.append("| %s | %s | %s | %s | %s | %s |" % (code, r["status"].upper(), _fmt(r.get("wall_s")),
-                                                         _fmt(solver), _fmt(pss), (r.get("detail") or "").replace("|", "/")))
+                                                         _fmt(solver), _fmt(pss), detail.replace("|", "/")))
             if r["status"] != "ok":
                 verdict.append((name, r["status"].upper(), code + ": " + (r.get("detail") or "")))
         md.append("")
@@ -405,29 +326,21 @@ def write_report(report_dir, results, started):
     if not [v for v in verdict if v[1] not in ("EXPECTED-DIFF", "PASS")]:
         md.append("All comparisons within tolerance.")
     md += ["| case | status | detail |", "|---|---|---|"] + ["| %s | %s | %s |" % v for v in verdict]
+    md += [""] + summary_md(results)
     with open(os.path.join(report_dir, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     return verdict
 
 
-def fresh_dir(path: str) -> str:
-    """A new directory: PATH if it does not exist, else PATH.1, PATH.2, ... (nothing is overwritten)."""
-    cand, k = path, 0
-    while True:
-        try:
-            os.makedirs(cand)
-            return cand
-        except FileExistsError:
-            k += 1
-            cand = "%s.%d" % (path, k)
-
-
 def run(args) -> int:
     tol = load_tolerances(args.tolerances)
-    codes = [c.strip() for c in args.codes.split(",") if c.strip()]
-    bad = [c for c in codes if c not in CODES]
-    if bad:
-        print("crosscheck: unknown code(s) %s (choose from %s)" % (bad, ",".join(CODES)), file=sys.stderr)
+    try:
+        codes = RN.parse_codes(args.codes)
+    except ValueError as e:
+        print("crosscheck: %s" % e, file=sys.stderr)
+        return 2
+    if args.resume and not args.report:
+        print("crosscheck: --resume needs --report DIR (the report directory of the run to finish)", file=sys.stderr)
         return 2
     cases = list(args.cases)
     studies = []
@@ -443,42 +356,45 @@ def run(args) -> int:
         print("crosscheck: no case given", file=sys.stderr)
         return 2
     started = _dt.datetime.now().strftime("%Y%m%d-%H%M%S")
-    report_dir = fresh_dir(os.path.abspath(args.report or ("crosscheck-report-" + started)))
+    report_dir = RN.work_dir(os.path.abspath(args.report or ("crosscheck-report-" + started)), args.resume)
     granwave = find_granwave(args.granwave)
     results = []
     for cp in cases:
         cp = os.path.abspath(cp)
         stem = os.path.splitext(os.path.basename(cp))[0]
-        casedir = fresh_dir(os.path.join(report_dir, stem))
+        casedir = RN.work_dir(os.path.join(report_dir, stem), args.resume)
         res = dict(case_path=cp, case_name=stem, runs={}, rows=[], tol=tol)
         results.append(res)
         try:
             case, _ = T.load_case(cp)
             res["case_name"] = case["case"]["name"]
             model = case["case"]["model"]
-            res["system"], res["system_source"] = build_system(cp, casedir, granwave, args.fixture_system, args.timeout)
+            res["system"], res["system_source"] = build_system(cp, casedir, granwave, args.fixture_system, args.timeout,
+                                                               args.resume)
         except Exception as e:  # noqa: BLE001 -- reported in the table
             res["error"] = str(e)
             continue
+
+        def log(msg, name=res["case_name"]):
+            print("crosscheck: %s: %s" % (name, msg), file=sys.stderr, flush=True)
+
+        res["runs"] = RN.run_codes(cp, res["system"], casedir, codes, args.timeout, granwave, args.resume, log)
         traces, measures = {}, {}
-        for code in codes:
-            print("crosscheck: %s: running %s ..." % (res["case_name"], code), file=sys.stderr, flush=True)
-            r = run_code(code, cp, res["system"], os.path.join(casedir, code), args.timeout, granwave)
-            res["runs"][code] = r
-            if r["status"] == "ok":
-                try:
-                    traces[code] = T.read_trace(r["trace"])
-                    measures[code] = R.measure(r["trace"], granwave or "granwave")
-                except R.RulerError as e:
-                    # the traces are still compared; the missing measures are FAIL rows (compare_case)
-                    r["detail"] = "not measurable: %s" % e
-                except Exception as e:  # noqa: BLE001
-                    r["status"], r["detail"] = "failed", "unreadable trace: %s" % e
-                    traces.pop(code, None)
-            print("crosscheck: %s: %s %s (%.1f s)" % (res["case_name"], code, r["status"], r.get("wall_s") or 0),
-                  file=sys.stderr, flush=True)
+        for code, r in res["runs"].items():
+            if r["status"] != "ok":
+                continue
+            try:
+                traces[code] = T.read_trace(r["trace"])
+                measures[code] = R.measure(r["trace"], granwave or "granwave")
+            except R.RulerError as e:
+                # the traces are still compared; the missing measures are FAIL rows (compare_case)
+                r["detail"] = "not measurable: %s" % e
+            except Exception as e:  # noqa: BLE001
+                r["status"], r["detail"] = "failed", "unreadable trace: %s" % e
+                traces.pop(code, None)
+        twins = {c: r["twin_of"] for c, r in res["runs"].items() if r.get("twin_of")}
         res["measures"] = measures
-        res["rows"] = compare_case(case, res["case_name"], model, traces, measures, tol)
+        res["rows"] = compare_case(case, res["case_name"], model, traces, measures, tol, twins)
         res["plot"] = _plot(res["case_name"], case, traces, os.path.join(casedir, "overlay.png"))
         with open(os.path.join(casedir, "comparison.json"), "w") as f:
             json.dump(dict(runs=res["runs"], rows=res["rows"],
@@ -487,12 +403,11 @@ def run(args) -> int:
         write_report(report_dir, results, started)   # after every case: a long suite that is stopped keeps its report
     verdict = write_report(report_dir, results, started)
     for st in studies:   # the suite's parameter studies (crosscheck sweep), each with its own report
-        from .sweep import main_sweep
         sa = argparse.Namespace(name=st["name"], size=st.get("size", "small"), values=st.get("values"),
                                 modes=st.get("modes", "P,S"),
                                 codes=args.codes, report=os.path.join(report_dir, "sweep_%s" % st["name"]),
                                 timeout=args.timeout, granwave=args.granwave, tolerances=args.tolerances,
-                                fixture_system=args.fixture_system)
+                                fixture_system=args.fixture_system, resume=args.resume)
         print("crosscheck: study: sweep %s --size %s ..." % (sa.name, sa.size), file=sys.stderr, flush=True)
         rc = main_sweep(sa)
         verdict.append(("sweep %s (%s)" % (sa.name, sa.size), "FAIL" if rc else "PASS",
@@ -516,7 +431,7 @@ def run(args) -> int:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="crosscheck", description="Run granwave, YADE and LIGGGHTS on the same "
+    ap = argparse.ArgumentParser(prog="crosscheck", description="Run granwave, YADE, LIGGGHTS and LAMMPS on the same "
                                  "cases and compare their trace files.")
     sub = ap.add_subparsers(dest="verb")
     r = sub.add_parser("run", help="run and compare")
@@ -525,7 +440,9 @@ def main(argv=None) -> int:
                    "studies, the sweeps at the seed's size)")
     r.add_argument("--no-studies", action="store_true", help="with --suite: the cases only, not the suite's sweeps")
     r.add_argument("--suites", help="suite file (default crosscheck/suites.toml)")
-    r.add_argument("--codes", default="granwave,yade,liggghts")
+    r.add_argument("--codes", default=RN.DEFAULT_CODES, help="comma-separated, any of %(default)s")
+    r.add_argument("--resume", action="store_true", help="with --report DIR: finish the run in DIR, reusing every "
+                   "code run (and sweep point) that finished there")
     r.add_argument("--report", help="report directory (default crosscheck-report-DATE; never overwritten)")
     r.add_argument("--timeout", type=float, default=900, help="seconds per code run")
     r.add_argument("--granwave", help="granwave executable")
@@ -539,7 +456,8 @@ def main(argv=None) -> int:
     w.add_argument("--suite", choices=["small", "paper"], dest="size", help="alias of --size")
     w.add_argument("--values", help="comma-separated gamma_0 (kg/s) or kt/k values (default: the seed's)")
     w.add_argument("--modes", default="P,S", help="friction: P, S or P,S")
-    w.add_argument("--codes", default="granwave,yade,liggghts")
+    w.add_argument("--codes", default=RN.DEFAULT_CODES, help="comma-separated, any of %(default)s")
+    w.add_argument("--resume", action="store_true", help="with --report DIR: finish the sweep in DIR point by point")
     w.add_argument("--report", help="report directory (never overwritten)")
     w.add_argument("--timeout", type=float, default=900, help="seconds per code run")
     w.add_argument("--granwave", help="granwave executable")
@@ -547,7 +465,6 @@ def main(argv=None) -> int:
     w.add_argument("--fixture-system", action="store_true", help="TEST ONLY: Python fixture system builder")
     a = ap.parse_args(argv)
     if a.verb == "sweep":
-        from .sweep import main_sweep
         return main_sweep(a)
     if a.verb != "run":
         ap.print_help()

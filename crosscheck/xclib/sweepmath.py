@@ -131,14 +131,14 @@ def _f(v, fmt="%.5g"):
     return "-" if v is None else (fmt % v)
 
 
-def sweep_table(points, codes, key_label: str, value_label: str, rows_of) -> list[str]:
+def sweep_table(points, codes, key_label: str, value_label: str, rows_of, pairs=None) -> list[str]:
     """Markdown lines. `points`: list of (point_label, sub_label, {code: value}). Columns: key, sub,
-    each code's value, each pair's relative difference."""
-    pairs = pair_names(codes)
-    head = [key_label, value_label] + list(codes) + ["d(%s)" % p for p in pairs]
+    each code's value, each pair's relative difference (`pairs`: [(a, b)], default every pair of codes)."""
+    pairs = [tuple(p.split("-", 1)) for p in pair_names(codes)] if pairs is None else list(pairs)
+    head = [key_label, value_label] + list(codes) + ["d(%s-%s)" % p for p in pairs]
     md = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for label, sub, vals in rows_of(points):
-        d = pairwise(vals, codes)
-        cells = [label, sub] + [_f(vals.get(c)) for c in codes] + [_f(d.get(p), "%.2e") for p in pairs]
+        d = [pairwise({a: vals.get(a), b: vals.get(b)}, [a, b]).get("%s-%s" % (a, b)) for a, b in pairs]
+        cells = [label, sub] + [_f(vals.get(c)) for c in codes] + [_f(x, "%.2e") for x in d]
         md.append("| " + " | ".join(cells) + " |")
     return md

@@ -8,6 +8,7 @@
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
+#include "sweep/distributed.hpp"
 
 namespace {
 
@@ -34,6 +35,7 @@ Exit codes: 0 success, 2 bad input, 1 a failed run.
 
 int main(int argc, char** argv) {
   using namespace granwave;
+  const sweep::MpiSession mpi(&argc, &argv);  // MPI only when started by mpirun (sweep/distributed.hpp)
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
     std::cout << kUsage;
     return argc < 2 ? 2 : 0;
@@ -53,16 +55,23 @@ int main(int argc, char** argv) {
     std::cerr << "granwave: unknown verb '" << verb << "' (try granwave --help)\n";
     return 2;
   }
+  // Under mpirun every rank's error reaches rank 0 (sweep/distributed.hpp): it alone prints.
+  std::ostream quiet(nullptr);
+  std::ostream& err = sweep::is_root() ? std::cerr : quiet;
+  if (const std::string why = sweep::mpi_refusal(verb); !why.empty()) {
+    err << "granwave " << verb << ": error: " << why << "\n";
+    return 2;
+  }
   try {
     return it->second(args);
   } catch (const InputError& e) {
-    std::cerr << "granwave " << verb << ": error: " << e.what() << "\n";
+    err << "granwave " << verb << ": error: " << e.what() << "\n";
     return 2;
   } catch (const RunError& e) {
-    std::cerr << "granwave " << verb << ": run failed: " << e.what() << "\n";
+    err << "granwave " << verb << ": run failed: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "granwave " << verb << ": internal error: " << e.what() << "\n";
+    err << "granwave " << verb << ": internal error: " << e.what() << "\n";
     return 1;
   }
 }

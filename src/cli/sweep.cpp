@@ -9,6 +9,7 @@
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
 #include "sweep/crystal_study.hpp"
+#include "sweep/distributed.hpp"
 #include "sweep/spin_study.hpp"
 
 namespace granwave::cli {
@@ -25,6 +26,9 @@ M_c from a hinge fit with a bootstrap interval, and the Appendix-3 decay laws.
   --quiet             no progress line (it is shown only when stderr is a terminal)
   --no-stop           run every member to the hard cap (no early stop; for checks)
   --limit N           stop after N members (checkpoint tests); the output is not written
+
+Under `mpirun -n R` the members are spread over R ranks (OpenMP threads inside each); the study
+file is the same for any R (README "MPI"). Rank 0 alone prints and writes.
 
 Finished runs are committed in batches under FILE.parts/ (each batch written to a temporary name
 and renamed); after a crash or kill, the same command computes only what is missing.
@@ -79,6 +83,7 @@ int cmd_sweep(const Args& args) {
   }
   const sweep::SpinStudy study = sweep::load_spin_study(pos[0]);
   const auto r = sweep::run_spin_study(study, o);
+  if (!sweep::is_root()) return 0;  // under mpirun rank 0 alone reports
   const auto& st = r.stats;
   if (r.groups.empty()) {
     std::cerr << "sweep: stopped after " << st.computed << " runs (--limit); " << st.resumed + st.computed << "/" << st.total

@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "io/h5.hpp"
+#include "sweep/distributed.hpp"
 #include "theory/crystal_theory.hpp"
 #include "theory/lattice_dynamics.hpp"
 
@@ -273,6 +274,7 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
       ro, &st);
   if (stats) *stats = st;
   if (opt.limit && st.resumed + st.computed < members.size()) return results;  // stopped early on purpose
+  if (!is_root()) return results;  // under mpirun rank 0 alone writes and prints (distributed.hpp)
 
   io::H5Writer w(out_path);
   io::write_provenance(w);

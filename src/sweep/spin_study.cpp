@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "io/h5.hpp"
+#include "sweep/distributed.hpp"
 
 namespace granwave::sweep {
 namespace {
@@ -377,14 +378,17 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
   std::vector<MemberResult> results;
   RunStats stats;
   bool reused = false;
-  if (!o.output.empty() && std::filesystem::exists(o.output)) {
-    io::H5Reader r(o.output);
-    if (r.has_attr("/", "fingerprint") && r.attr_string("/", "fingerprint") == fp) {
-      results = read_members(r, "/members");
-      reused = results.size() == members.size();
-      stats.total = stats.resumed = results.size();
+  on_root([&] {  // under mpirun rank 0 decides and every rank follows (distributed.hpp)
+    if (!o.output.empty() && std::filesystem::exists(o.output)) {
+      io::H5Reader r(o.output);
+      if (r.has_attr("/", "fingerprint") && r.attr_string("/", "fingerprint") == fp) {
+        results = read_members(r, "/members");
+        reused = results.size() == members.size();
+        stats.total = stats.resumed = results.size();
+      }
     }
-  }
+  });
+  reused = root_value(reused);
   if (!reused) {
     results = run_members(
         members.size(),
@@ -395,7 +399,7 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
         },
         ro, &stats);
   }
-  if (results.size() != members.size()) {  // a limited call: partial, nothing analysed
+  if (results.size() != members.size() || !is_root()) {  // a limited call or an MPI rank other than 0: nothing analysed
     SpinStudyResult partial;
     partial.members = std::move(results);
     partial.stats = stats;

@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "io/h5.hpp"
+#include "sweep/distributed.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -133,13 +134,24 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
   std::vector<MemberResult> results(n);
   std::vector<char> done(n, 0);
   std::size_t resumed = 0;
-  for (auto& m : read_parts(opt.parts_dir, opt.fingerprint)) {
-    if (m.index < 0 || static_cast<std::size_t>(m.index) >= n || done[m.index]) continue;
-    done[m.index] = 1;
-    ++resumed;
-    results[m.index] = std::move(m);
+  MemberTeam team;  // one rank unless started by mpirun (distributed.hpp): then rank 0 reads the batches
+  on_root([&] {
+    for (auto& m : read_parts(opt.parts_dir, opt.fingerprint)) {
+      if (m.index < 0 || static_cast<std::size_t>(m.index) >= n || done[m.index]) continue;
+      done[m.index] = 1;
+      ++resumed;
+      results[m.index] = std::move(m);
+    }
+  });
+  team.share_done(done);
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+  try {  // a rank's failure must reach team.finish (the other ranks wait for its report)
+    if (!opt.parts_dir.empty()) fs::create_directories(opt.parts_dir);
+  } catch (...) {
+    error = std::current_exception();
+    failed = true;
   }
-  if (!opt.parts_dir.empty()) fs::create_directories(opt.parts_dir);
 
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < n; ++i)
@@ -147,13 +159,12 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
   if (opt.cost.size() == n)  // most expensive first (ties by index): a shorter dynamic-schedule tail
     std::stable_sort(todo.begin(), todo.end(), [&](std::size_t a, std::size_t b) { return opt.cost[a] > opt.cost[b]; });
   if (opt.limit > 0 && todo.size() > opt.limit) todo.resize(opt.limit);
+  todo = team.share(todo);  // this rank's entries (all of them on one rank)
 
-  Progress progress(n, resumed, opt.progress, opt.what);
+  Progress progress(n, resumed, opt.progress && team.root(), opt.what, team.progress_lines());
   std::vector<MemberResult> pending;
   std::size_t serial = 0, computed = 0;
   double work = 0.0;
-  std::exception_ptr error;
-  std::atomic<bool> failed{false};
   const std::size_t batch = std::max<std::size_t>(1, opt.batch);
   const long ntodo = static_cast<long>(todo.size());
 
@@ -180,7 +191,7 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
             pending.clear();
           }
         }
-        progress.tick(computed);
+        progress.tick(team.finished(computed));
       }
     } catch (...) {
 #ifdef _OPENMP
@@ -192,7 +203,13 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
       }
     }
   }
-  if (!pending.empty()) write_batch(opt.parts_dir, serial++, pending, opt);
+  try {
+    if (!pending.empty()) write_batch(opt.parts_dir, serial++, pending, opt);
+  } catch (...) {
+    if (!error) error = std::current_exception();
+  }
+  // Rank 0 gathers the other ranks' members and counts; all ranks agree on failure.
+  team.finish(results, computed, work, error, [&](std::size_t d) { progress.tick(d); });
   progress.finish();
   if (error) std::rethrow_exception(error);
 
@@ -203,8 +220,8 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
     stats->work = work;
     stats->seconds = wall_seconds() - t0;
   }
-  if (opt.limit > 0) {
-    std::vector<MemberResult> got;  // a limited call returns only what exists
+  if (opt.limit > 0 || !team.root()) {
+    std::vector<MemberResult> got;  // a limited call (or a rank other than 0) returns only what exists
     for (auto& r : results)
       if (r.index >= 0) got.push_back(std::move(r));
     return got;
@@ -214,24 +231,26 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
 
 // ---- progress ----
 
-Progress::Progress(std::size_t total, std::size_t already_done, bool enabled, std::string what)
-    : total_(total), base_(already_done), on_(enabled && isatty(2)), what_(std::move(what)), t0_(wall_seconds()) {}
+Progress::Progress(std::size_t total, std::size_t already_done, bool enabled, std::string what, bool lines)
+    : total_(total), base_(already_done), on_(enabled && (lines || isatty(2))), lines_(lines), what_(std::move(what)), t0_(wall_seconds()) {}
 
 void Progress::tick(std::size_t done_now) {
   if (!on_) return;
   const double t = wall_seconds();
   if (last_ >= 0.0 && t - last_ < 0.25 && base_ + done_now < total_) return;
+  if (lines_ && (t - t0_ < 2.0 || (last_ >= 0.0 && t - last_ < 10.0)) && base_ + done_now < total_) return;  // a log, not a screen
   last_ = t;
   const double el = t - t0_;
   const double rate = el > 0 ? static_cast<double>(done_now) / el : 0.0;
   const std::size_t left = total_ - std::min(total_, base_ + done_now);
   const double eta = rate > 0 ? static_cast<double>(left) / rate : 0.0;
-  std::fprintf(stderr, "\r%zu/%zu %s  %.1f/s  elapsed %.0f s  ETA %.0f s   ", base_ + done_now, total_, what_.c_str(), rate, el, eta);
+  std::fprintf(stderr, lines_ ? "%zu/%zu %s  %.1f/s  elapsed %.0f s  ETA %.0f s\n" : "\r%zu/%zu %s  %.1f/s  elapsed %.0f s  ETA %.0f s   ",
+               base_ + done_now, total_, what_.c_str(), rate, el, eta);
   std::fflush(stderr);
 }
 
 void Progress::finish() {
-  if (on_ && last_ >= 0.0) std::fprintf(stderr, "\n");
+  if (on_ && last_ >= 0.0 && !lines_) std::fprintf(stderr, "\n");
 }
 
 }  // namespace granwave::sweep

@@ -75,13 +75,14 @@ std::string fingerprint(const std::vector<std::string>& texts);
 // is a terminal.
 class Progress {
  public:
-  Progress(std::size_t total, std::size_t already_done, bool enabled, std::string what);
+  // lines: whole lines, every 10 s, even when stderr is no terminal (rank 0 under mpirun).
+  Progress(std::size_t total, std::size_t already_done, bool enabled, std::string what, bool lines = false);
   void tick(std::size_t done_now);  // members done in this run so far
   void finish();
 
  private:
   std::size_t total_, base_;
-  bool on_;
+  bool on_, lines_;
   std::string what_;
   double t0_, last_ = -1.0;
 };

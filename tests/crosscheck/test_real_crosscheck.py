@@ -1,4 +1,4 @@
-"""Real runs: YADE, LIGGGHTS (and granwave when built) on a small chain and a small crystal.
+"""Real runs: YADE, LIGGGHTS, LAMMPS (and granwave when built) on a small chain and a small crystal.
 
     /usr/bin/python3 -m pytest tests/crosscheck -m realcodes
 """
@@ -18,6 +18,7 @@ CASES = [os.path.join(HERE, "cases", c) for c in ("chain_small.toml", "crystal_s
 pytestmark = pytest.mark.realcodes
 needs_codes = pytest.mark.skipif(not (shutil.which("yade") and shutil.which("liggghts")),
                                  reason="yade and liggghts not installed")
+needs_lammps = pytest.mark.skipif(harness.RN.find_lammps() is None, reason="LAMMPS (lmp) not installed")
 
 
 def _run(args, tmp_path):
@@ -27,26 +28,61 @@ def _run(args, tmp_path):
 
 
 @needs_codes
-def test_yade_liggghts_agree_on_fixture_systems(tmp_path):
-    p, report = _run(["--codes", "yade,liggghts", "--fixture-system", *CASES], tmp_path)
+def test_yade_liggghts_lammps_agree_on_fixture_systems(tmp_path):
+    """No granwave needed: the Python fixture builder's systems; LAMMPS too when installed
+    (measured: LIGGGHTS vs LAMMPS 3.6e-16 on the chain, 6e-11 on the crystal)."""
+    codes = ["yade", "liggghts"] + (["lammps"] if harness.RN.find_lammps() else [])
+    p, report = _run(["--codes", ",".join(codes), "--fixture-system", *CASES], tmp_path)
     assert p.returncode == 0, p.stdout + p.stderr
     assert "VERDICT: PASS" in p.stdout
+    npairs = len(codes) * (len(codes) - 1) // 2
     assert report.count("| yade-liggghts | trace_max_rel |") >= 6
-    # both wrote traces with the synchronous convention and the system copied in
+    if "lammps" in codes:
+        assert report.count("| liggghts-lammps | trace_max_rel |") >= 6 and npairs == 3
+    # every code wrote traces with the synchronous convention and the system copied in
     for case in ("chain_small", "crystal_small"):
-        for code in ("yade", "liggghts"):
+        for code in codes:
             tr = T.read_trace(str(tmp_path / "rep" / case / code / "traces.h5"))
             assert tr["attrs"]["code"] == code and tr["attrs"]["time_convention"].startswith("synchronous")
 
 
 @needs_codes
-def test_three_codes(tmp_path):
+@needs_lammps
+def test_four_codes(tmp_path):
     gw = harness.find_granwave(None)
     if gw is None:
         pytest.skip("granwave not built")
-    p, report = _run(["--codes", "granwave,yade,liggghts", "--granwave", gw, *CASES], tmp_path)
-    assert "granwave-yade" in report and "yade-liggghts" in report, p.stdout + p.stderr
+    p, report = _run(["--codes", "granwave,yade,liggghts,lammps", "--granwave", gw, *CASES], tmp_path)
+    for pair in ("granwave-yade", "yade-liggghts", "granwave-lammps", "yade-lammps", "liggghts-lammps"):
+        assert "| %s | trace_max_rel |" % pair in report, (pair, p.stdout + p.stderr)
     assert p.returncode == 0, p.stdout
+
+
+@needs_lammps
+def test_lammps_matches_granwave_on_the_small_fixtures(tmp_path):
+    """LAMMPS on the small chain (Hertz per material pair, the brass wall through fix wall/gran with the
+    pair's own constant) and on the crystals: frictionless (pair granular), damped with friction
+    (gran/hooke/history: radius arm, dashpot may pull, mu |f_n|: judged against granwave run with those
+    conventions, the twin `granwave~lammps`) and polydisperse (contact point from pair/local, not
+    stress/atom's midpoint). Measured: 5e-10 (chain), 2e-11 .. 1.5e-8 (crystals; the largest at z/l0 = 36,
+    as granwave vs LIGGGHTS 1.5e-8)."""
+    gw = harness.find_granwave(None)
+    if gw is None:
+        pytest.skip("granwave not built")
+    cases = CASES + [os.path.join(HERE, "cases", c) for c in ("crystal_small_damped.toml", "crystal_small_poly2.toml")]
+    p, report = _run(["--codes", "granwave,lammps", "--granwave", gw, *cases], tmp_path)
+    assert p.returncode == 0 and "VERDICT: PASS" in p.stdout, p.stdout + p.stderr
+    rows = [ln for ln in report.splitlines() if ln.startswith(("| granwave-lammps | trace_max_rel |",
+                                                             "| granwave~lammps-lammps | trace_max_rel |"))]
+    judged = [r for r in rows if "| PASS |" in r]
+    assert len(judged) >= 6 + 3 + 3 + 3, rows
+    crystal = [r for r in judged if "sigma_" in r]
+    assert all(float(r.split("|")[4]) < 1e-7 for r in crystal), crystal
+    assert "| granwave~lammps | OK |" in report and "| xc_crystal_small_damped | PASS |" in p.stdout
+    tr = T.read_trace(str(tmp_path / "rep" / "crystal_small_damped" / "lammps" / "traces.h5"))
+    assert (tr["attrs"]["lever_arm"], tr["attrs"]["normal_tension"], tr["attrs"]["coulomb_normal"]) == \
+        ("radius", "allow", "magnitude")
+    assert tr["attrs"]["code"] == "lammps" and tr["attrs"]["time_convention"].startswith("synchronous")
 
 
 @needs_codes
@@ -149,3 +185,28 @@ def test_polydisperse_crystal_agrees_in_three_codes(tmp_path):
     assert p.returncode == 0 and "| xc_crystal_small_poly2 | PASS |" in p.stdout, p.stdout + p.stderr
     speeds = [ln for ln in report.splitlines() if "| speed_rel |" in ln]
     assert len(speeds) == 6 and all(float(r.split("|")[4]) < 1e-6 for r in speeds), speeds
+
+
+@needs_lammps
+def test_lammps_conventions_are_what_the_driver_assumes():
+    """lammps_inputs/probe_conventions.py on the installed LAMMPS: the conventions lammps_case.py
+    writes into every trace (and MAPPING.md quotes) are measured, not assumed. A LAMMPS release that
+    changes one of them fails here, not silently in a crosscheck."""
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "lammps_inputs"))
+    import lammps_case as LM
+    import probe_conventions as P
+    res = P.probe(harness.RN.find_lammps())
+    ghh = res["gran/hooke/history"]
+    assert (ghh["lever_arm"]["velocity"], ghh["lever_arm"]["torque"]) == ("radius", "radius")
+    assert ghh["tension"]["convention"] == LM.FRICTION_STYLE_CONVENTIONS["normal_tension"] == "allow"
+    assert ghh["coulomb"]["convention"] == LM.FRICTION_STYLE_CONVENTIONS["coulomb_normal"] == "magnitude"
+    assert LM.FRICTION_STYLE_CONVENTIONS["lever_arm"] == "radius"
+    assert ghh["history"]["convention"] == "zeroed"
+    gr = res["granular hooke linear_history"]
+    # the mixed arm is why pair granular is not used with friction
+    assert (gr["lever_arm"]["velocity"], gr["lever_arm"]["torque"]) == ("radius", "contact_point")
+    assert gr["tension_limit_damping"]["convention"] == "clip"
+    # hertz/material's unlike-type mixing is not eq. (13): the chain deck gives hertz k per type pair
+    assert res["hertz_mixing"]["force_over_eq13"] > 10
+    assert abs(res["wall_mixing"]["nu=0"] - 1) < 1e-12 and abs(res["wall_mixing"]["nu=0.34"] - 1.34) < 1e-12

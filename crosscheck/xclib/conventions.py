@@ -1,0 +1,95 @@
+"""Contact-law conventions a trace records (root attributes, data/SCHEMA.md §3) and what follows for
+the comparison: a pair of traces that ran different conventions where they matter for the case is
+a convention difference (EXPECTED-DIFF, never judged), and granwave, which can run every one of
+them, runs the case again with the other code's conventions (a "twin", `granwave~<code>`) so that
+the code is still judged against granwave.
+
+Defaults of a trace without the attribute: the case's value (traces.contact_params).
+"""
+from __future__ import annotations
+
+from . import sweepmath as M
+from . import traces as T
+
+TWIN_SEP = "~"
+
+# (attribute, when it matters for the case's contact parameters, why the codes differ)
+CONVENTIONS = (
+    ("lever_arm", lambda c: c["kt"] > 0 or c["gamma_t"] > 0,
+     "Seed 002 eq. (4) takes the radius a (granwave's default, LAMMPS' gran/hooke/history); YADE and LIGGGHTS "
+     "always take the contact point a - delta/2 (S speeds then differ by 1e-5 .. 2e-4). granwave runs either: "
+     "[contact] lever_arm."),
+    ("normal_tension", lambda c: c["gamma_n"] > 0,
+     "YADE's damped law (ViscEl) clips a pulling dashpot and cannot run \"allow\"; LAMMPS' gran/hooke/history "
+     "cannot clip. The difference shows where contacts open under a dashpot. granwave runs either: [contact] "
+     "normal_tension."),
+    ("coulomb_normal",
+     lambda c: (c["kt"] > 0 or c["gamma_t"] > 0) and c["gamma_n"] > 0 and c["normal_tension"] == "allow",
+     "granwave's default Coulomb limit is mu max(f_n, 0); LIGGGHTS, YADE and LAMMPS take mu |f_n|: they differ "
+     "where a dashpot makes f_n pull. granwave runs either: [contact] coulomb_normal."),
+)
+
+
+def _params(case: dict) -> dict:
+    c = T.contact_params(case)
+    c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n")})
+    return c
+
+
+def _matters(case: dict, *attrs: dict) -> list:
+    """The conventions that matter for the case run as these traces ran it: the Coulomb rule under
+    tension matters when one of them let the dashpot pull (normal_tension recorded "allow")."""
+    c = _params(case)
+    if any(a.get("normal_tension", c["normal_tension"]) == "allow" for a in attrs):
+        c["normal_tension"] = "allow"
+    return [(key, why) for key, matters, why in CONVENTIONS if matters(c)]
+
+
+def recorded(case: dict, attrs: dict) -> dict:
+    """{attribute: value} of the conventions that matter for this case as this trace ran it."""
+    if case.get("case", {}).get("model") != "crystal":
+        return {}
+    c = _params(case)
+    return {key: attrs.get(key, c[key]) for key, _ in _matters(case, attrs)}
+
+
+def difference(case: dict, attrs_a: dict, attrs_b: dict) -> str | None:
+    """The conventions two traces record differently where they matter for this case (no tolerance
+    may cover one), as a reason; None if the two runs used the same conventions. A trace without
+    the attribute ran the case's value."""
+    if case.get("case", {}).get("model") != "crystal":
+        return None
+    c = _params(case)
+    out = []
+    for key, why in _matters(case, attrs_a, attrs_b):
+        va, vb = attrs_a.get(key, c[key]), attrs_b.get(key, c[key])
+        if va != vb:
+            out.append("%s convention: the traces say %s = %s and %s. %s" % (key.replace("_", "-"), key, va, vb, why))
+    return " ".join(out) or None
+
+
+def twins(case: dict, attrs: dict) -> list:
+    """[(name, codes, changes)]: one granwave twin per distinct set of conventions that differs from
+    granwave's trace; `changes` are the [contact] values to run, `codes` the codes that recorded them."""
+    if "granwave" not in attrs:
+        return []
+    base = recorded(case, attrs["granwave"])
+    out = []
+    for code, a in attrs.items():
+        if code == "granwave" or TWIN_SEP in code:
+            continue
+        rec = recorded(case, a)
+        if rec == base:
+            continue
+        for entry in out:
+            if entry[2] == rec:
+                entry[1].append(code)
+                break
+        else:
+            out.append(["granwave" + TWIN_SEP + code, [code], rec])
+    return [tuple(e) for e in out]
+
+
+def derive(case_text: str, changes: dict) -> str:
+    """The case text with [contact] KEY = value for each convention."""
+    return M.derive_case(case_text, {("contact", k): v for k, v in changes.items()})

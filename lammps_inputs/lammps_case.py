@@ -1,0 +1,560 @@
+#!/usr/bin/python3
+"""LAMMPS driver for granwave cases: render (case + system -> deck + data file), run, convert.
+
+    /usr/bin/python3 lammps_inputs/lammps_case.py CASE.toml SYSTEM.h5 OUT.h5 [--workdir DIR]
+                     [--timeout S] [--render-only] [--lmp lmp] [--keep-dumps]
+
+Same layout as liggghts_inputs/: the deck templates are lammps_inputs/templates/*.in.tmpl and every
+parameter mapping and convention is in liggghts_inputs/MAPPING.md (LAMMPS section), each measured.
+The environment variable XC_LMP names the LAMMPS executable when --lmp is not given (default `lmp`,
+Debian's LAMMPS 29 Sep 2021 with GRANULAR). Prints one line "XC_SUMMARY {json}" at the end.
+Exit: 0 done, 1 LAMMPS failed (or its dumps are unreadable), 2 a case LAMMPS cannot run exactly
+(said on stderr, nothing written), 124 LAMMPS timed out, 127 LAMMPS not found.
+
+Time convention: LAMMPS integrates velocity Verlet and writes its dumps after a whole step, so
+positions, velocities and the contact forces of `compute pair/local` (recomputed from the dumped
+state by the pair style's single()) belong to step*dt: synchronous, as LIGGGHTS. With a normal
+dashpot the recomputed force sees v(t) where the step used v(t - dt/2): the converter puts it back
+(xclib.dumps.dashpot_at_half_step, the same alignment as the LIGGGHTS writer's).
+
+Memory: the converters read the dumps one frame at a time (xclib.dumps.lockstep); the trace arrays
+are [samples, layers] (or [samples, contacts]), so the resident size does not grow with the dumps.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import signal
+import string
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+from xclib import dumps as D  # noqa: E402
+from xclib import traces as T  # noqa: E402
+
+TIME_CONVENTION = ("synchronous: LAMMPS velocity Verlet, dumps after a whole step; positions, velocities "
+                   "and compute pair/local forces at step*dt (no shift); the normal dashpot of the dumped "
+                   "contact forces is put back to the step's half-step velocity v(t) - f(t)/m dt/2 (the "
+                   "force that acted, as granwave and YADE record)")
+
+# Contact-law conventions of the two pair styles the crystal deck uses, measured with two-sphere decks
+# (liggghts_inputs/MAPPING.md, LAMMPS section):
+#   gran/hooke/history (friction): tangential arm = the radius a_i, in the surface velocity
+#     (wr = (a_i w_i + a_j w_j)/r, crossed with the centre vector) and in the torque (-a_i n x f_t):
+#     seed 002 eq. (4), granwave's lever_arm = "radius"; the normal force may pull (no clip);
+#     Coulomb limit xmu |f_n| with the dashpot included ("magnitude"); history zeroed when the
+#     contact opens.
+#   granular hooke + linear_nohistory 0 0 (frictionless): absolute dashpot (`damping velocity`),
+#     `limit_damping` clips a pulling dashpot ("clip"); the tangential force is zero.
+FRICTION_STYLE_CONVENTIONS = dict(lever_arm="radius", normal_tension="allow", coulomb_normal="magnitude")
+
+# The chain's wall: "plane" = fix wall/gran with the pair's own Hertz constant (exact), or
+# "sphere:R" = a fixed sphere of radius R (m) just touching the wall plane (R* error r/R), as the YADE
+# driver does. XC_LAMMPS_WALL selects it (used to measure what the sphere costs: MAPPING.md).
+WALL = os.environ.get("XC_LAMMPS_WALL", "plane")
+
+
+class Unsupported(ValueError):
+    """A case LAMMPS cannot run with the same law (exit 2, said on stderr)."""
+
+
+def _template(name: str) -> string.Template:
+    with open(os.path.join(HERE, "templates", name)) as f:
+        return string.Template(f.read())
+
+
+def _g(x: float) -> str:
+    return repr(float(x))
+
+
+def mass_lines(m: np.ndarray) -> str:
+    """`set atom I*J mass m` over runs of equal masses (one line for a monodisperse packing): the
+    data file's density gives rmass = density 4/3 pi r^3 only to round-off, and Table 1 masses are
+    not density x volume at all."""
+    out, k, n = [], 0, len(m)
+    while k < n:
+        e = k
+        while e + 1 < n and m[e + 1] == m[k]:
+            e += 1
+        ids = "%d" % (k + 1) if e == k else "%d*%d" % (k + 1, e + 1)
+        out.append("set             atom %s mass %s" % (ids, _g(m[k])))
+        k = e + 1
+    return "\n".join(out)
+
+
+def _data_file(path, n_types, box, types, radius, mass, pos):
+    vol = 4.0 / 3.0 * math.pi * radius ** 3
+    with open(path, "w") as f:
+        f.write("granwave system -> LAMMPS data file (atom_style sphere)\n\n")
+        f.write("%d atoms\n%d atom types\n\n" % (len(radius), n_types))
+        for lo, hi, ax in zip(box[0], box[1], "xyz"):
+            f.write("%s %s %slo %shi\n" % (_g(lo), _g(hi), ax, ax))
+        f.write("\nAtoms # sphere\n\n")
+        for k in range(len(radius)):
+            # atom-ID atom-type diameter density x y z
+            f.write("%d %d %s %s %s %s %s\n" % (k + 1, types[k], _g(2 * radius[k]), _g(mass[k] / vol[k]),
+                                               _g(pos[k, 0]), _g(pos[k, 1]), _g(pos[k, 2])))
+
+
+def e_star(e1, nu1, e2, nu2) -> float:
+    """E* of eq. (13): 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2."""
+    return 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
+
+
+# ------------------------------------------------------------------------------------------ chain
+def render_chain(case: dict, system: dict, workdir: str, facts: dict) -> str:
+    lay = T.chain_layout(system)
+    if float(system["attrs"].get("precompression", 0.0) or 0.0) > 0.0:
+        raise Unsupported("precompression > 0: the LAMMPS chain deck has no static load (not needed by any "
+                          "crosscheck case); not run rather than run without it")
+    m = np.asarray(system["mass"], float)
+    r = np.asarray(system["radius"], float)
+    pos = np.asarray(system["position"], float)
+    e = np.asarray(system["youngs_modulus"], float)
+    nu = np.asarray(system["poisson_ratio"], float)
+    n = len(m)
+    mats = []
+    types = np.zeros(n, int)
+    for k in range(n):
+        key = (float(e[k]), float(nu[k]))
+        if key not in mats:
+            mats.append(key)
+        types[k] = mats.index(key) + 1
+    nt = len(mats)
+    # eq. (13) per pair of bead materials; checked against the system's Hertz constants below
+    kmat = {(a, b): 4.0 / 3.0 * e_star(*mats[a - 1], *mats[b - 1]) for a in range(1, nt + 1) for b in range(a, nt + 1)}
+    hc = np.asarray(system["hertz_constant"], float)
+    for c in range(n - 1):
+        a, b = sorted((types[c], types[c + 1]))
+        rs = r[c] * r[c + 1] / (r[c] + r[c + 1])
+        if abs(kmat[(a, b)] * math.sqrt(rs) - hc[c]) > 1e-12 * hc[c]:
+            raise ValueError("contact %d: 4/3 E* sqrt(R*) = %r, system hertz_constant = %r" % (c, kmat[(a, b)] * math.sqrt(rs), hc[c]))
+    wall_e, wall_nu = (float(system["attrs"].get("wall_youngs_modulus", 0)), float(system["attrs"].get("wall_poisson_ratio", 0)))
+    ntypes = nt
+    radius, mass, ppos, ptypes = r, m, pos, types
+    wall_line, wall_cols = "# free end: no wall", ""
+    k_wall = None
+    if lay["has_wall"]:
+        k_wall = 4.0 / 3.0 * e_star(float(e[-1]), float(nu[-1]), wall_e, wall_nu)
+        if abs(k_wall * math.sqrt(r[-1]) - hc[-1]) > 1e-12 * hc[-1]:
+            raise ValueError("wall contact: 4/3 E* sqrt(R) = %r, system hertz_constant = %r" % (k_wall * math.sqrt(r[-1]), hc[-1]))
+    sphere_r = None
+    if lay["has_wall"] and WALL.startswith("sphere:"):
+        # a fixed sphere of radius R touching the plane: R* = r R/(r + R) instead of r
+        sphere_r = float(WALL.split(":", 1)[1])
+        ntypes = nt + 1
+        radius = np.append(r, sphere_r)
+        mass = np.append(m, 1.0)          # never integrated; no dashpot, so its mass enters nothing
+        ppos = np.vstack([pos, [lay["wall_x"] + sphere_r, pos[-1, 1], pos[-1, 2]]])
+        ptypes = np.append(types, ntypes)
+    elif lay["has_wall"]:
+        if WALL != "plane":
+            raise ValueError("XC_LAMMPS_WALL = %r (allowed: plane, sphere:R)" % WALL)
+        # fix wall/gran applies F = k sqrt(R) delta^3/2 with R the bead's radius: the pair's own
+        # constant. (Its hertz/material mixes the given E, nu as E/(2 (1 - nu)), neither the wall's
+        # nor the Hertz E*: measured, MAPPING.md.)
+        wall_line = ("fix             wall beads wall/gran granular hertz %s 0 tangential linear_nohistory 0 0 "
+                     "xplane NULL %s contacts" % (_g(k_wall), _g(lay["wall_x"])))
+        wall_cols = "f_wall[2]"
+    pair_lines = []
+    for a in range(1, ntypes + 1):
+        for b in range(a, ntypes + 1):
+            if b <= nt:
+                k = kmat[(a, b)]
+            elif a <= nt:
+                k = 4.0 / 3.0 * e_star(*mats[a - 1], wall_e, wall_nu)
+            else:
+                pair_lines.append("pair_coeff      %d %d hooke 0 0 tangential linear_nohistory 0 0" % (a, b))
+                continue
+            pair_lines.append("pair_coeff      %d %d hertz %s 0 tangential linear_nohistory 0 0" % (a, b, _g(k)))
+    rmax = float(r.max())
+    hi_x = (lay["wall_x"] + (2 * sphere_r if sphere_r else 0.0)) if lay["has_wall"] else pos[:, 0].max()
+    lo = [float(pos[:, 0].min() - 3 * rmax), float(pos[:, 1].min() - 3 * rmax), float(pos[:, 2].min() - 3 * rmax)]
+    hi = [float(hi_x + 3 * rmax), float(pos[:, 1].max() + 3 * rmax), float(pos[:, 2].max() + 3 * rmax)]
+    if sphere_r:
+        lo[1], hi[1] = pos[-1, 1] - 1.01 * sphere_r, pos[-1, 1] + 1.01 * sphere_r
+        lo[2], hi[2] = pos[-1, 2] - 1.01 * sphere_r, pos[-1, 2] + 1.01 * sphere_r
+    _data_file(os.path.join(workdir, "data.system"), ntypes, (lo, hi), ptypes, radius, mass, ppos)
+    v = np.asarray(system["velocity"], float)
+    vel = "\n".join("set             atom %d vx %s vy %s vz %s" % (k + 1, _g(v[k, 0]), _g(v[k, 1]), _g(v[k, 2]))
+                    for k in range(n) if np.any(v[k] != 0))
+    facts.update(has_wall=lay["has_wall"], wall=("sphere R = %g m" % sphere_r) if sphere_r else "plane", n_beads=n,
+                 wall_atom=(n + 1) if sphere_r else None)
+    return _template("chain.in.tmpl").substitute(
+        case_name=case["case"]["name"], mass_lines=mass_lines(mass), skin=_g(0.5 * float(r.min())),
+        bead_ids="1:%d" % n, pair_lines="\n".join(pair_lines), wall_line=wall_line, dt=_g(facts["dt"]),
+        velocity_lines=vel, every=facts["every"], thermo=max(1, facts["nsteps"] // 10), nsteps=facts["nsteps"],
+        wall_columns=wall_cols)
+
+
+# ---------------------------------------------------------------------------------------- crystal
+def crystal_style(c: dict, mass: np.ndarray) -> dict:
+    """The pair style lines and the conventions it runs (MAPPING.md, LAMMPS section)."""
+    kn, kt, gn, gt = float(c["kn"]), float(c["kt"]), float(c["gamma_n"]), float(c["gamma_t"])
+    if gt > 0.0:
+        raise Unsupported("gamma_t > 0: the dumped tangential dashpot sees v(t) and w(t) instead of the step's "
+                          "half-step velocities, which the writer cannot put back (no case uses gamma_t)")
+    if kt > 0.0:
+        # gran/hooke/history: gamma_n per unit effective mass (damp = meff gamman v_n), one global value
+        if gn > 0.0 and not np.all(mass == mass[0]):
+            raise Unsupported("kt > 0 with gamma_n > 0 on unequal masses: gran/hooke/history scales the dashpot "
+                              "by each pair's effective mass (one gamman for all pairs), and pair granular's arm "
+                              "mixes radius (velocity) and contact point (torque), which no granwave option runs")
+        meff = float(mass[0]) * float(mass[0]) / (float(mass[0]) + float(mass[0]))
+        line = "pair_style      gran/hooke/history %s %s %s 0.0 %s 0\npair_coeff      * *" % (
+            _g(kn), _g(kt), _g(gn / meff), _g(c["mu_static"]))
+        conv = dict(FRICTION_STYLE_CONVENTIONS)
+        comment = ("gran/hooke/history: linear spring, dashpot per unit effective mass (gamma_n / m_eff), tangential "
+                   "spring with Coulomb limit mu |f_n|, lever arm a (seed 002 eq. 4)")
+        return dict(lines=line, conventions=conv, tangential=True, comment=comment, style="gran/hooke/history")
+    clip = c["normal_tension"] == "clip" and gn > 0.0
+    line = ("pair_style      granular\npair_coeff      * * hooke %s %s tangential linear_nohistory 0 0 damping velocity%s"
+            % (_g(kn), _g(gn), " limit_damping" if clip else ""))
+    conv = dict(lever_arm=c.get("lever_arm", "radius"), normal_tension=c["normal_tension"],
+                coulomb_normal=c.get("coulomb_normal", "compressive"))
+    comment = ("granular hooke, absolute dashpot (damping velocity)%s, no tangential force"
+               % (", limit_damping (no pulling dashpot)" if clip else ""))
+    return dict(lines=line, conventions=conv, tangential=False, comment=comment, style="granular hooke")
+
+
+def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
+    c = T.contact_params(case)
+    ex = T.excitation(case)
+    lay = T.crystal_layout(system)
+    m = np.asarray(system["mass"], float)
+    r = np.asarray(system["radius"], float)
+    pos = np.asarray(system["position"], float)
+    fixed = np.asarray(system["fixed"], int).astype(bool)
+    layer = lay["layer"]
+    types = np.where(fixed, np.where(layer < lay["fixed_layers"], 3, 2), 1)
+    sty = crystal_style(c, m)
+    for key, used in sty["conventions"].items():
+        asked = c.get(key)
+        matters = {"lever_arm": c["kt"] > 0 or c["gamma_t"] > 0, "normal_tension": c["gamma_n"] > 0,
+                   "coulomb_normal": (c["kt"] > 0 or c["gamma_t"] > 0) and c["gamma_n"] > 0}[key]
+        if matters and asked != used:
+            sys.stderr.write("lammps_case: the case asks for %s = \"%s\"; LAMMPS %s runs \"%s\", and the trace says so "
+                             "(granwave can run it: [contact] %s)\n" % (key, asked, sty["style"], used, key))
+    if c["mu_static"] != c["mu_dynamic"] and sty["tangential"]:
+        sys.stderr.write("lammps_case: LAMMPS has one Coulomb mu; using mu_static=%g (mu_dynamic=%g ignored: a "
+                         "documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
+    zmin, zmax = float(pos[:, 2].min()), float(pos[:, 2].max())
+    rmax = float(r.max())
+    lo = [0.0, 0.0, zmin - 3 * rmax]
+    hi = [lay["box_x"], lay["box_y"], zmax + 3 * rmax]
+    p = pos.copy()
+    p[:, 0] = np.mod(p[:, 0] - lo[0], lay["box_x"]) + lo[0]
+    p[:, 1] = np.mod(p[:, 1] - lo[1], lay["box_y"]) + lo[1]
+    _data_file(os.path.join(workdir, "data.system"), 3, (lo, hi), types, r, m, p)
+    axis = (0, 0, 1) if ex["mode"] == "P" else (1, 0, 0)
+    if ex["drive"] == "displacement":
+        s = float(ex["amplitude"]) * lay["d"]
+        exl = "displace_atoms  source move %s %s %s units box" % tuple(_g(s * a) for a in axis)
+    else:
+        vv = float(ex["amplitude"])
+        exl = "velocity        source set %s %s %s units box" % tuple(_g(vv * a) for a in axis)
+    vdrive = ex["drive"] != "displacement"
+    exclude = "exclude type 2 2 exclude type 2 3" + ("" if vdrive else " exclude type 3 3")
+    facts.update(lay={k: v for k, v in lay.items() if k != "layer"}, conventions=sty["conventions"],
+                 pair_style=sty["style"], tangential=sty["tangential"], damped=float(c["gamma_n"]) > 0.0)
+    return _template("crystal.in.tmpl").substitute(
+        case_name=case["case"]["name"], mass_lines=mass_lines(m), skin=_g(0.2 * float(r.min())), exclude=exclude,
+        free_types="1 3" if vdrive else "1", pair_comment=sty["comment"], pair_lines=sty["lines"], dt=_g(facts["dt"]),
+        excitation_line=exl, tangential_columns=" p1 p2 p3" if sty["tangential"] else "",
+        every=facts["every"],
+        thermo=max(1, facts["nsteps"] // 10), nsteps=facts["nsteps"])
+
+
+def render(case: dict, system: dict, workdir: str) -> dict:
+    """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...).
+    Raises Unsupported for a case LAMMPS cannot run with the same law."""
+    model = case["case"]["model"]
+    dt = T.timestep(case, system)
+    nsteps, every = T.sampling(case, dt)
+    facts = dict(model=model, dt=dt, nsteps=nsteps, every=every, n=len(system["mass"]))
+    scheme = case.get("integrator", {}).get("scheme", "verlet")
+    if scheme != "verlet":
+        sys.stderr.write("lammps_case: the case says scheme = \"%s\"; LAMMPS runs velocity Verlet at the same dt\n" % scheme)
+    deck = (render_chain if model == "chain" else render_crystal)(case, system, workdir, facts)
+    with open(os.path.join(workdir, "in.case"), "w") as f:
+        f.write(deck)
+    return facts
+
+
+# --------------------------------------------------------------------------------------- converting
+def tangential_at_step(fs_dump, fn_dump, fn_step, mu):
+    """The tangential force of the step from the one single() recomputed at dump time.
+
+    gran/hooke/history's single() rebuilds f_t = -kt xi from the history the step left (not
+    incremented: exact with gamma_t = 0), then applies the Coulomb test again with the dump-time
+    normal force, whose dashpot sees v(t): where |f_t| > mu |f_n(dump)| it is cut to that. The step's
+    force was -kt xi with |kt xi| <= mu |f_n(step)|, equal when the contact slid. So a row the dump did
+    not cut is the step's force, and a row it cut slid in the step when |f_n(step)| <= |f_n(dump)|:
+    mu |f_n(step)| along the dumped direction. A cut row with |f_n(step)| > |f_n(dump)| has
+    mu |f_n(dump)| <= |kt xi| <= mu |f_n(step)|: it is taken as sliding too (mu |f_n(step)|), and
+    returned as `assumed` for the check against the per-atom forces (convert_crystal).
+    Returns (force rows, assumed [rows] bool)."""
+    if len(fs_dump) == 0 or mu <= 0.0:
+        return fs_dump, np.zeros(len(fs_dump), bool)
+    fs = np.linalg.norm(fs_dump, axis=1)
+    cut = (fs >= mu * np.abs(fn_dump) * (1.0 - 1e-12)) & (fs > 0.0)
+    assumed = cut & (np.abs(fn_step) > np.abs(fn_dump))
+    scale = np.where(cut, np.abs(fn_step) / np.where(np.abs(fn_dump) > 0, np.abs(fn_dump), 1.0), 1.0)
+    return fs_dump * scale[:, None], assumed
+
+
+def atom_forces(n, a, b, f_on_a):
+    """Per-atom sums of the contact forces (f on a, -f on b)."""
+    out = np.empty((n, 3))
+    for k in range(3):
+        out[:, k] = np.bincount(a, f_on_a[:, k], n) - np.bincount(b, f_on_a[:, k], n)
+    return out
+
+
+def convert_chain(workdir, system, facts):
+    lay = T.chain_layout(system)
+    n = facts["n_beads"]
+    nc = lay["ncontacts"]
+    r = np.asarray(system["radius"], float)
+    m = np.asarray(system["mass"], float)
+    a = np.asarray(system["hertz_constant"], float)
+    wall_atom = facts.get("wall_atom")
+    times, cf_rows, ke, pe = [], [], [], []
+    for s, cols, rows, pr in D.lockstep(os.path.join(workdir, "dump.atoms"), os.path.join(workdir, "dump.pairs")):
+        x = D.columns(cols, rows, ["x"])[:, 0]
+        v = D.columns(cols, rows, ["vx"])[:, 0]
+        cf = np.zeros(nc)
+        if len(pr):
+            i, j, f = D.unique_rows(pr, 2, 1)
+            i, j, f = D.on_lower_id(i, j, f)
+            bb = (j == i + 1) & (j < n)
+            cf[i[bb]] = -f[bb, 0]                 # compressed: the force on the striker-side bead points back
+            if wall_atom is not None:
+                w = j == wall_atom - 1
+                cf[nc - 1] = -float(f[w, 0].sum()) if np.any(w) else 0.0
+        if lay["has_wall"] and wall_atom is None:
+            cf[nc - 1] = -D.columns(cols, rows, ["f_wall[2]"])[-1, 0]   # fix wall/gran's own force on the last bead
+        dl = r[:-1] + r[1:] - np.diff(x)
+        if lay["has_wall"]:
+            dl = np.append(dl, r[-1] - (lay["wall_x"] - x[-1]))
+        times.append(s * facts["dt"])
+        cf_rows.append(cf)
+        ke.append(0.5 * float(np.sum(m * v * v)))
+        pe.append(float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5)))
+    cf = np.array(cf_rows).reshape(len(times), nc)
+    data = {"/chain/contact_force": cf, "/chain/bead_force": T.bead_force_from_contacts(cf, n, lay["has_wall"]),
+            "/energy/kinetic": np.array(ke), "/energy/potential": np.array(pe)}
+    return np.array(times), data, {"wall": facts["wall"]}
+
+
+def convert_crystal(workdir, case, system, facts):
+    lay = T.crystal_layout(system)
+    nl = lay["nlayers"]
+    fixed = np.asarray(system["fixed"], int).astype(bool)
+    layer = lay["layer"]
+    x0 = np.asarray(system["position"], float)
+    mass = np.asarray(system["mass"], float)
+    r = np.asarray(system["radius"], float)
+    cp = T.contact_params(case)
+    gamma_n, kn = float(cp["gamma_n"]), float(cp["kn"])
+    clip = facts["conventions"]["normal_tension"] == "clip" and not facts["tangential"]
+    mobile = ~fixed
+    if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
+        mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
+    bx, by, dt = lay["box_x"], lay["box_y"], facts["dt"]
+    ncol = 6 if facts["tangential"] else 3
+    times = []
+    out = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx", "coord")}
+    assumed_rows = unrecovered = 0
+    balance = 0.0
+    n_atoms = len(r)
+    nfree = max(int(np.count_nonzero(~fixed)), 1)
+    for s, cols, rows, pr in D.lockstep(os.path.join(workdir, "dump.atoms"), os.path.join(workdir, "dump.pairs")):
+        p = D.columns(cols, rows, ["x", "y", "z"])
+        v = D.columns(cols, rows, ["vx", "vy", "vz"])
+        fa = D.columns(cols, rows, ["fx", "fy", "fz"])
+        if len(pr):
+            i, j, fr = D.unique_rows(pr, 2, ncol)
+        else:
+            i, j, fr = np.zeros(0, int), np.zeros(0, int), np.zeros((0, ncol))
+        fnorm = fr[:, :3]                                   # compute pair/local fx fy fz: the normal force on i
+        f = fnorm + fr[:, 3:6] if facts["tangential"] else fnorm.copy()
+        assumed = np.zeros(len(i), bool)
+        if gamma_n > 0.0 and s > 0 and len(i):   # step 0: the setup force already saw v(0), as the dump does
+            n_ij, _, _ = D.contact_normals(p, i, j, bx, by)
+            fn_dump = np.sum(fnorm * n_ij, axis=1)
+            f_step = D.dashpot_at_half_step(p, v, fa, mass, mobile, dt, i, j, fnorm, r, gamma_n, bx, by, kn, clip)
+            if facts["tangential"]:
+                fn_step = np.sum(f_step * n_ij, axis=1)
+                ft, assumed = tangential_at_step(fr[:, 3:6], fn_dump, fn_step, float(cp["mu_static"]))
+                f_step = f_step + ft
+            f = f_step
+        # The contact forces must add up to the forces LAMMPS applied (dumped per atom): checks the rows,
+        # the dashpot alignment and every "assumed" sliding row (exact only if it slid).
+        if len(i):
+            miss = np.abs(atom_forces(n_atoms, i, j, f) - fa).max(axis=1)
+            scale = float(np.abs(f).max())
+            balance = max(balance, float(miss.max()) / scale)
+            if assumed.any():
+                off = miss > 1e-9 * scale
+                assumed_rows += int(np.count_nonzero(assumed))
+                unrecovered += int(np.count_nonzero(assumed & (off[i] | off[j])))
+        a, b, fab = D.on_lower_id(i, j, f)
+        szz, szx = T.layer_stress(p, r, layer, fixed, a, b, fab, bx, by, lay["l0"], nl)
+        du = p - x0
+        du[:, 0] -= bx * np.round(du[:, 0] / bx)
+        du[:, 1] -= by * np.round(du[:, 1] / by)
+        times.append(s * dt)
+        out["szz"].append(szz)
+        out["szx"].append(szx)
+        out["uz"].append(T.layer_mean(du[:, 2], layer, nl))
+        out["ux"].append(T.layer_mean(du[:, 0], layer, nl))
+        out["vz"].append(T.layer_mean(v[:, 2], layer, nl))
+        out["vx"].append(T.layer_mean(v[:, 0], layer, nl))
+        touch = ~(fixed[a] & fixed[b])
+        out["coord"].append(float(np.count_nonzero(~fixed[a[touch]]) + np.count_nonzero(~fixed[b[touch]])) / nfree)
+    data = {"/crystal/layer_z": lay["layer_z"], "/crystal/coordination": np.array(out["coord"])}
+    for key, name in (("szz", "layer_stress_zz"), ("szx", "layer_stress_zx"), ("uz", "layer_displacement_z"),
+                      ("ux", "layer_displacement_x"), ("vz", "layer_velocity_z"), ("vx", "layer_velocity_x")):
+        data["/crystal/" + name] = np.array(out[key]).reshape(len(times), nl)
+    if unrecovered:
+        sys.stderr.write("lammps_case: %d of %d contact rows cut by the dump-time Coulomb test do not add up to the "
+                         "per-atom forces when taken as sliding in the step (trace attribute "
+                         "tangential_unrecovered_rows)\n" % (unrecovered, assumed_rows))
+    extra = dict(facts["conventions"])
+    extra.update(pair_style=facts["pair_style"], tangential_assumed_rows=assumed_rows,
+                 tangential_unrecovered_rows=unrecovered, force_balance_residual=balance)
+    if facts["tangential"]:
+        # measured: a contact that opens loses its spring; touching again it starts from f_t = 0
+        extra["history_on_contact_loss"] = "zeroed"
+    return np.array(times), data, extra
+
+
+def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str, facts: dict, version: str) -> None:
+    system = T.read_system(system_path)
+    if facts["model"] == "chain":
+        times, data, extra = convert_chain(workdir, system, facts)
+    else:
+        times, data, extra = convert_crystal(workdir, case, system, facts)
+    extra.update(dt=facts["dt"], deck=open(os.path.join(workdir, "in.case")).read())
+    T.write_trace(out, code="lammps", code_version=version, case_text=case_text, case_name=case["case"]["name"],
+                  system_path=system_path, time_convention=TIME_CONVENTION, time=times, datasets=data,
+                  extra_attrs=extra)
+
+
+def lammps_version(log: str) -> str:
+    for ln in log.splitlines():
+        if ln.startswith("LAMMPS ("):
+            return ln.strip()
+    return "LAMMPS"
+
+
+def _die_with_parent():
+    """LAMMPS gets SIGKILL if this driver dies (Linux prctl PR_SET_PDEATHSIG): a harness that kills
+    the driver never leaves a LAMMPS running. Its Open MPI singleton helper (orted) exits with it."""
+    try:
+        import ctypes
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)
+    except Exception:  # noqa: BLE001 -- not Linux: the process group below still holds
+        pass
+
+
+def run_lammps(exe, work, timeout):
+    """(status, returncode, wall). LAMMPS stays in this driver's process group (the harness kills
+    the group at its own timeout) and dies with the driver; at this driver's timeout it is killed."""
+    t = time.time()
+    with open(os.path.join(work, "log.stdout"), "w") as lo:
+        p = subprocess.Popen([exe, "-in", "in.case", "-log", "log.lammps", "-nocite"], cwd=work, stdout=lo,
+                             stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
+        try:
+            rc = p.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.wait()
+            return "timeout", None, time.time() - t
+    return "ok", rc, time.time() - t
+
+
+def main(argv) -> int:
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case")
+    ap.add_argument("system")
+    ap.add_argument("out")
+    ap.add_argument("--workdir", help="where the deck, data file and dumps go (default: OUT's name + .lammps)")
+    ap.add_argument("--timeout", type=float, default=1800)
+    ap.add_argument("--render-only", action="store_true")
+    ap.add_argument("--lmp", default=os.environ.get("XC_LMP", "lmp"), help="LAMMPS executable (default $XC_LMP or lmp)")
+    ap.add_argument("--keep-dumps", action="store_true", help="keep dump.atoms / dump.pairs after the conversion")
+    ap.add_argument("--convert-only", action="store_true", help="convert the dumps already in --workdir (kept with "
+                    "--keep-dumps) without running LAMMPS")
+    a = ap.parse_args(argv)
+    if os.path.exists(a.out):
+        print("lammps_case: %s exists: nothing is overwritten" % a.out, file=sys.stderr)
+        return 2
+    work = a.workdir or (a.out + ".lammps")
+    case, text = T.load_case(a.case)
+    system = T.read_system(a.system)
+    if a.convert_only:
+        import tempfile
+        facts = render(case, system, tempfile.mkdtemp(prefix="lammps_render_"))
+        t = time.time()
+        convert(work, case, text, a.system, a.out, facts, "LAMMPS (converted from kept dumps)")
+        print("XC_SUMMARY " + json.dumps(dict(code="lammps", case=case["case"]["name"], convert_s=time.time() - t,
+                                              trace=a.out)))
+        return 0
+    os.makedirs(work, exist_ok=False)
+    try:
+        facts = render(case, system, work)
+    except Unsupported as e:
+        print("lammps_case: %s: %s" % (a.case, e), file=sys.stderr)
+        return 2
+    if a.render_only:
+        print("rendered %s" % work)
+        return 0
+    exe = shutil.which(a.lmp)
+    if exe is None:
+        print("lammps_case: LAMMPS executable %s not found (apt-get install lammps)" % a.lmp, file=sys.stderr)
+        return 127
+    status, rc, wall = run_lammps(exe, work, a.timeout)
+    if status == "timeout":
+        print("lammps_case: LAMMPS did not finish within %g s (killed)" % a.timeout, file=sys.stderr)
+        return 124
+    log = open(os.path.join(work, "log.stdout")).read()
+    if rc != 0 or "ERROR" in log:
+        err = [ln for ln in log.splitlines() if "ERROR" in ln]
+        print("lammps_case: LAMMPS failed (exit %s): %s" % (rc, "; ".join(err[-3:]) or log.strip()[-300:]),
+              file=sys.stderr)
+        return 1
+    loops = [float(ln.split()[3]) for ln in log.splitlines() if ln.startswith("Loop time of")]
+    t = time.time()
+    try:
+        convert(work, case, text, a.system, a.out, facts, lammps_version(log))
+    except (ValueError, KeyError, OSError) as e:
+        print("lammps_case: the dumps could not be converted: %s" % e, file=sys.stderr)
+        return 1
+    conv = time.time() - t
+    if not a.keep_dumps:   # the trace file holds what they carried
+        for name in ("dump.atoms", "dump.pairs"):
+            try:
+                os.remove(os.path.join(work, name))
+            except OSError:
+                pass
+    solver = loops[-1] if loops else wall
+    print("XC_SUMMARY " + json.dumps(dict(code="lammps", case=case["case"]["name"], dt=facts["dt"],
+                                          steps=facts["nsteps"], wall_s=wall, solver_s=solver, convert_s=conv,
+                                          particles=facts["n"],
+                                          particle_steps_per_s=facts["n"] * facts["nsteps"] / max(solver, 1e-9),
+                                          trace=a.out)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

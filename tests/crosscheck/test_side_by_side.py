@@ -1,0 +1,266 @@
+"""bench/side_by_side.py: deck rendering, layer-file reading, the ratio and median maths, the exit
+codes (fast, no real runs); one short real run of the three codes under the `realcodes` marker."""
+import json
+import math
+import os
+import shutil
+import sys
+
+import numpy as np
+import pytest
+
+from xclib import sysbuild
+from xclib import traces as T
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(REPO, "bench"))
+import side_by_side as S  # noqa: E402
+
+
+def _system(tmp_path, cases_dir, name):
+    case, _ = T.load_case(os.path.join(cases_dir, name))
+    sp = str(tmp_path / "sys.h5")
+    sysbuild.build(case, sp)
+    return case, T.read_system(sp), sp
+
+
+# ---------------------------------------------------------------- statistics
+def test_paired_ratio_is_the_median_of_the_per_repetition_ratios():
+    # repetition 2 ran under load for both codes: its ratio stays 2, the medians of the times do not
+    other = [10.0, 40.0, 12.0]
+    ref = [5.0, 20.0, 4.0]
+    assert S.paired_ratio(other, ref) == 2.0                      # ratios 2, 2, 3
+    assert S.median(other) / S.median(ref) == 12.0 / 5.0           # what a ratio of medians would say
+    assert S.paired_ratio([3.0, 9.0], [1.0, 1.0]) == 6.0           # even count: the mean of the middle two
+    assert S.paired_ratio([1.0, None], [1.0, 2.0]) == 1.0          # a missing run drops its pair only
+    assert S.paired_ratio([], []) is None
+    assert S.median([3.0, 1.0, 2.0]) == 2.0 and S.median([None]) is None
+
+
+def test_rotation_puts_every_code_in_every_place():
+    items = ["g", "l", "L"]
+    orders = [S.rotation(items, k) for k in range(3)]
+    assert orders == [["g", "l", "L"], ["l", "L", "g"], ["L", "g", "l"]]
+    for pos in range(3):
+        assert sorted(o[pos] for o in orders) == sorted(items)
+    assert S.rotation(items, 4) == orders[1] and S.rotation([], 2) == []
+
+
+# ---------------------------------------------------------------- machine facts
+def test_cpu_facts_reads_the_simd_flags():
+    info = "model name\t: Some CPU\nflags\t\t: fpu sse2 avx avx2 fma avx512f avx512vl\n\nflags\t: fpu\n"
+    f = S.cpu_facts(info)
+    assert f["model"] == "Some CPU" and f["avx2"] and f["avx512f"]
+    assert f["simd"] == ["avx2", "fma", "avx512f", "avx512vl"]
+    assert not S.cpu_facts("flags : sse2 avx2\n")["avx512f"]
+
+
+def test_cmake_cache_finds_the_build_flags(tmp_path):
+    b = tmp_path / "build-avx2"
+    b.mkdir()
+    (b / "CMakeCache.txt").write_text("CMAKE_CXX_FLAGS:STRING=-mno-avx512f\nCMAKE_BUILD_TYPE:STRING=Release\n"
+                                      "GRANWAVE_NATIVE:BOOL=ON\nOTHER:STRING=x\n")
+    c = S.cmake_cache(str(b / "granwave"))
+    assert c["CMAKE_CXX_FLAGS"] == "-mno-avx512f" and c["GRANWAVE_NATIVE"] == "ON" and "OTHER" not in c
+    assert S.cmake_cache(str(tmp_path / "nowhere" / "deeper" / "granwave")) == {}
+
+
+# ---------------------------------------------------------------- cases and decks
+def test_case_texts():
+    long = S.case_text("long")
+    assert "cells = [4, 4, 20000]" in long and "t_end = 4e-5" in long and 'name = "bench_long"' in long
+    assert "interval = 1e-6" in long and "dt = 2e-7" in long          # output every 5 steps, as the others
+    fr = S.case_text("friction")
+    assert "kt = 100000" in fr and 'lever_arm = "contact_point"' in fr and "mu_static = 0.5" in fr
+    assert "kt = 0.0" in S.case_text("frictionless")
+
+
+def test_lammps_deck_frictionless(tmp_path, cases_dir):
+    case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
+    f = S.render_lammps(case, system, str(tmp_path))
+    deck = (tmp_path / "in.lammps").read_text()
+    assert f["nsteps"] == 1000 and f["every"] == 5 and f["n"] == 640
+    assert "pair_style      gran/hooke 100000.0 0.0 0.0 0.0 0.5 0" in deck      # no history, no dashpots
+    assert "fix             integr free nve\n" in deck                          # no torque: no rotation
+    assert "newton          on" in deck and "comm_modify     vel yes" in deck
+    assert "neighbor        0.0002 bin" in deck                                 # 0.2 a: the touching shell
+    assert "neigh_modify    delay 0 every 10 check yes exclude type 2 2 exclude type 2 3 exclude type 3 3" in deck
+    assert "compute         sa all stress/atom NULL pair" in deck
+    assert "fix             layers all ave/chunk 5 1 5 layers c_sa[3] c_sa[5] vz vx c_dsp[3] c_dsp[1]" in deck
+    assert "displace_atoms  source move 0 0 2.0000000000000002e-07 units box" in deck  # 1e-4 d
+    assert "run             1000" in deck and "$" not in deck
+    # the bins are centred on the layers: layer 0 sits at origin + l0/2
+    lay = T.crystal_layout(system)
+    origin = float(deck.split("bin/1d z ")[1].split()[0])
+    z0 = np.min(np.asarray(system["position"])[lay["layer"] == 0, 2])
+    assert math.isclose(origin + 0.5 * lay["l0"], z0, rel_tol=1e-12)
+
+
+def test_lammps_and_liggghts_decks_with_friction(tmp_path, cases_dir):
+    case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
+    case["contact"].update(kt=1e5, mu_static=0.001, mu_dynamic=0.001, lever_arm="contact_point")
+    S.render_lammps(case, system, str(tmp_path))
+    deck = (tmp_path / "in.lammps").read_text()
+    c = T.contact_params(case)
+    assert "pair_style      gran/hooke/history 100000.0 %r 0.0 0.0 %r 0" % (float(c["kt"]), float(c["mu_static"])) in deck
+    assert "fix             integr free nve/sphere" in deck
+    S.render_liggghts(case, system, str(tmp_path))
+    lig = (tmp_path / "in.liggghts").read_text()
+    assert "tangential history absolute_damping on limitForce off" in lig
+    assert "newton          off" in lig          # LIGGGHTS refuses shear history with newton on
+    assert "fix             integr free nve/sphere" in lig
+    assert "coefficientFriction peratomtypepair 3 " + " ".join([repr(float(c["mu_static"]))] * 9) in lig
+    assert "dump" not in lig and "pair/gran/local" not in lig          # no per-pair dumps
+    assert "fix             layers all ave/spatial 5 1 5 z " in lig and "$" not in lig
+
+
+def test_liggghts_deck_frictionless(tmp_path, cases_dir):
+    case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
+    S.render_liggghts(case, system, str(tmp_path))
+    lig = (tmp_path / "in.liggghts").read_text()
+    assert "tangential no_history" in lig and "newton          on" in lig
+    assert "fix             integr free nve\n" in lig
+    assert "compute         sa all stress/atom pair" in lig
+
+
+def test_data_file(tmp_path, cases_dir):
+    case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
+    S.render_lammps(case, system, str(tmp_path))
+    text = (tmp_path / "data.system").read_text()
+    assert "640 atoms" in text and "3 atom types" in text
+    rows = np.loadtxt(text.split("Atoms\n\n")[1].splitlines())
+    lay = T.crystal_layout(system)
+    fixed = np.asarray(system["fixed"]).astype(bool)
+    types = rows[:, 1].astype(int)
+    assert np.all(types[~fixed] == 1)
+    assert np.all(types[fixed & (lay["layer"] < 2)] == 3) and np.all(types[fixed & (lay["layer"] >= 2)] == 2)
+    # mass as density: LAMMPS' 4/3 pi r^3 rho gives the system's mass back to rounding
+    m = 4.0 / 3.0 * math.pi * (rows[:, 2] / 2) ** 3 * rows[:, 3]
+    assert np.allclose(m, system["mass"], rtol=1e-15, atol=0)
+    assert np.all(rows[:, 4] >= 0) and np.all(rows[:, 4] < lay["box_x"])
+
+
+def test_unrenderable_cases_are_refused(tmp_path, cases_dir):
+    for name in ("crystal_small_damped.toml", "crystal_small_stickslip.toml"):
+        case, system, _ = _system(tmp_path, cases_dir, name)
+        with pytest.raises(S.BenchError, match="cannot be rendered"):
+            S.render_lammps(case, system, str(tmp_path))
+
+
+# ---------------------------------------------------------------- layer output -> trace
+def _layer_file(path, fmt_header, steps, coords, counts, values):
+    with open(path, "w") as f:
+        f.write("# header\n# %s\n# Chunk Coord1 Ncount ...\n" % fmt_header)
+        for s, vals in zip(steps, values):
+            f.write("%d %d %d\n" % (s, len(coords), int(sum(counts))))
+            for k, (z, c) in enumerate(zip(coords, counts)):
+                f.write("  %d %.10g %d %s\n" % (k + 1, z, c, " ".join("%.10g" % x for x in vals[k])))
+
+
+def test_layer_file_to_trace(tmp_path, cases_dir):
+    """Synthetic ave/chunk output with empty bins below and above the crystal: the layers come out in
+    order, with the stress in granwave's convention (compression positive) and the means as they are."""
+    case, system, sp = _system(tmp_path, cases_dir, "crystal_small.toml")
+    cp = tmp_path / "case.toml"
+    cp.write_text(open(os.path.join(cases_dir, "crystal_small.toml")).read())
+    lay = T.crystal_layout(system)
+    nl, l0 = lay["nlayers"], lay["l0"]
+    z0 = float(np.min(np.asarray(system["position"])[lay["layer"] == 0, 2]))
+    coords = z0 + l0 * np.arange(-2, nl + 2)              # two empty bins at each end
+    counts = [0, 0] + [16] * nl + [0, 0]
+    steps = [0, 5, 10]
+    vals = []
+    for q, _ in enumerate(steps):
+        v = np.zeros((len(coords), 6))
+        for k in range(nl):
+            v[k + 2] = [-(k + 1) * 1e-4 * (q + 1), 0.0, 1e-3 * k, 0.0, 2e-7 * q, 0.0]
+        vals.append(v)
+    lf = tmp_path / "layers.txt"
+    _layer_file(lf, "Timestep Number-of-chunks Total-count", steps, coords, counts, vals)
+    out = tmp_path / "t.h5"
+    S.layers_to_trace(str(lf), str(cp), sp, str(out), "lammps", "LAMMPS test")
+    tr = T.read_trace(str(out))
+    vol = lay["box_x"] * lay["box_y"] * l0
+    assert np.allclose(tr["time"], np.array(steps) * 2e-7)
+    expect = np.array([[16 * (k + 1) * 1e-4 * (q + 1) / vol for k in range(nl)] for q in range(3)])
+    assert np.allclose(tr["/crystal/layer_stress_zz"], expect, rtol=1e-9, atol=0)
+    assert np.allclose(tr["/crystal/layer_velocity_z"][1], 1e-3 * np.arange(nl))
+    assert np.allclose(tr["/crystal/layer_displacement_z"][2], 4e-7)
+    assert tr["attrs"]["code"] == "lammps"
+    # a file whose bins miss a layer is refused, not misread
+    bad = tmp_path / "bad.txt"
+    _layer_file(bad, "Timestep Number-of-bins", steps, coords[:-4], counts[:-4], [v[:-4] for v in vals])
+    with pytest.raises(ValueError, match="one to one"):
+        S.layers_to_trace(str(bad), str(cp), sp, str(tmp_path / "b.h5"), "liggghts", "x")
+
+
+def test_truncated_layer_file_is_an_error(tmp_path):
+    p = tmp_path / "l.txt"
+    p.write_text("# x\n0 3\n 1 0.0 16 1 2\n 2 1.0 16 1 2\n")
+    with pytest.raises(ValueError, match="2 of 3 rows"):
+        S.read_layer_file(str(p))
+
+
+# ---------------------------------------------------------------- command line
+def _fake_granwave(tmp_path):
+    p = tmp_path / "granwave"
+    p.write_text("#!/bin/sh\necho granwave fake\n")
+    p.chmod(0o755)
+    return str(p)
+
+
+def test_missing_code_exits_2_naming_it(tmp_path, capsys):
+    gw = _fake_granwave(tmp_path)
+    assert S.main(["--granwave", gw, "--lammps", "no-such-lmp-binary", "--codes", "granwave,lammps"]) == 2
+    err = capsys.readouterr().err
+    assert "LAMMPS not found (no-such-lmp-binary)" in err and "--codes" in err
+    assert S.main(["--granwave", str(tmp_path / "missing"), "--codes", "granwave"]) == 2
+    assert "granwave binary not found" in capsys.readouterr().err
+    assert S.main(["--granwave", gw, "--cases", "nonsense"]) == 2
+    assert "unknown case 'nonsense'" in capsys.readouterr().err
+    assert S.main(["--granwave", gw, "--codes", "lammps"]) == 2
+    assert S.main(["--granwave", gw, "--reps", "0", "--codes", "granwave"]) == 2
+
+
+def test_table_and_ratios_from_runs():
+    runners = [S.Runner("granwave", "granwave", "gw", "granwave"), S.Runner("lammps", "lammps", "lmp", "LAMMPS")]
+    run = lambda w, c: dict(wall=w, cpu=c, maxrss_kb=32000)  # noqa: E731
+    res = dict(case="frictionless", particles=3200, steps=6000,
+               runs={"granwave": [run(2.0, 1.0), run(4.0, 2.0), run(2.2, 1.1)],
+                     "lammps": [run(8.0, 4.0), run(16.0, 8.0), run(9.9, 5.5)]},
+               sanity={"granwave": dict(v_half=218.694, z_over_l0=[10, 150]),
+                       "lammps": dict(v_half=218.694, z_over_l0=[10, 150], stress_dev=4.5e-9)})
+    sm = S.summarize(res, runners)
+    assert sm["times"]["granwave"]["wall"] == 2.2 and sm["times"]["lammps"]["cpu"] == 5.5
+    assert sm["ratios"]["lammps/granwave"]["wall"] == 4.0           # 4, 4, 4.5
+    assert sm["ratios"]["lammps/granwave"]["cpu"] == 4.0            # 4, 4, 5
+    t = S.table([res], runners, ["granwave", "lammps"])
+    assert "| frictionless | 3200 x 6000 | granwave | 2.20 / 1.10 | 9.90 / 5.50 | 4.00x (4.00x) | not run (--codes) | - |" in t
+    s = S.sanity_table([res], runners)
+    assert "218.694 (z/l0 10..150)" in s and "4.5e-09" in s
+    assert "31; 10.24" in S.memory_table([res], runners)            # 32000 KiB over 3200 particles
+
+
+# ---------------------------------------------------------------- real codes (short)
+@pytest.mark.realcodes
+def test_real_side_by_side_small(tmp_path, capsys):
+    gw = os.path.join(REPO, "build", "granwave")
+    if not os.path.exists(gw) or not shutil.which("lmp") or not shutil.which("liggghts"):
+        pytest.skip("needs build/granwave, lmp and liggghts")
+    js = tmp_path / "r.json"
+    assert S.main(["--granwave", gw, "--cases", "small", "--reps", "1", "--json", str(js),
+                   "--workdir", str(tmp_path / "w")]) == 0
+    doc = json.loads(js.read_text())
+    c = doc["cases"][0]
+    assert c["particles"] == 640 and c["steps"] == 1300
+    san = c["sanity"]
+    v = san["granwave"]["v_half"]
+    assert v is not None
+    for code in ("lammps", "liggghts"):
+        assert abs(san[code]["v_half"] - v) < 1e-3 * v, (code, san[code])
+        assert san[code]["stress_dev"] < 1e-4              # LIGGGHTS writes 6 digits
+        assert c["runs"][code][0]["neighbor_builds"] == 0
+    r = c["summary"]["ratios"]
+    assert r["lammps/granwave"]["wall"] > 0 and r["liggghts/granwave"]["cpu"] > 0
+    assert "| small | 640 x 1300 |" in capsys.readouterr().out
