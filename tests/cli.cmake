@@ -41,3 +41,20 @@ grep -q -- '--threads must be a positive integer' ${CLI_TMP}/threads.err || { ca
 set_tests_properties("cli: sweep --threads -3 names the option and its range" PROPERTIES LABELS "cli;unit")
 include(${CMAKE_SOURCE_DIR}/tests/cli/guards.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/ruler.cmake)
+# granwave theory: the lattice-dynamics part (issue 15). Bad grid refused; JSON keys present for a
+# Bravais packing, omitted with a note (exit 0) for a polydisperse one.
+add_test(NAME "cli: theory --nk 4 exits 2 naming the option and its range"
+  COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_kt10.toml --nk 4 2> ${CLI_TMP}/nk.err; rc=$?; \
+test $rc -eq 2 || { echo \"exit code $rc, expected 2\"; exit 1; }; \
+grep -q -- '--nk 4: must be an odd integer in \\[3, 10001\\]' ${CLI_TMP}/nk.err || { cat ${CLI_TMP}/nk.err; exit 1; }")
+add_test(NAME "cli: theory --json gives the lattice speeds and six branches; polydisperse: a note"
+  COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_kt10.toml --json --nk 9 > ${CLI_TMP}/lat.json && \
+${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_poly2.toml --json > ${CLI_TMP}/lat_poly.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/lat.json')); D = d['dispersion']; \
+assert len(D['branches']) == 6 and all(len(b['omega']['values']) == len(D['k']['values']) == 9 for b in D['branches']); \
+assert sum(b['kind'] == 'acoustic' for b in D['branches']) == 3; \
+assert d['V_sz_lattice']['value'] < d['V_sz']['value'] and abs(d['V_pz_lattice']['value'] / d['V_pz']['value'] - 1) < 1e-3; \
+p = json.load(open('${CLI_TMP}/lat_poly.json')); assert not p['lattice']['available'] and 'polydisperse' in p['lattice']['note']; \
+assert 'V_sz_lattice' not in p and 'V_sz' in p\"")
+set_tests_properties("cli: theory --nk 4 exits 2 naming the option and its range"
+                     "cli: theory --json gives the lattice speeds and six branches; polydisperse: a note" PROPERTIES LABELS "cli;unit")

@@ -39,7 +39,45 @@ def group(f, g):
     disp = d["dispersion"]
     out["disp"] = {k: disp[k][()] for k in disp}
     out.update({k: d.attrs[k] for k in d.attrs})
+    if "lattice" in d:  # lattice dynamics with rotations of the same packing (issue 15)
+        lat = d["lattice"]
+        out["lattice"] = {k: lat[k][()] for k in lat}
+        out["lattice"]["kind"] = [x.decode() if isinstance(x, bytes) else x for x in out["lattice"]["kind"]]
+    if "dispersion_window" in d:  # the spectrum before the front reaches the far end (no reflection)
+        win = d["dispersion_window"]
+        out["window"] = {k: win[k][()] for k in win}
+        out["window"].update({k: win.attrs[k] for k in win.attrs})
     return out
+
+
+DOF = ["u_x", "u_y", "u_z", "theta_x", "theta_y", "theta_z"]
+
+
+def lattice_lines(ax, g):
+    """Overlay the lattice branches: the ones this drive excites in red, solid where the group
+    velocity is >= 0 (energy from the source towards +z; in granwave's transform a wave travelling
+    to +z sits at k > 0), dotted where it is < 0; the others thin and grey. Free rotations
+    (omega = 0, no tangential spring) are left out. Returns the largest frequency drawn in red."""
+    lat = g.get("lattice")
+    if lat is None:
+        return 0.0
+    l0 = g["l0"]
+    kl = lat["k"] * l0
+    top = 0.0
+    for b in range(lat["omega"].shape[0]):
+        w, vg = lat["omega"][b], lat["group_velocity"][b]
+        if lat["kind"][b] == "free rotation":
+            continue
+        name = f"lattice {DOF[lat['dominant'][b]]} ({lat['kind'][b]})"
+        if lat["excited"][b]:
+            top = max(top, w.max())
+            fwd = np.where(vg >= 0, w, np.nan)
+            bwd = np.where(vg < 0, w, np.nan)
+            ax.plot(kl, fwd, "r-", lw=0.9, label=name + ", v_g > 0")
+            ax.plot(kl, bwd, "r:", lw=0.9)
+        else:
+            ax.plot(kl, w, "-", color="0.6", lw=0.5, label=None)
+    return top
 
 
 def traces(ax, g, zs, style="-", label_suffix=""):
@@ -53,20 +91,26 @@ def spectrum(ax, g, title, ref_omega0=None, ref_label=None):
     d = g["disp"]
     if "spectrum" not in d:
         return
-    F = d["spectrum"]
-    k, w = d["k_axis"], d["omega_axis"]
+    # The reflection-free window when the run has one (the front reached the far end earlier).
+    src = g.get("window", d)
+    F = src["spectrum"]
+    k, w = src["k_axis"], src["omega_axis"]
     l0 = g["l0"]
     ax.pcolormesh(k * l0, w, np.log10(F / F.max() + 1e-12), shading="auto", cmap="Greys", vmin=-4, vmax=0)
     kk = np.linspace(0, np.pi / l0, 200)
-    ax.plot(kk * l0, g["omega0"] * np.sin(kk * l0 / 2), "r-", lw=1, label=f"fit omega_0 = {g['omega0']:.0f} 1/s")
-    ax.plot(d["k"] * l0, d["omega_max"], "c.", ms=3, label="omega_max(k), phi = 4")
+    ax.plot(kk * l0, g["omega0"] * np.sin(kk * l0 / 2), "c--", lw=0.8, label=f"sine fit omega_0 = {g['omega0']:.0f} 1/s")
+    ax.plot(d["k"] * l0, d["omega_max"], "c.", ms=2, label="omega_max(k), phi = 4")
     if ref_omega0 is not None:
         ax.plot(kk * l0, ref_omega0 * np.sin(kk * l0 / 2), "b--", lw=1, label=ref_label)
-    ax.set_xlabel("k l0")
+    top = lattice_lines(ax, g)
+    ax.set_xlabel("k l0  (F = sum u exp(-i omega t + i k z): a wave to +z at k > 0)")
     ax.set_ylabel("omega (1/s)")
-    ax.set_ylim(0, 1.3 * max(g["omega0"], ref_omega0 or 0))
-    ax.set_title(title)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.set_xlim(-np.pi, np.pi)
+    ax.set_ylim(0, max(1.3 * max(g["omega0"], ref_omega0 or 0), 1.1 * top))
+    if "window" in g:
+        title += f"  (t <= {g['window']['t_max'] * 1e3:.2f} ms)"
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=6, loc="upper left")
 
 
 def main(out):
@@ -122,8 +166,10 @@ def main(out):
         o = np.argsort(x)
         ax.errorbar(x[o], cols["v_first_peak"][sel][o], yerr=cols["v_first_peak_err"][sel][o], fmt="o", ms=4, label=f"{mk}: first peak")
         ax.errorbar(x[o], cols["v_half_peak"][sel][o], yerr=cols["v_half_peak_err"][sel][o], fmt="s", mfc="none", ms=4, label=f"{mk}: half peak")
-        ax.plot(x[o], cols["theory_v"][sel][o], "-", label=f"{mk}: eq. (10)")
-    ax.set_xlabel("kt / k"); ax.set_ylabel("V (m/s)"); ax.set_title("Fig. 6 (mu = 0.5)"); ax.legend(fontsize=7)
+        ax.plot(x[o], cols["theory_v"][sel][o], "--", lw=1, label=f"{mk}: eq. (10) (no rotations)")
+        if "theory_v_lattice" in cols:
+            ax.plot(x[o], cols["theory_v_lattice"][sel][o], "-", lw=1, label=f"{mk}: lattice with rotations")
+    ax.set_xlabel("kt / k"); ax.set_ylabel("V (m/s)"); ax.set_title("Fig. 6 (mu = 0.5)"); ax.legend(fontsize=6)
     fig.tight_layout(); fig.savefig(os.path.join(out, "fig6.png"), dpi=120); plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(6, 4))

@@ -1,6 +1,8 @@
-// granwave theory CASE [--json] [--layers LO:HI]: eq. (10) of seed 002 from the case's actual
-// contact network (regular or polydisperse, relaxed as `granwave build` would), the derived
-// sound speeds, anisotropy ratios, lattice omega_0 and the two-body t_c and restitution.
+// granwave theory CASE [--json] [--layers LO:HI] [--nk N]: eq. (10) of seed 002 from the case's
+// actual contact network (regular or polydisperse, relaxed as `granwave build` would), the derived
+// sound speeds, anisotropy ratios, lattice omega_0 and the two-body t_c and restitution; for a
+// monodisperse (Bravais) packing also the lattice dynamics with rotations along z
+// (theory/lattice_dynamics.hpp): long-wave speeds and all six branches over the zone.
 // src/theory/ stays pure (no crystal dependency); the packing is built here (cli links all).
 #include <cmath>
 #include <cstdio>
@@ -14,11 +16,12 @@
 #include "core/error.hpp"
 #include "crystal/packing.hpp"
 #include "theory/crystal_theory.hpp"
+#include "theory/lattice_dynamics.hpp"
 
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave theory CASE.toml [--json] [--layers LO:HI]
+constexpr const char* kHelp = R"(usage: granwave theory CASE.toml [--json] [--layers LO:HI] [--nk N]
 
 Continuum and lattice predictions for a crystal case (seed 002 secs. 2.1, 3.3, 3.4), from the
 packing's actual contact network (polydisperse packings are relaxed first, as in `build`):
@@ -30,13 +33,23 @@ packing's actual contact network (polydisperse packings are relaxed first, as in
   omega_0  of omega = omega_0 sin(k l0/2) from the nearest-layer dynamical matrix (P and S),
            v_k0 = omega_0 l0/2; also with the geometric stiffness of the static contact forces
   t_c, restitution   two-body linear spring-dashpot collision of two mean particles (sec. 2.1)
+  lattice  Bloch waves along z of the packing as built, one particle with 3 translations and
+           3 rotations (I = 2/5 m a^2): normal springs, tangential springs with the case's lever
+           arm ([contact] lever_arm), the static contact forces' geometric stiffness; the
+           long-wave speeds V_pz_lattice, V_sz_lattice (x-polarised), V_sy_lattice, and the six
+           branches omega_b(k) for k in [-pi/l0, pi/l0] with their polarisations. Needs a
+           Bravais lattice: omitted, with a note, for a polydisperse packing.
 Index convention: C[a][b][g][f] with a, g branch (gradient) directions and b, f displacement
 (force) directions; sigma_ab = C_abgf du_f/dx_g.
 
   --layers LO:HI   representative slab (layer indices, inclusive); default: the free layers
+  --nk N           points of the lattice k grid over the zone (odd, 3..10001; default 65)
   --json           one JSON object; every number as {"value": v, "unit": u}; top-level keys
                    V_pz, V_sz, V_sy, t_c, restitution, omega_0 (= omega_0 of P), omega_0_s, v_k0,
-                   v_k0_s, rho_bulk, l0, ratios, C, C_frictionless, C_voigt_sym, ...
+                   v_k0_s, rho_bulk, l0, ratios, C, C_frictionless, C_voigt_sym, V_pz_lattice,
+                   V_sz_lattice, V_sy_lattice, lattice (details, or the note why it is omitted),
+                   dispersion (k grid; per branch omega, group velocity, translation/rotation
+                   fractions and the fraction in each of u_x u_y u_z theta_x theta_y theta_z), ...
 )";
 
 std::string num(double v) {
@@ -88,6 +101,103 @@ void parse_range(const std::string& s, int* lo, int* hi) {
   if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
 }
 
+std::string array_json(const std::vector<double>& v, const char* unit = nullptr) {
+  std::ostringstream o;
+  if (unit) o << "{\"unit\": \"" << unit << "\", \"values\": ";
+  o << "[";
+  for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << num(v[i]);
+  o << "]";
+  if (unit) o << "}";
+  return o.str();
+}
+
+int parse_nk(const std::string& s) {
+  std::size_t used = 0;
+  int n = 0;
+  try {
+    n = std::stoi(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != s.size() || s.empty() || n < 3 || n > 10001 || n % 2 == 0)
+    throw InputError("--nk " + s + ": must be an odd integer in [3, 10001] (points of the k grid over the zone)");
+  return n;
+}
+
+// The lattice-dynamics part: with the packing's prestress (the top-level numbers) and without it.
+struct LatticePart {
+  bool available = false;
+  std::string note;
+  theory::LatticeCell cell;
+  theory::LatticeLongWave lw, lw_unstressed;
+  theory::LatticeDispersion disp;
+  double l0 = 0.0, arm = 0.0, f0 = 0.0;
+};
+
+LatticePart lattice_part(const config::Case& c, const theory::ContactNetwork& net, theory::SlabSelection slab, int nk) {
+  LatticePart L;
+  if (c.crystal->polydispersity > 0.0) {
+    L.note = "omitted: a polydisperse packing (polydispersity = " + num(c.crystal->polydispersity) +
+             " delta) is not a Bravais lattice; Bloch waves of one particle do not describe it";
+    return L;
+  }
+  theory::LatticeCellOptions opt;
+  opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+  std::string why;
+  const auto cell = theory::lattice_cell(net, slab, opt, &why);
+  if (!cell) {
+    L.note = "omitted: " + why;
+    return L;
+  }
+  L.available = true;
+  L.cell = *cell;
+  const theory::Vec3 ez = theory::Vec3::UnitZ();
+  L.l0 = theory::layer_period(L.cell, ez);
+  if (!(L.l0 > 0.0)) throw RunError("theory: the packing has no contacts between layers");
+  L.lw = theory::lattice_long_wave(L.cell, ez);
+  theory::LatticeCell bare = L.cell;
+  for (auto& b : bare.bonds) b.f0 = 0.0;
+  L.lw_unstressed = theory::lattice_long_wave(bare, ez);
+  L.disp = theory::lattice_dispersion(L.cell, ez, L.l0, nk);
+  L.arm = L.cell.bonds.front().arm;
+  L.f0 = L.cell.bonds.front().f0;
+  return L;
+}
+
+std::string dispersion_json(const LatticePart& L) {
+  const auto& d = L.disp;
+  std::ostringstream o;
+  std::vector<double> kl0;
+  for (double k : d.k) kl0.push_back(k * L.l0);
+  o << "{\"direction\": [0, 0, 1], \"zone\": \"k in [-pi/l0, pi/l0]\", \"l0\": " << quantity(L.l0, "m")
+    << ",\n    \"k\": " << array_json(d.k, "1/m") << ",\n    \"k_l0\": " << array_json(kl0, "1")
+    << ",\n    \"dof\": [\"u_x\", \"u_y\", \"u_z\", \"theta_x\", \"theta_y\", \"theta_z\"]"
+    << ",\n    \"note\": \"branches followed through crossings from k = 0; fractions are |e_i|^2 of the mass-weighted "
+       "eigenvector; omega(-k) = omega(k); group velocity d omega/dk\""
+    << ",\n    \"max_hermitian_defect\": " << num(d.max_hermitian_defect) << ", \"min_omega2\": " << quantity(d.min_omega2, "1/s^2")
+    << ",\n    \"branches\": [";
+  for (int b = 0; b < 6; ++b) {
+    const auto& br = d.branches[b];
+    std::vector<double> w, vg, tr, rot;
+    std::array<std::vector<double>, 6> frac;
+    for (const auto& m : br) {
+      w.push_back(m.omega);
+      vg.push_back(m.group_velocity);
+      tr.push_back(m.translation());
+      rot.push_back(m.rotation());
+      for (int i = 0; i < 6; ++i) frac[i].push_back(m.content[i]);
+    }
+    o << (b ? ",\n      " : "\n      ") << "{\"dominant\": \"" << theory::kLatticeDof[d.dominant[b]]
+      << "\", \"kind\": \"" << d.kind(b) << "\", \"omega\": " << array_json(w, "1/s")
+      << ", \"group_velocity\": " << array_json(vg, "m/s") << ", \"translation\": " << array_json(tr)
+      << ", \"rotation\": " << array_json(rot);
+    for (int i = 0; i < 6; ++i) o << ", \"" << theory::kLatticeDof[i] << "\": " << array_json(frac[i]);
+    o << "}";
+  }
+  o << "]}";
+  return o.str();
+}
+
 }  // namespace
 
 int cmd_theory(const Args& args) {
@@ -95,9 +205,20 @@ int cmd_theory(const Args& args) {
     std::cout << kHelp;
     return 0;
   }
-  const auto pos = positionals(args, {"--layers"});
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--layers" || a == "--nk") {
+      ++i;
+      continue;
+    }
+    if (a.rfind("-", 0) == 0 && a != "--json" && a.rfind("--layers=", 0) != 0 && a.rfind("--nk=", 0) != 0)
+      throw InputError("theory: unknown option '" + a + "' (see granwave theory --help)");
+  }
+  const auto pos = positionals(args, {"--layers", "--nk"});
   if (pos.size() != 1) throw InputError("theory: expected one case file (granwave theory --help)");
   const bool json = has_flag(args, "--json");
+  int nk = 65;
+  if (const auto s = option_value(args, "", "--nk"); !s.empty()) nk = parse_nk(s);
   const config::Case c = config::load_case(pos[0]);
   if (c.model != config::Model::crystal || !c.crystal)
     throw InputError(pos[0] + ": granwave theory covers crystal cases (eq. (10)); for a chain's Hertz numbers use granwave check");
@@ -109,7 +230,8 @@ int cmd_theory(const Args& args) {
   net.box_y = pk.box_y;
   net.k = c.contact.kn;
   net.kt = c.contact.kt;
-  for (std::size_t p = 0; p < pk.size(); ++p) net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p]});
+  for (std::size_t p = 0; p < pk.size(); ++p)
+    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
   for (const auto& q : crystal::list_contacts(pk, true))
     net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
 
@@ -117,6 +239,8 @@ int cmd_theory(const Args& args) {
   if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &slab.layer_lo, &slab.layer_hi);
   if (slab.layer_hi >= pk.layers) throw InputError("--layers: the case has " + std::to_string(pk.layers) + " layers");
   const auto r = theory::crystal_prediction(net, slab);
+  const LatticePart L = lattice_part(c, net, slab, nk);
+  const theory::Vec3 ex = theory::Vec3::UnitX(), ey = theory::Vec3::UnitY(), ez = theory::Vec3::UnitZ();
 
   // Sec. 2.1: the collision of two particles of the mean radius.
   const double m = cr.density * 4.0 / 3.0 * std::numbers::pi * cr.radius * cr.radius * cr.radius;
@@ -154,6 +278,27 @@ int cmd_theory(const Args& args) {
       << ", \"C_zzzz/C_zxzx\": " << quantity(r.ratio_zzzz_zxzx, "1") << "},\n";
     o << "  \"major_asymmetry\": " << quantity(r.major_asymmetry, "1") << ",\n";
     o << "  \"minor_asymmetry\": " << quantity(r.minor_asymmetry, "1") << ",\n";
+    if (L.available) {
+      o << "  \"V_pz_lattice\": " << quantity(L.lw.speed_along(ez), "m/s") << ",\n";
+      o << "  \"V_sz_lattice\": " << quantity(L.lw.speed_along(ex), "m/s") << ",\n";
+      o << "  \"V_sy_lattice\": " << quantity(L.lw.speed_along(ey), "m/s") << ",\n";
+      std::vector<double> wr(L.lw.omega_rotation_k0.begin(), L.lw.omega_rotation_k0.end());
+      o << "  \"lattice\": {\"available\": true, \"note\": \"Bloch waves along z with rotations; speeds include the "
+           "prestress's geometric stiffness (unstressed: without it; affine: rotations held, eq. (10)'s kind)\""
+        << ", \"mass\": " << quantity(L.cell.mass, "kg") << ", \"inertia\": " << quantity(L.cell.inertia, "kg m^2")
+        << ", \"contacts\": " << L.cell.bonds.size() << ", \"lever_arm\": " << quantity(L.arm, "m")
+        << ", \"lever_arm_convention\": \""
+        << (c.contact.lever_arm == config::LeverArm::contact_point ? "contact_point" : "radius") << "\""
+        << ", \"f0\": " << quantity(L.f0, "N") << ", \"l0\": " << quantity(L.l0, "m")
+        << ",\n    \"V_pz_unstressed\": " << quantity(L.lw_unstressed.speed_along(ez), "m/s")
+        << ", \"V_sz_unstressed\": " << quantity(L.lw_unstressed.speed_along(ex), "m/s")
+        << ", \"V_pz_affine\": " << quantity(L.lw.speed_along(ez, false), "m/s")
+        << ", \"V_sz_affine\": " << quantity(L.lw.speed_along(ex, false), "m/s")
+        << ",\n    \"omega_rotation_k0\": " << array_json(wr, "1/s") << "},\n";
+      o << "  \"dispersion\": " << dispersion_json(L) << ",\n";
+    } else {
+      o << "  \"lattice\": {\"available\": false, \"note\": \"" << escape(L.note) << "\"},\n";
+    }
     o << "  \"C\": " << tensor_json(r.C) << ",\n";
     o << "  \"C_frictionless\": " << tensor_json(r.C_frictionless) << ",\n";
     o << "  \"C_voigt_sym\": {\"unit\": \"Pa\", \"order\": [\"xx\", \"yy\", \"zz\", \"yz\", \"xz\", \"xy\"], \"values\": [";
@@ -184,6 +329,29 @@ int cmd_theory(const Args& args) {
               r.omega0_s_prestressed);
   std::printf("contact (sec. 2.1, m_ij = m/2 = %.6g kg, %s): t_c = %.6g s, restitution = %.6f, eta_0 = %.6g 1/s\n",
               0.5 * m, clip ? "clip" : "allow", tc.t_c, tc.restitution, tc.eta0);
+  if (L.available) {
+    std::printf("lattice dynamics along z (rotations, I = 2/5 m a^2, lever arm %.6g m (%s), prestress f0 = %.4g N):\n",
+                L.arm, c.contact.lever_arm == config::LeverArm::contact_point ? "contact point" : "radius", L.f0);
+    std::printf("  long waves: V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (without prestress %.4f, %.4f;\n"
+                "  rotations held, eq. (10)'s kind: %.4f, %.4f)\n",
+                L.lw.speed_along(ez), L.lw.speed_along(ex), L.lw.speed_along(ey), L.lw_unstressed.speed_along(ez),
+                L.lw_unstressed.speed_along(ex), L.lw.speed_along(ez, false), L.lw.speed_along(ex, false));
+    std::printf("  rotational modes at k = 0: %.1f, %.1f, %.1f 1/s\n", L.lw.omega_rotation_k0[0], L.lw.omega_rotation_k0[1],
+                L.lw.omega_rotation_k0[2]);
+    const auto& d = L.disp;
+    std::printf("  branches omega (1/s) at k l0 =");
+    const std::size_t mid = d.k.size() / 2, n = d.k.size() - 1 - mid;
+    const std::size_t cols[] = {mid + n / 4, mid + n / 2, mid + 3 * n / 4, d.k.size() - 1};
+    for (auto i : cols) std::printf(" %9.4f", d.k[i] * L.l0);
+    std::printf("\n");
+    for (int b = 0; b < 6; ++b) {
+      std::printf("    %-8s %-13s", theory::kLatticeDof[d.dominant[b]], d.kind(b));
+      for (auto i : cols) std::printf(" %9.0f", d.branches[b][i].omega);
+      std::printf("\n");
+    }
+  } else {
+    std::printf("lattice dynamics: %s\n", L.note.c_str());
+  }
   std::printf("Voigt 6x6 of the symmetrised C (Pa; xx yy zz yz xz xy):\n");
   for (int I = 0; I < 6; ++I) {
     for (int J = 0; J < 6; ++J) std::printf(" %12.5e", r.C_voigt_sym(I, J));

@@ -67,7 +67,8 @@ enum CrystalValue : std::size_t {
   cv_value, cv_mode_s, cv_v_first_peak, cv_v_first_peak_err, cv_v_half_peak, cv_v_half_peak_err, cv_fit_lo, cv_fit_hi,
   cv_omega0, cv_omega0_err, cv_v_k0, cv_v_k0_err, cv_theory_v, cv_theory_v_frictionless, cv_theory_v_pz, cv_theory_v_sz,
   cv_theory_omega0, cv_theory_omega0_prestressed, cv_coordination_theory, cv_coordination0, cv_coordination_min,
-  cv_coordination_max, cv_sigma0, cv_relax_steps, cv_t_c, cv_restitution, cv_t_gamma, cv_m_ij, cv_steps, cv_count
+  cv_coordination_max, cv_sigma0, cv_relax_steps, cv_t_c, cv_restitution, cv_t_gamma, cv_m_ij, cv_steps,
+  cv_theory_v_lattice, cv_count
 };
 
 // Everything one member run produced (for figures); the MemberResult is what the study stores:

@@ -140,10 +140,11 @@ ContactNetwork fcc_network(int nx, int ny, int layers, double l, double mass, do
   net.k = k;
   net.kt = kt;
   const double l0 = l / std::sqrt(2.0);
+  const double a = 0.5 * (l + (k > 0.0 ? f0 / k : 0.0));
   auto id = [&](int i, int j, int n) { return (n * ny + ((j % ny + ny) % ny)) * nx + ((i % nx + nx) % nx); };
   for (int n = 0; n < layers; ++n)
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) net.particles.push_back({mass, n, n * l0});
+      for (int i = 0; i < nx; ++i) net.particles.push_back({mass, n, n * l0, a, 0.4 * mass * a * a});
   // Branch vectors from the lattice offsets (not a minimum image, which is ambiguous for nx = 2).
   for (int n = 0; n < layers; ++n)
     for (int j = 0; j < ny; ++j)

@@ -33,6 +33,8 @@ struct NetworkParticle {
   double mass = 0.0;  // kg
   int layer = 0;      // 0 = bottom
   double z = 0.0;     // centre height (m); used for the slab thickness
+  double radius = 0.0;   // a (m); lattice dynamics only (lever arms), 0 = unknown
+  double inertia = 0.0;  // kg m^2; lattice dynamics only
 };
 struct NetworkContact {
   int i = 0, j = 0;               // particle indices
@@ -88,7 +90,8 @@ double lattice_omega(double omega0, double k, double l0);
 
 // A synthetic regular FCC network (square layers in x-y, seed 002 sec. 2.2): nx x ny particles per
 // layer, `layers` layers, branch length `l`, uniform mass; contacts with the static force f0.
-// For tests and for checking the crystal builder; periodic in x and y.
+// For tests and for checking the crystal builder; periodic in x and y. Radii a = (l + delta)/2 with
+// the overlap delta = f0/k (a = l/2 when k = 0), inertia 2/5 m a^2.
 ContactNetwork fcc_network(int nx, int ny, int layers, double l, double mass, double k, double kt, double f0 = 0.0);
 
 }  // namespace granwave::theory
