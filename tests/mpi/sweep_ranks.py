@@ -101,11 +101,11 @@ def same_file(a, b):
 
 
 def reference(gw, study, d):
-    """The single-process study file (one thread), once per directory."""
+    """The single-process study file (one thread), made afresh by this binary: a file left by an
+    earlier build carries another git_describe (and would be reused, not recomputed, by the sweep)."""
     ref = os.path.join(d, "serial.h5")
-    if not os.path.exists(ref):
-        shutil.rmtree(ref + ".parts", ignore_errors=True)
-        subprocess.run([gw, "sweep", study, "-o", ref, "--quiet", "--threads", "1"], check=True, capture_output=True)
+    fresh(ref)
+    subprocess.run([gw, "sweep", study, "-o", ref, "--quiet", "--threads", "1"], check=True, capture_output=True)
     return ref
 
 
