@@ -44,10 +44,9 @@ std::size_t state_bytes(const crystal::Dynamics& d) {
     b += bytes(*v);
   b += bytes(d.mobile);
   const auto& C = d.contacts;
-  b += bytes(C.i) + bytes(C.j) + bytes(C.image_x) + bytes(C.image_y) + bytes(C.sliding) + bytes(C.first) +
-       bytes(C.entries);
-  for (const auto* v : {&C.shift_x, &C.shift_y, &C.xi_x, &C.xi_y, &C.xi_z, &C.delta, &C.f_x, &C.f_y, &C.f_z,
-                        &C.nf_x, &C.nf_y, &C.nf_z, &C.dissipated})
+  b += bytes(C.i) + bytes(C.j) + bytes(C.image_x) + bytes(C.image_y) + bytes(C.first) + bytes(C.entries);
+  for (const auto* v : {&C.shift_x, &C.shift_y, &C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,
+                        &C.nf_z, &C.dissipated})
     b += bytes(*v);
   return b + 3 * d.size() * sizeof(double);  // positions at the last list build
 }
