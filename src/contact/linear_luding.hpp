@@ -34,19 +34,11 @@ struct LinearLuding {
   }
 
   // Sticking contacts, branch-free; a contact that slides is deferred.
-  Response evaluate(const Contact& c, History& h, Deferrable) const {
-    Geometry g = geometry(c, h);
-    const TangentialTest test = tangential_test(tangential, g.xi, g.vt, g.f_n, h.sliding != 0.0);
-    h = {g.xi.x(), g.xi.y(), g.xi.z(), 0.0};
-    return finish(c, g, test.force, 0.0, test.sliding);
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const {
+    return respond<false>(c, h);
   }
   // Any contact, eqs. (5), (7), (8).
-  Response evaluate(const Contact& c, History& h) const {
-    Geometry g = geometry(c, h);
-    const TangentialResult res = tangential_force(tangential, g.xi, g.vt, g.f_n, h.sliding != 0.0);
-    h = {res.spring.x(), res.spring.y(), res.spring.z(), res.sliding ? 1.0 : 0.0};
-    return finish(c, g, res.force, res.slip_loss, false);
-  }
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
 
   // The spring's energy is lost when the contact opens.
   double opening_loss(const History& h) const { return 0.5 * tangential.kt * h.xi().squaredNorm(); }
@@ -65,11 +57,8 @@ struct LinearLuding {
   }
 
  private:
-  struct Geometry {
-    double f_n, loss_n;
-    Vec3 vt, xi;
-  };
-  Geometry geometry(const Contact& c, const History& h) const {
+  template <bool Exact>
+  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
     const double f_n = normal_force(normal, c.delta, c.delta_dot);  // eq. (1) text
     // Dissipated normally: the work of (f_n - k delta) against the approach (dashpot, or a clipped pull).
     const double loss_n = (f_n - normal.kn * c.delta) * c.delta_dot * c.dt;
@@ -78,14 +67,26 @@ struct LinearLuding {
     const Vec3 vij = c.dv + arm_i * c.n.cross(c.w_i) + arm_j * c.n.cross(c.w_j);  // eq. (4)
     const Vec3 vt = tangential_velocity(vij, c.n);                                // eq. (3)
     const Vec3 xi = advance_spring(tangential, h.xi(), c.n, vt, c.dt);           // eqs. (2), (6)
-    return {f_n, loss_n, vt, xi};
-  }
-  Response finish(const Contact& c, const Geometry& g, const Vec3& ft, double slip_loss, bool deferred) const {
-    // Dissipated tangentially: the dashpot's power (and, without a spring, all of -f^t . v_t),
-    // plus the slip removed from the spring by eq. (7).
-    const double loss_t = tangential.kt == 0.0 ? -ft.dot(g.vt) * c.dt
-                                               : tangential.gamma_t * g.vt.squaredNorm() * c.dt + slip_loss;
-    return {g.f_n * c.n + ft, c.n.cross(ft), g.loss_n + loss_t, deferred};
+    Vec3 ft;
+    double slip_loss = 0.0;
+    bool deferred = false;
+    if constexpr (Exact) {
+      const TangentialResult res = tangential_force(tangential, xi, vt, f_n, h.sliding != 0.0);
+      ft = res.force;
+      slip_loss = res.slip_loss;
+      h = History{res.spring.x(), res.spring.y(), res.spring.z(), res.sliding ? 1.0 : 0.0};
+    } else {
+      const TangentialTest test = tangential_test(tangential, xi, vt, f_n, h.sliding != 0.0);
+      ft = test.force;
+      deferred = test.sliding;
+      h = History{xi.x(), xi.y(), xi.z(), 0.0};
+    }
+    // Dissipated tangentially: the dashpot's power (without a spring, all of -f^t . v_t), plus
+    // the slip removed from the spring by eq. (7).
+    const double loss_dashpot_only = -ft.dot(vt) * c.dt;
+    const double loss_spring = tangential.gamma_t * vt.squaredNorm() * c.dt + slip_loss;
+    const double loss_t = select(tangential.kt == 0.0, loss_dashpot_only, loss_spring);
+    return {f_n * c.n + ft, c.n.cross(ft), loss_n + loss_t, deferred};
   }
 };
 

@@ -87,11 +87,11 @@ struct TangentialTest {
 inline TangentialTest tangential_test(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
                                       bool was_sliding) {
   const Vec3 f_test = -p.kt * xi - p.gamma_t * vt;  // eq. (5)
-  const double f_pos = p.coulomb_on_magnitude ? std::abs(f_n) : std::max(f_n, 0.0);
+  const double f_pos = select(p.coulomb_on_magnitude, std::abs(f_n), select(f_n < 0.0, 0.0, f_n));  // max(f_n, 0)
   const double f_static = p.mu_static * f_pos;    // f_C^s
   const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
   const double magnitude2 = f_test.squaredNorm();
-  const double limit = was_sliding ? f_dynamic : f_static;
+  const double limit = select(was_sliding, f_dynamic, f_static);
   return {f_test, magnitude2, f_dynamic, magnitude2 > limit * limit};
 }
 

@@ -1,6 +1,8 @@
 // The 3-vector of the contact laws (header-only, no SIMD of its own).
 #pragma once
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace granwave::contact {
 
@@ -28,9 +30,18 @@ struct Vec3 {
   friend Vec3 operator/(const Vec3& a, double s) { return {a.vx / s, a.vy / s, a.vz / s}; }
 };
 
-// Componentwise c ? a : b (both sides are computed: branch-free laws vectorise).
+// c ? a : b, bit for bit, as a blend of the two bit patterns: no branch. Both sides are
+// computed anyway; written as a ternary, GCC moves the arithmetic of a side into a branch that
+// only it needs, and a loop with arithmetic under a branch vectorises only with AVX-512's masked
+// operations (-ftrapping-math forbids executing it unconditionally). With select the loop over
+// contacts vectorises on AVX2 as well, with the same bits.
+inline double select(bool c, double a, double b) {
+  const std::uint64_t m = std::uint64_t{0} - static_cast<std::uint64_t>(c);
+  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & m) | (std::bit_cast<std::uint64_t>(b) & ~m));
+}
+// Componentwise.
 inline Vec3 select(bool c, const Vec3& a, const Vec3& b) {
-  return {c ? a.vx : b.vx, c ? a.vy : b.vy, c ? a.vz : b.vz};
+  return {select(c, a.vx, b.vx), select(c, a.vy, b.vy), select(c, a.vz, b.vz)};
 }
 
 }  // namespace granwave::contact

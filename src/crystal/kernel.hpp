@@ -121,20 +121,21 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
     const bool deferred = Vector && Defers && res.deferred;
     // History: kept for a deferred contact (the exact sweep starts from it again), lost on opening.
     const std::array<double, NH> h1 = contact::history_to(h);
-    for_columns<NH>([&](std::size_t q) { hist[q][c] = deferred ? h0[q] : (open ? 0.0 : h1[q]); });
+    using contact::select;
+    for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
     if constexpr (Torques) {
-      cnx[c] = open ? 0.0 : res.nf.x();
-      cny[c] = open ? 0.0 : res.nf.y();
-      cnz[c] = open ? 0.0 : res.nf.z();
+      cnx[c] = select(open, 0.0, res.nf.x());
+      cny[c] = select(open, 0.0, res.nf.y());
+      cnz[c] = select(open, 0.0, res.nf.z());
     }
     if constexpr (Dissipative) {
-      const double lost = open ? law.opening_loss(contact::history_from<History>(h0)) : res.loss;
-      diss[c] = deferred ? diss[c] : diss[c] + lost;
+      const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
+      diss[c] = select(deferred, diss[c], diss[c] + lost);
     }
     cdelta[c] = delta;
-    cfx[c] = open ? 0.0 : res.force.x();
-    cfy[c] = open ? 0.0 : res.force.y();
-    cfz[c] = open ? 0.0 : res.force.z();
+    cfx[c] = select(open, 0.0, res.force.x());
+    cfy[c] = select(open, 0.0, res.force.y());
+    cfz[c] = select(open, 0.0, res.force.z());
     return deferred;
   };
   auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
