@@ -71,7 +71,7 @@ struct TangentialResult {
   Vec3 force;        // f^t on particle i (j gets -f^t), eq. (8)
   Vec3 spring;       // xi' to keep for the next step (eq. (6) sticking, eq. (7) sliding)
   bool sliding;      // the dynamic (sliding) case (2) is active
-  double slip_loss;  // energy dissipated by the slip in this step (J); 0 when sticking
+  double slip_loss;  // energy dissipated by the slip in this step beyond gamma_t |v_t|^2 dt (J); 0 when sticking
 };
 
 // Eq. (5) with the stick-slip switching of the text: a sticking contact starts to slide when
@@ -105,7 +105,13 @@ inline TangentialResult sliding_force(const TangentialSpringParams& p, const Tan
   // Dissipated by the slip: the Coulomb force times the displacement the reset (7) removes
   // from the spring, |xi - xi'| = (|f_o^t| - f_C^d)/k_t (exact for steady sliding; the
   // elastic energy of the over-stretched trial spring beyond that never acted on the spheres).
-  const double slip_loss = test.f_dynamic * (magnitude - test.f_dynamic) / p.kt;
+  // With a dashpot, eq. (7) keeps -gamma_t v_t in the force, but the spring (and the dashpot
+  // beside it) only stretch by v_t dt - (xi - xi'), xi - xi' = -slip t: the dashpot dissipates
+  // gamma_t v_t . (v_t dt - (xi - xi')), i.e. gamma_t |v_t|^2 dt (which the caller books, as
+  // for a sticking contact) plus gamma_t slip (v_t . t), booked here. (Booking gamma_t |v_t|^2 dt
+  // alone counts a steadily sliding contact's dissipation twice: its force is capped at f_C^d.)
+  const double slip = (magnitude - test.f_dynamic) / p.kt;
+  const double slip_loss = test.f_dynamic * (magnitude - test.f_dynamic) / p.kt + p.gamma_t * slip * vt.dot(t);
   return {force, spring, true, slip_loss};
 }
 
