@@ -15,7 +15,11 @@
 
 namespace granwave::contact {
 
-struct LinearLuding {
+// Dashpots = false is the same law without dashpots (gamma_0 = gamma_t = 0, or a jump of
+// positions), bit for bit: f^n = k delta (k delta + 0 delta_dot is k delta), and a sticking
+// contact dissipates nothing; the vectorised evaluation then skips that arithmetic.
+template <bool Dashpots>
+struct LinearLudingLaw {
   LinearSpringDashpotParams normal;
   TangentialSpringParams tangential;
   double shift = 0.0;  // lever arm of f^t: a - shift delta; 0 (eq. (4), "radius") or 1/2 ("contact_point")
@@ -27,10 +31,11 @@ struct LinearLuding {
   };
   static constexpr bool torques = true;
 
-  LinearLuding(const LinearSpringDashpotParams& n, const TangentialSpringParams& t, bool contact_point_arm)
+  LinearLudingLaw(const LinearSpringDashpotParams& n, const TangentialSpringParams& t, bool contact_point_arm)
       : normal(n), tangential(t), shift(contact_point_arm ? 0.5 : 0.0) {
     normal.validate();
     tangential.validate();
+    if (!Dashpots) normal.gamma_n = tangential.gamma_t = 0.0;
   }
 
   // Sticking contacts, branch-free; a contact that slides is deferred.
@@ -49,19 +54,15 @@ struct LinearLuding {
   double arm_shift() const { return shift; }
   bool dissipates() const { return true; }  // slip
   // A jump of positions: no dashpots (the springs see no velocity either).
-  LinearLuding without_rates() const {
-    LinearLuding law = *this;
-    law.normal.gamma_n = 0.0;
-    law.tangential.gamma_t = 0.0;
-    return law;
-  }
+  LinearLudingLaw<false> without_rates() const { return {normal, tangential, shift != 0.0}; }
 
  private:
   template <bool Exact>
   [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
-    const double f_n = normal_force(normal, c.delta, c.delta_dot);  // eq. (1) text
+    // Eq. (1) text; without a dashpot a touching contact never pulls, so clipping changes nothing.
+    const double f_n = Dashpots ? normal_force(normal, c.delta, c.delta_dot) : normal.kn * c.delta;
     // Dissipated normally: the work of (f_n - k delta) against the approach (dashpot, or a clipped pull).
-    const double loss_n = (f_n - normal.kn * c.delta) * c.delta_dot * c.dt;
+    const double loss_n = Dashpots ? (f_n - normal.kn * c.delta) * c.delta_dot * c.dt : 0.0;
     // Lever arms: a - 0 * delta = a exactly for the seed's eq. (4) (the default).
     const double arm_i = c.a_i - shift * c.delta, arm_j = c.a_j - shift * c.delta;
     const Vec3 vij = c.dv + arm_i * c.n.cross(c.w_i) + arm_j * c.n.cross(c.w_j);  // eq. (4)
@@ -83,11 +84,19 @@ struct LinearLuding {
     }
     // Dissipated tangentially: the dashpot's power (without a spring, all of -f^t . v_t), plus
     // the slip removed from the spring by eq. (7).
-    const double loss_dashpot_only = -ft.dot(vt) * c.dt;
-    const double loss_spring = tangential.gamma_t * vt.squaredNorm() * c.dt + slip_loss;
-    const double loss_t = select(tangential.kt == 0.0, loss_dashpot_only, loss_spring);
-    return {f_n * c.n + ft, c.n.cross(ft), loss_n + loss_t, deferred};
+    double loss = 0.0;
+    if constexpr (Dashpots) {
+      const double loss_dashpot_only = -ft.dot(vt) * c.dt;
+      const double loss_spring = tangential.gamma_t * vt.squaredNorm() * c.dt + slip_loss;
+      loss = loss_n + select(tangential.kt == 0.0, loss_dashpot_only, loss_spring);
+    } else {
+      loss = slip_loss;  // + 0: no dashpot, and a spring (k_t > 0: friction without dashpots)
+    }
+    return {f_n * c.n + ft, c.n.cross(ft), loss, deferred};
   }
 };
+
+// The law of a case with friction.
+using LinearLuding = LinearLudingLaw<true>;
 
 }  // namespace granwave::contact

@@ -23,8 +23,10 @@ std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp) 
                                                    cp.coulomb_normal == config::CoulombNormal::magnitude};
   normal.validate();
   tangential.validate();
-  if (tangential.active())
-    return model_of(contact::LinearLuding(normal, tangential, cp.lever_arm == config::LeverArm::contact_point));
+  const bool contact_point = cp.lever_arm == config::LeverArm::contact_point;
+  const bool dashpots = normal.gamma_n > 0.0 || tangential.gamma_t > 0.0;
+  if (tangential.active() && dashpots) return model_of(contact::LinearLudingLaw<true>(normal, tangential, contact_point));
+  if (tangential.active()) return model_of(contact::LinearLudingLaw<false>(normal, tangential, contact_point));
   if (normal.gamma_n > 0.0) return model_of(contact::HookeLaw<true>(normal));
   return model_of(contact::HookeLaw<false>(normal));
 }
@@ -121,20 +123,20 @@ void Dynamics::rebuild() {
       fresh.nf_z[c] = old.nf_z[u];
     }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
   }
-  // Per-particle contact lists (CSR) in contact order, for the deterministic gather.
-  fresh.first.assign(n + 1, 0);
+  // Per-particle contact lists in contact order, for the deterministic gather: the contacts
+  // where the particle is j (a CSR list), then the range where it is i (the list is sorted by i).
+  fresh.j_first.assign(n + 1, 0);
+  fresh.i_first.assign(n + 1, 0);
   for (std::size_t c = 0; c < nc; ++c) {
-    ++fresh.first[fresh.i[c] + 1];
-    ++fresh.first[fresh.j[c] + 1];
+    ++fresh.j_first[fresh.j[c] + 1];
+    ++fresh.i_first[fresh.i[c] + 1];
   }
-  std::partial_sum(fresh.first.begin(), fresh.first.end(), fresh.first.begin());
-  fresh.entries.resize(2 * nc);
+  std::partial_sum(fresh.j_first.begin(), fresh.j_first.end(), fresh.j_first.begin());
+  std::partial_sum(fresh.i_first.begin(), fresh.i_first.end(), fresh.i_first.begin());
+  fresh.j_contacts.resize(nc);
   {
-    std::vector<std::int32_t> fill(fresh.first.begin(), fresh.first.end() - 1);
-    for (std::size_t c = 0; c < nc; ++c) {
-      fresh.entries[fill[fresh.i[c]]++] = static_cast<std::int32_t>(c);
-      fresh.entries[fill[fresh.j[c]]++] = ~static_cast<std::int32_t>(c);
-    }
+    std::vector<std::int32_t> fill(fresh.j_first.begin(), fresh.j_first.end() - 1);
+    for (std::size_t c = 0; c < nc; ++c) fresh.j_contacts[fill[fresh.j[c]]++] = static_cast<std::int32_t>(c);
   }
   contacts = std::move(fresh);
   x_build_ = x;
@@ -152,8 +154,9 @@ void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
   const std::int64_t n = static_cast<std::int64_t>(size());
   constexpr bool fr = Torques;
-  const std::int32_t* __restrict first = C.first.data();
-  const std::int32_t* __restrict entries = C.entries.data();
+  const std::int32_t* __restrict j_first = C.j_first.data();
+  const std::int32_t* __restrict j_contacts = C.j_contacts.data();
+  const std::int32_t* __restrict i_first = C.i_first.data();
   const double* __restrict cfx = C.f_x.data();
   const double* __restrict cfy = C.f_y.data();
   const double* __restrict cfz = C.f_z.data();
@@ -165,15 +168,18 @@ void Dynamics::particle_pass(double h) {
   for (std::int64_t p = 0; p < n; ++p) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
-    const std::int32_t k0 = first[p], k1 = first[p + 1];
-    for (std::int32_t k = k0; k < k1; ++k) {
-      const std::int32_t e = entries[k];
-      const std::int32_t c = e >= 0 ? e : ~e;
-      const double s = e >= 0 ? 1.0 : -1.0;
-      sx += s * cfx[c];
-      sy += s * cfy[c];
-      sz += s * cfz[c];
-      if constexpr (fr) {  // both spheres feel -a n x f^t (contact::tangential_torque)
+    // Both spheres feel -a n x f^t (contact::tangential_torque); j gets -f (s + (-f) is s - f).
+    auto add = [&](std::int32_t c, auto as_j) __attribute__((always_inline)) {
+      if constexpr (decltype(as_j)::value) {
+        sx -= cfx[c];
+        sy -= cfy[c];
+        sz -= cfz[c];
+      } else {
+        sx += cfx[c];
+        sy += cfy[c];
+        sz += cfz[c];
+      }
+      if constexpr (fr) {
         nx += cnx[c];
         ny += cny[c];
         nz += cnz[c];
@@ -183,7 +189,9 @@ void Dynamics::particle_pass(double h) {
           dnz += cdelta[c] * cnz[c];
         }
       }
-    }
+    };
+    for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});
+    for (std::int32_t c = i_first[p]; c < i_first[p + 1]; ++c) add(c, std::false_type{});
     fx[p] = sx;
     fy[p] = sy;
     fz[p] = sz;
@@ -301,11 +309,10 @@ double Dynamics::verlet_correction() const {
 }
 
 int Dynamics::touching_contacts_of(std::size_t p) const {
+  const ContactList& C = contacts;
   int k = 0;
-  for (std::int32_t e = contacts.first[p]; e < contacts.first[p + 1]; ++e) {
-    const std::int32_t c = contacts.entries[e] >= 0 ? contacts.entries[e] : ~contacts.entries[e];
-    if (contacts.delta[c] > 0.0) ++k;
-  }
+  for (std::int32_t e = C.j_first[p]; e < C.j_first[p + 1]; ++e) k += C.delta[C.j_contacts[e]] > 0.0;
+  for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) k += C.delta[c] > 0.0;
   return k;
 }
 

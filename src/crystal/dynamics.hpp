@@ -35,8 +35,10 @@ struct ContactList {
   std::size_t history_columns = 0;
   double* history_column(std::size_t k) { return history.data() + k * size(); }
   const double* history_column(std::size_t k) const { return history.data() + k * size(); }
-  // Per particle: its contacts, as c (particle is i) or ~c (particle is j), in contact order.
-  std::vector<std::int32_t> first, entries;
+  // Per particle p, its contacts in contact order: first those where p is j (i < j, so they come
+  // before p's own), j_contacts[j_first[p] .. j_first[p + 1]), then those where p is i, the range
+  // i_first[p] .. i_first[p + 1] of the list (sorted by i).
+  std::vector<std::int32_t> j_first, j_contacts, i_first;
   std::size_t size() const { return i.size(); }
 };
 
