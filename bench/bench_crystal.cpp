@@ -3,7 +3,8 @@
 // cost per step as the number of layers grows; memory per particle.
 // Usage: bench_crystal [steps=2000] [repeats=3]
 // Each figure is the best of `repeats` measurements, by wall clock and by CPU time (on a loaded
-// machine the wall clock also counts other processes' turns; CPU time does not).
+// machine the wall clock also counts other processes' turns; CPU time does not). The passes of
+// one step are timed alone as well, each the fastest of many single calls (robust under load).
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -17,7 +18,9 @@
 
 #include "config/case.hpp"
 #include "crystal/dynamics.hpp"
+#include "crystal/kernel.hpp"
 #include "crystal/packing.hpp"
+#include "crystal/simulation.hpp"
 
 using namespace granwave;
 
@@ -44,10 +47,9 @@ std::size_t state_bytes(const crystal::Dynamics& d) {
     b += bytes(*v);
   b += bytes(d.mobile);
   const auto& C = d.contacts;
-  b += bytes(C.i) + bytes(C.j) + bytes(C.image_x) + bytes(C.image_y) + bytes(C.sliding) + bytes(C.first) +
-       bytes(C.entries);
-  for (const auto* v : {&C.shift_x, &C.shift_y, &C.xi_x, &C.xi_y, &C.xi_z, &C.delta, &C.f_x, &C.f_y, &C.f_z,
-                        &C.nf_x, &C.nf_y, &C.nf_z, &C.dissipated})
+  b += bytes(C.i) + bytes(C.j) + bytes(C.image_x) + bytes(C.image_y) + bytes(C.j_first) + bytes(C.j_contacts) + bytes(C.i_first);
+  for (const auto* v : {&C.shift_x, &C.shift_y, &C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,
+                        &C.nf_z, &C.dissipated})
     b += bytes(*v);
   return b + 3 * d.size() * sizeof(double);  // positions at the last list build
 }
@@ -89,6 +91,31 @@ crystal::Dynamics excited(const config::Case& c) {
   return dyn;
 }
 
+// The vector extensions this binary was compiled for (the loops use what the compiler may).
+const char* build_flags() {
+#if defined(__AVX512F__)
+  return "AVX-512F (512-bit vectors)";
+#elif defined(__AVX2__)
+  return "AVX2 (256-bit vectors, no AVX-512)";
+#elif defined(__AVX__)
+  return "AVX";
+#else
+  return "SSE2 only";
+#endif
+}
+
+// Fastest of `calls` single calls of f, in seconds.
+template <class F>
+double fastest(int calls, F&& f) {
+  double best = 1e300;
+  for (int k = 0; k < calls; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -98,8 +125,8 @@ int main(int argc, char** argv) {
 #ifdef _OPENMP
   max_threads = omp_get_max_threads();
 #endif
-  std::printf("crystal time step, %ld steps per measurement, best of %d (OpenMP max threads %d)\n", steps, repeats,
-              max_threads);
+  std::printf("crystal time step, %ld steps per measurement, best of %d (OpenMP max threads %d); built for %s\n",
+              steps, repeats, max_threads, build_flags());
   std::printf("%-34s %8s %12s %18s %18s\n", "case", "threads", "us/step", "particle-steps/s", "(by CPU time)");
   // The contact-point lever arm (YADE's and LIGGGHTS' convention) costs one more sum per contact.
   struct Row {
@@ -128,6 +155,32 @@ int main(int argc, char** argv) {
 #ifdef _OPENMP
   omp_set_num_threads(1);
 #endif
+  // The passes alone, 1 thread: ns per contact for the contact pass, per particle for a step.
+  std::printf("\npasses alone (1 thread, fastest of %d calls)\n%-34s %9s %14s %16s %16s\n", 50 * repeats, "case",
+              "contacts", "ns/contact", "step ns/particle", "step-contact ns");
+  for (const Row& row : {Row{0.0, config::LeverArm::radius, "4x4x200, frictionless"},
+                         Row{1e5, config::LeverArm::radius, "4x4x200, kt = k (friction)"},
+                         Row{1e5, config::LeverArm::contact_point, "4x4x200, kt = k, contact-point arm"}}) {
+    crystal::Dynamics dyn = excited(seed_case(200, row.kt, row.arm));
+    dyn.parallel_min_particles = dyn.size() + 1;
+    for (int k = 0; k < 20; ++k) dyn.step();
+    const int calls = 50 * repeats;
+    const double pass = fastest(calls, [&] { dyn.model().contact_pass(dyn, dyn.dt(), true); });
+    const double step = fastest(calls, [&] { dyn.step(); });
+    std::printf("%-34s %9zu %14.2f %16.2f %16.2f\n", row.name, dyn.contacts.size(), 1e9 * pass / dyn.contacts.size(),
+                1e9 * step / dyn.size(), 1e9 * (step - pass) / dyn.size());
+    // The observers of one sample (crystal/simulation.cpp), us per call.
+    std::vector<double> zz, zx;
+    double sink = 0.0;
+    const double t_stress = fastest(calls, [&] { crystal::layer_stress(dyn, zz, zx); });
+    const double t_coord = fastest(calls, [&] { sink += crystal::coordination(dyn); });
+    const double t_pot = fastest(calls, [&] { sink += dyn.potential_energy(); });
+    const double t_diss = fastest(calls, [&] { sink += dyn.dissipated_energy(); });
+    const double t_kin = fastest(calls, [&] { sink += dyn.kinetic_energy() + dyn.verlet_correction(); });
+    std::printf("%-34s sample: layer_stress %.1f us, coordination %.1f us, potential %.1f us, dissipated %.1f us, "
+                "kinetic + Verlet %.1f us%s\n",
+                "", 1e6 * t_stress, 1e6 * t_coord, 1e6 * t_pot, 1e6 * t_diss, 1e6 * t_kin, sink == 0.123 ? " " : "");
+  }
   std::printf("\ncost per step as layers grow (1 thread)\n%-13s %10s %10s %12s %16s %16s %14s\n", "case", "layers",
               "particles", "us/step", "ns/particle-step", "(by CPU time)", "bytes/particle");
   for (double kt : {0.0, 1e5}) {

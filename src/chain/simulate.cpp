@@ -56,10 +56,7 @@ inline void Stepper::accelerations(const double* __restrict u, double* __restric
   const double* __restrict g = g_.data();
   const double* __restrict inv_m = inv_m_.data();
   double* __restrict F = F_.data();
-  for (std::size_t j = 0; j < n; ++j) {
-    const double d = std::max(g[j] + u[j] - u[j + 1], 0.0);
-    F[j + 1] = A[j] * d * std::sqrt(d);  // branch-free d^(3/2)
-  }
+  for (std::size_t j = 0; j < n; ++j) F[j + 1] = contact::hertz_force(A[j], g[j] + u[j] - u[j + 1]);
   for (std::size_t i = 0; i < n; ++i) a[i] = (F[i] - F[i + 1]) * inv_m[i];
 }
 
@@ -84,10 +81,8 @@ void Stepper::step() {
       v[i] += h * a[i];
       u[i] += dt * v[i];
     }
-    for (std::size_t j = 0; j < moving; ++j) {  // eq. (13), as in accelerations()
-      const double d = std::max(g[j] + u[j] - u[j + 1], 0.0);
-      F[j + 1] = A[j] * d * std::sqrt(d);
-    }
+    for (std::size_t j = 0; j < moving; ++j)  // eq. (13), as in accelerations()
+      F[j + 1] = contact::hertz_force(A[j], g[j] + u[j] - u[j + 1]);
     for (std::size_t i = 0; i < pushed; ++i) {
       a[i] = (F[i] - F[i + 1]) * inv_m[i];
       v[i] += h * a[i];

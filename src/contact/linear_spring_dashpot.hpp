@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "contact/vec3.hpp"
 #include "core/error.hpp"
 
 namespace granwave::contact {
@@ -27,7 +28,7 @@ struct LinearSpringDashpotParams {
 // delta > 0 is the overlap; delta_dot > 0 when the spheres approach.
 inline double normal_force(const LinearSpringDashpotParams& p, double delta, double delta_dot) {
   const double f = p.kn * delta + p.gamma_n * delta_dot;
-  return (p.clip_tension && f < 0.0) ? 0.0 : f;
+  return select(p.clip_tension & (f < 0.0), 0.0, f);
 }
 
 // Elastic energy of the normal spring.

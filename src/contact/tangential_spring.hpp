@@ -17,38 +17,10 @@
 #include <cmath>
 #include <string>
 
+#include "contact/vec3.hpp"
 #include "core/error.hpp"
 
 namespace granwave::contact {
-
-// A plain 3-vector. Unlike Eigen::Vector3d it carries no SIMD of its own, so a loop over
-// contacts that calls these laws vectorises across contacts; sums run left to right,
-// (a_0 b_0 + a_1 b_1) + a_2 b_2, the order Eigen used, so results are unchanged.
-struct Vec3 {
-  double vx = 0.0, vy = 0.0, vz = 0.0;
-  Vec3() = default;
-  Vec3(double x, double y, double z) : vx(x), vy(y), vz(z) {}
-  static Vec3 Zero() { return {}; }
-  double x() const { return vx; }
-  double y() const { return vy; }
-  double z() const { return vz; }
-  double dot(const Vec3& b) const { return vx * b.vx + vy * b.vy + vz * b.vz; }
-  double squaredNorm() const { return dot(*this); }
-  double norm() const { return std::sqrt(squaredNorm()); }
-  Vec3 normalized() const { return *this / norm(); }
-  Vec3 cross(const Vec3& b) const { return {vy * b.vz - vz * b.vy, vz * b.vx - vx * b.vz, vx * b.vy - vy * b.vx}; }
-  friend Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.vx + b.vx, a.vy + b.vy, a.vz + b.vz}; }
-  friend Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.vx - b.vx, a.vy - b.vy, a.vz - b.vz}; }
-  friend Vec3 operator-(const Vec3& a) { return {-a.vx, -a.vy, -a.vz}; }
-  friend Vec3 operator*(double s, const Vec3& a) { return {s * a.vx, s * a.vy, s * a.vz}; }
-  friend Vec3 operator*(const Vec3& a, double s) { return {a.vx * s, a.vy * s, a.vz * s}; }
-  friend Vec3 operator/(const Vec3& a, double s) { return {a.vx / s, a.vy / s, a.vz / s}; }
-};
-
-// Componentwise c ? a : b (both sides are computed: branch-free laws vectorise).
-inline Vec3 select(bool c, const Vec3& a, const Vec3& b) {
-  return {c ? a.vx : b.vx, c ? a.vy : b.vy, c ? a.vz : b.vz};
-}
 
 struct TangentialSpringParams {
   double kt = 0.0;          // tangential spring stiffness k_t (N/m), eq. (5)
@@ -99,7 +71,7 @@ struct TangentialResult {
   Vec3 force;        // f^t on particle i (j gets -f^t), eq. (8)
   Vec3 spring;       // xi' to keep for the next step (eq. (6) sticking, eq. (7) sliding)
   bool sliding;      // the dynamic (sliding) case (2) is active
-  double slip_loss;  // energy dissipated by the slip in this step (J); 0 when sticking
+  double slip_loss;  // energy dissipated by the slip in this step beyond gamma_t |v_t|^2 dt (J); 0 when sticking
 };
 
 // Eq. (5) with the stick-slip switching of the text: a sticking contact starts to slide when
@@ -115,11 +87,11 @@ struct TangentialTest {
 inline TangentialTest tangential_test(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
                                       bool was_sliding) {
   const Vec3 f_test = -p.kt * xi - p.gamma_t * vt;  // eq. (5)
-  const double f_pos = p.coulomb_on_magnitude ? std::abs(f_n) : std::max(f_n, 0.0);
+  const double f_pos = select(p.coulomb_on_magnitude, std::abs(f_n), select(f_n < 0.0, 0.0, f_n));  // max(f_n, 0)
   const double f_static = p.mu_static * f_pos;    // f_C^s
   const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
   const double magnitude2 = f_test.squaredNorm();
-  const double limit = was_sliding ? f_dynamic : f_static;
+  const double limit = select(was_sliding, f_dynamic, f_static);
   return {f_test, magnitude2, f_dynamic, magnitude2 > limit * limit};
 }
 
@@ -133,7 +105,13 @@ inline TangentialResult sliding_force(const TangentialSpringParams& p, const Tan
   // Dissipated by the slip: the Coulomb force times the displacement the reset (7) removes
   // from the spring, |xi - xi'| = (|f_o^t| - f_C^d)/k_t (exact for steady sliding; the
   // elastic energy of the over-stretched trial spring beyond that never acted on the spheres).
-  const double slip_loss = test.f_dynamic * (magnitude - test.f_dynamic) / p.kt;
+  // With a dashpot, eq. (7) keeps -gamma_t v_t in the force, but the spring (and the dashpot
+  // beside it) only stretch by v_t dt - (xi - xi'), xi - xi' = -slip t: the dashpot dissipates
+  // gamma_t v_t . (v_t dt - (xi - xi')), i.e. gamma_t |v_t|^2 dt (which the caller books, as
+  // for a sticking contact) plus gamma_t slip (v_t . t), booked here. (Booking gamma_t |v_t|^2 dt
+  // alone counts a steadily sliding contact's dissipation twice: its force is capped at f_C^d.)
+  const double slip = (magnitude - test.f_dynamic) / p.kt;
+  const double slip_loss = test.f_dynamic * (magnitude - test.f_dynamic) / p.kt + p.gamma_t * slip * vt.dot(t);
   return {force, spring, true, slip_loss};
 }
 

@@ -9,25 +9,35 @@
 #include <string>
 #include <type_traits>
 
+#include "contact/hooke.hpp"
+#include "contact/linear_luding.hpp"
 #include "core/error.hpp"
+#include "crystal/kernel.hpp"
 #include "crystal/neighbors.hpp"
 
 namespace granwave::crystal {
 
-using contact::Vec3;
-
-namespace {
-constexpr std::int64_t kBlock = 1024;  // contacts per block of the contact pass
-}  // namespace
+std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp) {
+  const contact::LinearSpringDashpotParams normal{cp.kn, cp.gamma_n, cp.normal_tension == config::NormalTension::clip};
+  const contact::TangentialSpringParams tangential{cp.kt, cp.gamma_t, cp.mu_static, cp.mu_dynamic,
+                                                   cp.coulomb_normal == config::CoulombNormal::magnitude};
+  normal.validate();
+  tangential.validate();
+  const bool contact_point = cp.lever_arm == config::LeverArm::contact_point;
+  const bool dashpots = normal.gamma_n > 0.0 || tangential.gamma_t > 0.0;
+  if (tangential.active() && dashpots) return model_of(contact::LinearLudingLaw<true>(normal, tangential, contact_point));
+  if (tangential.active()) return model_of(contact::LinearLudingLaw<false>(normal, tangential, contact_point));
+  if (normal.gamma_n > 0.0) return model_of(contact::HookeLaw<true>(normal));
+  return model_of(contact::HookeLaw<false>(normal));
+}
 
 Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, double dt)
-    : packing_(packing), dt_(dt) {
-  normal_ = {cp.kn, cp.gamma_n, cp.normal_tension == config::NormalTension::clip};
-  tangential_ = {cp.kt, cp.gamma_t, cp.mu_static, cp.mu_dynamic, cp.coulomb_normal == config::CoulombNormal::magnitude};
-  normal_.validate();
-  tangential_.validate();
-  friction_ = tangential_.active();
-  arm_shift_ = cp.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+    : Dynamics(packing, case_model(cp), dt) {}
+
+Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt)
+    : packing_(packing), model_(std::move(model)), dt_(dt) {
+  friction_ = model_->torques();
+  arm_shift_ = model_->arm_shift();
   if (!(dt > 0.0)) throw InputError("integrator.dt must be > 0");
   const std::size_t n = packing.size();
   x = x0 = packing.x;
@@ -84,10 +94,12 @@ void Dynamics::rebuild() {
   fresh.image_y = std::move(pairs.image_y);
   fresh.shift_x.resize(nc);
   fresh.shift_y.resize(nc);
-  for (auto* v : {&fresh.xi_x, &fresh.xi_y, &fresh.xi_z, &fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z,
-                  &fresh.nf_x, &fresh.nf_y, &fresh.nf_z, &fresh.dissipated})
+  for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.nf_x, &fresh.nf_y, &fresh.nf_z,
+                  &fresh.dissipated})
     v->assign(nc, 0.0);
-  fresh.sliding.assign(nc, 0);
+  const std::size_t nh = model_->history_columns();
+  fresh.history_columns = nh;
+  fresh.history.assign(nh * nc, 0.0);
   auto key_less = [](const ContactList& a, std::size_t u, const ContactList& b, std::size_t v) {
     if (a.i[u] != b.i[v]) return a.i[u] < b.i[v];
     if (a.j[u] != b.j[v]) return a.j[u] < b.j[v];
@@ -101,10 +113,7 @@ void Dynamics::rebuild() {
     fresh.shift_y[c] = fresh.image_y[c] * packing_.box_y;
     while (u < old.size() && key_less(old, u, fresh, c)) ++u;
     if (u < old.size() && !key_less(fresh, c, old, u)) {
-      fresh.xi_x[c] = old.xi_x[u];
-      fresh.xi_y[c] = old.xi_y[u];
-      fresh.xi_z[c] = old.xi_z[u];
-      fresh.sliding[c] = old.sliding[u];
+      for (std::size_t k = 0; k < nh; ++k) fresh.history_column(k)[c] = old.history_column(k)[u];
       fresh.delta[c] = old.delta[u];
       fresh.f_x[c] = old.f_x[u];
       fresh.f_y[c] = old.f_y[u];
@@ -114,20 +123,20 @@ void Dynamics::rebuild() {
       fresh.nf_z[c] = old.nf_z[u];
     }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
   }
-  // Per-particle contact lists (CSR) in contact order, for the deterministic gather.
-  fresh.first.assign(n + 1, 0);
+  // Per-particle contact lists in contact order, for the deterministic gather: the contacts
+  // where the particle is j (a CSR list), then the range where it is i (the list is sorted by i).
+  fresh.j_first.assign(n + 1, 0);
+  fresh.i_first.assign(n + 1, 0);
   for (std::size_t c = 0; c < nc; ++c) {
-    ++fresh.first[fresh.i[c] + 1];
-    ++fresh.first[fresh.j[c] + 1];
+    ++fresh.j_first[fresh.j[c] + 1];
+    ++fresh.i_first[fresh.i[c] + 1];
   }
-  std::partial_sum(fresh.first.begin(), fresh.first.end(), fresh.first.begin());
-  fresh.entries.resize(2 * nc);
+  std::partial_sum(fresh.j_first.begin(), fresh.j_first.end(), fresh.j_first.begin());
+  std::partial_sum(fresh.i_first.begin(), fresh.i_first.end(), fresh.i_first.begin());
+  fresh.j_contacts.resize(nc);
   {
-    std::vector<std::int32_t> fill(fresh.first.begin(), fresh.first.end() - 1);
-    for (std::size_t c = 0; c < nc; ++c) {
-      fresh.entries[fill[fresh.i[c]]++] = static_cast<std::int32_t>(c);
-      fresh.entries[fill[fresh.j[c]]++] = ~static_cast<std::int32_t>(c);
-    }
+    std::vector<std::int32_t> fill(fresh.j_first.begin(), fresh.j_first.end() - 1);
+    for (std::size_t c = 0; c < nc; ++c) fresh.j_contacts[fill[fresh.j[c]]++] = static_cast<std::int32_t>(c);
   }
   contacts = std::move(fresh);
   x_build_ = x;
@@ -136,151 +145,18 @@ void Dynamics::rebuild() {
   ++rebuilds;
 }
 
-// body(c0, c1) over [0, n) in blocks, on OpenMP threads from parallel_min_particles on.
-template <class Body>
-void Dynamics::in_blocks(std::int64_t n, const Body& body) const {
-  const std::int64_t nb = (n + kBlock - 1) / kBlock;
-#pragma omp parallel for schedule(static) if (threaded())
-  for (std::int64_t b = 0; b < nb; ++b) {
-    const Body local = body;  // a private copy, kept in registers (the shared one is reloaded)
-    local(b * kBlock, std::min(n, (b + 1) * kBlock));
-  }
-}
-
-// Friction: tangential forces at all; Lossy: dashpots or clipping can dissipate normally.
-// Branch-free (an open contact's values are computed and discarded), so the loop vectorises
-// across contacts; every contact writes only its own entries, with the same arithmetic
-// whichever sweep evaluates it.
-template <bool Friction, bool Lossy>
-void Dynamics::contact_pass(double inc, bool dashpots) {
-  ContactList& C = contacts;
-  const std::int64_t nc = static_cast<std::int64_t>(C.size());
-  const contact::LinearSpringDashpotParams nrm{normal_.kn, dashpots ? normal_.gamma_n : 0.0, normal_.clip_tension};
-  const contact::TangentialSpringParams tan{tangential_.kt, dashpots ? tangential_.gamma_t : 0.0,
-                                            tangential_.mu_static, tangential_.mu_dynamic,
-                                            tangential_.coulomb_on_magnitude};
-  const std::int32_t* ci = C.i.data();
-  const std::int32_t* cj = C.j.data();
-  const double* shx = C.shift_x.data();
-  const double* shy = C.shift_y.data();
-  const double* px = x.data();
-  const double* py = y.data();
-  const double* pz = z.data();
-  const double* pvx = vx.data();
-  const double* pvy = vy.data();
-  const double* pvz = vz.data();
-  const double* pwx = wx.data();
-  const double* pwy = wy.data();
-  const double* pwz = wz.data();
-  const double* pa = radius.data();
-  double* cdelta = C.delta.data();
-  double* cfx = C.f_x.data();
-  double* cfy = C.f_y.data();
-  double* cfz = C.f_z.data();
-  double* cnx = C.nf_x.data();
-  double* cny = C.nf_y.data();
-  double* cnz = C.nf_z.data();
-  double* xix = C.xi_x.data();
-  double* xiy = C.xi_y.data();
-  double* xiz = C.xi_z.data();
-  std::int32_t* slide = C.sliding.data();
-  double* diss = C.dissipated.data();
-  const double arm_shift = arm_shift_;
-  // One contact. With Defer (the vectorised sweep) a sliding contact is left untouched and
-  // reported: the roots and divisions of the sliding case (2) are then paid only by the few
-  // contacts that slide, in a second, scalar sweep over them. Pointers are captured by value
-  // (OpenMP would share them by reference, which the vectoriser cannot see through).
-  auto one = [=](std::int64_t c, auto defer) __attribute__((always_inline)) -> bool {
-    constexpr bool Defer = decltype(defer)::value;
-    const int i = ci[c], j = cj[c];
-    const double bx = px[j] + shx[c] - px[i];
-    const double by = py[j] + shy[c] - py[i];
-    const double bz = pz[j] - pz[i];
-    const double r2 = bx * bx + by * by + bz * bz;
-    const double reach = pa[i] + pa[j];
-    const double r = std::sqrt(r2);
-    const double delta = reach - r;
-    const bool open = r >= reach;  // no force; a spring that existed is lost
-    const double inv_r = 1.0 / r;
-    const contact::Vec3 n(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
-    const double dvx = pvx[i] - pvx[j], dvy = pvy[i] - pvy[j], dvz = pvz[i] - pvz[j];
-    const double delta_dot = -(n.x() * dvx + n.y() * dvy + n.z() * dvz);
-    const double f_n = contact::normal_force(nrm, delta, delta_dot);  // eq. (1) text
-    // dissipated = work of (f_n - k delta) against the approach (dashpot, or clipped pull)
-    double loss = Lossy ? (f_n - nrm.kn * delta) * delta_dot * inc : 0.0;
-    contact::Vec3 f = f_n * n;
-    bool deferred = false;
-    if constexpr (Friction) {
-      const contact::Vec3 xi_prev(xix[c], xiy[c], xiz[c]);
-      // Lever arms: a - 0 * delta = a exactly for the seed's eq. (4) (the default).
-      const double arm_i = pa[i] - arm_shift * delta, arm_j = pa[j] - arm_shift * delta;
-      const contact::Vec3 vij = contact::relative_surface_velocity(
-          {pvx[i], pvy[i], pvz[i]}, {pvx[j], pvy[j], pvz[j]}, {pwx[i], pwy[i], pwz[i]}, {pwx[j], pwy[j], pwz[j]}, arm_i,
-          arm_j, n);                                                        // eq. (4)
-      const contact::Vec3 vt = contact::tangential_velocity(vij, n);       // eq. (3)
-      const contact::Vec3 xi = contact::advance_spring(tan, xi_prev, n, vt, inc);  // (2), (6)
-      contact::Vec3 ft = contact::Vec3::Zero(), spring = xi;  // (5), (7), (8)
-      bool sliding = false;
-      double slip_loss = 0.0;
-      if constexpr (Defer) {
-        const contact::TangentialTest test = contact::tangential_test(tan, xi, vt, f_n, slide[c] != 0);
-        deferred = test.sliding;
-        ft = test.force;
-      } else {
-        const contact::TangentialResult res = contact::tangential_force(tan, xi, vt, f_n, slide[c] != 0);
-        ft = res.force;
-        spring = res.spring;
-        sliding = res.sliding;
-        slip_loss = res.slip_loss;
-      }
-      const contact::Vec3 nf = n.cross(ft);
-      f = f + ft;
-      loss += tan.kt == 0.0 ? -ft.dot(vt) * inc : tan.gamma_t * vt.squaredNorm() * inc + slip_loss;
-      // History is kept for a deferred contact (the scalar sweep starts from it again).
-      const contact::Vec3 kept = contact::select(deferred, xi_prev, contact::select(open, contact::Vec3::Zero(), spring));
-      xix[c] = kept.x();
-      xiy[c] = kept.y();
-      xiz[c] = kept.z();
-      slide[c] = deferred ? slide[c] : (!open & sliding);
-      cnx[c] = open ? 0.0 : nf.x();
-      cny[c] = open ? 0.0 : nf.y();
-      cnz[c] = open ? 0.0 : nf.z();
-      diss[c] = deferred ? diss[c] : diss[c] + (open ? 0.5 * tan.kt * xi_prev.squaredNorm() : loss);
-    } else if constexpr (Lossy) {
-      diss[c] = open ? diss[c] : diss[c] + loss;
-    }
-    cdelta[c] = delta;
-    cfx[c] = open ? 0.0 : f.x();
-    cfy[c] = open ? 0.0 : f.y();
-    cfz[c] = open ? 0.0 : f.z();
-    return deferred;
-  };
-  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
-    std::int32_t deferred[kBlock];
-    std::int32_t any = 0;
-#pragma GCC ivdep
-    for (std::int64_t c = c0; c < c1; ++c) {
-      deferred[c - c0] = one(c, std::true_type{});
-      any |= deferred[c - c0];
-    }
-    if (Friction && any)
-      for (std::int64_t c = c0; c < c1; ++c)
-        if (deferred[c - c0]) one(c, std::false_type{});
-  };
-  in_blocks(nc, range);
-}
-
 // Sum of each particle's contact forces and torques in contact order; with Kick, the half
 // kick of velocity Verlet follows at once (the forces are then still in cache). The torque of
 // contact c on p is -arm n x f^t with arm = a_p (eq. (4)), or a_p - delta_c/2 with
 // ContactPointArm: then -a_p sum(n x f^t) + (1/2) sum(delta_c n x f^t).
-template <bool Kick, bool ContactPointArm>
+template <bool Kick, bool Torques, bool ContactPointArm>
 void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
   const std::int64_t n = static_cast<std::int64_t>(size());
-  const bool fr = friction_;
-  const std::int32_t* __restrict first = C.first.data();
-  const std::int32_t* __restrict entries = C.entries.data();
+  constexpr bool fr = Torques;
+  const std::int32_t* __restrict j_first = C.j_first.data();
+  const std::int32_t* __restrict j_contacts = C.j_contacts.data();
+  const std::int32_t* __restrict i_first = C.i_first.data();
   const double* __restrict cfx = C.f_x.data();
   const double* __restrict cfy = C.f_y.data();
   const double* __restrict cfz = C.f_z.data();
@@ -292,15 +168,18 @@ void Dynamics::particle_pass(double h) {
   for (std::int64_t p = 0; p < n; ++p) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
-    const std::int32_t k0 = first[p], k1 = first[p + 1];
-    for (std::int32_t k = k0; k < k1; ++k) {
-      const std::int32_t e = entries[k];
-      const std::int32_t c = e >= 0 ? e : ~e;
-      const double s = e >= 0 ? 1.0 : -1.0;
-      sx += s * cfx[c];
-      sy += s * cfy[c];
-      sz += s * cfz[c];
-      if (fr) {  // both spheres feel -a n x f^t (contact::tangential_torque); the loop is unswitched
+    // Both spheres feel -a n x f^t (contact::tangential_torque); j gets -f (s + (-f) is s - f).
+    auto add = [&](std::int32_t c, auto as_j) __attribute__((always_inline)) {
+      if constexpr (decltype(as_j)::value) {
+        sx -= cfx[c];
+        sy -= cfy[c];
+        sz -= cfz[c];
+      } else {
+        sx += cfx[c];
+        sy += cfy[c];
+        sz += cfz[c];
+      }
+      if constexpr (fr) {
         nx += cnx[c];
         ny += cny[c];
         nz += cnz[c];
@@ -310,7 +189,9 @@ void Dynamics::particle_pass(double h) {
           dnz += cdelta[c] * cnz[c];
         }
       }
-    }
+    };
+    for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});
+    for (std::int32_t c = i_first[p]; c < i_first[p + 1]; ++c) add(c, std::false_type{});
     fx[p] = sx;
     fy[p] = sy;
     fz[p] = sz;
@@ -327,7 +208,7 @@ void Dynamics::particle_pass(double h) {
       vx[p] += h * sx * inv_mass[p];
       vy[p] += h * sy * inv_mass[p];
       vz[p] += h * sz * inv_mass[p];
-      if (fr) {
+      if constexpr (fr) {
         wx[p] += h * tx[p] * inv_inertia[p];
         wy[p] += h * ty[p] * inv_inertia[p];
         wz[p] += h * tz[p] * inv_inertia[p];
@@ -337,15 +218,13 @@ void Dynamics::particle_pass(double h) {
 }
 
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
-  const bool lossy = (dashpots && normal_.gamma_n > 0.0) || normal_.clip_tension;
-  if (friction_)
-    lossy ? contact_pass<true, true>(inc, dashpots) : contact_pass<true, false>(inc, dashpots);
+  model_->contact_pass(*this, inc, dashpots);
+  if (!friction_)
+    kick ? particle_pass<true, false, false>(0.5 * dt_) : particle_pass<false, false, false>(0.0);
+  else if (arm_shift_ != 0.0)
+    kick ? particle_pass<true, true, true>(0.5 * dt_) : particle_pass<false, true, true>(0.0);
   else
-    lossy ? contact_pass<false, true>(inc, dashpots) : contact_pass<false, false>(inc, dashpots);
-  if (arm_shift_ != 0.0 && friction_)
-    kick ? particle_pass<true, true>(0.5 * dt_) : particle_pass<false, true>(0.0);
-  else
-    kick ? particle_pass<true, false>(0.5 * dt_) : particle_pass<false, false>(0.0);
+    kick ? particle_pass<true, true, false>(0.5 * dt_) : particle_pass<false, true, false>(0.0);
 }
 
 void Dynamics::step() {
@@ -411,17 +290,7 @@ double Dynamics::kinetic_energy() const {
   return e;
 }
 
-double Dynamics::potential_energy() const {
-  const ContactList& C = contacts;
-  double e = 0.0;
-  for (std::size_t c = 0; c < C.size(); ++c) {
-    if (C.delta[c] <= 0.0) continue;
-    e += contact::normal_energy(normal_, C.delta[c]);
-    if (friction_)
-      e += 0.5 * tangential_.kt * (C.xi_x[c] * C.xi_x[c] + C.xi_y[c] * C.xi_y[c] + C.xi_z[c] * C.xi_z[c]);
-  }
-  return e;
-}
+double Dynamics::potential_energy() const { return model_->stored_energy(contacts); }
 
 double Dynamics::dissipated_energy() const {
   double e = dissipated_before_;
@@ -440,11 +309,10 @@ double Dynamics::verlet_correction() const {
 }
 
 int Dynamics::touching_contacts_of(std::size_t p) const {
+  const ContactList& C = contacts;
   int k = 0;
-  for (std::int32_t e = contacts.first[p]; e < contacts.first[p + 1]; ++e) {
-    const std::int32_t c = contacts.entries[e] >= 0 ? contacts.entries[e] : ~contacts.entries[e];
-    if (contacts.delta[c] > 0.0) ++k;
-  }
+  for (std::int32_t e = C.j_first[p]; e < C.j_first[p + 1]; ++e) k += C.delta[C.j_contacts[e]] > 0.0;
+  for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) k += C.delta[c] > 0.0;
   return k;
 }
 

@@ -1,15 +1,17 @@
 // The crystal's equations of motion, eq. (1): spheres with translation and rotation, contact
-// forces of sec. 2.1 (contact/linear_spring_dashpot.hpp, contact/tangential_spring.hpp),
-// velocity Verlet, periodic x-y box. Flat structure of arrays throughout; the contact list is a
-// Verlet list with a skin, rebuilt only when a particle has moved more than skin/2, and its
-// per-contact history (tangential spring xi, stick/slip flag) survives rebuilds.
+// forces of sec. 2.1 (or any contact law: contact/law.hpp), velocity Verlet, periodic x-y box.
+// Flat structure of arrays throughout; the contact list is a Verlet list with a skin, rebuilt
+// only when a particle has moved more than skin/2, and its per-contact history (the law's
+// columns, e.g. tangential spring xi and stick/slip flag) survives rebuilds.
 //
 // Force evaluation is two passes, both free of write conflicts (so OpenMP over contacts and
 // over particles gives bit-identical results for any thread count):
-//   1. per contact: overlap, normal and tangential force, n x f^t, dissipation;
+//   1. per contact (crystal/kernel.hpp, templated over the law): overlap, normal and tangential
+//      force, n x f^t, history, dissipation;
 //   2. per particle: sum of its contacts' forces and torques in a fixed order.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "config/case.hpp"
@@ -24,21 +26,48 @@ struct ContactList {
   std::vector<std::int32_t> i, j;
   std::vector<std::int16_t> image_x, image_y;
   std::vector<double> shift_x, shift_y;    // image offsets of j (m)
-  std::vector<double> xi_x, xi_y, xi_z;    // tangential spring xi' (m), eqs. (6)/(7)
-  std::vector<std::int32_t> sliding;       // 1 = dynamic (sliding) case active (int: vectorises with doubles)
   std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
   std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N
   std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t)
   std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
-  // Per particle: its contacts, as c (particle is i) or ~c (particle is j), in contact order.
-  std::vector<std::int32_t> first, entries;
+  // The law's history (contact/law.hpp), column by column: history[k * size() + c].
+  std::vector<double> history;
+  std::size_t history_columns = 0;
+  double* history_column(std::size_t k) { return history.data() + k * size(); }
+  const double* history_column(std::size_t k) const { return history.data() + k * size(); }
+  // Per particle p, its contacts in contact order: first those where p is j (i < j, so they come
+  // before p's own), j_contacts[j_first[p] .. j_first[p + 1]), then those where p is i, the range
+  // i_first[p] .. i_first[p + 1] of the list (sorted by i).
+  std::vector<std::int32_t> j_first, j_contacts, i_first;
   std::size_t size() const { return i.size(); }
 };
+
+class Dynamics;
+
+// A contact law as the dynamics sees it: crystal/kernel.hpp's LawModel<Law> runs the kernel
+// for the law; model_of(law) makes one.
+class ContactModel {
+ public:
+  virtual ~ContactModel() = default;
+  virtual std::size_t history_columns() const = 0;
+  virtual bool torques() const = 0;      // tangential forces: torques and rotation
+  virtual double arm_shift() const = 0;  // lever arm of f^t: a_p - arm_shift delta
+  // Pass 1 at the current state; springs advance by `increment_time`; rates = false for a jump
+  // of positions (no dashpots).
+  virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
+  virtual double stored_energy(const ContactList& contacts) const = 0;  // J, touching contacts
+};
+
+// The law of a case: contact::LinearLuding with friction (k_t > 0 or gamma_t > 0), else the
+// frictionless contact::HookeLaw. Throws InputError for invalid parameters.
+std::shared_ptr<const ContactModel> case_model(const config::ContactParams& contact);
 
 class Dynamics {
  public:
   // The packing's fixed particles are not integrated; `dt` is the time step.
   Dynamics(const Packing& packing, const config::ContactParams& contact, double dt);
+  // The same with any contact law (crystal/kernel.hpp: model_of(law)).
+  Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt);
 
   // ---- state (SoA; public so observers and tests can read and set it) ----
   std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;  // positions (unwrapped), velocities, angular velocities
@@ -56,8 +85,7 @@ class Dynamics {
   const Packing& packing() const { return packing_; }
   double dt() const { return dt_; }
   void set_dt(double dt) { dt_ = dt; }
-  const contact::LinearSpringDashpotParams& normal() const { return normal_; }
-  const contact::TangentialSpringParams& tangential() const { return tangential_; }
+  const ContactModel& model() const { return *model_; }
   bool friction() const { return friction_; }
   // Lever arm of f^t (config::LeverArm): arm_i = a_i - contact_point_shift() * delta, 0 or 1/2.
   double contact_point_shift() const { return arm_shift_; }
@@ -82,6 +110,7 @@ class Dynamics {
   // OpenMP is used from this many particles on (fork/join costs more than it saves on small
   // crystals, and much more on a loaded machine); results do not depend on it.
   std::size_t parallel_min_particles = 20000;
+  bool threaded() const { return size() >= parallel_min_particles; }
 
   // ---- energies (J) ----
   double kinetic_energy() const;    // translational + rotational, mobile particles
@@ -95,17 +124,11 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
-  bool threaded() const { return size() >= parallel_min_particles; }
-  template <class Body>
-  void in_blocks(std::int64_t n, const Body& body) const;
-  template <bool Friction, bool Lossy>
-  void contact_pass(double increment_time, bool dashpots);
-  template <bool Kick, bool ContactPointArm>
+  template <bool Kick, bool Torques, bool ContactPointArm>
   void particle_pass(double h);
 
   Packing packing_;
-  contact::LinearSpringDashpotParams normal_;
-  contact::TangentialSpringParams tangential_;
+  std::shared_ptr<const ContactModel> model_;
   bool friction_ = false;
   double arm_shift_ = 0.0;  // 0: arm a_i (eq. (4)); 1/2: arm a_i - delta/2 (contact point)
   double dt_ = 0.0;

@@ -1,0 +1,93 @@
+// What a contact law is to the crystal's kernel (src/crystal/kernel.hpp), in the pattern of
+// HOOMD-blue's PotentialPair<Evaluator>: the kernel owns geometry, storage, blocking, threads and
+// vectorisation; a law owns the physics of one contact. A law is a small copyable type with
+//
+//   struct History { double ...; };   per-contact state, doubles only (flags as 0.0/1.0), zero =
+//                                     "no history" (a new or opened contact); an empty struct
+//                                     for a law without history
+//   static constexpr bool torques;    true when the law has tangential forces (then the kernel
+//                                     gathers angular velocities and sums torques)
+//   Response evaluate(const Contact&, History&) const;
+//                                     force, n x f^t, dissipated energy of one touching contact,
+//                                     history updated in place; inline and branch-free (selects,
+//                                     no calls) so that the kernel's loop over contacts vectorises
+//   double opening_loss(const History&) const;
+//                                     energy lost when the contact opens with this history
+//   void add_stored_energy(double& e, double delta, const History&) const;
+//                                     adds the contact's elastic energy to e, term by term
+//   double arm_shift() const;         lever arm of f^t: a_p - arm_shift() delta (0 or 1/2)
+//   bool dissipates() const;          false when loss is always zero (the kernel then skips it)
+//   <Law> without_rates() const;      the same law for a jump of positions (no dashpots)
+//
+// and optionally, for a law whose exact evaluation is expensive for a few contacts only (the
+// roots and divisions of sliding):
+//   Response evaluate(const Contact&, History&, Deferrable) const;
+//                                     the cheap, vectorised evaluation; a contact it cannot
+//                                     finish returns deferred = true and is evaluated again,
+//                                     from the same history, by evaluate(Contact, History&) in a
+//                                     scalar sweep (its vector results are discarded).
+// Every contact writes only its own entries, so results do not depend on the sweep, the block
+// or the thread that evaluates it.
+#pragma once
+#include <array>
+#include <bit>
+#include <concepts>
+#include <cstddef>
+#include <type_traits>
+
+#include "contact/vec3.hpp"
+
+namespace granwave::contact {
+
+// One contact between spheres i and j as the kernel sees it (after the periodic image shift).
+struct Contact {
+  Vec3 n;            // unit normal (r_i - r_j)/|r_i - r_j|
+  double delta;      // overlap a_i + a_j - |r_i - r_j| (> 0: touching)
+  double delta_dot;  // d delta/dt = -n . (v_i - v_j) (> 0: approaching)
+  Vec3 dv;           // v_i - v_j
+  Vec3 w_i, w_j;     // angular velocities (zero unless the law has torques)
+  double a_i, a_j;   // radii
+  double dt;         // time since the last evaluation (springs advance by v dt; 0 for a state set from outside)
+};
+
+// What a law returns for one touching contact.
+struct Response {
+  Vec3 force;             // on i; j gets -force
+  Vec3 nf;                // n x f^t: the torque on sphere p is -arm_p nf, arm_p = a_p - arm_shift delta
+  double loss = 0.0;      // energy dissipated over this step (J)
+  bool deferred = false;  // Deferrable evaluation only: evaluate again in the exact sweep
+};
+
+// Tag of the cheap, vectorised evaluation of a law that defers the rare expensive contacts.
+struct Deferrable {};
+
+template <class Law>
+concept DefersContacts = requires(const Law& law, const Contact& c, typename Law::History& h) {
+  { law.evaluate(c, h, Deferrable{}) } -> std::same_as<Response>;
+};
+
+// Number of double columns a law's history takes in the flat per-contact storage.
+template <class History>
+inline constexpr std::size_t history_columns = std::is_empty_v<History> ? 0 : sizeof(History) / sizeof(double);
+
+template <class History>
+concept FlatHistory = std::is_trivially_copyable_v<History> && std::is_default_constructible_v<History> &&
+                      (std::is_empty_v<History> || sizeof(History) % sizeof(double) == 0);
+
+// History <-> its columns, as plain doubles (the kernel stores each column as a flat array).
+template <class History>
+History history_from(const std::array<double, history_columns<History>>& a) {
+  if constexpr (history_columns<History> == 0)
+    return History{};
+  else
+    return std::bit_cast<History>(a);
+}
+template <class History>
+std::array<double, history_columns<History>> history_to(const History& h) {
+  if constexpr (history_columns<History> == 0)
+    return {};
+  else
+    return std::bit_cast<std::array<double, history_columns<History>>>(h);
+}
+
+}  // namespace granwave::contact

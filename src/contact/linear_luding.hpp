@@ -1,0 +1,102 @@
+// The frictional law of seed 002 sec. 2.1 as a contact law for the crystal's kernel
+// (contact/law.hpp): the linear normal spring-dashpot (contact/linear_spring_dashpot.hpp) and
+// Luding's tangential spring with static/dynamic Coulomb friction, eqs. (2)-(8)
+// (contact/tangential_spring.hpp). Conventions (case keys): normal_tension (clip: the dashpot may
+// not pull), coulomb_normal (mu max(f_n, 0) or mu |f_n|), lever_arm (a, eq. (4), or the contact
+// point a - delta/2, YADE's and LIGGGHTS').
+//
+// History per contact: the spring xi' (m) and the stick/slip flag. The slip decision is the
+// law's: the vectorised evaluation finishes every sticking contact and defers the sliding ones
+// (case (2) needs a root and divisions) to the exact evaluation.
+#pragma once
+#include "contact/law.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "contact/tangential_spring.hpp"
+
+namespace granwave::contact {
+
+// Dashpots = false is the same law without dashpots (gamma_0 = gamma_t = 0, or a jump of
+// positions), bit for bit: f^n = k delta (k delta + 0 delta_dot is k delta), and a sticking
+// contact dissipates nothing; the vectorised evaluation then skips that arithmetic.
+template <bool Dashpots>
+struct LinearLudingLaw {
+  LinearSpringDashpotParams normal;
+  TangentialSpringParams tangential;
+  double shift = 0.0;  // lever arm of f^t: a - shift delta; 0 (eq. (4), "radius") or 1/2 ("contact_point")
+
+  struct History {
+    double xi_x = 0.0, xi_y = 0.0, xi_z = 0.0;  // tangential spring xi' (m), eqs. (6)/(7)
+    double sliding = 0.0;                       // 1: the dynamic (sliding) case (2) is active
+    Vec3 xi() const { return {xi_x, xi_y, xi_z}; }
+  };
+  static constexpr bool torques = true;
+
+  LinearLudingLaw(const LinearSpringDashpotParams& n, const TangentialSpringParams& t, bool contact_point_arm)
+      : normal(n), tangential(t), shift(contact_point_arm ? 0.5 : 0.0) {
+    normal.validate();
+    tangential.validate();
+    if (!Dashpots) normal.gamma_n = tangential.gamma_t = 0.0;
+  }
+
+  // Sticking contacts, branch-free; a contact that slides is deferred.
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const {
+    return respond<false>(c, h);
+  }
+  // Any contact, eqs. (5), (7), (8).
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
+
+  // The spring's energy is lost when the contact opens.
+  double opening_loss(const History& h) const { return 0.5 * tangential.kt * h.xi().squaredNorm(); }
+  void add_stored_energy(double& e, double delta, const History& h) const {
+    e += normal_energy(normal, delta);
+    e += 0.5 * tangential.kt * (h.xi_x * h.xi_x + h.xi_y * h.xi_y + h.xi_z * h.xi_z);
+  }
+  double arm_shift() const { return shift; }
+  bool dissipates() const { return true; }  // slip
+  // A jump of positions: no dashpots (the springs see no velocity either).
+  LinearLudingLaw<false> without_rates() const { return {normal, tangential, shift != 0.0}; }
+
+ private:
+  template <bool Exact>
+  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
+    // Eq. (1) text; without a dashpot a touching contact never pulls, so clipping changes nothing.
+    const double f_n = Dashpots ? normal_force(normal, c.delta, c.delta_dot) : normal.kn * c.delta;
+    // Dissipated normally: the work of (f_n - k delta) against the approach (dashpot, or a clipped pull).
+    const double loss_n = Dashpots ? (f_n - normal.kn * c.delta) * c.delta_dot * c.dt : 0.0;
+    // Lever arms: a - 0 * delta = a exactly for the seed's eq. (4) (the default).
+    const double arm_i = c.a_i - shift * c.delta, arm_j = c.a_j - shift * c.delta;
+    const Vec3 vij = c.dv + arm_i * c.n.cross(c.w_i) + arm_j * c.n.cross(c.w_j);  // eq. (4)
+    const Vec3 vt = tangential_velocity(vij, c.n);                                // eq. (3)
+    const Vec3 xi = advance_spring(tangential, h.xi(), c.n, vt, c.dt);           // eqs. (2), (6)
+    Vec3 ft;
+    double slip_loss = 0.0;
+    bool deferred = false;
+    if constexpr (Exact) {
+      const TangentialResult res = tangential_force(tangential, xi, vt, f_n, h.sliding != 0.0);
+      ft = res.force;
+      slip_loss = res.slip_loss;
+      h = History{res.spring.x(), res.spring.y(), res.spring.z(), res.sliding ? 1.0 : 0.0};
+    } else {
+      const TangentialTest test = tangential_test(tangential, xi, vt, f_n, h.sliding != 0.0);
+      ft = test.force;
+      deferred = test.sliding;
+      h = History{xi.x(), xi.y(), xi.z(), 0.0};
+    }
+    // Dissipated tangentially: the dashpot's power (without a spring, all of -f^t . v_t), plus
+    // the slip removed from the spring by eq. (7).
+    double loss = 0.0;
+    if constexpr (Dashpots) {
+      const double loss_dashpot_only = -ft.dot(vt) * c.dt;
+      const double loss_spring = tangential.gamma_t * vt.squaredNorm() * c.dt + slip_loss;
+      loss = loss_n + select(tangential.kt == 0.0, loss_dashpot_only, loss_spring);
+    } else {
+      loss = slip_loss;  // + 0: no dashpot, and a spring (k_t > 0: friction without dashpots)
+    }
+    return {f_n * c.n + ft, c.n.cross(ft), loss, deferred};
+  }
+};
+
+// The law of a case with friction.
+using LinearLuding = LinearLudingLaw<true>;
+
+}  // namespace granwave::contact

@@ -1,0 +1,101 @@
+// The contact-law interface (contact/law.hpp) proven by a law it was not written for: a Hertz
+// normal law, F = A delta^(3/2) (a stiffness that grows with the overlap), defined here only and
+// run through the crystal's unchanged kernel (crystal/kernel.hpp) on two spheres. The head-on
+// collision must give the Hertz closed forms of docs/design.md §3 (theory/hertz.hpp): contact
+// time 2.86827 (m*^2 / (R* E*^2 v))^(1/5) and maximum overlap (5 m* v^2 / (4 A))^(2/5).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "contact/hertz.hpp"
+#include "contact/law.hpp"
+#include "crystal/dynamics.hpp"
+#include "crystal/kernel.hpp"
+#include "theory/hertz.hpp"
+
+using namespace granwave;
+
+namespace {
+
+// Elastic Hertz spheres, no tension, no history, no torques.
+struct HertzLaw {
+  double A;  // (4/3) E* sqrt(R*) (N/m^1.5)
+
+  struct History {};
+  static constexpr bool torques = false;
+
+  contact::Response evaluate(const contact::Contact& c, History&) const {
+    const double d = contact::select(c.delta > 0.0, c.delta, 0.0);  // branch-free, as the kernel wants
+    return {(A * d * std::sqrt(d)) * c.n, contact::Vec3(), 0.0};
+  }
+  double opening_loss(const History&) const { return 0.0; }
+  void add_stored_energy(double& e, double delta, const History&) const {
+    e += 0.4 * A * delta * delta * std::sqrt(delta);  // (2/5) A delta^(5/2), touching contacts only
+  }
+  double arm_shift() const { return 0.0; }
+  bool dissipates() const { return false; }
+  HertzLaw without_rates() const { return *this; }
+};
+
+// Two spheres (radius a, density rho) touching along z, in a box far larger than them.
+crystal::Packing two_spheres(double a, double rho) {
+  crystal::Packing p;
+  const double m = rho * 4.0 / 3.0 * std::numbers::pi * a * a * a;
+  p.x = {0.5, 0.5};
+  p.y = {0.5, 0.5};
+  p.z = {0.5, 0.5 + 2 * a};
+  p.radius = {a, a};
+  p.mass = {m, m};
+  p.inertia = {0.4 * m * a * a, 0.4 * m * a * a};
+  p.layer = {0, 1};
+  p.fixed = {0, 0};
+  p.box_x = p.box_y = 1.0;
+  p.d = p.d_prime = 2 * a;
+  p.l0 = p.d / std::numbers::sqrt2;
+  p.nx = p.ny = 1;
+  p.layers = 2;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("a Hertz law defined in a test runs through the crystal kernel: two-body closed forms",
+          "[crystal][contact]") {
+  // Glass-like spheres: a = 1 mm, rho = 2500, E = 1e9 Pa, nu = 0.3 (both), closing at 0.02 m/s.
+  const double a = 1e-3, rho = 2500.0, E = 1e9, nu = 0.3, v = 0.01;
+  const double A = contact::hertz_constant_beads(E, nu, a, E, nu, a);
+  const crystal::Packing pk = two_spheres(a, rho);
+  const theory::HertzImpact hz = theory::hertz_impact(A, pk.mass[0], pk.mass[1], 2 * v);
+  const double dt = hz.contact_time / 20000;
+  crystal::Dynamics dyn(pk, crystal::model_of(HertzLaw{A}), dt);
+  REQUIRE_FALSE(dyn.friction());
+  dyn.vz = {v, -v};
+  dyn.compute_forces_of_state();
+  const double e0 = dyn.kinetic_energy() + dyn.potential_energy();
+  double overlap_max = 0.0, t_prev = 0.0, overlap_prev = 0.0, t_end = -1.0, drift = 0.0;
+  while (dyn.time < 2 * hz.contact_time) {
+    dyn.step();
+    const double overlap = 2 * a - (dyn.z[1] - dyn.z[0]);
+    overlap_max = std::max(overlap_max, overlap);
+    drift = std::max(drift, std::abs(dyn.kinetic_energy() + dyn.potential_energy() - e0) / e0);
+    if (overlap_prev > 0.0 && overlap <= 0.0) {  // the end of contact, interpolated
+      t_end = t_prev + (dyn.time - t_prev) * overlap_prev / (overlap_prev - overlap);
+      break;
+    }
+    t_prev = dyn.time;
+    overlap_prev = overlap;
+  }
+  REQUIRE(t_end > 0.0);
+  std::printf("Hertz law through the kernel: t_c %.8g s (closed form %.8g, %.2g), delta_max %.8g m (%.8g, %.2g), "
+              "energy drift %.2g\n",
+              t_end, hz.contact_time, t_end / hz.contact_time - 1, overlap_max, hz.max_overlap,
+              overlap_max / hz.max_overlap - 1, drift);
+  CHECK(t_end == Approx(hz.contact_time).epsilon(1e-4));
+  CHECK(overlap_max == Approx(hz.max_overlap).epsilon(1e-4));
+  CHECK(drift < 1e-6);  // elastic: the kernel's energy bookkeeping is the law's
+  // The contact list kept the law's forces: at the end the spheres fly apart at 0.01 m/s each.
+  dyn.step();
+  CHECK(dyn.vz[0] == Approx(-v).epsilon(1e-4));
+  CHECK(dyn.vz[1] == Approx(v).epsilon(1e-4));
+}
