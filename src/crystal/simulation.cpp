@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "io/h5.hpp"
@@ -73,24 +74,24 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
   if (particle_stress) particle_stress->assign(9 * dyn.size(), 0.0);
   const ContactList& C = dyn.contacts;
   const double volume = pk.box_x * pk.box_y * pk.l0;  // of one layer
-  for (std::size_t c = 0; c < C.size(); ++c) {
-    const double delta = C.delta[c];
-    if (delta <= 0.0) continue;
-    const int i = C.i[c], j = C.j[c];
-    if (pk.fixed[i] && pk.fixed[j]) continue;
-    const double bx = dyn.x[j] + C.shift_x[c] - dyn.x[i];
-    const double by = dyn.y[j] + C.shift_y[c] - dyn.y[i];
-    const double bz = dyn.z[j] - dyn.z[i];
-    const double r = std::sqrt(bx * bx + by * by + bz * bz);
-    const double u[3] = {bx / r, by / r, bz / r};  // from i towards j
-    const double f[3] = {C.f_x[c], C.f_y[c], C.f_z[c]};  // on i; j gets -f
-    // -(x_c - x_i) (x) f  with x_c - x_i = (a_i - delta/2) u;  -(x_c - x_j) (x) (-f) likewise
-    const double arm_i = dyn.radius[i] - 0.5 * delta, arm_j = dyn.radius[j] - 0.5 * delta;
-    zz[pk.layer[i]] -= arm_i * u[2] * f[2];
-    zx[pk.layer[i]] -= arm_i * u[2] * f[0];
-    zz[pk.layer[j]] -= arm_j * u[2] * f[2];
-    zx[pk.layer[j]] -= arm_j * u[2] * f[0];
-    if (particle_stress) {
+  if (particle_stress) {
+    for (std::size_t c = 0; c < C.size(); ++c) {
+      const double delta = C.delta[c];
+      if (delta <= 0.0) continue;
+      const int i = C.i[c], j = C.j[c];
+      if (pk.fixed[i] && pk.fixed[j]) continue;
+      const double bx = dyn.x[j] + C.shift_x[c] - dyn.x[i];
+      const double by = dyn.y[j] + C.shift_y[c] - dyn.y[i];
+      const double bz = dyn.z[j] - dyn.z[i];
+      const double r = std::sqrt(bx * bx + by * by + bz * bz);
+      const double u[3] = {bx / r, by / r, bz / r};  // from i towards j
+      const double f[3] = {C.f_x[c], C.f_y[c], C.f_z[c]};  // on i; j gets -f
+      // -(x_c - x_i) (x) f  with x_c - x_i = (a_i - delta/2) u;  -(x_c - x_j) (x) (-f) likewise
+      const double arm_i = dyn.radius[i] - 0.5 * delta, arm_j = dyn.radius[j] - 0.5 * delta;
+      zz[pk.layer[i]] -= arm_i * u[2] * f[2];
+      zx[pk.layer[i]] -= arm_i * u[2] * f[0];
+      zz[pk.layer[j]] -= arm_j * u[2] * f[2];
+      zx[pk.layer[j]] -= arm_j * u[2] * f[0];
       double* si = particle_stress->data() + 9 * i;
       double* sj = particle_stress->data() + 9 * j;
       for (int a = 0; a < 3; ++a)
@@ -99,6 +100,63 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
           sj[3 * a + b] -= arm_j * u[a] * f[b];
         }
     }
+  } else {
+    // The same sums, faster (a sample costs about as much as a time step otherwise): per block,
+    // first every contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z in a loop that vectorises
+    // (a root and a division each), then the sums in contact order. The two layers last summed
+    // into stay in registers (the same additions in the same order, without a store and reload
+    // of the running sum between two contacts).
+    constexpr std::size_t kBlock = 256;
+    double arm_u_i[kBlock], arm_u_j[kBlock];
+    int la = -1, lb = -1;  // the layers held in (zz_a, zx_a) and (zz_b, zx_b); a: the last one used
+    double zz_a = 0.0, zx_a = 0.0, zz_b = 0.0, zx_b = 0.0;
+    auto hold = [&](int L) {
+      if (L == la) return;
+      if (L == lb) {
+        std::swap(la, lb);
+        std::swap(zz_a, zz_b);
+        std::swap(zx_a, zx_b);
+        return;
+      }
+      if (lb >= 0) {
+        zz[lb] = zz_b;
+        zx[lb] = zx_b;
+      }
+      lb = la;
+      zz_b = zz_a;
+      zx_b = zx_a;
+      la = L;
+      zz_a = zz[L];
+      zx_a = zx[L];
+    };
+    for (std::size_t c0 = 0; c0 < C.size(); c0 += kBlock) {
+      const std::size_t c1 = std::min(C.size(), c0 + kBlock);
+      for (std::size_t c = c0; c < c1; ++c) {
+        const int i = C.i[c], j = C.j[c];
+        const double bx = dyn.x[j] + C.shift_x[c] - dyn.x[i];
+        const double by = dyn.y[j] + C.shift_y[c] - dyn.y[i];
+        const double bz = dyn.z[j] - dyn.z[i];
+        const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
+        arm_u_i[c - c0] = (dyn.radius[i] - 0.5 * C.delta[c]) * u_z;
+        arm_u_j[c - c0] = (dyn.radius[j] - 0.5 * C.delta[c]) * u_z;
+      }
+      for (std::size_t c = c0; c < c1; ++c) {
+        if (C.delta[c] <= 0.0) continue;
+        const int i = C.i[c], j = C.j[c];
+        if (pk.fixed[i] && pk.fixed[j]) continue;
+        hold(pk.layer[i]);
+        zz_a -= arm_u_i[c - c0] * C.f_z[c];
+        zx_a -= arm_u_i[c - c0] * C.f_x[c];
+        hold(pk.layer[j]);
+        zz_a -= arm_u_j[c - c0] * C.f_z[c];
+        zx_a -= arm_u_j[c - c0] * C.f_x[c];
+      }
+    }
+    for (const auto& [L, s_zz, s_zx] : {std::tuple{lb, zz_b, zx_b}, std::tuple{la, zz_a, zx_a}})
+      if (L >= 0) {
+        zz[L] = s_zz;
+        zx[L] = s_zx;
+      }
   }
   for (std::size_t L = 0; L < nl; ++L) {
     zz[L] /= volume;
