@@ -48,7 +48,7 @@ std::size_t state_bytes(const crystal::Dynamics& d) {
   b += bytes(d.mobile);
   const auto& C = d.contacts;
   b += bytes(C.i) + bytes(C.j) + bytes(C.image_x) + bytes(C.image_y) + bytes(C.j_first) + bytes(C.j_contacts) + bytes(C.i_first);
-  for (const auto* v : {&C.shift_x, &C.shift_y, &C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,
+  for (const auto* v : {&C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,
                         &C.nf_z, &C.dissipated})
     b += bytes(*v);
   return b + 3 * d.size() * sizeof(double);  // positions at the last list build
