@@ -48,7 +48,7 @@ std::size_t state_bytes(const crystal::Dynamics& d) {
   b += bytes(d.mobile);
   const auto& C = d.contacts;
   b += bytes(C.i) + bytes(C.j) + bytes(C.image_x) + bytes(C.image_y) + bytes(C.j_first) + bytes(C.j_contacts) + bytes(C.i_first);
-  for (const auto* v : {&C.shift_x, &C.shift_y, &C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,
+  for (const auto* v : {&C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,
                         &C.nf_z, &C.dissipated})
     b += bytes(*v);
   return b + 3 * d.size() * sizeof(double);  // positions at the last list build
@@ -181,6 +181,25 @@ int main(int argc, char** argv) {
                 "kinetic + Verlet %.1f us%s\n",
                 "", 1e6 * t_stress, 1e6 * t_coord, 1e6 * t_pot, 1e6 * t_diss, 1e6 * t_kin, sink == 0.123 ? " " : "");
   }
+  // Thread scaling where threads pay (OpenMP from 20000 particles on): 4x4x2000, 32000 particles.
+#ifdef _OPENMP
+  std::printf("\nthread scaling, 4x4x2000 (32000 particles)\n%-34s %8s %12s %18s %18s %9s\n", "case", "threads",
+              "us/step", "particle-steps/s", "(by CPU time)", "speed-up");
+  for (const Row& row : {Row{0.0, config::LeverArm::radius, "4x4x2000, frictionless"},
+                         Row{1e5, config::LeverArm::contact_point, "4x4x2000, kt = k, contact-point arm"}}) {
+    const config::Case c = seed_case(2000, row.kt, row.arm);
+    double one = 0.0;
+    for (int threads : {1, 2}) {
+      omp_set_num_threads(threads);
+      crystal::Dynamics dyn = excited(c);
+      const StepCost s = seconds_per_step(dyn, std::max<long>(20, steps / 10), repeats, threads);
+      if (threads == 1) one = s.wall;
+      std::printf("%-34s %8d %12.1f %18.3g %18.3g %8.2fx\n", row.name, threads, 1e6 * s.wall, dyn.size() / s.wall,
+                  dyn.size() / s.cpu, one / s.wall);
+    }
+  }
+  omp_set_num_threads(1);
+#endif
   std::printf("\ncost per step as layers grow (1 thread)\n%-13s %10s %10s %12s %16s %16s %14s\n", "case", "layers",
               "particles", "us/step", "ns/particle-step", "(by CPU time)", "bytes/particle");
   for (double kt : {0.0, 1e5}) {

@@ -9,6 +9,9 @@
 // law's: the vectorised evaluation finishes every sticking contact and defers the sliding ones
 // (case (2) needs a root and divisions) to the exact evaluation.
 #pragma once
+#include <string>
+#include <type_traits>
+
 #include "contact/law.hpp"
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
@@ -18,17 +21,28 @@ namespace granwave::contact {
 // Dashpots = false is the same law without dashpots (gamma_0 = gamma_t = 0, or a jump of
 // positions), bit for bit: f^n = k delta (k delta + 0 delta_dot is k delta), and a sticking
 // contact dissipates nothing; the vectorised evaluation then skips that arithmetic.
-template <bool Dashpots>
+// Hysteresis = false is the same law for mu^s = mu^d: the stick/slip flag then selects between
+// two equal limits, so the history drops it (8 bytes per contact).
+template <bool Dashpots, bool Hysteresis = true>
 struct LinearLudingLaw {
   LinearSpringDashpotParams normal;
   TangentialSpringParams tangential;
   double shift = 0.0;  // lever arm of f^t: a - shift delta; 0 (eq. (4), "radius") or 1/2 ("contact_point")
 
-  struct History {
+  struct Spring {
+    double xi_x = 0.0, xi_y = 0.0, xi_z = 0.0;  // tangential spring xi' (m), eqs. (6)/(7)
+    Vec3 xi() const { return {xi_x, xi_y, xi_z}; }
+    bool was_sliding() const { return false; }
+    void set(const Vec3& xi, bool) { *this = {xi.x(), xi.y(), xi.z()}; }
+  };
+  struct SpringAndFlag {
     double xi_x = 0.0, xi_y = 0.0, xi_z = 0.0;  // tangential spring xi' (m), eqs. (6)/(7)
     double sliding = 0.0;                       // 1: the dynamic (sliding) case (2) is active
     Vec3 xi() const { return {xi_x, xi_y, xi_z}; }
+    bool was_sliding() const { return sliding != 0.0; }
+    void set(const Vec3& xi, bool s) { *this = {xi.x(), xi.y(), xi.z(), s ? 1.0 : 0.0}; }
   };
+  using History = std::conditional_t<Hysteresis, SpringAndFlag, Spring>;
   static constexpr bool torques = true;
 
   LinearLudingLaw(const LinearSpringDashpotParams& n, const TangentialSpringParams& t, bool contact_point_arm)
@@ -36,6 +50,9 @@ struct LinearLudingLaw {
     normal.validate();
     tangential.validate();
     if (!Dashpots) normal.gamma_n = tangential.gamma_t = 0.0;
+    if (!Hysteresis && tangential.mu_static != tangential.mu_dynamic)
+      throw InputError("contact.mu_static = " + std::to_string(tangential.mu_static) + " and contact.mu_dynamic = " +
+                       std::to_string(tangential.mu_dynamic) + ": this form of the law needs mu^s = mu^d");
   }
 
   // Sticking contacts, branch-free; a contact that slides is deferred.
@@ -54,7 +71,7 @@ struct LinearLudingLaw {
   double arm_shift() const { return shift; }
   bool dissipates() const { return true; }  // slip
   // A jump of positions: no dashpots (the springs see no velocity either).
-  LinearLudingLaw<false> without_rates() const { return {normal, tangential, shift != 0.0}; }
+  LinearLudingLaw<false, Hysteresis> without_rates() const { return {normal, tangential, shift != 0.0}; }
 
  private:
   template <bool Exact>
@@ -72,15 +89,15 @@ struct LinearLudingLaw {
     double slip_loss = 0.0;
     bool deferred = false;
     if constexpr (Exact) {
-      const TangentialResult res = tangential_force(tangential, xi, vt, f_n, h.sliding != 0.0);
+      const TangentialResult res = tangential_force(tangential, xi, vt, f_n, h.was_sliding());
       ft = res.force;
       slip_loss = res.slip_loss;
-      h = History{res.spring.x(), res.spring.y(), res.spring.z(), res.sliding ? 1.0 : 0.0};
+      h.set(res.spring, res.sliding);
     } else {
-      const TangentialTest test = tangential_test(tangential, xi, vt, f_n, h.sliding != 0.0);
+      const TangentialTest test = tangential_test(tangential, xi, vt, f_n, h.was_sliding());
       ft = test.force;
       deferred = test.sliding;
-      h = History{xi.x(), xi.y(), xi.z(), 0.0};
+      h.set(xi, false);
     }
     // Dissipated tangentially: the dashpot's power (without a spring, all of -f^t . v_t), plus
     // the slip removed from the spring by eq. (7).

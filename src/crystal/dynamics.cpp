@@ -25,8 +25,13 @@ std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp) 
   tangential.validate();
   const bool contact_point = cp.lever_arm == config::LeverArm::contact_point;
   const bool dashpots = normal.gamma_n > 0.0 || tangential.gamma_t > 0.0;
-  if (tangential.active() && dashpots) return model_of(contact::LinearLudingLaw<true>(normal, tangential, contact_point));
-  if (tangential.active()) return model_of(contact::LinearLudingLaw<false>(normal, tangential, contact_point));
+  const bool hysteresis = tangential.mu_static != tangential.mu_dynamic;
+  if (tangential.active()) {
+    if (dashpots && hysteresis) return model_of(contact::LinearLudingLaw<true, true>(normal, tangential, contact_point));
+    if (dashpots) return model_of(contact::LinearLudingLaw<true, false>(normal, tangential, contact_point));
+    if (hysteresis) return model_of(contact::LinearLudingLaw<false, true>(normal, tangential, contact_point));
+    return model_of(contact::LinearLudingLaw<false, false>(normal, tangential, contact_point));
+  }
   if (normal.gamma_n > 0.0) return model_of(contact::HookeLaw<true>(normal));
   return model_of(contact::HookeLaw<false>(normal));
 }
@@ -55,6 +60,9 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
     inv_inertia[p] = 1.0 / inertia[p];
     mobile[p] = packing.fixed[p] ? 0 : 1;
   }
+  // Not kept twice (memory): x0, y0, z0, radius, mass and inertia hold them.
+  for (auto* v : {&packing_.x, &packing_.y, &packing_.z, &packing_.radius, &packing_.mass, &packing_.inertia})
+    *v = std::vector<double>();
   // Skin: 5 % of a diameter keeps next-nearest FCC neighbours (sqrt(2) d away) out of the
   // list while small-amplitude waves never trigger a rebuild.
   const double a_mean = std::accumulate(radius.begin(), radius.end(), 0.0) / std::max<std::size_t>(1, n);
@@ -72,7 +80,8 @@ void Dynamics::set_mobile(std::size_t p, bool on) {
 double Dynamics::max_displacement_since_build() const {
   double m2 = 0.0;
   for (std::size_t p = 0; p < size(); ++p) {
-    const double dx = x[p] - x_build_[p], dy = y[p] - y_build_[p], dz = z[p] - z_build_[p];
+    const double dx = (x[p] - x0[p]) - x_build_[p], dy = (y[p] - y0[p]) - y_build_[p],
+                 dz = (z[p] - z0[p]) - z_build_[p];
     m2 = std::max(m2, dx * dx + dy * dy + dz * dz);
   }
   return std::sqrt(m2);
@@ -92,11 +101,10 @@ void Dynamics::rebuild() {
   fresh.j = std::move(pairs.j);
   fresh.image_x = std::move(pairs.image_x);
   fresh.image_y = std::move(pairs.image_y);
-  fresh.shift_x.resize(nc);
-  fresh.shift_y.resize(nc);
-  for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.nf_x, &fresh.nf_y, &fresh.nf_z,
-                  &fresh.dissipated})
-    v->assign(nc, 0.0);
+  for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
+  const bool torques = model_->torques();
+  if (torques)
+    for (auto* v : {&fresh.nf_x, &fresh.nf_y, &fresh.nf_z}) v->assign(nc, 0.0);
   const std::size_t nh = model_->history_columns();
   fresh.history_columns = nh;
   fresh.history.assign(nh * nc, 0.0);
@@ -109,8 +117,6 @@ void Dynamics::rebuild() {
   // Both lists are sorted by (i, j, image): carry the history of persisting pairs over.
   std::size_t u = 0;
   for (std::size_t c = 0; c < nc; ++c) {
-    fresh.shift_x[c] = fresh.image_x[c] * packing_.box_x;
-    fresh.shift_y[c] = fresh.image_y[c] * packing_.box_y;
     while (u < old.size() && key_less(old, u, fresh, c)) ++u;
     if (u < old.size() && !key_less(fresh, c, old, u)) {
       for (std::size_t k = 0; k < nh; ++k) fresh.history_column(k)[c] = old.history_column(k)[u];
@@ -118,9 +124,11 @@ void Dynamics::rebuild() {
       fresh.f_x[c] = old.f_x[u];
       fresh.f_y[c] = old.f_y[u];
       fresh.f_z[c] = old.f_z[u];
-      fresh.nf_x[c] = old.nf_x[u];
-      fresh.nf_y[c] = old.nf_y[u];
-      fresh.nf_z[c] = old.nf_z[u];
+      if (torques) {
+        fresh.nf_x[c] = old.nf_x[u];
+        fresh.nf_y[c] = old.nf_y[u];
+        fresh.nf_z[c] = old.nf_z[u];
+      }
     }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
   }
   // Per-particle contact lists in contact order, for the deterministic gather: the contacts
@@ -139,9 +147,14 @@ void Dynamics::rebuild() {
     for (std::size_t c = 0; c < nc; ++c) fresh.j_contacts[fill[fresh.j[c]]++] = static_cast<std::int32_t>(c);
   }
   contacts = std::move(fresh);
-  x_build_ = x;
-  y_build_ = y;
-  z_build_ = z;
+  x_build_.resize(n);
+  y_build_.resize(n);
+  z_build_.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    x_build_[p] = static_cast<float>(x[p] - x0[p]);
+    y_build_[p] = static_cast<float>(y[p] - y0[p]);
+    z_build_[p] = static_cast<float>(z[p] - z0[p]);
+  }
   ++rebuilds;
 }
 
@@ -248,7 +261,8 @@ void Dynamics::step() {
         wz[p] += h * tz[p] * inv_inertia[p];
       }
     }
-    const double dx = x[p] - x_build_[p], dy = y[p] - y_build_[p], dz = z[p] - z_build_[p];
+    const double dx = (x[p] - x0[p]) - x_build_[p], dy = (y[p] - y0[p]) - y_build_[p],
+                 dz = (z[p] - z0[p]) - z_build_[p];
     m2 = std::max(m2, dx * dx + dy * dy + dz * dz);
   }
   time += dt_;

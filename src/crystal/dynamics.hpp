@@ -24,11 +24,11 @@ namespace granwave::crystal {
 // Per-contact arrays, indexed like the pair list.
 struct ContactList {
   std::vector<std::int32_t> i, j;
-  std::vector<std::int16_t> image_x, image_y;
-  std::vector<double> shift_x, shift_y;    // image offsets of j (m)
+  std::vector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y (|image| <= 127)
   std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
   std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N
-  std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t)
+  std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
+                                           // empty for a law without torques
   std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
   // The law's history (contact/law.hpp), column by column: history[k * size() + c].
   std::vector<double> history;
@@ -82,6 +82,8 @@ class Dynamics {
   double work_in = 0.0;  // cumulative work done by driven particles on the rest (J)
 
   std::size_t size() const { return x.size(); }
+  // The packing's lattice and per-particle layer and fixed flags; its positions, radii, masses
+  // and inertias are not kept twice: read x0, y0, z0, radius, mass, inertia.
   const Packing& packing() const { return packing_; }
   double dt() const { return dt_; }
   void set_dt(double dt) { dt_ = dt; }
@@ -134,7 +136,9 @@ class Dynamics {
   double dt_ = 0.0;
   double skin_ = 0.0;
   double dissipated_before_ = 0.0;  // folded in at rebuilds
-  std::vector<double> x_build_, y_build_, z_build_;
+  // Displacements from x0 at the last list build, in single precision (memory): the skin test
+  // needs them to ~1e-13 m, float gives 6e-8 of a displacement.
+  std::vector<float> x_build_, y_build_, z_build_;
 };
 
 // Frictionless relaxation of a packing (FIRE, Bitzek et al. 2006, on the mobile particles; the

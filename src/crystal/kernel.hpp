@@ -60,8 +60,9 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
   const std::int64_t nc = static_cast<std::int64_t>(C.size());
   const std::int32_t* ci = C.i.data();
   const std::int32_t* cj = C.j.data();
-  const double* shx = C.shift_x.data();
-  const double* shy = C.shift_y.data();
+  const std::int8_t* imx = C.image_x.data();
+  const std::int8_t* imy = C.image_y.data();
+  const double box_x = d.packing().box_x, box_y = d.packing().box_y;
   const double* px = d.x.data();
   const double* py = d.y.data();
   const double* pz = d.z.data();
@@ -86,11 +87,13 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
   // and reported; the exact sweep evaluates it again from the same history. Pointers and the
   // law are captured by value (OpenMP would share them by reference, which the vectoriser
   // cannot see through).
-  auto one = [=](std::int64_t c, auto vector_sweep) __attribute__((always_inline)) -> bool {
+  // shx[u], shy[u]: the image offsets of j (m) of contact c = c0 + u of the block.
+  auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, auto vector_sweep)
+                 __attribute__((always_inline)) -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     const int i = ci[c], j = cj[c];
-    const double bx = px[j] + shx[c] - px[i];
-    const double by = py[j] + shy[c] - py[i];
+    const double bx = px[j] + shx[u] - px[i];  // image_x box_x, as the neighbour search takes it
+    const double by = py[j] + shy[u] - py[i];
     const double bz = pz[j] - pz[i];
     const double r2 = bx * bx + by * by + bz * bz;
     const double reach = pa[i] + pa[j];
@@ -139,20 +142,25 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
     return deferred;
   };
   auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
+    double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
+    for (std::int64_t c = c0; c < c1; ++c) {
+      shx[c - c0] = imx[c] * box_x;
+      shy[c - c0] = imy[c] * box_y;
+    }
     if constexpr (Defers) {
       std::int32_t deferred[kBlock];
       std::int32_t any = 0;
 #pragma GCC ivdep
       for (std::int64_t c = c0; c < c1; ++c) {
-        deferred[c - c0] = one(c, std::true_type{});
+        deferred[c - c0] = one(c, c - c0, shx, shy, std::true_type{});
         any |= deferred[c - c0];
       }
       if (any)
         for (std::int64_t c = c0; c < c1; ++c)
-          if (deferred[c - c0]) one(c, std::false_type{});
+          if (deferred[c - c0]) one(c, c - c0, shx, shy, std::false_type{});
     } else {
 #pragma GCC ivdep
-      for (std::int64_t c = c0; c < c1; ++c) one(c, std::true_type{});
+      for (std::int64_t c = c0; c < c1; ++c) one(c, c - c0, shx, shy, std::true_type{});
     }
   };
   in_blocks(nc, d.threaded(), range);

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
+
+#include "core/error.hpp"
 
 namespace granwave::crystal {
 
@@ -43,7 +46,7 @@ PairList find_pairs(const double* x, const double* y, const double* z, const dou
 
   struct Candidate {
     std::int32_t i, j;
-    std::int16_t ix, iy;
+    std::int8_t ix, iy;
   };
   std::vector<Candidate> found;
   auto neighbours = [](int c, int nc) {  // distinct cells c-1, c, c+1 with wrap-around
@@ -75,8 +78,12 @@ PairList find_pairs(const double* x, const double* y, const double* z, const dou
                     for (int sy = by - 1; sy <= by + 1; ++sy) {
                       const double dx = x[j] + sx * box_x - x[i];
                       const double dy = y[j] + sy * box_y - y[i];
-                      if (dx * dx + dy * dy + dz * dz < reach * reach)
-                        found.push_back({i, j, static_cast<std::int16_t>(sx), static_cast<std::int16_t>(sy)});
+                      if (dx * dx + dy * dy + dz * dz < reach * reach) {
+                        if (std::abs(sx) > 127 || std::abs(sy) > 127)  // images are stored in a byte
+                          throw RunError("particles " + std::to_string(i) + " and " + std::to_string(j) +
+                                         " are more than 127 periodic boxes apart");
+                        found.push_back({i, j, static_cast<std::int8_t>(sx), static_cast<std::int8_t>(sy)});
+                      }
                     }
                 }
               }

@@ -10,7 +10,7 @@ namespace granwave::crystal {
 
 struct PairList {
   std::vector<std::int32_t> i, j;          // i < j
-  std::vector<std::int16_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y
+  std::vector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y
   std::size_t size() const { return i.size(); }
 };
 

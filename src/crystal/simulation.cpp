@@ -80,8 +80,8 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
       if (delta <= 0.0) continue;
       const int i = C.i[c], j = C.j[c];
       if (pk.fixed[i] && pk.fixed[j]) continue;
-      const double bx = dyn.x[j] + C.shift_x[c] - dyn.x[i];
-      const double by = dyn.y[j] + C.shift_y[c] - dyn.y[i];
+      const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
+      const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
       const double bz = dyn.z[j] - dyn.z[i];
       const double r = std::sqrt(bx * bx + by * by + bz * bz);
       const double u[3] = {bx / r, by / r, bz / r};  // from i towards j
@@ -133,8 +133,8 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
       const std::size_t c1 = std::min(C.size(), c0 + kBlock);
       for (std::size_t c = c0; c < c1; ++c) {
         const int i = C.i[c], j = C.j[c];
-        const double bx = dyn.x[j] + C.shift_x[c] - dyn.x[i];
-        const double by = dyn.y[j] + C.shift_y[c] - dyn.y[i];
+        const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
+        const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
         const double bz = dyn.z[j] - dyn.z[i];
         const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
         arm_u_i[c - c0] = (dyn.radius[i] - 0.5 * C.delta[c]) * u_z;

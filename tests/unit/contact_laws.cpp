@@ -233,3 +233,41 @@ TEST_CASE("linear + Luding law: stored + dissipated = work, with and without a t
   CHECK(std::abs(o1.work - o1.stored - o1.lost) < 1e-2 * o1.lost);
   CHECK(std::abs(o2.work - o2.stored - o2.lost) < 0.6 * std::abs(o1.work - o1.stored - o1.lost));
 }
+
+TEST_CASE("linear + Luding law: the forms without dashpots or without the stick/slip flag are the same law, bit for bit",
+          "[contact]") {
+  using contact::LinearLudingLaw;
+  const contact::LinearSpringDashpotParams n{1e5, 0.0, false};
+  const contact::TangentialSpringParams t{1e5, 0.0, 0.01, 0.01};
+  // mu_s != mu_d needs the flag.
+  CHECK_THAT(message_of([&] { LinearLudingLaw<true, false>(n, {1e5, 0.0, 0.5, 0.3}, false); }),
+             Catch::Contains("contact.mu_static"));
+  CHECK(contact::history_columns<LinearLudingLaw<true, false>::History> == 3);
+  CHECK(contact::history_columns<LinearLudingLaw<true, true>::History> == 4);
+  // Drive one contact through sticking into sliding with each form: same forces, springs, losses.
+  const LinearLudingLaw<true, true> full(n, t, true);
+  const LinearLudingLaw<false, true> no_dashpots(n, t, true);
+  const LinearLudingLaw<false, false> lean(n, t, true);
+  LinearLudingLaw<true, true>::History h_full;
+  LinearLudingLaw<false, true>::History h_nd;
+  LinearLudingLaw<false, false>::History h_lean;
+  int slid = 0;
+  for (int s = 0; s < 100; ++s) {
+    Contact c = touching(2e-6 + 1e-9 * s, 0.0, Vec3(0.01, 0.003 * s, 0.0), 1e-7);
+    c.w_i = Vec3(0.0, 0.0, 3.0);
+    c.w_j = Vec3(1.0, 0.0, 0.0);
+    const auto a = full.evaluate(c, h_full), b = no_dashpots.evaluate(c, h_nd), d = lean.evaluate(c, h_lean);
+    for (const auto* r : {&b, &d}) {
+      CHECK(r->force.x() == a.force.x());
+      CHECK(r->force.y() == a.force.y());
+      CHECK(r->force.z() == a.force.z());
+      CHECK(r->nf.x() == a.nf.x());
+      CHECK(r->nf.y() == a.nf.y());
+      CHECK((r->loss == a.loss || (r->loss == 0.0 && a.loss == 0.0)));
+    }
+    CHECK(h_nd.xi_x == h_full.xi_x);
+    CHECK(h_lean.xi_y == h_full.xi_y);
+    slid += h_full.sliding != 0.0;
+  }
+  CHECK(slid > 10);
+}
