@@ -58,3 +58,16 @@ p = json.load(open('${CLI_TMP}/lat_poly.json')); assert not p['lattice']['availa
 assert 'V_sz_lattice' not in p and 'V_sz' in p\"")
 set_tests_properties("cli: theory --nk 4 exits 2 naming the option and its range"
                      "cli: theory --json gives the lattice speeds and six branches; polydisperse: a note" PROPERTIES LABELS "cli;unit")
+# Crystal studies honour --limit (stop, keep the batches, resume) and --threads (the study file does
+# not depend on it): `granwave sweep` used to pass neither to crystal studies.
+add_test(NAME "cli: crystal sweep --limit stops and resumes, --threads changes nothing"
+  COMMAND sh -c "d=${CLI_TMP}/crystal_limit; rm -rf $d; mkdir -p $d; \
+${GW} sweep ${CMAKE_SOURCE_DIR}/tests/data/mpi/crystal_tiny.toml -o $d/a.h5 --limit 1 --threads 1 --quiet > /dev/null 2> $d/err; rc=$?; \
+test $rc -eq 0 || { cat $d/err; echo \"exit code $rc\"; exit 1; }; \
+grep -q 'stopped after --limit 1 runs; 3 left' $d/err || { cat $d/err; exit 1; }; \
+test ! -e $d/a.h5 && test -d $d/a.h5.parts || { ls -la $d; echo 'expected batches and no study file'; exit 1; }; \
+${GW} sweep ${CMAKE_SOURCE_DIR}/tests/data/mpi/crystal_tiny.toml -o $d/a.h5 --threads 1 --quiet > $d/out 2>&1 || { cat $d/out; exit 1; }; \
+grep -q '1 resumed, 3 computed' $d/out || { cat $d/out; exit 1; }; \
+${GW} sweep ${CMAKE_SOURCE_DIR}/tests/data/mpi/crystal_tiny.toml -o $d/b.h5 --threads 2 --quiet > /dev/null 2>&1 || exit 1; \
+h5diff $d/a.h5 $d/b.h5 /members /members || { echo 'members differ'; exit 1; }")
+set_tests_properties("cli: crystal sweep --limit stops and resumes, --threads changes nothing" PROPERTIES LABELS "cli")

@@ -89,7 +89,17 @@ int cmd_sweep(const Args& args) {
     if (!in) throw InputError(pos[0] + ": cannot read the study file");
     std::stringstream ss;
     ss << in.rdbuf();
-    if (sweep::is_crystal_study(ss.str())) return sweep::run_crystal_study(pos[0], o.output, !o.progress, std::cout, o.limits);
+    if (sweep::is_crystal_study(ss.str())) {
+      sweep::CrystalRunOptions co;
+      co.quiet = !o.progress;
+      co.threads = o.threads;
+      co.limit = o.limit;
+      co.limits = o.limits;
+      const std::size_t left = sweep::run_crystal_study(pos[0], o.output, co, std::cout);
+      if (left > 0 && sweep::is_root())
+        std::cerr << "sweep: stopped after --limit " << o.limit << " runs; " << left << " left, rerun to finish\n";
+      return 0;
+    }
   }
   const sweep::SpinStudy study = sweep::load_spin_study(pos[0]);
   const auto r = sweep::run_spin_study(study, o);

@@ -350,16 +350,14 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
   return results;
 }
 
-int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out,
-                      const ResourceLimits& limits) {
+std::size_t run_crystal_study(const std::string& path, const std::string& out_path, const CrystalRunOptions& opt,
+                              std::ostream& out) {
   const CrystalStudy s = load_crystal_study(path);
-  std::string o = out_path;
-  if (o.empty()) o = std::filesystem::path(path).stem().string() + ".h5";
-  CrystalRunOptions opt;
-  opt.quiet = quiet;
-  opt.limits = limits;
-  run_crystal_study(s, o, out, opt);
-  return 0;
+  const std::string o = out_path.empty() ? std::filesystem::path(path).stem().string() + ".h5" : out_path;
+  RunStats st;
+  run_crystal_study(s, o, out, opt, &st);
+  const std::size_t total = crystal_members(s).size();
+  return total - std::min(total, st.resumed + st.computed);
 }
 
 }  // namespace granwave::sweep

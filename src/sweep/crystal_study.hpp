@@ -106,9 +106,10 @@ struct CrystalRunOptions {
 // renamed) once every member is done. Returns the members ordered by index.
 std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::string& out_path, std::ostream& out,
                                             const CrystalRunOptions& opt = {}, RunStats* stats = nullptr);
-// `granwave sweep STUDY.toml -o OUT` for a crystal study: 0 on success (throws InputError/RunError).
-int run_crystal_study(const std::string& path, const std::string& out_path, bool quiet, std::ostream& out,
-                      const ResourceLimits& limits = {});
+// The `granwave sweep` verb: load the study and run it with the verb's options (threads, limit,
+// quiet, guards). Returns the number of members still to run (0 when the study file was written).
+std::size_t run_crystal_study(const std::string& path, const std::string& out_path, const CrystalRunOptions& opt,
+                              std::ostream& out);
 
 // `granwave figures crystal`: Figs. 2-9 of seed 002 as PNG in out_dir, the data behind them, and
 // summary.md. quick = reduced sizes (about a minute). Progress on `log`.
