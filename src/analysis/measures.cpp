@@ -111,6 +111,42 @@ double first_oscillation_duration(std::span<const double> t, std::span<const dou
   return end_time - start.time;
 }
 
+double first_oscillation_period(std::span<const double> t, std::span<const double> y, const Peak& peak) {
+  const Arrival start = one_percent_arrival(t, y, peak);
+  if (!start.found) return 0.0;
+  std::size_t end_index = 0;
+  double end_time = 0.0;
+  if (!end_of_first_oscillation(t, y, peak, &end_index, &end_time)) return 0.0;
+  // The third crossing: the first upward crossing of the 1 % level after the second one.
+  const Arrival back = first_crossing(t, y, 0.01 * peak.value, end_index);
+  if (!back.found) return 0.0;
+  return back.time - start.time;
+}
+
+double first_oscillation_length(std::span<const double> z, std::span<const double> y, double level) {
+  require_same_length(z, y);
+  double cross[3];
+  int found = 0;
+  for (std::size_t i = y.size(); i-- > 1 && found < 3;) {
+    // Between samples i (farther) and i - 1 (nearer the source): crossing number found + 1 is
+    // upward towards the source for the 1st and 3rd, downward for the 2nd.
+    const bool far_above = y[i] >= level, near_above = y[i - 1] >= level;
+    if (far_above == near_above) continue;
+    if ((found == 1) == near_above) continue;  // not the direction this crossing needs
+    const double f = (level - y[i]) / (y[i - 1] - y[i]);
+    cross[found++] = z[i] + f * (z[i - 1] - z[i]);
+  }
+  return found == 3 ? cross[0] - cross[2] : 0.0;
+}
+
+const char* to_string(PeriodReading r) { return r == PeriodReading::pulse ? "pulse" : "oscillation"; }
+
+std::optional<PeriodReading> parse_period_reading(std::string_view s) {
+  if (s == "oscillation") return PeriodReading::oscillation;
+  if (s == "pulse") return PeriodReading::pulse;
+  return std::nullopt;
+}
+
 Peak leading_pulse_max(std::span<const double> t, std::span<const double> y, const Peak& peak) {
   if (!peak.found) return {};
   std::size_t end_index = y.size();
@@ -133,6 +169,7 @@ SignalMeasures measure_signal(std::span<const double> t, std::span<const double>
   m.half_peak = half_peak_arrival(t, y, m.first_peak);
   m.one_percent = one_percent_arrival(t, y, m.first_peak);
   m.duration = first_oscillation_duration(t, y, m.first_peak);
+  m.period = first_oscillation_period(t, y, m.first_peak);
   m.leading_pulse = leading_pulse_max(t, y, m.first_peak);
   return m;
 }

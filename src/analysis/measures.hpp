@@ -2,7 +2,9 @@
 // Signals are baseline-subtracted by the caller (e.g. sigma - sigma(t = 0)).
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace granwave::analysis {
@@ -36,6 +38,29 @@ Arrival one_percent_arrival(std::span<const double> t, std::span<const double> y
 // of the 1 % level; 0 when the signal never falls back within the window.
 double first_oscillation_duration(std::span<const double> t, std::span<const double> y, const Peak& peak);
 
+// Period T of the first oscillation: from the 1 % arrival to the third crossing of the 1 % level
+// (up at the arrival, down after the leading pulse, up again after the trough that follows it),
+// the end interpolated; 0 when the signal does not come back up within the window. For
+// y = sin(omega (t - t0)), t > t0, it is 2 pi/omega exactly, where the duration above is
+// (pi - 2 asin 0.01)/omega: a full cycle against the leading half.
+double first_oscillation_period(std::span<const double> t, std::span<const double> y, const Peak& peak);
+
+// Length of the first oscillation in a snapshot y(z) of a wave travelling towards +z (z ascending):
+// from the front (the last upward crossing of `level`, searching from the far end towards the
+// source) back to the third crossing of `level` (down behind the leading pulse, up again behind the
+// trough), both interpolated; 0 when the profile does not cross three times. The spatial twin of
+// first_oscillation_period: for y = sin(kappa (z_f - z)), z < z_f, it is 2 pi/kappa.
+double first_oscillation_length(std::span<const double> z, std::span<const double> y, double level);
+
+// Which T makes the wavelength lambda = V T of seed 002 sec. 3.4 ("the duration T of the first
+// oscillation of a signal (based on first-arrival time, one per cent peak level)"):
+//   oscillation: first_oscillation_period, the full first oscillation (the default: a wavelength is
+//                a full cycle; it reproduces the seed's table, docs/design.md §2.4);
+//   pulse:       first_oscillation_duration, the leading pulse alone (granwave's reading before).
+enum class PeriodReading { oscillation, pulse };
+const char* to_string(PeriodReading r);
+std::optional<PeriodReading> parse_period_reading(std::string_view s);  // nullopt if neither name
+
 // Largest sample between the 1 % arrival and the end of the first oscillation (the leading
 // pulse, which may have several humps), parabola-refined like first_peak.
 Peak leading_pulse_max(std::span<const double> t, std::span<const double> y, const Peak& peak);
@@ -44,7 +69,8 @@ struct SignalMeasures {
   Peak first_peak;
   Arrival half_peak;
   Arrival one_percent;
-  double duration = 0.0;
+  double duration = 0.0;  // first_oscillation_duration
+  double period = 0.0;    // first_oscillation_period
   Peak leading_pulse;
 };
 SignalMeasures measure_signal(std::span<const double> t, std::span<const double> y);

@@ -98,7 +98,7 @@ Measured measured(double v, double e) { return {v, e}; }
 // All docs/design.md §2.4 measures of one baseline-subtracted signal, with their errors.
 struct Signal {
   bool arrived = false;
-  Measured peak_time, peak_value, half, one, duration, leading;
+  Measured peak_time, peak_value, half, one, duration, period, leading;
 };
 Signal measure_with_errors(std::span<const double> t, std::span<const double> y) {
   Signal s;
@@ -117,6 +117,8 @@ Signal measure_with_errors(std::span<const double> t, std::span<const double> y)
     const double e1 = s.one.error, e2 = crossing_error(t, y, m.one_percent.time + m.duration);
     s.duration = measured(m.duration, std::hypot(e1, e2));
   }
+  if (m.one_percent.found && m.period > 0.0)
+    s.period = measured(m.period, std::hypot(s.one.error, crossing_error(t, y, m.one_percent.time + m.period)));
   if (m.leading_pulse.found) {
     peak_errors(t, y, m.leading_pulse, &te, &ve);
     s.leading = measured(m.leading_pulse.value, ve);
@@ -219,6 +221,7 @@ TraceFile read_trace(const std::string& path) {
         const auto cs = config::parse_case(toml, path + ":/case_toml");
         c.mode = cs.excitation.mode == config::Excitation::Mode::S ? 'S' : 'P';
         c.mode_source = "case_toml";
+        if (!cs.analysis.period.empty()) c.period = parse_period_reading(cs.analysis.period);
         known = true;
       } catch (const std::exception&) {
       }
@@ -288,6 +291,13 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   a.mode = tr.mode;
   a.mode_source = tr.mode_source;
   a.l0 = tr.l0;
+  if (opt.period) {
+    a.period_reading = *opt.period;
+    a.period_source = "option";
+  } else if (tr.period) {
+    a.period_reading = *tr.period;
+    a.period_source = "case_toml";
+  }
   const std::size_t nl = tr.nlayers;
   std::size_t nt = tr.nt;
   if (opt.t_max >= 0.0) nt = std::upper_bound(tr.time.begin(), tr.time.end(), opt.t_max) - tr.time.begin();
@@ -359,6 +369,7 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
     L.half_peak_time = s.half;
     L.one_percent_time = s.one;
     L.duration = s.duration;
+    L.period = s.period;
     L.leading_max = {s.leading.value * a.polarity, s.leading.error};
     a.layers.push_back(L);
     tp.push_back(s.peak_time.value);
@@ -440,12 +451,31 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
     a.dispersion = dispersion(field, ntd, nz, a.dt, tr.l0, opt.dispersion);
   }
 
+  // The first oscillation in space: the snapshot when a layer's first peak passes, over every layer
+  // above the source (z ascending), on the same signal (polarity, minus its t = 0 value).
+  {
+    std::vector<double> zs, prof(above.size());
+    for (int p : above) zs.push_back(tr.layer_z[p]);
+    for (auto& L : a.layers) {
+      if (!L.arrived) continue;
+      std::size_t n = std::lower_bound(t.begin(), t.end(), L.peak_time.value) - t.begin();  // the sample nearest the peak
+      if (n >= nt) n = nt - 1;
+      if (n > 0 && L.peak_time.value - t[n - 1] < t[n] - L.peak_time.value) --n;
+      for (std::size_t q = 0; q < above.size(); ++q)
+        prof[q] = a.polarity * ((*mf)[n * nl + above[q]] - (*mf)[above[q]]);
+      const double level = 0.01 * std::abs(L.peak_value.value);
+      const double len = first_oscillation_length(zs, prof, level);
+      if (len > 0.0) L.oscillation_length = {len, kNaN};
+    }
+  }
+
   // Wavelength estimates (sec. 3.4): lambda = V T and k(z) = (2/l0) arccos(V(z)/V(k->0)).
   const double vk0 = a.dispersion.v_k0, vk0e = a.dispersion.v_k0_error;
   for (auto& L : a.layers) {
     const Measured& V = L.local_speed;
-    if (std::isfinite(V.value) && std::isfinite(L.duration.value))
-      L.lambda_vt = {V.value * L.duration.value, std::hypot(V.error * L.duration.value, V.value * L.duration.error)};
+    const Measured& T = a.period_reading == PeriodReading::pulse ? L.duration : L.period;
+    if (std::isfinite(V.value) && std::isfinite(T.value))
+      L.lambda_vt = {V.value * T.value, std::hypot(V.error * T.value, V.value * T.error)};
     const double k = wavenumber_from_speed(V.value, vk0, tr.l0);
     if (std::isfinite(k)) {
       const double root = std::sqrt(vk0 * vk0 - V.value * V.value);
@@ -587,13 +617,18 @@ std::string to_text(const TraceFile& f, const CrystalAnalysis& a, bool table) {
   o += measured_line("  omega_0", {d.omega0, d.omega0_error}, "1/s");
   o += measured_line("  V(k->0)", {d.v_k0, d.v_k0_error}, "m/s");
   o += sfmt("local speeds need (l0/V)/dt = %.3g samples per layer delay here\n", a.delay_samples);
+  o += sfmt("wavelength V T: T = %s (period = \"%s\", %s)\n",
+            a.period_reading == PeriodReading::pulse ? "the leading pulse, 1 % arrival to the next 1 % crossing"
+                                                     : "the full first oscillation, 1 % arrival to the third 1 % crossing",
+            to_string(a.period_reading), a.period_source == "case_toml" ? "from the case" : a.period_source.c_str());
   if (!table) return o;
-  o += sfmt("%6s %12s %12s %12s %12s %10s %9s %9s\n", "z/l0", "t_peak(s)", "peak", "t_half(s)", "T(s)", "V(m/s)", "VT/l0",
-            "2pi/kl0");
+  o += sfmt("%6s %12s %12s %12s %12s %12s %10s %9s %9s %9s\n", "z/l0", "t_peak(s)", "peak", "t_half(s)", "T_pulse(s)",
+            "T_osc(s)", "V(m/s)", "VT/l0", "Losc/l0", "2pi/kl0");
   for (const auto& L : a.layers) {
     const double lk = std::isfinite(L.k_from_speed.value) ? 2 * M_PI / L.k_from_speed.value / a.l0 : NAN;
-    o += sfmt("%6.0f %12.6g %12.6g %12.6g %12.6g %10.4g %9.3g %9.3g\n", L.z_over_l0, L.peak_time.value, L.peak_value.value,
-              L.half_peak_time.value, L.duration.value, L.local_speed.value, L.lambda_vt.value / a.l0, lk);
+    o += sfmt("%6.0f %12.6g %12.6g %12.6g %12.6g %12.6g %10.4g %9.3g %9.3g %9.3g\n", L.z_over_l0, L.peak_time.value,
+              L.peak_value.value, L.half_peak_time.value, L.duration.value, L.period.value, L.local_speed.value,
+              L.lambda_vt.value / a.l0, L.oscillation_length.value / a.l0, lk);
   }
   return o;
 }
@@ -678,6 +713,8 @@ std::string to_json(const TraceFile& f, const CrystalAnalysis& a) {
   o << "{\n" << header_json(f);
   o << "  \"mode\": " << str(std::string(1, a.mode)) << ",\n  \"mode_source\": " << str(a.mode_source) << ",\n";
   o << "  \"measure_field\": " << str(a.measure_field) << ",\n  \"polarity\": " << num(a.polarity) << ",\n";
+  o << "  \"period_reading\": " << str(to_string(a.period_reading)) << ",\n  \"period_reading_source\": "
+    << str(a.period_source) << ",\n";
   o << "  \"l0\": " << qty(a.l0, "m") << ",\n  \"output_interval\": " << qty(a.dt, "s") << ",\n";
   o << "  \"last_free_layer_z_over_l0\": " << a.last_free << ",\n";
   o << "  \"fit_range\": {\"z_over_l0\": [" << a.v_first_peak.lo << ", " << a.v_first_peak.hi << "], \"requested\": ["
@@ -709,7 +746,9 @@ std::string to_json(const TraceFile& f, const CrystalAnalysis& a) {
       const double two_pi = 2.0 * std::acos(-1.0);
       Measured lk{std::isfinite(k) ? two_pi / k / a.l0 : kNaN, std::isfinite(k) ? two_pi * ke / (k * k) / a.l0 : kNaN};
       o << (first ? "" : ",") << "\n    {\"z_over_l0\": " << zq << ", \"local_speed\": " << qty(L.local_speed, "m/s")
-        << ", \"duration\": " << qty(L.duration, "s")
+        << ", \"duration\": " << qty(L.duration, "s") << ", \"period\": " << qty(L.period, "s")
+        << ", \"oscillation_length_over_l0\": "
+        << qty(Measured{L.oscillation_length.value / a.l0, L.oscillation_length.error / a.l0}, "1")
         << ", \"lambda_vt_over_l0\": " << qty(Measured{L.lambda_vt.value / a.l0, L.lambda_vt.error / a.l0}, "1")
         << ", \"lambda_k_over_l0\": " << qty(lk, "1") << "}";
       first = false;
@@ -730,6 +769,8 @@ std::string to_json(const TraceFile& f, const CrystalAnalysis& a) {
   o << "    \"half_peak_time\": " << column_json(Ls, [](const LayerMeasures& L) { return L.half_peak_time; }, "s", true) << ",\n";
   o << "    \"one_percent_time\": " << column_json(Ls, [](const LayerMeasures& L) { return L.one_percent_time; }, "s", true) << ",\n";
   o << "    \"duration\": " << column_json(Ls, [](const LayerMeasures& L) { return L.duration; }, "s", true) << ",\n";
+  o << "    \"period\": " << column_json(Ls, [](const LayerMeasures& L) { return L.period; }, "s", true) << ",\n";
+  o << "    \"oscillation_length\": " << column_json(Ls, [](const LayerMeasures& L) { return L.oscillation_length; }, "m", false) << ",\n";
   o << "    \"leading_max\": " << column_json(Ls, [](const LayerMeasures& L) { return L.leading_max; }, su, true) << ",\n";
   o << "    \"local_speed\": " << column_json(Ls, [](const LayerMeasures& L) { return L.local_speed; }, "m/s", true) << ",\n";
   o << "    \"lambda_vt\": " << column_json(Ls, [](const LayerMeasures& L) { return L.lambda_vt; }, "m", true) << ",\n";

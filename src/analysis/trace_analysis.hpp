@@ -14,6 +14,7 @@
 #pragma once
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,8 @@ struct CrystalTrace {
   // Row-major [nt, nlayers]; empty when the trace lacks the dataset.
   std::vector<double> stress_zz, stress_zx, displacement_z, displacement_x, velocity_z, velocity_x;
   std::vector<double> coordination;
+  // The case's `[analysis] period` (data/SCHEMA.md §1), when its text is in the trace and sets it.
+  std::optional<PeriodReading> period;
 };
 
 struct ChainTrace {
@@ -73,10 +76,15 @@ struct LayerMeasures {
   Measured peak_value;       // Pa (signal units)
   Measured half_peak_time;   // s; error: h^2 |y''| / (8 |y'|), linear-interpolation bound
   Measured one_percent_time; // s; same
-  Measured duration;         // T (s), 1 % arrival to the next 1 % crossing
+  Measured duration;         // s, the leading pulse: 1 % arrival to the next 1 % crossing
+  Measured period;           // s, the full first oscillation: 1 % arrival to the third 1 % crossing
   Measured leading_max;      // largest value of the leading pulse
   Measured local_speed;      // m/s, five-layer centre-weighted (header)
-  Measured lambda_vt;        // V T (m)
+  Measured lambda_vt;        // V T (m), T = period or duration by CrystalAnalysis::period_reading
+  // m: the length of the first oscillation in the snapshot at the sample nearest this layer's first
+  // peak (measures.hpp first_oscillation_length, level 1 % of this layer's first peak): the
+  // wavelength read in space, against which lambda = V T is read in time.
+  Measured oscillation_length;
   Measured k_from_speed;     // (2/l0) arccos(V/V(k->0)) (1/m)
 };
 
@@ -94,12 +102,16 @@ struct CrystalAnalysisOptions {
   // displacement) | "velocity" | "displacement" | "stress" (raw). See analyze_crystal for why.
   std::string field = "auto";
   double t_max = -1.0;        // analyse t <= t_max only (< 0: the whole trace)
+  // T of lambda = V T (measures.hpp); unset: the trace's case ([analysis] period), else oscillation.
+  std::optional<PeriodReading> period;
   DispersionOptions dispersion;
 };
 
 struct CrystalAnalysis {
   char mode = 'P';
   std::string mode_source, measure_field, dispersion_field;
+  PeriodReading period_reading = PeriodReading::oscillation;
+  std::string period_source = "default";  // "option" | "case_toml" | "default"
   double polarity = 1.0;     // the measured signal is polarity * (sigma - sigma(0))
   double l0 = 0.0, dt = 0.0; // output interval (s)
   std::vector<LayerMeasures> layers;  // every layer above the source (z > 0) up to the last free one

@@ -1,4 +1,4 @@
-// granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--t-max T]: the one ruler for
+// granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--t-max T] [--period R]: the one ruler for
 // the trace files of granwave, YADE and LIGGGHTS (src/analysis/trace_analysis.hpp).
 #include <iostream>
 #include <string>
@@ -11,14 +11,18 @@ namespace granwave::cli {
 namespace {
 
 constexpr const char* kHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--t-max T]
+                        [--period oscillation|pulse]
 
 Measures a trace file of any code (granwave, yade, liggghts; data/SCHEMA.md §3) with the one set
 of measures of docs/design.md §2.4.
 
 Crystal traces (seed 002):
   per layer (on sigma - sigma(t=0): sigma_zz for P, sigma_zx for S, sign-normalised so the pulse
-  is positive): first peak (time, value), half-peak arrival, 1 % arrival, duration T of the first
-  oscillation, leading-pulse maximum, local speed, lambda = V T, k(z) = (2/l0) arccos(V/V(k->0));
+  is positive): first peak (time, value), half-peak arrival, 1 % arrival, duration of the leading
+  pulse (1 % arrival to the next 1 % crossing), period of the first oscillation (1 % arrival to the
+  third 1 % crossing: the pulse and the trough after it), leading-pulse maximum, local speed,
+  lambda = V T (T: --period), the first oscillation's length in the snapshot at the layer's first
+  peak (the wavelength in space), k(z) = (2/l0) arccos(V/V(k->0));
   speeds: least-squares z against arrival time (first peak, half peak, 1 %) with standard errors
   over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20)), shortened, with a note, where
   the first peak has not arrived before the end of the trace. A layer has arrived when its first
@@ -50,6 +54,13 @@ for the trace it writes: the same code, the same numbers.
   --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain)
   --field F        dispersion field: velocity (default) | displacement | stress (raw fields)
   --t-max T        analyse t <= T only (s), e.g. to stop before a reflection returns
+  --period R       T of lambda = V T (seed 002 sec. 3.4): oscillation (the full first oscillation;
+                   default) or pulse (the leading pulse alone: 0.49 of a sine's period, 0.73-0.75
+                   of the first oscillation on the seed's crystal). Without the flag,
+                   the trace's case decides ([analysis] period, data/SCHEMA.md), else oscillation.
+                   The full oscillation is the wavelength: V T equals the length of the first
+                   oscillation in a snapshot of the crystal (docs/design.md §2.4) and reproduces the
+                   seed's 8, 9, 10, 16, 19 l0 at z/l0 = 10, 15, 20, 80, 150
   --json           one JSON object (schema "granwave-analyze/1"): every number as
                    {"value", "error", "unit"} (error null where none applies). Top-level keys:
                    schema, file, code, code_version, case_name, time_convention, model,
@@ -58,11 +69,13 @@ for the trace it writes: the same code, the same numbers.
                      v_first_peak, v_half_peak, v_one_percent (m/s, + z_over_l0 range, n),
                      omega_0 (1/s), v_k0 (m/s), dispersion {field, nt, nz, domega, dk, n_fit,
                      fit_rms, k, omega_max}, local_speed {method, delay_samples},
-                     wavelength_at [{z_over_l0, local_speed, duration, lambda_vt_over_l0,
-                     lambda_k_over_l0}] at z/l0 = 10, 15, 20, 80, 150,
+                     wavelength_at [{z_over_l0, local_speed, duration, period,
+                     oscillation_length_over_l0, lambda_vt_over_l0, lambda_k_over_l0}] at
+                     z/l0 = 10, 15, 20, 80, 150,
                      layers {layer, z_over_l0, arrived, peak_time, peak_value, half_peak_time,
-                     one_percent_time, duration, leading_max, local_speed, lambda_vt,
-                     k_from_speed: each {unit, values, errors}}
+                     one_percent_time, duration, period, oscillation_length (no errors),
+                     leading_max, local_speed, lambda_vt, k_from_speed: each {unit, values,
+                     errors}}
                    chain: fit_range {contacts, shortened, note}, v_first_peak, v_half_peak (m/s),
                      v_first_peak_contacts, v_half_peak_contacts (contacts/s),
                      contacts {contact, position, arrived, peak_time, peak_value, half_peak_time,
@@ -88,7 +101,7 @@ int cmd_analyze(const Args& args) {
     std::cout << kHelp;
     return 0;
   }
-  const auto pos = positionals(args, {"--layers", "--field", "--t-max"});
+  const auto pos = positionals(args, {"--layers", "--field", "--t-max", "--period"});
   if (pos.size() != 1) throw InputError("analyze: expected one trace file (granwave analyze --help)");
   const bool json = has_flag(args, "--json");
   int lo = -1, hi = -1;
@@ -96,6 +109,8 @@ int cmd_analyze(const Args& args) {
   const auto file = analysis::read_trace(pos[0]);
 
   if (file.model == "chain") {
+    if (!option_value(args, "", "--period").empty())
+      throw InputError(pos[0] + ": --period is for crystal traces (the wavelength of seed 002 sec. 3.4)");
     const auto a = analysis::analyze_chain(file.chain, {lo, hi});
     if (json) {
       std::cout << analysis::to_json(file, a);
@@ -115,6 +130,10 @@ int cmd_analyze(const Args& args) {
     } catch (const std::exception&) {
       throw InputError("--t-max " + t + ": expected a time in seconds");
     }
+  }
+  if (const auto p = option_value(args, "", "--period"); !p.empty()) {
+    opt.period = analysis::parse_period_reading(p);
+    if (!opt.period) throw InputError("--period " + p + ": must be oscillation or pulse");
   }
   const auto a = analysis::analyze_crystal(file.crystal, opt);
   if (json) {

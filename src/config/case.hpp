@@ -123,6 +123,13 @@ struct Output {
   int vtk_every = 0;                 // crystal: a particle snapshot every N output intervals
 };
 
+// How the case's traces are measured (src/analysis, docs/design.md §2.4).
+struct AnalysisKeys {
+  // T of seed 002 sec. 3.4's lambda = V T: "oscillation" (the full first oscillation) or "pulse"
+  // (the leading pulse); empty: the analysis' default (oscillation).
+  std::string period;
+};
+
 struct Case {
   std::string path;       // the file it was read from
   std::string toml_text;  // its full text (stored in every trace file)
@@ -136,6 +143,7 @@ struct Case {
   Integrator integrator;
   StopRule stop;          // chain only
   Output output;
+  AnalysisKeys analysis;
 
   const Material& material(const std::string& name) const;  // throws InputError
 };

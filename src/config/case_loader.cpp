@@ -273,7 +273,8 @@ const Material& Case::material(const std::string& n) const {
 Case parse_case(const std::string& toml_text, const std::string& origin) {
   const TomlReader r(origin);
   const toml::table root = parse_toml(toml_text, origin);
-  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "contact", "excitation", "integrator", "stop", "output"});
+  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "contact", "excitation", "integrator", "stop", "output",
+                      "analysis"});
 
   Case c;
   c.path = origin;
@@ -367,6 +368,14 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
     c.output.vtk_every = static_cast<int>(r.integer(*out, "output", "vtk_every", false).value_or(0));
     if (c.output.vtk_every < 0) r.fail("output.vtk_every", "must be >= 0", out->get("vtk_every"));
     if (c.output.vtk_every > 0 && c.model != Model::crystal) r.fail("output.vtk_every", "is for crystal cases", out->get("vtk_every"));
+  }
+  // [analysis]: how `granwave run` and `granwave analyze` measure this case's traces (any code's).
+  if (const toml::table* an = r.table(root, "", "analysis", false)) {
+    r.allow_only(*an, "analysis", {"period"});
+    if (an->contains("period")) {
+      if (c.model != Model::crystal) r.fail("analysis.period", "is for crystal cases", an->get("period"));
+      c.analysis.period = r.choice(*an, "analysis", "period", {"oscillation", "pulse"});
+    }
   }
   return c;
 }

@@ -16,6 +16,8 @@
 #include "crystal/vtk.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
+#include "theory/crystal_theory.hpp"
+#include "theory/lattice_dynamics.hpp"
 
 namespace granwave::crystal {
 
@@ -42,6 +44,28 @@ std::string json_string(const std::string& s) {
 
 std::string trace_path_for(const config::Case& c, const RunRequest& req) {
   return req.trace_path.empty() ? c.name + ".h5" : req.trace_path;
+}
+
+// The long-wave speed along z of the lattice dynamics with rotations and the prestress
+// (theory/lattice_dynamics.hpp) of this packing, P (u_z) or S (u_x); NaN when the packing is not
+// a Bravais lattice (polydisperse). Eq. (10)'s affine kt term holds the rotations that an S wave
+// drives: with kt > 0 only this one predicts the S speed (seed 002 sec. 3.5, docs/design.md §3).
+double lattice_speed(const config::Case& c, const Packing& pk, bool shear) {
+  theory::ContactNetwork net;
+  net.box_x = pk.box_x;
+  net.box_y = pk.box_y;
+  net.k = c.contact.kn;
+  net.kt = c.contact.kt;
+  for (std::size_t p = 0; p < pk.size(); ++p)
+    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
+  for (const auto& q : list_contacts(pk, true))
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+  theory::LatticeCellOptions opt;
+  opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+  const auto cell = theory::lattice_cell(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, opt);
+  if (!cell) return std::numeric_limits<double>::quiet_NaN();
+  return theory::lattice_long_wave(*cell, theory::Vec3::UnitZ())
+      .speed_along(shear ? theory::Vec3::UnitX() : theory::Vec3::UnitZ());
 }
 
 }  // namespace
@@ -143,12 +167,18 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
   const Derived d = derive(c);
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;
   const double pss = static_cast<double>(packing.size()) * steps / std::max(seconds, 1e-12);
+  const double v_lattice = lattice_speed(c, packing, shear);
   if (req.json) {
     out << std::setprecision(10) << "{\"schema\": \"granwave-run/1\", \"case\": " << json_string(c.name)
         << ", \"model\": \"crystal\", \"trace\": " << json_string(trace_path) << ", \"particles\": " << packing.size()
         << ", \"steps\": " << steps << ", \"samples\": " << samples << ", \"wall_seconds\": " << seconds
         << ", \"particle_steps_per_second\": " << pss << ", \"mode\": \"" << (shear ? "S" : "P")
-        << "\", \"speed_theory\": " << (shear ? d.v_s : d.v_p) << ", \"coordination\": " << coordination0
+        << "\", \"speed_theory\": " << (shear ? d.v_s : d.v_p) << ", \"speed_theory_lattice\": ";
+    if (std::isfinite(v_lattice))
+      out << v_lattice;
+    else
+      out << "null";
+    out << ", \"coordination\": " << coordination0
         << ", \"work_in\": " << work_in << ", \"dissipated\": " << dissipated << ", \"energy_residual\": " << residual
         << ", \"energy_residual_shadow\": " << shadow_residual << ", \"warnings\": [";
     for (std::size_t i = 0; i < a.warnings.size(); ++i) out << (i ? ", " : "") << json_string(a.warnings[i]);
@@ -159,7 +189,15 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
     out << "crystal " << c.name << ": " << packing.size() << " particles, " << steps << " steps in " << seconds << " s (" << pss
         << " particle-steps/s), " << rebuilds << " contact-list builds\n";
     out << "  coordination " << coordination0 << " -> " << coordination_end << "\n";
-    out << "  theory (eq. 10, branch d'): " << (shear ? "V_s = " : "V_p = ") << (shear ? d.v_s : d.v_p) << " m/s\n";
+    const bool kt = c.contact.kt > 0.0;
+    out << "  theory: " << (shear ? "V_s = " : "V_p = ") << (shear ? d.v_s : d.v_p) << " m/s ("
+        << (shear && kt ? "eq. 10 without its kt term" : "eq. 10") << ", branch d'" << (!shear && kt ? ", affine kt" : "")
+        << "), ";
+    if (std::isfinite(v_lattice))
+      out << v_lattice << " m/s (lattice dynamics with rotations and prestress"
+          << (shear && kt ? ", the prediction with kt > 0" : "") << ")\n";
+    else
+      out << "lattice dynamics: none (not a Bravais lattice)\n";
     out << "  energy: work_in " << work_in << " J, dissipated " << dissipated << " J, balance residual " << residual
         << " J (" << shadow_residual << " J after the Verlet correction)\n";
     out << "  trace: " << trace_path << "\n";

@@ -2,6 +2,7 @@
 #include "sweep/crystal_study.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,8 +13,10 @@
 #include <mutex>
 #include <numbers>
 #include <set>
+#include <span>
 #include <sstream>
 
+#include "analysis/measures.hpp"
 #include "core/error.hpp"
 #include "crystal/guards.hpp"
 #include "io/h5.hpp"
@@ -453,23 +456,73 @@ Captured capture(const CrystalMemberRun& r, const std::vector<double>& positions
   return c;
 }
 
+// Seed 002 sec. 3.5: "the first peak amplitude decreases as the tangential stiffness (kt) is
+// increasing". First peaks (measures.hpp first_peak, on the signal minus its t = 0 value, turned
+// positive by its largest excursion, as the analysis does) of the total stress, the particle
+// velocity and the displacement at the layers nearest `positions`, before the front reflected
+// from the far end can come back (t <= (2 z_last - z)/V, V the member's lattice speed).
+struct TrendPoint {
+  double v_lattice = 0.0;
+  std::array<std::vector<double>, 3> peak;  // stress, velocity, displacement; one per position
+};
+
+TrendPoint trend_point(const CrystalMemberRun& r, const std::vector<double>& positions) {
+  TrendPoint tp;
+  tp.v_lattice = r.result.values[cv_theory_v_lattice];
+  const auto& tr = r.run.traces;
+  const bool S = r.trace.mode == 'S';
+  const std::array<const std::vector<double>*, 3> fields = {S ? &tr.stress_zx : &tr.stress_zz,
+                                                            S ? &tr.velocity_x : &tr.velocity_z,
+                                                            S ? &tr.displacement_x : &tr.displacement_z};
+  const double z_last = tr.layer_z[tr.nlayers - 1 - r.packing.fixed_layers];
+  for (double zq : positions) {
+    std::size_t L = tr.nlayers;
+    for (std::size_t p = 0; p < tr.nlayers; ++p)
+      if (std::lround(tr.layer_z[p] / r.packing.l0) == std::lround(zq)) L = p;
+    for (int f = 0; f < 3; ++f) {
+      double v = kNaN;
+      if (L < tr.nlayers && !fields[f]->empty()) {
+        const double t_back = (2.0 * z_last - tr.layer_z[L]) / tp.v_lattice;
+        std::size_t n = 0;
+        while (n < tr.samples() && !(tr.time[n] > t_back)) ++n;
+        std::vector<double> y(n);
+        double big = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          y[i] = (*fields[f])[i * tr.nlayers + L] - (*fields[f])[L];
+          if (std::abs(y[i]) > std::abs(big)) big = y[i];
+        }
+        for (auto& x : y) x = big < 0.0 ? -x : x;
+        const analysis::Peak pk = analysis::first_peak(std::span<const double>(tr.time.data(), n), y);
+        if (pk.found && pk.index + 1 < n) v = pk.value;
+      }
+      tp.peak[f].push_back(v);
+    }
+  }
+  return tp;
+}
+
 void write_captured(io::H5Writer& w, const std::string& g, const Captured& c) {
   w.write(g + "/time", c.time);
   w.write(g + "/z_over_l0", c.zl);
   w.write(g + "/sigma_over_sigma0", c.sigma, {c.time.size(), c.zl.size()});
-  std::vector<double> z, vloc, vloc_e, lam_vt, lam_k;
+  std::vector<double> z, vloc, vloc_e, lam_vt, lam_k, lam_pulse, len_osc;
   for (const auto& L : c.a.layers) {
     z.push_back(L.z_over_l0);
     vloc.push_back(L.local_speed.value);
     vloc_e.push_back(L.local_speed.error);
     lam_vt.push_back(L.lambda_vt.value / c.a.l0);
     lam_k.push_back(2.0 * std::numbers::pi / L.k_from_speed.value / c.a.l0);
+    lam_pulse.push_back(L.local_speed.value * L.duration.value / c.a.l0);
+    len_osc.push_back(L.oscillation_length.value / c.a.l0);
   }
   w.write(g + "/layers/z_over_l0", z);
   w.write(g + "/layers/local_speed", vloc);
   w.write(g + "/layers/local_speed_error", vloc_e);
   w.write(g + "/layers/lambda_vt_over_l0", lam_vt);
   w.write(g + "/layers/lambda_k_over_l0", lam_k);
+  w.write(g + "/layers/lambda_vt_pulse_over_l0", lam_pulse);
+  w.write(g + "/layers/oscillation_length_over_l0", len_osc);
+  w.attr(g, "period_reading", std::string(analysis::to_string(c.a.period_reading)));
   const auto& d = c.a.dispersion;
   if (!d.spectrum.empty()) {
     w.write(g + "/dispersion/spectrum", d.spectrum, {d.omega_axis.size(), d.k_axis.size()});
@@ -537,7 +590,7 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
       s->text += "\n# quick\n";  // another fingerprint: never mixes with full-size batches
     }
     damp.values = {0.0, 0.01, 0.1, 1.0};
-    fric.values = {0.0, 1.0, 2.0};
+    fric.values = {0.0, 0.5, 1.0, 2.0};  // the kt trend's points
     poly.values = {0.5, 2.0};
     fig_z = {10, 20, 30};
     lambda_z = {10, 15, 20, 30};
@@ -568,11 +621,15 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
   };
   const auto rd = run_crystal_study(damp, (fs::path(out_dir) / "crystal_damping.h5").string(), table, opt);
   log << "figures crystal: friction study (Figs. 5, 6, 7)\n";
+  std::map<std::pair<char, double>, TrendPoint> trend;  // (mode, kt/k)
   opt.hook = [&](std::size_t, const CrystalMemberRun& r) {
     const double kt = r.result.values[cv_value];
     const bool S = r.result.values[cv_mode_s] != 0.0;
     if (kt == 0.0) keep(S ? "s0" : "p0_friction", r);
     if (kt == 2.0 && S) keep("s_kt2", r);
+    TrendPoint tp = trend_point(r, fig_z);
+    std::lock_guard<std::mutex> lock(mu);
+    trend[{S ? 'S' : 'P', kt}] = std::move(tp);
   };
   const auto rf = run_crystal_study(fric, (fs::path(out_dir) / "crystal_friction.h5").string(), table, opt);
   log << "figures crystal: polydispersity study (Figs. 8, 9)\n";
@@ -620,9 +677,13 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
     for (std::size_t q = 0; q < lambda_z.size(); ++q)
       if (std::lround(L.z_over_l0) == std::lround(lambda_z[q])) {
         const bool seeded = !quick || q < 3;
-        md << "| lambda/l0 = V T at z/l0 = " << lambda_z[q] << " | " << pm(L.lambda_vt.value / f4.a.l0, L.lambda_vt.error / f4.a.l0, "%.1f")
-           << " | " << (seeded ? fmt("%g", seed_lambda[q]) + " ± 1" : "—")
-           << " | our source steps the fixed layers and holds them (a sharper, shorter pulse) where the seed shifts one layer |\n";
+        md << "| lambda/l0 = V T at z/l0 = " << lambda_z[q] << " (T: " << analysis::to_string(f4.a.period_reading) << ") | "
+           << pm(L.lambda_vt.value / f4.a.l0, L.lambda_vt.error / f4.a.l0, "%.1f") << "; the leading pulse alone: "
+           << fmt("%.1f", L.local_speed.value * L.duration.value / f4.a.l0) << "; the first oscillation in a snapshot: "
+           << fmt("%.1f", L.oscillation_length.value / f4.a.l0) << " | " << (seeded ? fmt("%g", seed_lambda[q]) + " ± 1" : "—")
+           << " | T = the full first oscillation (1 % arrival to the third 1 % crossing), the seed's reading: a wavelength is a "
+              "full cycle, and V T is the length of the first oscillation in space (snapshot when the first peak passes z). "
+              "The leading pulse alone (1 % arrival to the next crossing, `period = \"pulse\"`) is about 3/4 of it |\n";
         md << "| lambda/l0 = 2 pi/k(V) at z/l0 = " << lambda_z[q] << " | " << fmt("%.1f", 2 * std::numbers::pi / L.k_from_speed.value / f4.a.l0)
            << " | " << (seeded ? fmt("%g", seed_lambda_k[q]) : "—") << " | from the local speed and the fitted V(k->0); far from the source it is ill-conditioned (seed sec. 3.4) |\n";
       }
@@ -657,6 +718,49 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
              : "affine theory V_pz(0) sqrt(1 + kt/k); holds (a P wave along z rotates no particle); the lattice value "
                "adds the prestress")
        << " |\n";
+  }
+  // The kt trend of the first peak (sec. 3.5), against the closed form of the P wave: the displacement
+  // step moves the normal springs only (f_t = 0 at t = 0), so the source pushes the first free layer
+  // with a force F0 that does not depend on kt, while the chain of layers is stiffer by kt. For u_z
+  // alone (a P wave turns no particle), m u'' = K (u_{n+1} - 2 u_n + u_{n-1}) with K ~ k + kt - f0/d':
+  // u = (F0/K) w(t sqrt(K/m)) with w the same for every kt, hence first peaks of u ~ 1/K, of
+  // v ~ 1/sqrt(K) = V(0)/V(kt) (lattice speeds), of the interface forces and the stress ~ F0: constant.
+  if (trend.count({'P', 0.0}) && trend.count({'S', 0.0})) {
+    for (char mode : {'P', 'S'}) {
+      const TrendPoint& t0 = trend.at({mode, 0.0});
+      for (int f = 0; f < 3; ++f) {
+        std::ostringstream cell;
+        for (const auto& [key, tp] : trend) {
+          if (key.first != mode || key.second == 0.0) continue;
+          cell << (cell.tellp() > 0 ? "; " : "") << "kt/k = " << key.second << ": ";
+          for (std::size_t q = 0; q < fig_z.size(); ++q)
+            cell << (q ? ", " : "") << fmt("%.3f", tp.peak[f][q] / t0.peak[f][q]);
+          if (mode == 'P' && f > 0) {
+            const double r = t0.v_lattice / tp.v_lattice;
+            cell << " (closed form " << fmt("%.3f", f == 1 ? r : r * r) << ")";
+          }
+        }
+        const char* field = mode == 'P' ? (f == 0 ? "sigma_zz (total)" : f == 1 ? "v_z" : "u_z")
+                                         : (f == 0 ? "sigma_zx (total)" : f == 1 ? "v_x" : "u_x");
+        md << "| kt trend, " << mode << ": first peak of " << field << " / its kt = 0 value at z/l0 = ";
+        for (std::size_t q = 0; q < fig_z.size(); ++q) md << (q ? ", " : "") << fig_z[q];
+        md << " | " << cell.str() << " | " << (f == 0 ? "'the first peak amplitude decreases as kt is increasing' (P and S)" : "")
+           << " | ";
+        if (mode == 'P')
+          md << (f == 0 ? "closed form 1: the step's force on the first free layer is the normal springs' alone (the "
+                          "tangential springs start at f_t = 0), and for a P wave every force of the chain scales with "
+                          "it; the seed's P statement does not hold for the total stress"
+                        : f == 1 ? "falls as V(0)/V(kt) (lattice speeds): the seed's statement holds for the particle "
+                                   "velocity (and the kinetic energy, its square)"
+                                 : "falls as (V(0)/V(kt))^2, as a stress from the normal forces alone would");
+        else
+          md << (f == 0 ? "below its kt = 0 value at every kt, not monotonically: the S wave turns the particles, and "
+                          "the (u_x, theta_y) coupling reshapes the pulse with kt (no single factor); the seed's S "
+                          "statement holds"
+                        : "falls, more than the stress");
+        md << " |\n";
+      }
+    }
   }
   // The 2D-FFT ridges against the lattice branches (Figs. 5, 7), in the reflection-free window.
   auto ridge_row = [&](const char* what, const Captured& c, const std::optional<theory::RidgeComparison>& rc,

@@ -21,3 +21,11 @@ foreach(spec
     COMMAND ${GW_SYSTEM_PYTHON3} ${ruler_script} $<TARGET_FILE:granwave> ${CMAKE_SOURCE_DIR}/${case} ${ruler_tmp} ${flag})
   set_tests_properties("cli: run and analyze print the same measures: ${label}" PROPERTIES LABELS "cli")
 endforeach()
+# The wavelength's reading of T (issue #15 item 5): [analysis] period, analyze --period, and the
+# run summary's lattice-dynamics S speed (tests/cli/period_reading.py).
+add_test(NAME "cli: [analysis] period and analyze --period choose T of lambda = V T; run prints the lattice S speed"
+  COMMAND ${GW_SYSTEM_PYTHON3} ${CMAKE_SOURCE_DIR}/tests/cli/period_reading.py $<TARGET_FILE:granwave>
+          ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_small_s_kt_pulse.toml ${CMAKE_SOURCE_DIR}/data/cases/oriented20.toml
+          ${CMAKE_BINARY_DIR}/cli-tests/period)
+set_tests_properties("cli: [analysis] period and analyze --period choose T of lambda = V T; run prints the lattice S speed"
+                     PROPERTIES LABELS "cli")

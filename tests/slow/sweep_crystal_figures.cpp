@@ -70,5 +70,13 @@ TEST_CASE("figures crystal --quick writes every figure and the summary, with num
   CHECK(s.str().find(buf) != std::string::npos);
   std::snprintf(buf, sizeof buf, "| %.2f |", attr("s0", "theory_v"));
   CHECK(s.str().find(buf) != std::string::npos);
+  // Seed 002 secs. 3.4, 3.5: the wavelength rows (full-oscillation T, its pulse and snapshot
+  // companions) and the kt trend with the P wave's closed form V(0)/V(kt) = sqrt((k - f0/d')/(k + kt - f0/d')),
+  // f0/d' = k delta/d' = 1e-3 k/(1 - 1e-3): 0.707 at kt = k.
+  CHECK(s.str().find("(T: oscillation)") != std::string::npos);
+  CHECK(s.str().find("the first oscillation in a snapshot") != std::string::npos);
+  CHECK(s.str().find("kt trend, P: first peak of v_z") != std::string::npos);
+  std::snprintf(buf, sizeof buf, "(closed form %.3f)", std::sqrt((1.0 - 1e-3 / 0.999) / (2.0 - 1e-3 / 0.999)));
+  CHECK(s.str().find(buf) != std::string::npos);
   fs::remove_all(d);
 }

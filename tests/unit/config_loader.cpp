@@ -120,6 +120,15 @@ TEST_CASE("contact-law conventions are case options: each value parses, others a
   }
 }
 
+TEST_CASE("[analysis] period: the wavelength's reading of T, crystal only, one of two names", "[config]") {
+  CHECK(parse_case(kCrystal, "c.toml").analysis.period.empty());  // the analysis' default
+  CHECK(parse_case(kCrystal + "[analysis]\nperiod = \"pulse\"\n", "c.toml").analysis.period == "pulse");
+  CHECK(parse_case(kCrystal + "[analysis]\nperiod = \"oscillation\"\n", "c.toml").analysis.period == "oscillation");
+  require_refused(kCrystal + "[analysis]\nperiod = \"cycle\"\n", {"analysis.period", "\"oscillation\"", "\"pulse\""});
+  require_refused(kCrystal + "[analysis]\nwindow = 1\n", {"analysis.window", "unknown key", "period"});
+  require_refused(chain_case() + "[analysis]\nperiod = \"pulse\"\n", {"analysis.period", "crystal cases"});
+}
+
 TEST_CASE("bad case files are refused with the key and the allowed range", "[config]") {
   SECTION("not TOML") { require_refused("[case\nname=", {"not valid TOML"}); }
   SECTION("unknown top-level key") { require_refused(chain_case() + "[extra]\nx = 1\n", {"'extra'", "unknown key"}); }

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "analysis/measures.hpp"
@@ -87,4 +88,57 @@ TEST_CASE("a signal that never rises has no peak", "[measures]") {
   std::vector<double> t{0, 1, 2}, y{0, -1, -2};
   CHECK_FALSE(first_peak(t, y).found);
   CHECK_FALSE(measure_signal(t, y).half_peak.found);
+}
+
+TEST_CASE("period of the first oscillation of a sine is its period, the duration the leading half", "[measures]") {
+  // y = sin(omega (t - t0)) for t > t0, a decaying tail after three cycles: the 1 % level is crossed
+  // at t0 + asin(0.01)/omega (up), t0 + (pi - asin(0.01))/omega (down) and
+  // t0 + (2 pi + asin(0.01))/omega (up again), so the period reading is 2 pi/omega exactly and the
+  // duration (pi - 2 asin(0.01))/omega. lambda = V T with the period is the wavelength V 2 pi/omega.
+  const double t0 = 1.0, omega = 3.7;
+  auto t = linspace(0.0, 10.0, 100001);
+  std::vector<double> y(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double s = t[i] - t0;
+    y[i] = s <= 0 ? 0.0 : std::sin(omega * s) * (s < 6 * M_PI / omega ? 1.0 : std::exp(-(s - 6 * M_PI / omega)));
+  }
+  const SignalMeasures m = measure_signal(t, y);
+  REQUIRE(m.first_peak.found);
+  const double a = std::asin(0.01) / omega;
+  CHECK(m.one_percent.time == Approx(t0 + a).margin(1e-7));
+  CHECK(m.period == Approx(2 * M_PI / omega).margin(1e-7));
+  CHECK(m.duration == Approx(M_PI / omega - 2 * a).margin(1e-7));
+  CHECK(first_oscillation_period(t, y, m.first_peak) == m.period);
+}
+
+TEST_CASE("period is 0 when the signal does not come back up within the window, and the reading names", "[measures]") {
+  // A half-sine pulse and silence: the leading pulse ends, no third crossing.
+  auto t = linspace(0.0, 4.0, 4001);
+  std::vector<double> y(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) y[i] = (t[i] > 1 && t[i] < 3) ? std::sin(M_PI * (t[i] - 1) / 2) : 0.0;
+  const SignalMeasures m = measure_signal(t, y);
+  CHECK(m.duration > 0.0);
+  CHECK(m.period == 0.0);
+  CHECK(parse_period_reading("oscillation") == PeriodReading::oscillation);
+  CHECK(parse_period_reading("pulse") == PeriodReading::pulse);
+  CHECK_FALSE(parse_period_reading("Pulse"));
+  CHECK(std::string(to_string(PeriodReading::pulse)) == "pulse");
+  CHECK(std::string(to_string(PeriodReading::oscillation)) == "oscillation");
+}
+
+TEST_CASE("length of the first oscillation of a snapshot sin(kappa (z_f - z)) is its wavelength", "[measures]") {
+  // A wave travelling to +z whose front is at z_f: y = sin(kappa (z_f - z)) behind it (three cycles,
+  // then quiet towards the source), 0 ahead. Crossings of the 1 % level from the far end: the front
+  // at z_f - asin(0.01)/kappa, then z_f - (pi - asin(0.01))/kappa, then z_f - (2 pi + asin(0.01))/kappa.
+  const double zf = 7.3, kappa = 2.9;
+  auto z = linspace(0.0, 10.0, 100001);
+  std::vector<double> y(z.size());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    const double s = zf - z[i];
+    y[i] = s <= 0 || s > 6 * M_PI / kappa ? 0.0 : std::sin(kappa * s);
+  }
+  CHECK(first_oscillation_length(z, y, 0.01) == Approx(2 * M_PI / kappa).margin(1e-7));
+  // The leading pulse alone (no trough behind it): not three crossings.
+  for (std::size_t i = 0; i < z.size(); ++i) y[i] = std::max(0.0, y[i]) * (zf - z[i] < M_PI / kappa ? 1.0 : 0.0);
+  CHECK(first_oscillation_length(z, y, 0.01) == 0.0);
 }

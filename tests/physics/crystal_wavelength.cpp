@@ -1,0 +1,213 @@
+// Seed 002 secs. 3.4 and 3.5 on granwave's crystal, measured with the one ruler (src/analysis):
+//
+// 1. The wavelength table of sec. 3.4: lambda = V T with T "the duration of the first oscillation
+//    of a signal (based on first-arrival time, one per cent peak level)", lambda/l0 = 8, 9, 10, 16, 19
+//    (+- 1) at z/l0 = 10, 15, 20, 80, 150 (a published number). T = the full first oscillation (1 %
+//    arrival to the third 1 % crossing, measures.hpp) gives it; the leading pulse alone (the next
+//    crossing) gives 6.0 .. 14.5. The full oscillation is also the wavelength in space: the length
+//    of the first oscillation in a snapshot of the crystal when the first peak passes z.
+// 2. The kt trend of sec. 3.5 ("the first peak amplitude decreases as kt is increasing") for the P
+//    wave, against its closed form. The displacement step moves the normal springs only (f_t = 0
+//    at t = 0, data/SCHEMA.md [excitation]), so the held source pushes the first free layer with a
+//    force F0 = 2 (k - f0/d') Delta per particle whatever kt is, while the chain of layers has the
+//    stiffness K = 2 (k + kt - f0/d') (docs/design.md §3, the u_z block of the lattice dynamics):
+//    m u_n'' = K (u_{n+1} - 2 u_n + u_{n-1}) + F0 delta_n1, so u_n(t) = (F0/K) w_n(t sqrt(K/m)) with
+//    w the same for every kt. First peaks: u ~ 1/K, v ~ 1/sqrt(K) = V(0)/V(kt) (the lattice long-wave
+//    speeds of the same packing), interface forces and stress ~ F0, independent of kt.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "analysis/measures.hpp"
+#include "analysis/trace_analysis.hpp"
+#include "config/case.hpp"
+#include "crystal/packing.hpp"
+#include "crystal/simulation.hpp"
+#include "theory/crystal_theory.hpp"
+#include "theory/lattice_dynamics.hpp"
+
+using namespace granwave;
+
+namespace {
+
+config::Case seed_case(const char* name) {
+  return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/" + name);
+}
+
+analysis::CrystalTrace to_trace(const crystal::RunResult& r, const crystal::Packing& pk, char mode) {
+  analysis::CrystalTrace t;
+  t.time = r.traces.time;
+  t.layer_z = r.traces.layer_z;
+  t.nt = r.traces.samples();
+  t.nlayers = r.traces.nlayers;
+  t.l0 = pk.l0;
+  t.fixed_layers = pk.fixed_layers;
+  t.mode = mode;
+  t.mode_source = "case_toml";
+  t.stress_zz = r.traces.stress_zz;
+  t.stress_zx = r.traces.stress_zx;
+  t.displacement_z = r.traces.displacement_z;
+  t.displacement_x = r.traces.displacement_x;
+  t.velocity_z = r.traces.velocity_z;
+  t.velocity_x = r.traces.velocity_x;
+  return t;
+}
+
+// Long-wave speed along z of the lattice dynamics with rotations and prestress of this packing.
+double lattice_speed(const config::Case& c, const crystal::Packing& pk, bool shear) {
+  theory::ContactNetwork net;
+  net.box_x = pk.box_x;
+  net.box_y = pk.box_y;
+  net.k = c.contact.kn;
+  net.kt = c.contact.kt;
+  for (std::size_t p = 0; p < pk.size(); ++p)
+    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
+  for (const auto& q : crystal::list_contacts(pk, true))
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+  const auto cell = theory::lattice_cell(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, {});
+  REQUIRE(cell);
+  return theory::lattice_long_wave(*cell, theory::Vec3::UnitZ())
+      .speed_along(shear ? theory::Vec3::UnitX() : theory::Vec3::UnitZ());
+}
+
+// First peak (measures.hpp) of field f minus its t = 0 value at the layer nearest z/l0 = zq,
+// turned positive by its largest excursion.
+double first_peak_at(const crystal::Traces& tr, const std::vector<double>& f, double l0, int zq) {
+  std::size_t L = 0;
+  while (L < tr.nlayers && std::lround(tr.layer_z[L] / l0) != zq) ++L;
+  REQUIRE(L < tr.nlayers);
+  std::vector<double> y(tr.samples());
+  double big = 0.0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    y[i] = f[i * tr.nlayers + L] - f[L];
+    if (std::abs(y[i]) > std::abs(big)) big = y[i];
+  }
+  for (auto& v : y) v = big < 0.0 ? -v : v;
+  const analysis::Peak p = analysis::first_peak(tr.time, y);
+  REQUIRE(p.found);
+  REQUIRE(p.index + 1 < y.size());  // a peak, not a signal still rising at the end
+  return p.value;
+}
+
+}  // namespace
+
+TEST_CASE("seed 002 sec. 3.4: lambda = V T over the full first oscillation gives the seed's 8, 9, 10, 16, 19 l0",
+          "[crystal][wavelength][physics]") {
+  // The 3200-particle P run of Figs. 2-4 (crystal_p: 4 x 4 x 200, 1.2 ms, 1 us output), about 1 s.
+  const config::Case c = seed_case("crystal_p.toml");
+  const crystal::Packing pk = crystal::make_packing(c);
+  const crystal::RunResult r = crystal::simulate(c, pk);
+  REQUIRE_FALSE(r.failed);
+  const analysis::CrystalAnalysis a = analysis::analyze_crystal(to_trace(r, pk, 'P'));
+  REQUIRE(a.period_reading == analysis::PeriodReading::oscillation);  // the default
+  const int z[] = {10, 15, 20, 80, 150};
+  const double seed[] = {8, 9, 10, 16, 19};
+  for (int q = 0; q < 5; ++q) {
+    const analysis::LayerMeasures* L = nullptr;
+    for (const auto& x : a.layers)
+      if (std::lround(x.z_over_l0) == z[q]) L = &x;
+    REQUIRE(L);
+    REQUIRE(L->arrived);
+    const double lam = L->lambda_vt.value / a.l0, pulse = L->local_speed.value * L->duration.value / a.l0;
+    const double space = L->oscillation_length.value / a.l0;
+    std::printf("z/l0 = %3d: lambda/l0 = V T %.2f +- %.2f (leading pulse alone %.2f), first oscillation in the "
+                "snapshot %.2f; seed %g +- 1\n",
+                z[q], lam, L->lambda_vt.error / a.l0, pulse, space, seed[q]);
+    INFO("z/l0 = " << z[q] << ": V T = " << lam << " l0, pulse reading " << pulse << ", snapshot " << space);
+    // The seed's error margin, +- 1 (measured: 8.18, 9.28, 10.15, 15.78, 19.36).
+    CHECK(std::abs(lam - seed[q]) <= 1.0);
+    // The leading pulse alone is about 3/4 of it (measured 5.97 .. 14.54): outside the margin at
+    // every position but the last.
+    if (q < 4) CHECK(pulse < seed[q] - 1.0);
+    // In space: far from the source, where the wavelength changes little over one wavelength, the
+    // snapshot's first oscillation is V T to 2 % (measured 0.7 % and 0.6 %). Near the source it grows
+    // by ~0.2 l0 per layer, and the two readings, centred half a wavelength apart, differ by ~5 %.
+    if (z[q] >= 80) CHECK(std::abs(space / lam - 1.0) < 0.02);
+    else CHECK(std::abs(space / lam - 1.0) < 0.08);
+  }
+  // The other reading on request (analyze --period pulse, [analysis] period = "pulse").
+  analysis::CrystalAnalysisOptions o;
+  o.period = analysis::PeriodReading::pulse;
+  const analysis::CrystalAnalysis b = analysis::analyze_crystal(to_trace(r, pk, 'P'), o);
+  CHECK(b.period_source == "option");
+  for (std::size_t i = 0; i < b.layers.size(); ++i)
+    if (std::isfinite(b.layers[i].lambda_vt.value))
+      CHECK(b.layers[i].lambda_vt.value == a.layers[i].local_speed.value * a.layers[i].duration.value);
+}
+
+TEST_CASE("seed 002 sec. 3.5 kt trend, P wave: stress first peak independent of kt, v and u fall as the closed form",
+          "[crystal][wavelength][physics]") {
+  // 3 x 3 x 40 crystal, every step stored (0.2 us: the peak refinement's sampling error stays below
+  // 1e-4); z/l0 = 5, 10, 20, all before the reflection from the far end returns.
+  struct Peaks {
+    double v_lattice;
+    std::array<double, 9> p;  // (sigma, v, u) at z/l0 = 5, 10, 20
+  };
+  const int zs[] = {5, 10, 20};
+  auto run = [&](double kt_over_k) {
+    config::Case c = seed_case("crystal_p.toml");
+    c.contact.kt = kt_over_k * c.contact.kn;
+    c.crystal->cells = {3, 3, 40};
+    c.integrator.t_end = 1.6e-4;
+    c.output.interval = 2e-7;
+    const crystal::Packing pk = crystal::make_packing(c);
+    const crystal::RunResult r = crystal::simulate(c, pk);
+    REQUIRE_FALSE(r.failed);
+    Peaks out{lattice_speed(c, pk, false), {}};
+    for (int q = 0; q < 3; ++q) {
+      out.p[3 * q + 0] = first_peak_at(r.traces, r.traces.stress_zz, pk.l0, zs[q]);
+      out.p[3 * q + 1] = first_peak_at(r.traces, r.traces.velocity_z, pk.l0, zs[q]);
+      out.p[3 * q + 2] = first_peak_at(r.traces, r.traces.displacement_z, pk.l0, zs[q]);
+    }
+    return out;
+  };
+  const Peaks p0 = run(0.0);
+  for (double kt : {0.5, 1.0, 2.0}) {
+    const Peaks p = run(kt);
+    const double v_ratio = p0.v_lattice / p.v_lattice;  // sqrt((k - f0/d')/(k + kt - f0/d'))
+    for (int q = 0; q < 3; ++q) {
+      const double s = p.p[3 * q] / p0.p[3 * q], v = p.p[3 * q + 1] / p0.p[3 * q + 1], u = p.p[3 * q + 2] / p0.p[3 * q + 2];
+      std::printf("P, kt/k = %g, z/l0 = %2d: first peak / kt = 0: sigma_zz %.5f (closed form 1), v_z %.5f (%.5f), "
+                  "u_z %.5f (%.5f)\n",
+                  kt, zs[q], s, v, v_ratio, u, v_ratio * v_ratio);
+      INFO("kt/k = " << kt << ", z/l0 = " << zs[q]);
+      // Kinematics: the closed form to 5e-4 (measured within 3.3e-4, growing with z: Verlet at
+      // dt = 2e-7 s; the trend itself is 18 % .. 67 %).
+      CHECK(std::abs(v / v_ratio - 1.0) < 5e-4);
+      CHECK(std::abs(u / (v_ratio * v_ratio) - 1.0) < 5e-4);
+      // Stress: 1 to 0.3 %. Measured +0.07 .. +0.18 % (YADE and LIGGGHTS give the same +0.15 % at
+      // kt = k), growing with kt, hardly with dt (dt/4: 0.164 -> 0.138 % at kt = 2k, z = 10), not with
+      // the amplitude (1e-5 d: unchanged): linear terms of order delta/d' = 1e-3 that this chain
+      // omits (e.g. the prestress's own f0 db in the stress), two orders below the fall of v and u.
+      CHECK(std::abs(s - 1.0) < 3e-3);
+    }
+  }
+}
+
+TEST_CASE("seed 002 sec. 3.5 kt trend, S wave: the first peaks of stress and velocity fall with kt",
+          "[crystal][wavelength][physics]") {
+  // The S wave turns the particles (the (u_x, theta_y) block): no single factor, but the seed's
+  // statement holds for every quantity. Measured at z/l0 = 10, kt = k: sigma_zx x0.85, v_x x0.58.
+  auto peaks = [](double kt_over_k) {
+    config::Case c = seed_case("crystal_p.toml");
+    c.contact.kt = kt_over_k * c.contact.kn;
+    c.excitation.mode = config::Excitation::Mode::S;
+    c.crystal->cells = {3, 3, 40};
+    c.integrator.t_end = 1.6e-4;
+    c.output.interval = 2e-7;
+    const crystal::Packing pk = crystal::make_packing(c);
+    const crystal::RunResult r = crystal::simulate(c, pk);
+    REQUIRE_FALSE(r.failed);
+    return std::array<double, 2>{first_peak_at(r.traces, r.traces.stress_zx, pk.l0, 10),
+                                 first_peak_at(r.traces, r.traces.velocity_x, pk.l0, 10)};
+  };
+  const auto p0 = peaks(0.0), p1 = peaks(1.0);
+  std::printf("S, kt/k = 1, z/l0 = 10: first peak / kt = 0: sigma_zx %.4f, v_x %.4f\n", p1[0] / p0[0], p1[1] / p0[1]);
+  CHECK(p1[0] / p0[0] < 0.95);
+  CHECK(p1[1] / p0[1] < 0.75);
+}
