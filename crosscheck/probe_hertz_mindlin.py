@@ -7,8 +7,11 @@ What the crystal drivers assume (liggghts_inputs/MAPPING.md, "Hertz-Mindlin") is
 installed codes; a realcodes test asserts it. Spheres of radius a = 1e-3 m, density 2000 kg/m^3,
 E = 63e9 Pa, nu = 0.23, mu = 0.5 (the HM crosscheck cases' material).
 
-  history       sphere 2 is moved (kinematically) 1e-9 m sideways at delta = 2e-6 m, then its overlap is
-                changed with no tangential motion: 3e-6 (loading), 1e-6 (unloading), 2e-6 (reloading).
+  history       sphere 2 is moved (kinematically) 1e-9 m sideways at delta = 2e-6 m, then along the line of
+                centres (no tangential motion), 1000 steps per stage within one run: delta = 3e-6
+                (loading), 1e-6 (unloading), 2e-6 (reloading). (Changing the overlap by displace_atoms
+                between LAMMPS runs rescales mindlin_rescale's xi twice, in the setup and the step:
+                delta/delta_prev instead of a/a_prev. The crystal decks make one run.)
                 Reported: F_n over (4/3) E* sqrt(R*) delta^3/2, E* = E/(2(1 - nu^2)), and f_t over
                 k_t(delta) s = 8 G* sqrt(R* delta) s, G* = G/(2(2 - nu)), at each stage. "displacement"
                 (f_t = -k_t(delta) xi) keeps 1; "force" (incremental, df_t = -k_t dxi) keeps f_t
@@ -69,19 +72,19 @@ def classify(rows: list) -> str:
         return "displacement"
     if all(close(r[k], math.sqrt(d[0] / d[k])) for k in range(4)):
         return "force"
-    # LAMMPS mindlin_rescale: xi scaled on unloading only, by delta/delta_prev (measured; its
-    # documentation says a/a_prev = sqrt(delta/delta_prev))
-    if close(r[1], 1.0) and close(r[2], d[2] / d[1]) and close(r[3], d[2] / d[1]):
+    # LAMMPS mindlin_rescale: xi scaled by a/a_prev in every unloading step, a = sqrt(R* delta)
+    if close(r[1], 1.0) and close(r[2], math.sqrt(d[2] / d[1])) and close(r[3], math.sqrt(d[2] / d[1])):
         return "displacement_rescale"
     return "other"
 
 
 def _frames(path):
-    out = []
+    """{step: the last frame dumped at that step} (LAMMPS repeats a run's first step)."""
+    out = {}
     for fr in open(path).read().split("ITEM: TIMESTEP\n")[1:]:
         ls = fr.splitlines()
         n = int(ls[2])
-        out.append(np.array([[float(x) for x in ln.split()] for ln in ls[-n:]]))
+        out[int(ls[0])] = np.array([[float(x) for x in ln.split()] for ln in ls[-n:]])
     return out
 
 
@@ -165,29 +168,30 @@ def _run(exe, code, deck, work):
 
 def history_dump(exe, code, work, history="displacement"):
     head = _LMP_HEAD if code == "lammps" else _LIG_HEAD
+    vx, vz = _along_centres()
+    stage = lambda dd: "fix mv two move linear %r 0 %r\nrun 1000\nunfix mv\n" % (vx * dd, vz * dd)  # noqa: E731
     deck = head + _atoms(2 * A - 2e-6) + _pair(code, history) + """
 timestep 1e-8
-dump d1 all custom 1 atoms.dump id x y z vx vy vz fx fy fz tqx tqy tqz
+dump d1 all custom 100 atoms.dump id x y z vx vy vz fx fy fz tqx tqy tqz
 %s
-run 0
 fix mv two move linear 1e-3 0 0
 run 100
 unfix mv
-velocity two set 0 0 0 units box
-run 1
-displace_atoms two move 0 0 -1e-6 units box
-run 1
-displace_atoms two move 0 0 2e-6 units box
-run 1
-displace_atoms two move 0 0 -1e-6 units box
-run 1
-""" % _DUMP[code]
-    fr = _run(exe, code, deck, work)
+%s%s%s""" % (_DUMP[code], stage(-1e-6), stage(2e-6), stage(-1e-6))
+    frames = _run(exe, code, deck, work)
     rows = []
-    for k, (name, want) in zip((101, 102, 103, 104), STAGES):
-        fn, ft, delta = _fn_ft(fr[k])
+    for k, (name, want) in zip((100, 1100, 2100, 3100), STAGES):
+        fn, ft, delta = _fn_ft(frames[k])
         rows.append(dict(stage=name, **_ratios(fn, ft, delta)))
     return rows
+
+
+def _along_centres():
+    """Unit-rate velocity (per m of overlap change over 1000 steps of 1e-8 s) of sphere 2 along the line of
+    centres after the 1e-9 m shear: a change of overlap with no tangential motion."""
+    x, z = SHEAR, 2 * A - 2e-6
+    n = math.hypot(x, z)
+    return x / n / 1e-5, z / n / 1e-5
 
 
 def restitution_dump(exe, code, work, zeta, clip):
@@ -202,7 +206,7 @@ dump d1 all custom 30000 atoms.dump id x y z vx vy vz fx fy fz tqx tqy tqz
 run 30000
 """ % _DUMP[code]
     fr = _run(exe, code, deck, work)
-    a = fr[-1]
+    a = fr[max(fr)]
     if a[1, 3] - a[0, 3] <= 2 * A:
         raise RuntimeError("%s: the spheres are still in contact at the end of the restitution probe" % code)
     return float((a[1, 6] - a[0, 6]) / 0.1)
@@ -253,9 +257,10 @@ for k in range(100):
     O.step()
 O.bodies[b2].state.vel = Vector3(0, 0, 0)
 rows = []
-for dz in (0.0, -1e-6, 2e-6, -1e-6):
-    O.bodies[b2].state.pos = O.bodies[b2].state.pos + Vector3(0, 0, dz)
-    O.step()
+for dd in (0.0, -1e-6, 2e-6, -1e-6):
+    # along the line of centres (no tangential motion), 1000 steps per stage
+    O.bodies[b2].state.vel = Vector3(%(VX)r * dd, 0, %(VZ)r * dd)
+    O.run(1000 if dd else 1, True)
     i = O.interactions[b1, b2]
     rows.append((i.phys.normalForce.norm(), i.phys.shearForce.norm(), i.geom.penetrationDepth,
                  i.phys.kn, i.phys.ks))
@@ -279,7 +284,8 @@ print("PROBE_JSON " + json.dumps(out))
 def probe_yade(exe, work):
     path = os.path.join(work, "probe_yade.py")
     with open(path, "w") as f:
-        f.write(_YADE % dict(A=A, RHO=RHO, E=E, NU=NU, MU=MU, ZETA=ZETA))
+        vx, vz = _along_centres()
+        f.write(_YADE % dict(A=A, RHO=RHO, E=E, NU=NU, MU=MU, ZETA=ZETA, VX=vx, VZ=vz))
     p = subprocess.run([exe, "-n", "-x", path], cwd=work, capture_output=True, text=True, timeout=300)
     line = [ln for ln in p.stdout.splitlines() if ln.startswith("PROBE_JSON ")]
     if not line:

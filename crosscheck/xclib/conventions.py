@@ -39,7 +39,7 @@ CONVENTIONS = (
      "Hertz-Mindlin's tangential spring k_t(delta) = 8 G* sqrt(R* delta) changes with the overlap: LIGGGHTS and "
      "LAMMPS' mindlin keep the displacement (f_t = -k_t(delta) xi, \"displacement\"), YADE's Mindlin law and "
      "LAMMPS' mindlin/force the force (incremental, \"force\"), LAMMPS' mindlin_rescale scales xi by "
-     "delta/delta_prev on unloading (\"displacement_rescale\"), measured by crosscheck/probe_hertz_mindlin.py. "
+     "a/a_prev on unloading (\"displacement_rescale\"), measured by crosscheck/probe_hertz_mindlin.py. "
      "granwave runs each: [contact] tangential_history."),
 )
 
