@@ -134,16 +134,17 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   theory::ContactNetwork net;
   net.box_x = out.packing.box_x;
   net.box_y = out.packing.box_y;
-  net.k = out.c.contact.kn;
-  net.kt = out.c.contact.kt;
+  net.k = der.kn;  // the linear law's kn, kt; Hertz-Mindlin's linearised at the static overlap
+  net.kt = der.kt;
   for (std::size_t p = 0; p < out.packing.size(); ++p)
     net.particles.push_back(
         {out.packing.mass[p], out.packing.layer[p], out.packing.z[p], out.packing.radius[p], out.packing.inertia[p]});
   for (const auto& q : crystal::list_contacts(out.packing, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), out.c.contact.kn * q.overlap});
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
+                            crystal::static_normal_force(out.c, out.packing.radius[q.i], out.packing.radius[q.j], q.overlap)});
   const auto th = theory::crystal_prediction(net, {fl, out.packing.layers - 1 - fl});
   const bool S = m.mode == 'S';
-  const auto ct = theory::linear_contact_time(out.c.contact.kn, out.c.contact.gamma_n, der.m_ij,
+  const auto ct = theory::linear_contact_time(der.kn, der.gamma_n, der.m_ij,
                                               out.c.contact.normal_tension == config::NormalTension::clip);
 
   std::vector<double> v(crystal_value_names(s).size(), kNaN);
@@ -420,12 +421,14 @@ Captured capture(const CrystalMemberRun& r, const std::vector<double>& positions
   theory::ContactNetwork net;
   net.box_x = r.packing.box_x;
   net.box_y = r.packing.box_y;
-  net.k = r.c.contact.kn;
-  net.kt = r.c.contact.kt;
+  const crystal::ContactAt k0 = crystal::contact_at(r.c, r.packing.delta);
+  net.k = k0.kn;
+  net.kt = k0.kt;
   for (std::size_t p = 0; p < r.packing.size(); ++p)
     net.particles.push_back({r.packing.mass[p], r.packing.layer[p], r.packing.z[p], r.packing.radius[p], r.packing.inertia[p]});
   for (const auto& q : crystal::list_contacts(r.packing, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), r.c.contact.kn * q.overlap});
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
+                            crystal::static_normal_force(r.c, r.packing.radius[q.i], r.packing.radius[q.j], q.overlap)});
   theory::LatticeCellOptions lopt;
   lopt.arm_shift = r.c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
   const int fl = r.packing.fixed_layers;
