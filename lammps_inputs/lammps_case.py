@@ -212,6 +212,11 @@ def hertz_mindlin_style(c: dict) -> dict:
         the material, no tangential dashpot), whose arm is MIXED_ARM."""
     p = HM.params(c)
     clip = c["normal_tension"] == "clip" and p["zeta"] > 0.0
+    if p["zeta"] > 0.0:
+        try:
+            HM.lammps_tsuji_restitution(p["zeta"])
+        except ValueError as e:   # tsuji's alpha(e) spans (3e-4, 1.2728]: zeta in (1.2e-4, 0.5196]
+            raise Unsupported(str(e)) from None
     base = dict(contact_law="hertz_mindlin", normal_tension=c["normal_tension"], lever_arm=c.get("lever_arm", "radius"),
                 coulomb_normal=c.get("coulomb_normal", "compressive"), tangential_history=p["history"])
     if p["tangential"] != "mindlin":

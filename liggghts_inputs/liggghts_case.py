@@ -391,7 +391,11 @@ def main(argv) -> int:
                                               trace=a.out)))
         return 0
     os.makedirs(work, exist_ok=False)
-    facts = render(case, system, work)
+    try:
+        facts = render(case, system, work)
+    except ValueError as e:      # a law LIGGGHTS cannot express (damping_ratio beyond its hertz damping)
+        print("liggghts_case: %s: %s" % (a.case, e), file=sys.stderr)
+        return 2
     if a.render_only:
         print("rendered %s" % work)
         return 0

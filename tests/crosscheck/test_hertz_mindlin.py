@@ -138,3 +138,18 @@ def test_hertz_conventions_and_twins():
     # frictionless: the history and the arm do not matter
     bare = {"case": {"model": "crystal"}, "contact": dict(case["contact"], tangential="none")}
     assert CV.difference(bare, gw, dict(yade, lever_arm=LM.MIXED_ARM)) is None
+
+
+def test_damping_ratios_a_code_cannot_express_are_refused(tmp_path, cases_dir):
+    """LAMMPS' tsuji reaches sqrt(6) zeta <= alpha(0) = 1.2728 (zeta <= 0.5196); LIGGGHTS' hertz zeta < 0.9129."""
+    import pytest
+    case, system = _system(tmp_path, cases_dir, "crystal_small_hm_damped.toml")
+    case["contact"]["damping_ratio"] = 0.6
+    (tmp_path / "l").mkdir()
+    with pytest.raises(LM.Unsupported):
+        LM.render(case, system, str(tmp_path / "l"))
+    (tmp_path / "g").mkdir()
+    L.render(case, system, str(tmp_path / "g"))            # 0.6 < 0.9129: LIGGGHTS runs it
+    case["contact"]["damping_ratio"] = 0.95
+    with pytest.raises(ValueError):
+        HM.liggghts_restitution(0.95)
