@@ -144,6 +144,10 @@ LatticePart lattice_part(const config::Case& c, const theory::ContactNetwork& ne
     return L;
   }
   theory::LatticeCellOptions opt;
+  // Contact forces come from overlaps of positions far larger than them: at delta_0 = 1e-5 d and
+  // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
+  // bonds are the reference particle's either way; the tolerance only decides whether all agree.
+  opt.tolerance = 1e-6;
   opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
   std::string why;
   const auto cell = theory::lattice_cell(net, slab, opt, &why);

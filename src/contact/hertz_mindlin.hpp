@@ -203,7 +203,7 @@ struct HertzMindlinLaw {
   double tangential_energy(const Tangential& h, double k_t) const {
     const double s2 = h.t_x * h.t_x + h.t_y * h.t_y + h.t_z * h.t_z;
     if constexpr (H == MindlinHistory::force)
-      return k_t > 0.0 ? 0.5 * s2 / k_t : 0.0;  // |f_t|^2/(2 k_t)
+      return select(k_t > 0.0, 0.5 * s2 / k_t, 0.0);  // |f_t|^2/(2 k_t); a select, not ?: (vectorises on AVX2)
     else
       return 0.5 * k_t * s2;  // (1/2) k_t |xi|^2
   }
