@@ -241,7 +241,7 @@ out = {}
 def world(betan=None):
     O.reset()
     mat = O.materials.append(FrictMat(young=E, poisson=NU, frictionAngle=math.atan(MU), density=RHO))
-    ip2 = Ip2_FrictMat_FrictMat_MindlinPhys(betan=betan) if betan else Ip2_FrictMat_FrictMat_MindlinPhys()
+    ip2 = Ip2_FrictMat_FrictMat_MindlinPhys(betan=betan, betas=0.0) if betan else Ip2_FrictMat_FrictMat_MindlinPhys()
     O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
                  InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False)], [ip2],
                                  [Law2_ScGeom_MindlinPhys_Mindlin()]),
@@ -265,18 +265,16 @@ for dd in (0.0, -1e-6, 2e-6, -1e-6):
     rows.append((i.phys.normalForce.norm(), i.phys.shearForce.norm(), i.geom.penetrationDepth,
                  i.phys.kn, i.phys.ks))
 out["history"] = rows
-res = {}
-for clip in (True,):
-    mat = world(betan=%(ZETA)r)
-    b1 = O.bodies.append(utils.sphere((0, 0, 0), A, material=mat))
-    b2 = O.bodies.append(utils.sphere((0, 0, 2 * A + 1e-6), A, material=mat))
-    O.bodies[b1].state.vel = Vector3(0, 0, 0.05)
-    O.bodies[b2].state.vel = Vector3(0, 0, -0.05)
-    O.dt = 1e-9
-    O.run(30000, True)
-    res["e"] = (O.bodies[b2].state.vel[2] - O.bodies[b1].state.vel[2]) / 0.1
-    res["gap"] = O.bodies[b2].state.pos[2] - O.bodies[b1].state.pos[2] - 2 * A
-out["restitution"] = res
+# restitution: two free spheres (m* = m/2), betan = zeta, betas = 0 (as the crystal driver)
+mat = world(betan=%(ZETA)r)
+b1 = O.bodies.append(utils.sphere((0, 0, 0), A, material=mat))
+b2 = O.bodies.append(utils.sphere((0, 0, 2 * A + 1e-6), A, material=mat))
+O.bodies[b1].state.vel = Vector3(0, 0, 0.05)
+O.bodies[b2].state.vel = Vector3(0, 0, -0.05)
+O.dt = 1e-9
+O.run(30000, True)
+out["restitution"] = dict(e=(O.bodies[b2].state.vel[2] - O.bodies[b1].state.vel[2]) / 0.1,
+                          gap=O.bodies[b2].state.pos[2] - O.bodies[b1].state.pos[2] - 2 * A)
 print("PROBE_JSON " + json.dumps(out))
 '''
 
@@ -297,6 +295,8 @@ def probe_yade(exe, work):
         r.update(kn_over_2Estar_sqrtRd=kn / (2 * E_STAR * math.sqrt(R_STAR * delta)),
                  ks_over_8Gstar_sqrtRd=ks / (8 * G_STAR * math.sqrt(R_STAR * delta)))
         rows.append(r)
+    if out["restitution"]["gap"] <= 0.0:
+        raise RuntimeError("yade: the spheres are still in contact at the end of the restitution probe")
     e = out["restitution"]["e"]
     return dict(history=rows, tangential_history=classify(rows), restitution=_judge(e))
 
