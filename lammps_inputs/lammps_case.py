@@ -37,6 +37,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 from xclib import dumps as D  # noqa: E402
+from xclib import hertz_mindlin as HM  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LAMMPS velocity Verlet, dumps after a whole step; positions, velocities "
@@ -195,8 +196,54 @@ def render_chain(case: dict, system: dict, workdir: str, facts: dict) -> str:
 
 
 # ---------------------------------------------------------------------------------------- crystal
+# pair granular's arm of the tangential force: the radius in the surface velocity, the contact point in
+# the torque (two spheres, MAPPING.md); no granwave option runs it, so the harness reports the pair.
+MIXED_ARM = "radius_velocity_contact_point_torque"
+
+
+def hertz_mindlin_style(c: dict) -> dict:
+    """Hertz-Mindlin (case law = "hertz_mindlin"; MAPPING.md, "Hertz-Mindlin", every map measured by
+    crosscheck/probe_hertz_mindlin.py):
+      frictionless: pair granular hertz/material E e nu, tangential linear_nohistory 0 0, damping velocity 0
+        (undamped) or tsuji with e such that alpha(e) = sqrt(6) zeta (damped), limit_damping for "clip";
+      friction, undamped, "displacement": gran/hertz/history Kn = 4/3 E*, Kt = 8 G*: F_n = Kn sqrt(R* delta)
+        delta, k_t = Kt sqrt(R* delta), f_t = -k_t(delta) xi, lever arm a (as gran/hooke/history);
+      friction otherwise: pair granular with tangential mindlin / mindlin_rescale / mindlin/force (k_t from
+        the material, no tangential dashpot), whose arm is MIXED_ARM."""
+    p = HM.params(c)
+    clip = c["normal_tension"] == "clip" and p["zeta"] > 0.0
+    if p["zeta"] > 0.0:
+        try:
+            HM.lammps_tsuji_restitution(p["zeta"])
+        except ValueError as e:   # tsuji's alpha(e) spans (3e-4, 1.2728]: zeta in (1.2e-4, 0.5196]
+            raise Unsupported(str(e)) from None
+    base = dict(contact_law="hertz_mindlin", normal_tension=c["normal_tension"], lever_arm=c.get("lever_arm", "radius"),
+                coulomb_normal=c.get("coulomb_normal", "compressive"), tangential_history=p["history"])
+    if p["tangential"] != "mindlin":
+        line = HM.lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip, tangential=False)
+        return dict(lines=line.rstrip("\n"), conventions=base, tangential=False, clip=clip, style="granular hertz/material",
+                    comment="granular hertz/material, %s, no tangential force" % (
+                        "tsuji damping" + (", limit_damping" if clip else "") if p["zeta"] > 0 else "undamped"))
+    if p["zeta"] == 0.0 and p["history"] == "displacement":
+        kn, kt = 4.0 / 3.0 * HM.e_star(p["E"], p["nu"]), 8.0 * HM.g_star(p["E"], p["nu"])
+        line = "pair_style      gran/hertz/history %s %s 0.0 0.0 %s 0\npair_coeff      * *" % (_g(kn), _g(kt), _g(p["mu"]))
+        conv = dict(base, lever_arm="radius", normal_tension="allow", coulomb_normal="magnitude")
+        return dict(lines=line, conventions=conv, tangential=True, clip=False, style="gran/hertz/history",
+                    comment="gran/hertz/history: Hertz-Mindlin with Kn = 4/3 E*, Kt = 8 G*, tangential displacement, "
+                            "lever arm a (seed 002 eq. 4)")
+    line = HM.lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip)
+    # Coulomb limit: pair granular takes mu |F_n| with the dashpot included (not measured separately
+    # here: with "clip" F_n >= 0 and both rules agree; the cases use "clip" with a dashpot)
+    conv = dict(base, lever_arm=MIXED_ARM, normal_tension="clip" if clip else "allow", coulomb_normal="magnitude")
+    return dict(lines=line.rstrip("\n"), conventions=conv, tangential=True, clip=clip, style="granular hertz/material",
+                comment="granular hertz/material + tangential %s (arm: a in the velocity, a - delta/2 in the torque)"
+                        % HM.LAMMPS_TANGENTIAL[p["history"]])
+
+
 def crystal_style(c: dict, mass: np.ndarray) -> dict:
     """The pair style lines and the conventions it runs (MAPPING.md, LAMMPS section)."""
+    if c.get("law", "linear") == "hertz_mindlin":
+        return hertz_mindlin_style(c)
     kn, kt, gn, gt = float(c["kn"]), float(c["kt"]), float(c["gamma_n"]), float(c["gamma_t"])
     if gt > 0.0:
         raise Unsupported("gamma_t > 0: the dumped tangential dashpot sees v(t) and w(t) instead of the step's "
@@ -213,7 +260,8 @@ def crystal_style(c: dict, mass: np.ndarray) -> dict:
         conv = dict(FRICTION_STYLE_CONVENTIONS)
         comment = ("gran/hooke/history: linear spring, dashpot per unit effective mass (gamma_n / m_eff), tangential "
                    "spring with Coulomb limit mu |f_n|, lever arm a (seed 002 eq. 4)")
-        return dict(lines=line, conventions=conv, tangential=True, comment=comment, style="gran/hooke/history")
+        return dict(lines=line, conventions=conv, tangential=True, clip=False, comment=comment,
+                    style="gran/hooke/history")
     clip = c["normal_tension"] == "clip" and gn > 0.0
     line = ("pair_style      granular\npair_coeff      * * hooke %s %s tangential linear_nohistory 0 0 damping velocity%s"
             % (_g(kn), _g(gn), " limit_damping" if clip else ""))
@@ -221,7 +269,7 @@ def crystal_style(c: dict, mass: np.ndarray) -> dict:
                 coulomb_normal=c.get("coulomb_normal", "compressive"))
     comment = ("granular hooke, absolute dashpot (damping velocity)%s, no tangential force"
                % (", limit_damping (no pulling dashpot)" if clip else ""))
-    return dict(lines=line, conventions=conv, tangential=False, comment=comment, style="granular hooke")
+    return dict(lines=line, conventions=conv, tangential=False, clip=clip, comment=comment, style="granular hooke")
 
 
 def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
@@ -237,11 +285,14 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
     sty = crystal_style(c, m)
     for key, used in sty["conventions"].items():
         asked = c.get(key)
-        matters = {"lever_arm": c["kt"] > 0 or c["gamma_t"] > 0, "normal_tension": c["gamma_n"] > 0,
-                   "coulomb_normal": (c["kt"] > 0 or c["gamma_t"] > 0) and c["gamma_n"] > 0}[key]
+        matters = {"lever_arm": T.has_tangential(c), "normal_tension": T.has_dashpot(c),
+                   "coulomb_normal": T.has_tangential(c) and T.has_dashpot(c) and c["normal_tension"] == "allow",
+                   "tangential_history": T.has_tangential(c), "contact_law": False}[key]
         if matters and asked != used:
             sys.stderr.write("lammps_case: the case asks for %s = \"%s\"; LAMMPS %s runs \"%s\", and the trace says so "
-                             "(granwave can run it: [contact] %s)\n" % (key, asked, sty["style"], used, key))
+                             "(%s)\n" % (key, asked, sty["style"], used,
+                                          "granwave cannot run it: a reported difference" if used == MIXED_ARM
+                                          else "granwave can run it: [contact] %s" % key))
     if c["mu_static"] != c["mu_dynamic"] and sty["tangential"]:
         sys.stderr.write("lammps_case: LAMMPS has one Coulomb mu; using mu_static=%g (mu_dynamic=%g ignored: a "
                          "documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
@@ -263,7 +314,7 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
     vdrive = ex["drive"] != "displacement"
     exclude = "exclude type 2 2 exclude type 2 3" + ("" if vdrive else " exclude type 3 3")
     facts.update(lay={k: v for k, v in lay.items() if k != "layer"}, conventions=sty["conventions"],
-                 pair_style=sty["style"], tangential=sty["tangential"], damped=float(c["gamma_n"]) > 0.0)
+                 pair_style=sty["style"], tangential=sty["tangential"], damped=T.has_dashpot(c), clip=sty["clip"])
     return _template("crystal.in.tmpl").substitute(
         case_name=case["case"]["name"], mass_lines=mass_lines(m), skin=_g(0.2 * float(r.min())), exclude=exclude,
         free_types="1 3" if vdrive else "1", pair_comment=sty["comment"], pair_lines=sty["lines"], dt=_g(facts["dt"]),
@@ -364,7 +415,11 @@ def convert_crystal(workdir, case, system, facts):
     r = np.asarray(system["radius"], float)
     cp = T.contact_params(case)
     gamma_n, kn = float(cp["gamma_n"]), float(cp["kn"])
-    clip = facts["conventions"]["normal_tension"] == "clip" and not facts["tangential"]
+    clip = facts["clip"]
+    hertz = None
+    if cp["law"] == "hertz_mindlin":     # per-contact elastic force and dashpot; gamma_n: the damping ratio (a flag)
+        hmp = HM.params(cp)
+        gamma_n, kn, hertz = hmp["zeta"], 0.0, (HM.e_star(hmp["E"], hmp["nu"]), hmp["zeta"])
     mobile = ~fixed
     if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
         mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
@@ -390,7 +445,7 @@ def convert_crystal(workdir, case, system, facts):
         if gamma_n > 0.0 and s > 0 and len(i):   # step 0: the setup force already saw v(0), as the dump does
             n_ij, _, _ = D.contact_normals(p, i, j, bx, by)
             fn_dump = np.sum(fnorm * n_ij, axis=1)
-            f_step = D.dashpot_at_half_step(p, v, fa, mass, mobile, dt, i, j, fnorm, r, gamma_n, bx, by, kn, clip)
+            f_step = D.dashpot_at_half_step(p, v, fa, mass, mobile, dt, i, j, fnorm, r, gamma_n, bx, by, kn, clip, hertz)
             if facts["tangential"]:
                 fn_step = np.sum(f_step * n_ij, axis=1)
                 ft, assumed = tangential_at_step(fr[:, 3:6], fn_dump, fn_step, float(cp["mu_static"]))

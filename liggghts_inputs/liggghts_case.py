@@ -28,6 +28,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 from xclib import dumps as D  # noqa: E402
+from xclib import hertz_mindlin as HM  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LIGGGHTS velocity Verlet, dumps after a whole step; positions, "
@@ -140,18 +141,58 @@ def render(case: dict, system: dict, workdir: str) -> dict:
         vdrive = ex["drive"] != "displacement"
         exclude = "exclude type 2 2 exclude type 2 3" + ("" if vdrive else " exclude type 3 3")
         free_types = "1 3" if vdrive else "1"
-        ncol = 9 if c["kt"] > 0 else 6   # id1 id2 flag f(3) [shear history(3)]
+        limit_force = "on" if c["normal_tension"] == "clip" else "off"
+        if c["law"] == "hertz_mindlin":
+            contact_lines = hertz_mindlin_lines(c, limit_force)
+            with_history = c["tangential"] == "mindlin"
+        else:
+            contact_lines = (
+                "# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed top, 3 fixed source: "
+                "one material)\n"
+                "fix             m1 all property/global kn peratomtypepair 3 %s\n"
+                "fix             m2 all property/global kt peratomtypepair 3 %s\n"
+                "fix             m3 all property/global gamman_abs peratomtypepair 3 %s\n"
+                "fix             m4 all property/global gammat_abs peratomtypepair 3 %s\n"
+                "fix             m5 all property/global coefficientFriction peratomtypepair 3 %s\n"
+                "pair_style      gran model hooke/stiffness tangential history absolute_damping on limitForce %s\n"
+                "pair_coeff      * *\n" % (nine(c["kn"]), nine(c["kt"]), nine(c["gamma_n"]), nine(c["gamma_t"]),
+                                            nine(c["mu_static"]), limit_force))
+            with_history = c["kt"] > 0
+        ncol = 9 if with_history else 6   # id1 id2 flag f(3) [shear history(3)]
         deck = _template("crystal.in.tmpl").substitute(
             case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.2 * float(r.min())),
-            kn9=nine(c["kn"]), kt9=nine(c["kt"]), gn9=nine(c["gamma_n"]), gt9=nine(c["gamma_t"]),
-            mu9=nine(c["mu_static"]), exclude=exclude, free_types=free_types, limit_force="on" if c["normal_tension"] == "clip" else "off",
+            contact_lines=contact_lines, exclude=exclude, free_types=free_types,
             dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps,
-            history=" history" if c["kt"] > 0 else "", pair_columns=" ".join("c_cpl[%d]" % k for k in range(1, ncol + 1)),
+            history=" history" if with_history else "", pair_columns=" ".join("c_cpl[%d]" % k for k in range(1, ncol + 1)),
             pair_format=" ".join(["%.17g"] * ncol))
         facts.update(lay={k: v for k, v in lay.items() if k != "layer"})
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
     return facts
+
+
+def hertz_mindlin_lines(c: dict, limit_force: str) -> str:
+    """`gran model hertz tangential history` with the material of the case (MAPPING.md, "Hertz-Mindlin"):
+    LIGGGHTS' hertz is F_n = (4/3) E* sqrt(R*) delta^3/2 and k_t = 8 G* sqrt(R* delta) with E*, G* mixed
+    from youngsModulus, poissonsRatio as granwave's (two spheres, 1e-16), keeps the tangential
+    displacement (f_t = -k_t(delta) xi), and damps with coefficientRestitution mapped from damping_ratio
+    (HM.liggghts_restitution: identical restitution to LAMMPS' tsuji map, 4e-16). No tangential dashpot
+    (`tangential_damping off`). tangential = "none": coefficientFriction 0 and `tangential no_history`."""
+    p = HM.params(c)
+    friction = p["tangential"] == "mindlin"
+    three = lambda x: " ".join([_g(x)] * 3)  # noqa: E731
+    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
+    return ("# Hertz-Mindlin (granwave law = \"hertz_mindlin\"); one material for the three types (1 free, 2 fixed "
+            "top, 3 fixed source); E > 1e9 Pa needs hard_particles\n"
+            "hard_particles  yes\n"
+            "fix             m1 all property/global youngsModulus peratomtype %s\n"
+            "fix             m2 all property/global poissonsRatio peratomtype %s\n"
+            "fix             m3 all property/global coefficientRestitution peratomtypepair 3 %s\n"
+            "fix             m4 all property/global coefficientFriction peratomtypepair 3 %s\n"
+            "pair_style      gran model hertz tangential %s tangential_damping off limitForce %s\n"
+            "pair_coeff      * *\n" % (three(p["E"]), three(p["nu"]), nine(HM.liggghts_restitution(p["zeta"])),
+                                        nine(p["mu"] if friction else 0.0), "history" if friction else "no_history",
+                                        limit_force))
 
 
 # ------------------------------------------------------------------------------------ dump reading
@@ -258,6 +299,14 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         cp = T.contact_params(case)
         gamma_n, gamma_t, kt = float(cp["gamma_n"]), float(cp["gamma_t"]), float(cp["kt"])
         kn, clip = float(cp["kn"]), cp["normal_tension"] == "clip"
+        hertz = None
+        if cp["law"] == "hertz_mindlin":
+            # per-contact k_n(delta), k_t(delta), gamma_n(delta): gamma_n is the damping ratio (a flag here)
+            hmp = HM.params(cp)
+            gamma_n, gamma_t, kn = hmp["zeta"], 0.0, 0.0
+            hertz = (HM.e_star(hmp["E"], hmp["nu"]), hmp["zeta"])
+            g_star = HM.g_star(hmp["E"], hmp["nu"])
+            kt = lambda i1, i2, p: HM.k_t_rows(g_star, p, r, i1, i2, lay["box_x"], lay["box_y"])  # noqa: E731
         mobile = ~fixed
         if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
             mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
@@ -275,9 +324,10 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
 
                 def correct(i1, i2, ff, shear=None, p=p, v=v, fa=fa):
                     if shear is not None and gamma_t == 0.0:   # the Coulomb test of the step, not the dump's
-                        ff = tangential_at_step(p, i1, i2, ff, shear, kt, lay["box_x"], lay["box_y"])
+                        k = kt(i1, i2, p)[:, None] if callable(kt) else kt
+                        ff = tangential_at_step(p, i1, i2, ff, shear, k, lay["box_x"], lay["box_y"])
                     return dashpot_at_half_step(p, v, fa, mass, mobile, dt, i1, i2, ff, r, gamma_n,
-                                                lay["box_x"], lay["box_y"], kn, clip)
+                                                lay["box_x"], lay["box_y"], kn, clip, hertz)
             i, j, f = _pairs_on_first(pr, correct) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
             szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
             out_rows["szz"].append(szz)
@@ -297,6 +347,9 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         extra["lever_arm"] = T.lever_arm_used(cp, "LIGGGHTS")
         extra["normal_tension"] = cp["normal_tension"]          # limitForce off / on: both available
         extra["coulomb_normal"] = T.coulomb_normal_used(cp, "LIGGGHTS")
+        extra["contact_law"] = cp["law"]
+        if cp["law"] == "hertz_mindlin":
+            extra["tangential_history"] = HM.history_used(cp, HM.LIGGGHTS_TANGENTIAL_HISTORY, "LIGGGHTS")
     T.write_trace(out, code="liggghts", code_version=version, case_text=case_text, case_name=case["case"]["name"],
                   system_path=system_path, time_convention=TIME_CONVENTION, time=times, datasets=data,
                   extra_attrs=extra)
@@ -338,7 +391,11 @@ def main(argv) -> int:
                                               trace=a.out)))
         return 0
     os.makedirs(work, exist_ok=False)
-    facts = render(case, system, work)
+    try:
+        facts = render(case, system, work)
+    except ValueError as e:      # a law LIGGGHTS cannot express (damping_ratio beyond its hertz damping)
+        print("liggghts_case: %s: %s" % (a.case, e), file=sys.stderr)
+        return 2
     if a.render_only:
         print("rendered %s" % work)
         return 0

@@ -26,6 +26,12 @@ granwave_cli_refuses(unknown_key unknown_key.toml "case.colour")
 granwave_cli_refuses(negative_modulus negative_modulus.toml "materials.steel.youngs_modulus")
 granwave_cli_refuses(off_grid_m off_grid_m.toml "magnetisation")
 granwave_cli_refuses(crystal_mu crystal_mu.toml "contact.mu_dynamic")
+# Issue #14: the Hertz-Mindlin law's keys.
+granwave_cli_refuses(hertz_negative_modulus hertz_negative_modulus.toml "contact.youngs_modulus")
+granwave_cli_refuses(hertz_poisson_half hertz_poisson_half.toml "contact.poisson_ratio")
+granwave_cli_refuses(hertz_with_kn hertz_with_kn.toml "contact.kn")
+granwave_cli_refuses(linear_with_modulus linear_with_modulus.toml "contact.youngs_modulus")
+granwave_cli_refuses(hertz_history hertz_history.toml "contact.tangential_history")
 
 add_test(NAME "cli: missing case file exits 2" COMMAND sh -c "${GW} check /nonexistent/case.toml; test $? -eq 2")
 add_test(NAME "cli: unknown verb exits 2" COMMAND sh -c "${GW} frobnicate; test $? -eq 2")
@@ -71,3 +77,14 @@ grep -q '1 resumed, 3 computed' $d/out || { cat $d/out; exit 1; }; \
 ${GW} sweep ${CMAKE_SOURCE_DIR}/tests/data/mpi/crystal_tiny.toml -o $d/b.h5 --threads 2 --quiet > /dev/null 2>&1 || exit 1; \
 h5diff $d/a.h5 $d/b.h5 /members /members || { echo 'members differ'; exit 1; }")
 set_tests_properties("cli: crystal sweep --limit stops and resumes, --threads changes nothing" PROPERTIES LABELS "cli")
+# Issue #14: every crystal trace records its contact law and tangential history (root attributes);
+# a linear case says "linear" / "displacement", a Hertz-Mindlin case what it ran.
+add_test(NAME "cli: crystal traces record contact_law and tangential_history"
+  COMMAND sh -c "rm -f ${CLI_TMP}/law_lin.h5 ${CLI_TMP}/law_hm.h5; \
+${GW} run ${CMAKE_SOURCE_DIR}/data/cases/crystal_small.toml -o ${CLI_TMP}/law_lin.h5 > /dev/null && \
+${GW} run ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_hertz_small.toml -o ${CLI_TMP}/law_hm.h5 > /dev/null && \
+/usr/bin/python3 -c \"import h5py; a = h5py.File('${CLI_TMP}/law_lin.h5').attrs; b = h5py.File('${CLI_TMP}/law_hm.h5').attrs; \
+s = lambda v: v.decode() if isinstance(v, bytes) else str(v); \
+assert (s(a['contact_law']), s(a['tangential_history'])) == ('linear', 'displacement'), dict(a); \
+assert (s(b['contact_law']), s(b['tangential_history']), s(b['lever_arm'])) == ('hertz_mindlin', 'force', 'contact_point'), dict(b)\"")
+set_tests_properties("cli: crystal traces record contact_law and tangential_history" PROPERTIES LABELS "cli")

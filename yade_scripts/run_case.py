@@ -35,6 +35,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 
 import numpy as np  # noqa: E402
 
+from xclib import hertz_mindlin as HM  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
 from yade import O, utils  # noqa: E402
@@ -223,7 +224,7 @@ def run_chain(case, system, dt, nsteps, every):
     return np.array(sampler.times), data, wall, n, sampler.cost
 
 
-def first_verlet_step(ids, masses, v0, fixed, dt, newton, runner, sampler):
+def first_verlet_step(ids, masses, v0, fixed, dt, newton, runner, sampler, f0_dt=0.0):
     """Crystal start: F(0) at x(0), v(0) (NewtonIntegrator dead: the dashpots see v(0), as in
     velocity Verlet), then the first half kick and drift are done here, v(dt/2) = v(0) + F(0)/m dt/2,
     x(dt) = x(0) + v(dt/2) dt (fixed bodies keep their velocity), and the t = 0 sample is taken from
@@ -242,11 +243,13 @@ def first_verlet_step(ids, masses, v0, fixed, dt, newton, runner, sampler):
     (1e-3 m/s, gamma_n = 0.1, kt = k); without it YADE = LIGGGHTS to all digits until the first
     contacts pull (t = 21 us), and to 5.5e-10 throughout with normal_tension = "clip". The normal
     force and the dashpots do not involve O.dt; with the displacement drive (v = 0 here) the increment
-    was exactly zero already."""
+    was exactly zero already. Law2_ScGeom_MindlinPhys_Mindlin divides by O.dt (its shear force is NaN at
+    O.dt = 0), so Hertz-Mindlin runs pass f0_dt = 1e-300 s: increments of 1e-300 v, nothing at double
+    precision."""
     newton.dead = True
     runner.dead = True
     dt_run = O.dt
-    O.dt = 0.0
+    O.dt = f0_dt
     O.step()
     O.dt = dt_run
     for k, i in enumerate(ids):
@@ -312,12 +315,30 @@ def run_crystal(case, system, dt, nsteps, every):
         fail("YADE keeps one interaction per particle pair: a periodic layer needs >= 3 particles in x "
              "and y (this case has %d x %d), otherwise a particle touches two images of the same neighbour"
              % (int(cells[0]), int(cells[1])))
-    damped = c["gamma_n"] > 0 or c["gamma_t"] > 0
-    if c["mu_static"] != c["mu_dynamic"] and c["kt"] > 0:
+    hm = c["law"] == "hertz_mindlin"
+    hmp = HM.params(c) if hm else None
+    damped = (hmp["zeta"] > 0) if hm else (c["gamma_n"] > 0 or c["gamma_t"] > 0)
+    has_shear = (hmp["tangential"] == "mindlin") if hm else (c["kt"] > 0 or c["gamma_t"] > 0)
+    if c["mu_static"] != c["mu_dynamic"] and has_shear:
         sys.stderr.write("run_case.py: YADE has one friction coefficient; using mu_static=%g (mu_dynamic=%g "
                          "ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
     phi = math.atan(c["mu_static"])
-    if damped:
+    if hm:
+        # Hertz-Mindlin (liggghts_inputs/MAPPING.md, "Hertz-Mindlin"; crosscheck/probe_hertz_mindlin.py):
+        # MindlinPhys has kn = 2 E* sqrt(R* delta), ks = 8 G* sqrt(R* delta) (E*, G* mixed as granwave's,
+        # read back below), an incremental tangential force ("force" history), and a normal dashpot
+        # c_n = 2 betan sqrt(m* kn) that never pulls ("clip"): betan = damping_ratio exactly (two spheres:
+        # the restitution equals LIGGGHTS' and LAMMPS' to 4e-15). betas defaults to betan: set to 0 (no
+        # tangential dashpot). tangential = "none": frictionAngle = 0 (the shear force is capped to 0).
+        if damped and c["normal_tension"] != "clip":
+            sys.stderr.write("run_case.py: the case asks for normal_tension = \"%s\"; YADE's Mindlin dashpot never "
+                             "pulls, and its trace says normal_tension = \"clip\"\n" % c["normal_tension"])
+        mat = O.materials.append(FrictMat(young=hmp["E"], poisson=hmp["nu"], frictionAngle=phi if has_shear else 0.0,
+                                          density=1000.0))
+        ip2 = (Ip2_FrictMat_FrictMat_MindlinPhys(betan=hmp["zeta"], betas=0.0) if damped
+               else Ip2_FrictMat_FrictMat_MindlinPhys())
+        law = Law2_ScGeom_MindlinPhys_Mindlin()
+    elif damped:
         # Law2_ScGeom_ViscElPhys_Basic always clips (computeForceTorqueViscEl: normalForce = 0 when
         # kn delta + cn v_n < 0, "prevent appearing of attraction forces"; checked on 2023.02a with two
         # spheres: Fn = 10 N, Fv = -30 N gave normalForce = 0). Its Coulomb limit is then
@@ -352,7 +373,6 @@ def run_crystal(case, system, dt, nsteps, every):
     vol = lay["box_x"] * lay["box_y"] * lay["l0"]
     nl = lay["nlayers"]
     x0 = pos.copy()
-    has_shear = c["kt"] > 0 or c["gamma_t"] > 0
 
     states = [O.bodies[i].state for i in ids]   # kept: they live as long as the bodies
     dyn_fixed_mask = np.zeros(n, bool) | dyn_fixed
@@ -394,7 +414,31 @@ def run_crystal(case, system, dt, nsteps, every):
     # Invisible on perfect (monodisperse) crystals, where the undisplaced packing has zero net forces.
     O.forces.f(ids[0], True)
     nreal = sum(1 for it in O.interactions if it.isReal)
-    if damped:
+    if hm:
+        es, gs = HM.e_star(hmp["E"], hmp["nu"]), HM.g_star(hmp["E"], hmp["nu"])
+        index = {b: k for k, b in enumerate(ids)}
+        checked = False
+        for it in O.interactions:
+            if not it.isReal:
+                continue
+            ph, ka, kb = it.phys, index[it.id1], index[it.id2]
+            if not checked:
+                root = math.sqrt(r[ka] * r[kb] / (r[ka] + r[kb]) * it.geom.penetrationDepth)
+                for name, want in (("kn", 2 * es * root), ("ks", 8 * gs * root), ("betan", hmp["zeta"]),
+                                   ("betas", 0.0)):
+                    got = getattr(ph, name)
+                    if abs(got - want) > 1e-9 * max(abs(want), 1e-30):
+                        fail("MindlinPhys %s = %r, expected %r" % (name, got, want), 1)
+                checked = True
+            # Law2_ScGeom_MindlinPhys_Mindlin takes m* = the dynamic body's mass at a contact with a
+            # non-dynamic one (granwave, LIGGGHTS, LAMMPS: m_i m_j/(m_i + m_j), fixed particles' masses
+            # included): its c_n = 2 betan sqrt(m_dyn k_n) there is sqrt(2) too large for equal masses
+            # (measured: 3.1e-2 of the peak on xc_crystal_small_hm_damped). betan of those contacts is
+            # scaled by sqrt(m* / m_dyn). Contacts made later would get betan itself (checked at the end).
+            if damped and dyn_fixed[ka] != dyn_fixed[kb]:
+                kd, kf = (kb, ka) if dyn_fixed[ka] else (ka, kb)
+                ph.betan = hmp["zeta"] * math.sqrt(m[kf] / (m[kf] + m[kd]))
+    elif damped:
         for it in O.interactions:
             if it.isReal:
                 ph = it.phys
@@ -424,7 +468,7 @@ def run_crystal(case, system, dt, nsteps, every):
         for k in src:
             v0[k, axis] = float(ex["amplitude"])
             O.bodies[ids[k]].state.vel = Vector3(*v0[k])   # F(0) below sees v(0), as LIGGGHTS' setup
-    first_verlet_step(ids, m, v0, dyn_fixed, dt, newton, runner, sampler)
+    first_verlet_step(ids, m, v0, dyn_fixed, dt, newton, runner, sampler, 1e-300 if hm else 0.0)
     runner.iterPeriod = every           # fire only on sampled steps (Python per step is costly)
     runner.iterLast = O.iter - 1        # = the step of the t = 0 sample: first fire at physical step `every`
     runner.nDone = max(1, runner.nDone)  # a PeriodicEngine that never ran re-bases iterLast on its first call
@@ -435,6 +479,9 @@ def run_crystal(case, system, dt, nsteps, every):
     wall = _time.time() - t
     sys.stderr.write("run_case.py: crystal sampling %.1f ms per sample, contact set read %d times\n"
                      % (1e3 * sampler.cost / max(len(sampler.times), 1), contacts.rereads))
+    if hm and damped and contacts.rereads > 1:
+        sys.stderr.write("run_case.py: the contact set changed during the run: a new contact between a fixed and a "
+                         "free particle has YADE's m* = m_free in its dashpot (betan not rescaled)\n")
     rows = sampler.rows
     keys = ("layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
             "layer_velocity_z", "layer_velocity_x")
@@ -465,22 +512,27 @@ def main(argv):
     else:
         times, data, wall, n, nreal, cost = run_crystal(case, system, dt, nsteps, every)
         summary["contacts"] = nreal
-        law = "crystal: CundallStrack (FrictPhys) undamped / ViscEl (material k,c = 2x contact) damped"
+        law = ("crystal: Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin"
+               if T.contact_params(case)["law"] == "hertz_mindlin" else
+               "crystal: CundallStrack (FrictPhys) undamped / ViscEl (material k,c = 2x contact) damped")
     start = ("leapfrog started from v(-dt/2) = v(0) - F(0)/m dt/2 (F(0) evaluated with NewtonIntegrator dead)"
              if model == "chain" else "F(0) with v(0) (NewtonIntegrator dead), first half kick and drift by the "
              "script, t = 0 sampled from that state")
     conv = ("synchronous: " + start + "; samples taken by a PyRunner after NewtonIntegrator are labelled "
             "with the force time t, positions shifted x(t) = x(t+dt) - v(t+dt/2) dt, velocities "
             "v(t) = v(t+dt/2) - F(t)/m dt/2")
-    extra = {"contact_law": law, "dt": dt}
+    extra = {"yade_engines": law, "dt": dt}
     if model != "chain":
         cp = T.contact_params(case)
+        extra["contact_law"] = cp["law"]
         extra["lever_arm"] = T.lever_arm_used(cp, "YADE")
         extra["coulomb_normal"] = T.coulomb_normal_used(cp, "YADE")
-        # the law's tension convention (see run_crystal): ViscEl (damped) clips; without a dashpot
-        # (CundallStrack) the normal force kn delta cannot pull, so both conventions are the same law
-        if cp["gamma_n"] > 0 or cp["gamma_t"] > 0:
+        # the law's tension convention (see run_crystal): ViscEl and Mindlin (damped) clip; without a
+        # dashpot the normal force cannot pull, so both conventions are the same law
+        if cp["gamma_n"] > 0 or cp["gamma_t"] > 0 or (cp["law"] == "hertz_mindlin" and float(cp["damping_ratio"]) > 0):
             extra["normal_tension"] = "clip"
+        if cp["law"] == "hertz_mindlin":
+            extra["tangential_history"] = HM.history_used(cp, HM.YADE_TANGENTIAL_HISTORY, "YADE")
     T.write_trace(out_path, code="yade", code_version=yade_version(), case_text=text,
                   case_name=case["case"]["name"], system_path=system_path, time_convention=conv,
                   time=times, datasets=data, extra_attrs=extra)

@@ -2,6 +2,7 @@
 
 Modules (each imports only those listed before it, so there is no import cycle):
   traces      -- case/system reading, trace writing (data/SCHEMA.md §2-3), the layer-stress definition
+  hertz_mindlin -- the Hertz-Mindlin law of a case in YADE's, LIGGGHTS' and LAMMPS' parameters (measured maps)
   dumps       -- LIGGGHTS/LAMMPS text dumps read frame by frame; the dumped forces put back to the step's
   sysbuild    -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
   compare     -- comparison maths (max |diff|/peak, relative L2, measures) on traces

@@ -13,26 +13,47 @@ from . import traces as T
 
 TWIN_SEP = "~"
 
+tangential, dashpot = T.has_tangential, T.has_dashpot
+
+
 # (attribute, when it matters for the case's contact parameters, why the codes differ)
 CONVENTIONS = (
-    ("lever_arm", lambda c: c["kt"] > 0 or c["gamma_t"] > 0,
-     "Seed 002 eq. (4) takes the radius a (granwave's default, LAMMPS' gran/hooke/history); YADE and LIGGGHTS "
-     "always take the contact point a - delta/2 (S speeds then differ by 1e-5 .. 2e-4). granwave runs either: "
+    ("contact_law", lambda c: True,
+     "The traces ran different contact laws (linear spring-dashpot or Hertz-Mindlin): not comparable."),
+    ("lever_arm", tangential,
+     "Seed 002 eq. (4) takes the radius a (granwave's default, LAMMPS' gran/hooke/history and gran/hertz/history); "
+     "YADE and LIGGGHTS always take the contact point a - delta/2 (S speeds then differ by 1e-5 .. 2e-4); LAMMPS' "
+     "pair granular takes a in the surface velocity and a - delta/2 in the torque "
+     "(\"radius_velocity_contact_point_torque\"), which granwave does not run. granwave runs the other two: "
      "[contact] lever_arm."),
-    ("normal_tension", lambda c: c["gamma_n"] > 0,
-     "YADE's damped law (ViscEl) clips a pulling dashpot and cannot run \"allow\"; LAMMPS' gran/hooke/history "
-     "cannot clip. The difference shows where contacts open under a dashpot. granwave runs either: [contact] "
-     "normal_tension."),
+    ("normal_tension", dashpot,
+     "YADE's damped laws (ViscEl; Mindlin with betan) clip a pulling dashpot and cannot run \"allow\"; LAMMPS' "
+     "gran/hooke/history cannot clip. The difference shows where contacts open under a dashpot. granwave runs "
+     "either: [contact] normal_tension."),
     ("coulomb_normal",
-     lambda c: (c["kt"] > 0 or c["gamma_t"] > 0) and c["gamma_n"] > 0 and c["normal_tension"] == "allow",
+     lambda c: tangential(c) and dashpot(c) and c["normal_tension"] == "allow",
      "granwave's default Coulomb limit is mu max(f_n, 0); LIGGGHTS, YADE and LAMMPS take mu |f_n|: they differ "
      "where a dashpot makes f_n pull. granwave runs either: [contact] coulomb_normal."),
+    ("tangential_history",
+     lambda c: c.get("law", "linear") == "hertz_mindlin" and tangential(c),
+     "Hertz-Mindlin's tangential spring k_t(delta) = 8 G* sqrt(R* delta) changes with the overlap: LIGGGHTS and "
+     "LAMMPS' mindlin keep the displacement (f_t = -k_t(delta) xi, \"displacement\"), YADE's Mindlin law and "
+     "LAMMPS' mindlin/force the force (incremental, \"force\"), LAMMPS' mindlin_rescale scales xi by "
+     "a/a_prev on unloading (\"displacement_rescale\"), measured by crosscheck/probe_hertz_mindlin.py. "
+     "granwave runs each: [contact] tangential_history."),
 )
+
+# The values granwave can run (a twin is made only from these); a trace recording another value is
+# reported as a convention difference and not judged against granwave.
+GRANWAVE_RUNS = dict(lever_arm=("radius", "contact_point"), normal_tension=("allow", "clip"),
+                     coulomb_normal=("compressive", "magnitude"),
+                     tangential_history=("displacement", "displacement_rescale", "force"))
 
 
 def _params(case: dict) -> dict:
     c = T.contact_params(case)
-    c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n")})
+    c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n", "damping_ratio")})
+    c["contact_law"] = c["law"]
     return c
 
 
@@ -79,8 +100,11 @@ def twins(case: dict, attrs: dict) -> list:
         if code == "granwave" or TWIN_SEP in code:
             continue
         rec = recorded(case, a)
-        if rec == base:
-            continue
+        if rec == base or rec.get("contact_law") != base.get("contact_law"):
+            continue        # the same conventions, or another law: nothing granwave could run for it
+        rec = {k: v for k, v in rec.items() if k != "contact_law"}
+        if any(v not in GRANWAVE_RUNS.get(k, (v,)) for k, v in rec.items()):
+            continue        # a convention granwave does not run: that pair stays a reported difference
         for entry in out:
             if entry[2] == rec:
                 entry[1].append(code)

@@ -102,7 +102,7 @@ def half_step_velocities(v, f_atoms, m, mobile, dt):
 
 
 def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y, kn=0.0,
-                         clip=False):
+                         clip=False, hertz=None):
     """The force each contact applied in the step, from the force the dump recomputed.
 
     LIGGGHTS' `compute pair/gran/local` and LAMMPS' `compute pair/local` (through the pair style's
@@ -123,7 +123,11 @@ def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gam
     so the normal force of the step is computed whole (kn: the contact stiffness). Measured on the
     prestressed velocity drive with "clip" (contacts opening with the dashpot pulling): LIGGGHTS vs
     granwave and YADE 4.2e-5 at z/l0 = 10 with the additive correction, with the same dynamics (layer
-    velocities 1e-10); 5.6e-10 computed whole."""
+    velocities 1e-10); 5.6e-10 computed whole.
+
+    hertz = (E*, zeta) for the Hertz-Mindlin law (xclib.hertz_mindlin): the elastic force is
+    (4/3) E* sqrt(R*) delta^3/2 and the dashpot 2 zeta sqrt(m* 2 E* sqrt(R* delta)) per contact
+    (gamma_n is then only a flag: > 0 when damped)."""
     if gamma_n == 0.0 or len(i) == 0:
         return f_pair
     vh = half_step_velocities(v, f_atoms, m, mobile, dt)
@@ -132,8 +136,17 @@ def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gam
     vj_used = np.where(ghost_j[:, None], vh[j], v[j])        # j seen through a periodic image: half-step
     dd_used = -np.sum(n * (v[i] - vj_used), axis=1)
     dd_half = -np.sum(n * (vh[i] - vh[j]), axis=1)
+    delta = np.maximum(radius[i] + radius[j] - r, 0.0)
+    if hertz is not None:
+        e_star, zeta = hertz
+        r_star = radius[i] * radius[j] / (radius[i] + radius[j])
+        m_star = m[i] * m[j] / (m[i] + m[j])
+        gamma_n = 2.0 * zeta * np.sqrt(m_star * 2.0 * e_star * np.sqrt(r_star * delta))
+        f_el = 4.0 / 3.0 * e_star * np.sqrt(r_star) * delta ** 1.5
+    else:
+        f_el = kn * delta
     if clip:
-        fn_step = np.where(touching, np.maximum(kn * (radius[i] + radius[j] - r) + gamma_n * dd_half, 0.0), 0.0)
+        fn_step = np.where(touching, np.maximum(f_el + gamma_n * dd_half, 0.0), 0.0)
         return f_pair + (fn_step - np.sum(f_pair * n, axis=1))[:, None] * n
     corr = np.where(touching, gamma_n * (dd_half - dd_used), 0.0)
     return f_pair + corr[:, None] * n

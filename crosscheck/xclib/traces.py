@@ -33,10 +33,26 @@ def load_case(path: str) -> tuple[dict, str]:
 
 
 def contact_params(case: dict) -> dict:
-    c = dict(kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5, normal_tension="allow",
-             lever_arm="radius", coulomb_normal="compressive")
+    c = dict(law="linear", kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5,
+             normal_tension="allow", lever_arm="radius", coulomb_normal="compressive", damping_ratio=0.0,
+             tangential="mindlin", tangential_history="displacement")
     c.update(case.get("contact", {}))
     return c
+
+
+def has_tangential(c: dict) -> bool:
+    """Does the case's law have a tangential force? Linear: kt > 0 or gamma_t > 0; Hertz-Mindlin:
+    tangential = "mindlin"."""
+    if c.get("law", "linear") == "hertz_mindlin":
+        return c.get("tangential", "mindlin") == "mindlin"
+    return float(c["kt"]) > 0 or float(c["gamma_t"]) > 0
+
+
+def has_dashpot(c: dict) -> bool:
+    """Does the case's law have a normal dashpot? Linear: gamma_n > 0; Hertz-Mindlin: damping_ratio > 0."""
+    if c.get("law", "linear") == "hertz_mindlin":
+        return float(c.get("damping_ratio", 0.0)) > 0
+    return float(c["gamma_n"]) > 0
 
 
 # YADE (ScGeom: contact point in the middle of the overlap) and LIGGGHTS take the lever arm of the
@@ -48,7 +64,7 @@ FIXED_LEVER_ARM = "contact_point"
 def lever_arm_used(c: dict, code: str) -> str:
     """The arm YADE or LIGGGHTS will use for this case; a note on stderr when the case asks for the
     other one with friction on (the crosscheck then reports that pair as a convention difference)."""
-    if c.get("lever_arm", "radius") != FIXED_LEVER_ARM and (c["kt"] > 0 or c["gamma_t"] > 0):
+    if c.get("lever_arm", "radius") != FIXED_LEVER_ARM and has_tangential(c):
         sys.stderr.write("%s: the case asks for lever_arm = \"%s\" (seed 002 eq. (4)); %s always uses the contact "
                          "point a - delta/2, and its trace says lever_arm = \"%s\"\n"
                          % (code, c.get("lever_arm"), code, FIXED_LEVER_ARM))
@@ -59,8 +75,8 @@ def coulomb_normal_used(c: dict, code: str) -> str:
     """LIGGGHTS (tangential_model_history.h: xmu * fabs(Fn)) and YADE (ViscEl, CundallStrack: the norm of
     the normal force) take mu |f_n| as the Coulomb limit; granwave's default is mu max(f_n, 0). They
     differ only where a dashpot makes the normal force pull (normal_tension = "allow", gamma_n > 0)."""
-    if (c.get("coulomb_normal", "compressive") != "magnitude" and (c["kt"] > 0 or c["gamma_t"] > 0)
-            and c["gamma_n"] > 0 and c["normal_tension"] == "allow"):
+    if (c.get("coulomb_normal", "compressive") != "magnitude" and has_tangential(c)
+            and has_dashpot(c) and c["normal_tension"] == "allow"):
         sys.stderr.write("%s: the case asks for coulomb_normal = \"%s\"; %s takes mu |f_n| (\"magnitude\"), "
                          "which differs only where the dashpot pulls\n" % (code, c.get("coulomb_normal"), code))
     return "magnitude"

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Seed 002's Figs. 2-9 as PNG from the files `granwave figures crystal` wrote into OUT_DIR.
+"""Seed 002's Figs. 2-9 (and issue #14's Hertz confinement figure) as PNG from the files `granwave figures crystal` wrote into OUT_DIR.
 
 Plots only: every number comes from granwave's analysis (study files and crystal_figures_data.h5);
 nothing is measured here. Usage: /usr/bin/python3 crystal_figures.py OUT_DIR
@@ -192,6 +192,33 @@ def main(out):
     a1.set_xlabel("Delta a / delta"); a1.set_ylabel("V_p (m/s)"); a1.set_title("Fig. 9 (left)"); a1.legend(fontsize=8)
     spectrum(a2, poly, f"Fig. 9 (right): Delta a = {poly_max:g} delta", pf["omega0"], "monodisperse P fit")
     fig.tight_layout(); fig.savefig(os.path.join(out, "fig9.png"), dpi=120); plt.close(fig)
+
+    # Issue #14: Hertz-Mindlin speeds against the confinement, with the theory lines (eq. (10) for
+    # P, the lattice with rotations for S) and the fitted exponents of the study file.
+    path = os.path.join(out, "hertz_pressure.h5")
+    if os.path.exists(path):
+        cols, _, _ = members(path)
+        with h5py.File(path, "r") as f:
+            fits = {m: dict(f["/pressure/" + m].attrs) for m in f["/pressure"]}
+        fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4))
+        for mode, mk, c in ((0.0, "P", "C0"), (1.0, "S", "C1")):
+            sel = cols["mode_s"] == mode
+            if not np.any(sel):
+                continue
+            o = np.argsort(cols["value"][sel])
+            d0, p0s = cols["value"][sel][o], cols["sigma0"][sel][o]
+            v, th = cols["v_half_peak"][sel][o], (cols["theory_v_lattice"] if mk == "S" else cols["theory_v"])[sel][o]
+            fd, fp = fits[mk]["exponent_delta"], fits[mk]["exponent_pressure"]
+            a1.loglog(d0, v, "o", color=c, label=f"{mk}: half peak, n = {fd:.4f}")
+            a1.loglog(d0, th, "-", color=c, lw=1, label=f"{mk}: " + ("lattice with rotations" if mk == "S" else "eq. (10)"))
+            a2.loglog(p0s, v, "o", color=c, label=f"{mk}: half peak, n = {fp:.4f}")
+            a2.loglog(p0s, th, "-", color=c, lw=1, label=f"{mk}: theory")
+            a2.loglog(p0s, v[0] * (p0s / p0s[0]) ** (1.0 / 6.0), ":", color="k", lw=0.8)
+        a1.set_xlabel("static overlap delta_0 / d"); a1.set_ylabel("V (m/s)")
+        a1.set_title("Hertz-Mindlin FCC: V ~ delta_0^(1/4)"); a1.legend(fontsize=7)
+        a2.set_xlabel("prestress sigma_zz^0 (Pa)"); a2.set_ylabel("V (m/s)")
+        a2.set_title("V ~ p^(1/6) (dotted: slope 1/6)"); a2.legend(fontsize=7)
+        fig.tight_layout(); fig.savefig(os.path.join(out, "hertz_pressure.png"), dpi=120); plt.close(fig)
     return 0
 
 

@@ -23,13 +23,15 @@ polydispersity studies of data/studies/crystal_*.toml on the 3200-particle cryst
   fig7.png        dispersion of the S wave at kt/k = 2 with the frictionless P fit
   fig8.png        sigma_zz/sigma_zz^0, monodisperse and Delta a = 2 delta
   fig9.png        P speed against Delta a with theory; dispersion at Delta a = 2 delta
+  hertz_pressure.png   issue #14: P and S speeds of a Hertz-Mindlin crystal against the static
+                  overlap and the prestress (data/studies/hertz_pressure.toml), exponents 1/4, 1/6
   summary.md      every measured number beside the seed's
 and the data behind them (study files, crystal_figures_data.h5). Progress on stderr.
 
   --out DIR   output directory (default figures/crystal)
   --quick     a 3x3x60 crystal and reduced grids: the whole set in seconds (tests)
   --threads N OpenMP threads over the study members (default: OpenMP's)
-The full set takes about 3.5 minutes on 2 cores (23 wave runs of the 3200-particle crystal).
+The full set takes about 4 minutes on 2 cores (33 wave runs of the 3200-particle crystal).
 )";
 }  // namespace
 

@@ -15,6 +15,8 @@
 #include "config/case.hpp"
 #include "core/error.hpp"
 #include "crystal/packing.hpp"
+#include "crystal/simulation.hpp"
+#include "theory/hertz.hpp"
 #include "theory/crystal_theory.hpp"
 #include "theory/lattice_dynamics.hpp"
 
@@ -142,6 +144,10 @@ LatticePart lattice_part(const config::Case& c, const theory::ContactNetwork& ne
     return L;
   }
   theory::LatticeCellOptions opt;
+  // Contact forces come from overlaps of positions far larger than them: at delta_0 = 1e-5 d and
+  // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
+  // bonds are the reference particle's either way; the tolerance only decides whether all agree.
+  opt.tolerance = 1e-6;
   opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
   std::string why;
   const auto cell = theory::lattice_cell(net, slab, opt, &why);
@@ -225,15 +231,21 @@ int cmd_theory(const Args& args) {
   const auto& cr = *c.crystal;
 
   const crystal::Packing pk = crystal::make_packing(c);
+  // The contact as eq. (10) sees it: the linear law's keys, or Hertz-Mindlin linearised at the
+  // static overlap delta_0 (k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* sqrt(R* delta_0)); the
+  // prestress f0 is each contact's own static force (k delta, or the Hertz force).
+  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
+  const crystal::ContactAt k0 = crystal::contact_at(c, pk.delta);
   theory::ContactNetwork net;
   net.box_x = pk.box_x;
   net.box_y = pk.box_y;
-  net.k = c.contact.kn;
-  net.kt = c.contact.kt;
+  net.k = k0.kn;
+  net.kt = k0.kt;
   for (std::size_t p = 0; p < pk.size(); ++p)
     net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
   for (const auto& q : crystal::list_contacts(pk, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
+                            crystal::static_normal_force(c, pk.radius[q.i], pk.radius[q.j], q.overlap)});
 
   theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
   if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &slab.layer_lo, &slab.layer_hi);
@@ -245,11 +257,35 @@ int cmd_theory(const Args& args) {
   // Sec. 2.1: the collision of two particles of the mean radius.
   const double m = cr.density * 4.0 / 3.0 * std::numbers::pi * cr.radius * cr.radius * cr.radius;
   const bool clip = c.contact.normal_tension == config::NormalTension::clip;
-  const auto tc = theory::linear_contact_time(c.contact.kn, c.contact.gamma_n, 0.5 * m, clip);
+  const auto tc = theory::linear_contact_time(k0.kn, k0.gamma_n, 0.5 * m, clip);
+  // Hertz: the two-body impact of two free mean particles (no confinement), closing at v_impact:
+  // the excitation's velocity for a velocity drive, else 1 m/s (t_c scales as v^(-1/5)).
+  theory::HertzImpact impact;
+  if (hertz) {
+    const double E_star = c.contact.youngs_modulus / (2.0 * (1.0 - c.contact.poisson_ratio * c.contact.poisson_ratio));
+    const double A = 4.0 / 3.0 * E_star * std::sqrt(0.5 * cr.radius);
+    const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
+    impact = theory::hertz_impact(A, m, m, velocity ? std::abs(c.excitation.amplitude) : 1.0);
+  }
 
   if (json) {
     std::ostringstream o;
     o << "{\n  \"case\": \"" << escape(c.name) << "\",\n  \"model\": \"crystal\",\n";
+    o << "  \"contact_law\": \"" << crystal::contact_law_name(c.contact) << "\",\n";
+    o << "  \"k_n\": " << quantity(k0.kn, "N/m") << ",\n";
+    o << "  \"k_t\": " << quantity(k0.kt, "N/m") << ",\n";
+    o << "  \"gamma_n\": " << quantity(k0.gamma_n, "kg/s") << ",\n";
+    o << "  \"f0\": " << quantity(k0.f_n, "N") << ",\n";
+    o << "  \"delta_0\": " << quantity(pk.delta, "m") << ",\n";
+    if (hertz)
+      o << "  \"linearisation\": \"Hertz-Mindlin at the static overlap delta_0: k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* "
+           "sqrt(R* delta_0), gamma_n = 2 damping_ratio sqrt(m* k_n), f0 = (4/3) E* sqrt(R*) delta_0^(3/2); V_pz, V_sz "
+           "are eq. (10)'s no-rotation values, V_pz_lattice, V_sz_lattice include rotations\",\n"
+        << "  \"hertz_impact\": {\"velocity\": " << quantity(impact.velocity, "m/s")
+        << ", \"t_c\": " << quantity(impact.contact_time, "s") << ", \"max_overlap\": " << quantity(impact.max_overlap, "m")
+        << ", \"peak_force\": " << quantity(impact.peak_force, "N") << ", \"A\": " << quantity(impact.hertz_constant, "N/m^1.5")
+        << ", \"note\": \"two free mean particles closing at velocity (the velocity drive's, else 1 m/s): t_c = 2.86827 "
+           "(m*^2/(R* E*^2 v))^(1/5), delta_max = (5 m* v^2/(4 A))^(2/5)\"},\n";
     o << "  \"V_pz\": " << quantity(r.V_pz, "m/s") << ",\n";
     o << "  \"V_sz\": " << quantity(r.V_sz, "m/s") << ",\n";
     o << "  \"V_sy\": " << quantity(r.V_sy, "m/s") << ",\n";
@@ -314,6 +350,13 @@ int cmd_theory(const Args& args) {
 
   std::printf("case %s: FCC %d x %d x %d, d = %.6g m, d' = %.6g m, l0 = %.6g m, k = %g N/m, kt = %g N/m\n",
               c.name.c_str(), pk.nx, pk.ny, pk.layers, pk.d, pk.d_prime, r.l0, net.k, net.kt);
+  if (hertz) {
+    std::printf("Hertz-Mindlin linearised at delta_0 = %.6g m: k_n = 2 E* sqrt(R* delta_0) = %.6g N/m, k_t = 8 G* sqrt(R* "
+                "delta_0) = %.6g N/m, f0 = %.6g N, gamma_n = %.6g kg/s\n",
+                pk.delta, k0.kn, k0.kt, k0.f_n, k0.gamma_n);
+    std::printf("Hertz impact of two free particles at %.4g m/s: t_c = %.6g s, delta_max = %.6g m, peak force %.6g N\n",
+                impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force);
+  }
   std::printf("representative slab: layers %d..%d, %d particles, coordination %.4f, rho_bulk = %.6g kg/m^3\n",
               r.layer_lo, r.layer_hi, r.n_particles, r.coordination, r.rho_bulk);
   std::printf("eq. (10): C_zzzz = %.6g Pa, C_zxzx = %.6g Pa, C_xxxx = %.6g Pa, C_yxyx = %.6g Pa\n", r.C(2, 2, 2, 2),
@@ -321,14 +364,14 @@ int cmd_theory(const Args& args) {
   std::printf("ratios: C_xxxx/C_zzzz = %.6f, C_zxzx/C_yxyx = %.6f, C_zzzz/C_zxzx = %.6f\n", r.ratio_xxxx_zzzz,
               r.ratio_zxzx_yxyx, r.ratio_zzzz_zxzx);
   std::printf("symmetry: major %.2e, minor %.2e (kt term: major only)\n", r.major_asymmetry, r.minor_asymmetry);
-  std::printf("V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (frictionless: %.4f, %.4f)\n", r.V_pz, r.V_sz, r.V_sy,
-              r.V_pz_frictionless, r.V_sz_frictionless);
+  std::printf("V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (frictionless: %.4f, %.4f)%s\n", r.V_pz, r.V_sz, r.V_sy,
+              r.V_pz_frictionless, r.V_sz_frictionless, hertz ? " (no rotations; linearised at delta_0)" : "");
   std::printf("lattice: omega_0 = %.1f 1/s (P), %.1f 1/s (S); v_k0 = omega_0 l0/2 = %.4f, %.4f m/s\n", r.omega0_p,
               r.omega0_s, r.V_k0_p, r.V_k0_s);
   std::printf("         with the static contact forces' geometric stiffness: %.1f, %.1f 1/s\n", r.omega0_p_prestressed,
               r.omega0_s_prestressed);
-  std::printf("contact (sec. 2.1, m_ij = m/2 = %.6g kg, %s): t_c = %.6g s, restitution = %.6f, eta_0 = %.6g 1/s\n",
-              0.5 * m, clip ? "clip" : "allow", tc.t_c, tc.restitution, tc.eta0);
+  std::printf("contact (sec. 2.1%s, m_ij = m/2 = %.6g kg, %s): t_c = %.6g s, restitution = %.6f, eta_0 = %.6g 1/s\n",
+              hertz ? ", linearised" : "", 0.5 * m, clip ? "clip" : "allow", tc.t_c, tc.restitution, tc.eta0);
   if (L.available) {
     std::printf("lattice dynamics along z (rotations, I = 2/5 m a^2, lever arm %.6g m (%s), prestress f0 = %.4g N):\n",
                 L.arm, c.contact.lever_arm == config::LeverArm::contact_point ? "contact point" : "radius", L.f0);

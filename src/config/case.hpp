@@ -65,6 +65,14 @@ enum class LeverArm { radius, contact_point };
 // normal_tension = allow): compressive, mu max(f^n, 0) (no friction under tension, the default);
 // magnitude, mu |f^n| (LIGGGHTS' tangential history model). The same law whenever f^n >= 0.
 enum class CoulombNormal { compressive, magnitude };
+// The crystal's contact law: the linear spring-dashpot with Luding's tangential spring (seed 002
+// sec. 2.1, the default), or Hertz normal + Mindlin tangential (contact/hertz_mindlin.hpp).
+enum class ContactLaw { linear, hertz_mindlin };
+// What a Hertz-Mindlin contact keeps as its tangential history (contact/hertz_mindlin.hpp):
+// displacement: f_t = -k_t(delta) xi (LAMMPS mindlin, LIGGGHTS tangential history);
+// displacement_rescale: the same, xi scaled by a_new/a_old when the contact radius a shrinks
+// (LAMMPS mindlin_rescale); force: incremental f_t += -k_t(delta) dxi (YADE Mindlin, LAMMPS mindlin/force).
+enum class TangentialHistory { displacement, displacement_rescale, force };
 
 struct CrystalCase {
   std::string lattice = "fcc";
@@ -79,6 +87,7 @@ struct CrystalCase {
 };
 
 struct ContactParams {
+  ContactLaw law = ContactLaw::linear;
   double kn = 0.0;          // N/m
   double gamma_n = 0.0;     // kg/s
   double kt = 0.0;          // N/m
@@ -88,6 +97,12 @@ struct ContactParams {
   NormalTension normal_tension = NormalTension::allow;
   LeverArm lever_arm = LeverArm::radius;
   CoulombNormal coulomb_normal = CoulombNormal::compressive;
+  // hertz_mindlin only (the linear law refuses them; it refuses kn, kt, gamma_n, gamma_t)
+  double youngs_modulus = 0.0;  // E (Pa), both spheres
+  double poisson_ratio = 0.0;   // nu, in (-1, 0.5)
+  double damping_ratio = 0.0;   // beta: gamma_n(delta) = 2 beta sqrt(m* k_n(delta))
+  bool mindlin = true;          // tangential = "mindlin" (false: "none", frictionless Hertz)
+  TangentialHistory tangential_history = TangentialHistory::displacement;
 };
 
 struct Excitation {

@@ -19,6 +19,10 @@
 //   bool dissipates() const;          false when loss is always zero (the kernel then skips it)
 //   <Law> without_rates() const;      the same law for a jump of positions (no dashpots)
 //
+// and optionally, for a law whose stored energy depends on the radii (Hertz: R*), instead of the
+// form above:
+//   void add_stored_energy(double& e, double delta, const History&, double a_i, double a_j) const;
+//
 // and optionally, for a law whose exact evaluation is expensive for a few contacts only (the
 // roots and divisions of sliding):
 //   Response evaluate(const Contact&, History&, Deferrable) const;
@@ -60,6 +64,11 @@ struct Response {
 
 // Tag of the cheap, vectorised evaluation of a law that defers the rare expensive contacts.
 struct Deferrable {};
+
+template <class Law>
+concept StoredEnergyOfRadii = requires(const Law& law, double& e, const typename Law::History& h) {
+  law.add_stored_energy(e, 0.0, h, 0.0, 0.0);
+};
 
 template <class Law>
 concept DefersContacts = requires(const Law& law, const Contact& c, typename Law::History& h) {

@@ -88,9 +88,20 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
       << "\n";
   out << "  dt = " << d.dt << " s = t_c/" << d.t_c / d.dt << "; stability limit (conservative) " << d.dt_stable
       << " s; " << d.steps << " steps, a sample every " << d.sample_every << " steps\n";
-  out << "  prestress sigma_0 = 2 sqrt(2) k delta / d'^2 = " << d.sigma_0 << " Pa\n";
+  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
+  if (hertz)
+    out << "  contact law hertz_mindlin (tangential history " << tangential_history_name(c.contact)
+        << "), linearised at delta_0: k_n = 2 E* sqrt(R* delta_0) = " << d.kn << " N/m, k_t = 8 G* sqrt(R* delta_0) = "
+        << d.kt << " N/m, f0 = " << d.f0 << " N, gamma_n = " << d.gamma_n << " kg/s\n";
+  out << (hertz ? "  prestress sigma_0 = 2 sqrt(2) f0 / d'^2 = " : "  prestress sigma_0 = 2 sqrt(2) k delta / d'^2 = ")
+      << d.sigma_0 << " Pa\n";
   out << "  predicted speeds along z (eq. 10, branch d'): V_p = " << d.v_p << " m/s"
-      << (c.contact.kt > 0.0 ? " (affine, sqrt(1 + kt/k))" : "") << ", V_s = " << d.v_s << " m/s (frictionless)\n";
+      << (d.kt > 0.0 ? " (affine, sqrt(1 + kt/k))" : "") << ", V_s = " << d.v_s << " m/s (frictionless)\n";
+  if (hertz && c.contact.mindlin)
+    out << "  tangential: Mindlin, mu_s = " << c.contact.mu_static << ", mu_d = " << c.contact.mu_dynamic << ", lever arm "
+        << (c.contact.lever_arm == config::LeverArm::contact_point ? "a - delta/2 (contact point, as YADE and LIGGGHTS)"
+                                                                   : "a (seed 002 eq. (4))")
+        << "\n";
   if (c.contact.kt > 0.0 || c.contact.gamma_t > 0.0)
     out << "  tangential: kt = " << c.contact.kt << " N/m, mu_s = " << c.contact.mu_static
         << ", mu_d = " << c.contact.mu_dynamic << ", lever arm "

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <type_traits>
 
+#include "contact/hertz_mindlin.hpp"
 #include "contact/hooke.hpp"
 #include "contact/linear_luding.hpp"
 #include "core/error.hpp"
@@ -17,7 +19,47 @@
 
 namespace granwave::crystal {
 
-std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp) {
+namespace {
+
+template <contact::MindlinHistory H>
+std::shared_ptr<const ContactModel> hertz_model(const contact::HertzMindlinParams& p) {
+  if (p.damping_ratio > 0.0 || p.clip_tension) return model_of(contact::HertzMindlinLaw<true, H>(p));
+  return model_of(contact::HertzMindlinLaw<false, H>(p));
+}
+
+}  // namespace
+
+double packing_density(const Packing& p) {
+  if (p.mass.empty()) return 0.0;
+  return p.mass[0] / (4.0 / 3.0 * std::numbers::pi * p.radius[0] * p.radius[0] * p.radius[0]);
+}
+
+contact::HertzMindlinParams hertz_mindlin_params(const config::ContactParams& cp, double density) {
+  contact::HertzMindlinParams p;
+  p.youngs_modulus = cp.youngs_modulus;
+  p.poisson_ratio = cp.poisson_ratio;
+  p.density = density;
+  p.damping_ratio = cp.damping_ratio;
+  p.mu_static = cp.mu_static;
+  p.mu_dynamic = cp.mu_dynamic;
+  p.clip_tension = cp.normal_tension == config::NormalTension::clip;
+  p.coulomb_on_magnitude = cp.coulomb_normal == config::CoulombNormal::magnitude;
+  p.contact_point_arm = cp.lever_arm == config::LeverArm::contact_point;
+  p.validate();
+  return p;
+}
+
+std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp, double density) {
+  if (cp.law == config::ContactLaw::hertz_mindlin) {
+    const contact::HertzMindlinParams p = hertz_mindlin_params(cp, density);
+    if (!cp.mindlin) return hertz_model<contact::MindlinHistory::none>(p);
+    switch (cp.tangential_history) {
+      case config::TangentialHistory::displacement: return hertz_model<contact::MindlinHistory::displacement>(p);
+      case config::TangentialHistory::displacement_rescale:
+        return hertz_model<contact::MindlinHistory::displacement_rescale>(p);
+      case config::TangentialHistory::force: return hertz_model<contact::MindlinHistory::force>(p);
+    }
+  }
   const contact::LinearSpringDashpotParams normal{cp.kn, cp.gamma_n, cp.normal_tension == config::NormalTension::clip};
   const contact::TangentialSpringParams tangential{cp.kt, cp.gamma_t, cp.mu_static, cp.mu_dynamic,
                                                    cp.coulomb_normal == config::CoulombNormal::magnitude};
@@ -37,7 +79,7 @@ std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp) 
 }
 
 Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, double dt)
-    : Dynamics(packing, case_model(cp), dt) {}
+    : Dynamics(packing, case_model(cp, packing_density(packing)), dt) {}
 
 Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt)
     : packing_(packing), model_(std::move(model)), dt_(dt) {
@@ -304,7 +346,7 @@ double Dynamics::kinetic_energy() const {
   return e;
 }
 
-double Dynamics::potential_energy() const { return model_->stored_energy(contacts); }
+double Dynamics::potential_energy() const { return model_->stored_energy(contacts, radius); }
 
 double Dynamics::dissipated_energy() const {
   double e = dissipated_before_;

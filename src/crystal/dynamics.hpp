@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "config/case.hpp"
+#include "contact/hertz_mindlin.hpp"
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 #include "crystal/packing.hpp"
@@ -55,12 +56,17 @@ class ContactModel {
   // Pass 1 at the current state; springs advance by `increment_time`; rates = false for a jump
   // of positions (no dashpots).
   virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
-  virtual double stored_energy(const ContactList& contacts) const = 0;  // J, touching contacts
+  virtual double stored_energy(const ContactList& contacts, const std::vector<double>& radius) const = 0;  // J, touching contacts
 };
 
-// The law of a case: contact::LinearLuding with friction (k_t > 0 or gamma_t > 0), else the
-// frictionless contact::HookeLaw. Throws InputError for invalid parameters.
-std::shared_ptr<const ContactModel> case_model(const config::ContactParams& contact);
+// The law of a case: law = "linear": contact::LinearLuding with friction (k_t > 0 or gamma_t > 0),
+// else the frictionless contact::HookeLaw; law = "hertz_mindlin": contact::HertzMindlinLaw (its
+// damping's m* from `density`, kg/m^3). Throws InputError for invalid parameters.
+std::shared_ptr<const ContactModel> case_model(const config::ContactParams& contact, double density = 0.0);
+// The Hertz-Mindlin parameters of a case's [contact] (validated).
+contact::HertzMindlinParams hertz_mindlin_params(const config::ContactParams& contact, double density);
+// rho of the packing's particles, m/((4/3) pi a^3) of the first one (0 for an empty packing).
+double packing_density(const Packing& packing);
 
 class Dynamics {
  public:

@@ -181,7 +181,7 @@ class LawModel final : public ContactModel {
     else
       run(d, law_.without_rates(), inc);
   }
-  double stored_energy(const ContactList& C) const override {
+  double stored_energy(const ContactList& C, const std::vector<double>& radius) const override {
     using History = typename Law::History;
     constexpr std::size_t NH = contact::history_columns<History>;
     double e = 0.0;
@@ -189,7 +189,10 @@ class LawModel final : public ContactModel {
     for (std::size_t c = 0; c < C.size(); ++c) {
       if (C.delta[c] <= 0.0) continue;
       for_columns<NH>([&](std::size_t q) { h[q] = C.history_column(q)[c]; });
-      law_.add_stored_energy(e, C.delta[c], contact::history_from<History>(h));
+      if constexpr (contact::StoredEnergyOfRadii<Law>)
+        law_.add_stored_energy(e, C.delta[c], contact::history_from<History>(h), radius[C.i[c]], radius[C.j[c]]);
+      else
+        law_.add_stored_energy(e, C.delta[c], contact::history_from<History>(h));
     }
     return e;
   }

@@ -12,18 +12,72 @@
 
 namespace granwave::crystal {
 
+ContactAt contact_at(const config::Case& c, double delta) {
+  ContactAt k;
+  if (c.contact.law == config::ContactLaw::linear) {
+    k.f_n = c.contact.kn * delta;
+    k.kn = c.contact.kn;
+    k.kt = c.contact.kt;
+    k.gamma_n = c.contact.gamma_n;
+    return k;
+  }
+  const double a = c.crystal->radius;
+  const double m = c.crystal->density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
+  const contact::HertzMindlinParams p = hertz_mindlin_params(c.contact, c.crystal->density);
+  const contact::HertzMindlinStiffness s = contact::hertz_mindlin_at(p, 0.5 * a, 0.5 * m, delta);
+  k.f_n = s.f_n;
+  k.kn = s.k_n;
+  k.kt = c.contact.mindlin ? s.k_t : 0.0;
+  k.gamma_n = s.gamma_n;
+  return k;
+}
+
+double static_normal_force(const config::Case& c, double a_i, double a_j, double delta) {
+  if (c.contact.law == config::ContactLaw::linear) return c.contact.kn * delta;
+  const contact::HertzMindlinParams p = hertz_mindlin_params(c.contact, c.crystal->density);
+  return contact::hertz_mindlin_at(p, a_i * a_j / (a_i + a_j), 1.0, delta).f_n;
+}
+
+std::string contact_law_name(const config::ContactParams& cp) {
+  return cp.law == config::ContactLaw::hertz_mindlin ? "hertz_mindlin" : "linear";
+}
+std::string tangential_history_name(const config::ContactParams& cp) {
+  if (cp.law == config::ContactLaw::linear) return "displacement";
+  if (!cp.mindlin) return "none";
+  switch (cp.tangential_history) {
+    case config::TangentialHistory::displacement_rescale: return "displacement_rescale";
+    case config::TangentialHistory::force: return "force";
+    default: return "displacement";
+  }
+}
+
 Derived derive(const config::Case& c) {
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
   const config::CrystalCase& k = *c.crystal;
-  const contact::LinearSpringDashpotParams normal{c.contact.kn, c.contact.gamma_n,
-                                                  c.contact.normal_tension == config::NormalTension::clip};
-  const contact::TangentialSpringParams tangential{c.contact.kt, c.contact.gamma_t, c.contact.mu_static,
+  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
+  Derived d;
+  const double a = k.radius;
+  const double delta = 2.0 * a * k.overlap;
+  if (hertz) {
+    (void)hertz_mindlin_params(c.contact, k.density);  // validates
+    const ContactAt k0 = contact_at(c, delta);
+    d.kn = k0.kn;
+    d.kt = k0.kt;
+    d.gamma_n = k0.gamma_n;
+    d.f0 = k0.f_n;
+  } else {
+    d.kn = c.contact.kn;
+    d.kt = c.contact.kt;
+    d.gamma_n = c.contact.gamma_n;
+    d.f0 = c.contact.kn * delta;
+  }
+  // Linear law: the contact itself; Hertz: the contact linearised at the static overlap.
+  const contact::LinearSpringDashpotParams normal{d.kn, d.gamma_n, c.contact.normal_tension == config::NormalTension::clip};
+  const contact::TangentialSpringParams tangential{d.kt, hertz ? 0.0 : c.contact.gamma_t, c.contact.mu_static,
                                                    c.contact.mu_dynamic,
                                                    c.contact.coulomb_normal == config::CoulombNormal::magnitude};
   normal.validate();
   tangential.validate();
-  Derived d;
-  const double a = k.radius;
   d.mass = k.density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
   d.m_ij = contact::reduced_mass(d.mass, d.mass);
   d.omega = contact::contact_frequency(normal, d.m_ij);
@@ -41,25 +95,36 @@ Derived derive(const config::Case& c) {
   if (!(d.dt > 0.0)) throw InputError(c.path + ": integrator.dt must be > 0");
   if (c.integrator.scheme != config::Scheme::verlet)
     throw InputError(c.path + ": integrator.scheme: the crystal integrates with \"verlet\" only");
+  // The largest overlap: the initial one plus what the source puts into one contact (a
+  // displacement step |amplitude| d; a velocity |v| sqrt(m/k), an upper bound for Hertz too,
+  // whose force grows faster than its tangent at delta_0).
+  const double diameter = 2.0 * a;
+  const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
+  d.delta_max = delta + (velocity ? std::abs(c.excitation.amplitude) * std::sqrt(d.mass / d.kn)
+                                  : std::abs(c.excitation.amplitude) * diameter);
   // Stability of velocity Verlet: dt < 2/omega_max. Conservative (Gershgorin-type) bound on
   // the crystal's highest frequency: omega_max^2 <= 2 z (k + 3.5 k_t)/m_min with z = 12 contacts;
   // 3.5 = 1 + m a^2/I couples the tangential spring to rotation. With dashpots the explicit
   // limit shrinks to (sqrt(1 + zeta^2) - zeta) 2/omega_max, zeta = eta_max/omega_max.
-  const double delta = 2.0 * a * k.overlap;
+  // Hertz: the stiffnesses and damping at the largest expected overlap delta_max.
   const double a_min = a - k.polydispersity * delta;
   const double m_min = k.density * 4.0 / 3.0 * std::numbers::pi * a_min * a_min * a_min;
   const double z = 12.0;
-  const double omega_max = std::sqrt(2.0 * z * (c.contact.kn + 3.5 * c.contact.kt) / m_min);
-  const double eta_max = z * (c.contact.gamma_n + c.contact.gamma_t) / (2.0 * m_min);
+  const ContactAt stiffest = hertz ? contact_at(c, d.delta_max) : ContactAt{0.0, d.kn, d.kt, d.gamma_n};
+  const double gamma_t = hertz ? 0.0 : c.contact.gamma_t;
+  const double omega_max = std::sqrt(2.0 * z * (stiffest.kn + 3.5 * stiffest.kt) / m_min);
+  const double eta_max = z * (stiffest.gamma_n + gamma_t) / (2.0 * m_min);
   const double zeta = eta_max / omega_max;
   d.dt_stable = 2.0 / omega_max * (std::sqrt(1.0 + zeta * zeta) - zeta);
   const double d_prime = 2.0 * a - delta;
-  d.sigma_0 = 2.0 * std::numbers::sqrt2 * c.contact.kn * delta / (d_prime * d_prime);
+  // Isotropic prestress 2 sqrt(2) f0 / d'^2 (f0 = k delta: linear).
+  d.sigma_0 = hertz ? 2.0 * std::numbers::sqrt2 * d.f0 / (d_prime * d_prime)
+                    : 2.0 * std::numbers::sqrt2 * c.contact.kn * delta / (d_prime * d_prime);
   // Eq. (10) for the FCC network with branch d' (sum n_z^4 = 2, sum n_z^2 n_x^2 = 1 per
   // particle, volume d'^3/sqrt(2) per particle): V_pz = d' sqrt(k/m) sqrt(1 + k_t/k) (affine),
   // V_sz = d' sqrt(k/(2m)) (frictionless; rotations make the k_t term unreliable for S).
-  d.v_p = d_prime * std::sqrt(c.contact.kn / d.mass) * std::sqrt(1.0 + c.contact.kt / c.contact.kn);
-  d.v_s = d_prime * std::sqrt(c.contact.kn / (2.0 * d.mass));
+  d.v_p = d_prime * std::sqrt(d.kn / d.mass) * std::sqrt(1.0 + d.kt / d.kn);
+  d.v_s = d_prime * std::sqrt(d.kn / (2.0 * d.mass));
   d.steps = std::llround(c.integrator.t_end / d.dt);
   d.sample_every = c.output.interval > 0.0 ? std::max(1LL, std::llround(c.output.interval / d.dt)) : 1;
   return d;
@@ -231,7 +296,7 @@ std::size_t culprit(const Dynamics& dyn) {
 
 RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook) {
   const Derived d = derive(c);
-  Dynamics dyn(packing, c.contact, d.dt);
+  Dynamics dyn(packing, case_model(c.contact, c.crystal->density), d.dt);
   RunResult res;
   Traces& tr = res.traces;
   tr.nlayers = static_cast<std::size_t>(packing.layers);
@@ -339,6 +404,8 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, co
   w.attr("/", "normal_tension", std::string(c.contact.normal_tension == config::NormalTension::clip ? "clip" : "allow"));
   w.attr("/", "coulomb_normal",
          std::string(c.contact.coulomb_normal == config::CoulombNormal::magnitude ? "magnitude" : "compressive"));
+  w.attr("/", "contact_law", contact_law_name(c.contact));
+  w.attr("/", "tangential_history", tangential_history_name(c.contact));
   w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
   write_system(w, p, c.name, "/system");
   const Traces& t = r.traces;

@@ -21,10 +21,29 @@ struct Derived {
   double dt_stable = 0.0;               // velocity-Verlet limit (conservative estimate)
   double sigma_0 = 0.0;                 // isotropic prestress 2 sqrt(2) k delta / d'^2 (monodisperse)
   double v_p = 0.0, v_s = 0.0;          // long-wave speeds along z from eq. (10) with branch d'
+  // The contact as eq. (10) and the guards see it: linear law, the keys kn, kt, gamma_n and
+  // f0 = k delta; hertz_mindlin, linearised at the static overlap delta_0 = overlap d:
+  // k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* sqrt(R* delta_0) (0 with tangential = "none"),
+  // gamma_n = 2 beta sqrt(m* k_n), f0 = (4/3) E* sqrt(R*) delta_0^(3/2).
+  double kn = 0.0, kt = 0.0, gamma_n = 0.0, f0 = 0.0;
+  double delta_max = 0.0;               // the overlap bound of the guards (initial + the source's)
   long steps = 0, sample_every = 1;     // time steps, steps between samples
 };
 // Throws InputError for refused cases (stability, geometry, contact parameters).
 Derived derive(const config::Case& c);
+
+// The case's contact between two particles of the mean radius at overlap delta: normal force,
+// tangent stiffnesses, normal damping (linear law: kn delta, kn, kt, gamma_n at any delta).
+struct ContactAt {
+  double f_n = 0.0, kn = 0.0, kt = 0.0, gamma_n = 0.0;
+};
+ContactAt contact_at(const config::Case& c, double delta);
+// The static normal force of a contact of radii a_i, a_j at overlap delta (theory's prestress).
+double static_normal_force(const config::Case& c, double a_i, double a_j, double delta);
+// The trace's name of the law and of its tangential history (root attributes contact_law,
+// tangential_history; the linear law's spring is a displacement history).
+std::string contact_law_name(const config::ContactParams& contact);
+std::string tangential_history_name(const config::ContactParams& contact);
 
 // The per-layer and global observables of one run, in trace-file layout ([nt, nlayers] rows).
 struct Traces {

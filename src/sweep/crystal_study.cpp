@@ -44,6 +44,7 @@ const char* to_string(CrystalVary v) {
     case CrystalVary::gamma_n: return "gamma_n";
     case CrystalVary::kt_over_k: return "kt_over_k";
     case CrystalVary::polydispersity: return "polydispersity";
+    case CrystalVary::overlap: return "overlap";
   }
   return "?";
 }
@@ -62,6 +63,7 @@ config::Case member_case(const CrystalStudy& s, const CrystalMember& m) {
     case CrystalVary::gamma_n: c.contact.gamma_n = m.value; break;
     case CrystalVary::kt_over_k: c.contact.kt = m.value * c.contact.kn; break;
     case CrystalVary::polydispersity: cr.polydispersity = m.value; break;
+    case CrystalVary::overlap: cr.overlap = m.value; break;
   }
   if (s.layers) cr.cells[2] = *s.layers;
   if (s.dt) {
@@ -69,7 +71,17 @@ config::Case member_case(const CrystalStudy& s, const CrystalMember& m) {
     c.integrator.dt_over_tc.reset();
   }
   if (s.interval) c.output.interval = *s.interval;
-  const double t_end_p = s.t_end.value_or(c.integrator.t_end);
+  double t_end_p = s.t_end.value_or(c.integrator.t_end);
+  if (s.vary == CrystalVary::overlap) {
+    // Every member covers the same layers with the same samples per layer delay (the run and the
+    // sampling scale with 1/V, V ~ delta_0^(1/4) for Hertz), and its step stays the same fraction
+    // of delta_0 (the wave's nonlinearity the same at every confinement).
+    const double slow = crystal::derive(s.base).v_p / crystal::derive(c).v_p;
+    t_end_p *= slow;
+    c.output.interval *= slow;
+    if (c.excitation.drive == config::Excitation::Drive::displacement)
+      c.excitation.amplitude *= m.value / s.base.crystal->overlap;
+  }
   if (m.mode == 'S') {
     c.excitation.mode = config::Excitation::Mode::S;
     // An S front is sqrt(C_zzzz/C_zxzx) = sqrt(2) slower (sec. 3.3): same distance, sqrt(2) longer.
@@ -137,16 +149,17 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   theory::ContactNetwork net;
   net.box_x = out.packing.box_x;
   net.box_y = out.packing.box_y;
-  net.k = out.c.contact.kn;
-  net.kt = out.c.contact.kt;
+  net.k = der.kn;  // the linear law's kn, kt; Hertz-Mindlin's linearised at the static overlap
+  net.kt = der.kt;
   for (std::size_t p = 0; p < out.packing.size(); ++p)
     net.particles.push_back(
         {out.packing.mass[p], out.packing.layer[p], out.packing.z[p], out.packing.radius[p], out.packing.inertia[p]});
   for (const auto& q : crystal::list_contacts(out.packing, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), out.c.contact.kn * q.overlap});
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
+                            crystal::static_normal_force(out.c, out.packing.radius[q.i], out.packing.radius[q.j], q.overlap)});
   const auto th = theory::crystal_prediction(net, {fl, out.packing.layers - 1 - fl});
   const bool S = m.mode == 'S';
-  const auto ct = theory::linear_contact_time(out.c.contact.kn, out.c.contact.gamma_n, der.m_ij,
+  const auto ct = theory::linear_contact_time(der.kn, der.gamma_n, der.m_ij,
                                               out.c.contact.normal_tension == config::NormalTension::clip);
 
   std::vector<double> v(crystal_value_names(s).size(), kNaN);
@@ -184,6 +197,10 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   // Lattice dynamics with rotations (issue 15), prestress included: the member's mode along z
   // (S: x-polarised). NaN for a packing that is not a Bravais lattice (polydisperse).
   theory::LatticeCellOptions lopt;
+  // Contact forces come from overlaps of positions far larger than them: at delta_0 = 1e-5 d and
+  // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
+  // bonds are the reference particle's either way; the tolerance only decides whether all agree.
+  lopt.tolerance = 1e-6;
   lopt.arm_shift = out.c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
   if (const auto cell = theory::lattice_cell(net, {fl, out.packing.layers - 1 - fl}, lopt)) {
     const auto lw = theory::lattice_long_wave(*cell, theory::Vec3::UnitZ());
@@ -202,6 +219,54 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   r.label = std::string(to_string(s.vary)) + "=" + fmt("%g", m.value) + " " + m.mode;
   r.work = static_cast<double>(out.packing.size()) * static_cast<double>(out.run.steps);
   return out;
+}
+
+PowerLaw power_law(const std::vector<double>& x, const std::vector<double>& y) {
+  PowerLaw p{kNaN, kNaN};
+  const std::size_t n = x.size();
+  if (n < 2 || y.size() != n) return p;
+  double mx = 0.0, my = 0.0;
+  for (std::size_t i = 0; i < n; ++i) mx += std::log(x[i]), my += std::log(y[i]);
+  mx /= n;
+  my /= n;
+  double sxx = 0.0, sxy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxx += (std::log(x[i]) - mx) * (std::log(x[i]) - mx);
+    sxy += (std::log(x[i]) - mx) * (std::log(y[i]) - my);
+  }
+  p.exponent = sxy / sxx;
+  if (n > 2) {
+    double rss = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double e = std::log(y[i]) - my - p.exponent * (std::log(x[i]) - mx);
+      rss += e * e;
+    }
+    p.error = std::sqrt(rss / (n - 2) / sxx);
+  }
+  return p;
+}
+
+PressureSummary pressure_summary(const CrystalStudy& s, const std::vector<MemberResult>& members) {
+  PressureSummary ps;
+  for (char mode : s.modes) {
+    std::vector<double> delta, sigma, v, theory;
+    for (const auto& r : members) {
+      if ((r.values[cv_mode_s] != 0.0) != (mode == 'S')) continue;
+      delta.push_back(r.values[cv_value]);
+      sigma.push_back(r.values[cv_sigma0]);
+      v.push_back(r.values[cv_v_half_peak]);
+      // P along z turns no particle: eq. (10). S: the lattice with rotations (eq. (10)'s affine
+      // kt term does not hold for S, sec. 3.5); eq. (10) where the lattice is unavailable.
+      const double lattice = r.values[cv_theory_v_lattice];
+      theory.push_back(mode == 'S' && std::isfinite(lattice) ? lattice : r.values[cv_theory_v]);
+    }
+    ps.modes.push_back(mode);
+    ps.v_delta.push_back(power_law(delta, v));
+    ps.v_pressure.push_back(power_law(sigma, v));
+    ps.theory_v_delta.push_back(power_law(delta, theory));
+    ps.theory_v_pressure.push_back(power_law(sigma, theory));
+  }
+  return ps;
 }
 
 DampingSummary damping_summary(const CrystalStudy& s, const std::vector<MemberResult>& members) {
@@ -280,7 +345,8 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
   ro.limit = opt.limit;
   // Polydisperse members relax first and S members run sqrt(2) longer: start those first.
   for (const auto& m : members)
-    ro.cost.push_back((m.mode == 'S' ? std::numbers::sqrt2 : 1.0) * (s.vary == CrystalVary::polydispersity ? 1.0 + m.value : 1.0));
+    ro.cost.push_back((m.mode == 'S' ? std::numbers::sqrt2 : 1.0) * (s.vary == CrystalVary::polydispersity ? 1.0 + m.value : 1.0) *
+                      (s.vary == CrystalVary::overlap ? std::pow(s.base.crystal->overlap / m.value, 0.25) : 1.0));
   std::mutex log_mutex;
   RunStats st;
   // A finished study file of the same inputs (its batches are gone) is read back, not rerun.
@@ -327,6 +393,23 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
     w.write("/damping/ratio_t_gamma_t_c", d.ratio_t_gamma_t_c);
     w.attr("/damping", "t_c", d.t_c);
   }
+  const bool pressure = s.vary == CrystalVary::overlap;
+  PressureSummary ps;
+  if (pressure) {
+    ps = pressure_summary(s, results);
+    for (std::size_t q = 0; q < ps.modes.size(); ++q) {
+      const std::string g = std::string("/pressure/") + ps.modes[q];
+      w.group(g);
+      const std::pair<const char*, const PowerLaw*> laws[] = {{"exponent_delta", &ps.v_delta[q]},
+                                                              {"exponent_pressure", &ps.v_pressure[q]},
+                                                              {"theory_exponent_delta", &ps.theory_v_delta[q]},
+                                                              {"theory_exponent_pressure", &ps.theory_v_pressure[q]}};
+      for (const auto& [name, law] : laws) {
+        w.attr(g, name, law->exponent);
+        w.attr(g, std::string(name) + "_error", law->error);
+      }
+    }
+  }
   commit_study(w, ro.parts_dir);
 
   // The table (one line per member), then the study-level numbers.
@@ -349,6 +432,13 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
       out << "  strongest decay at z/l0 = " << s.positions[k] << ": gamma_0 = " << fmt("%.3g", d.gamma_star[k])
           << " kg/s, t_gamma = m_ij/gamma_0 = " << fmt("%.3g", d.t_gamma_star[k]) << " s = "
           << fmt("%.2f", d.ratio_t_gamma_t_c[k]) << " t_c (seed: ~2 t_c)\n";
+  if (pressure)
+    for (std::size_t q = 0; q < ps.modes.size(); ++q)
+      out << "  " << ps.modes[q] << ": V ~ delta_0^n, n = " << fmt("%.4f", ps.v_delta[q].exponent) << " +- "
+          << fmt("%.2g", ps.v_delta[q].error) << " (theory " << fmt("%.4f", ps.theory_v_delta[q].exponent)
+          << "); V ~ sigma_0^n, n = " << fmt("%.4f", ps.v_pressure[q].exponent) << " +- "
+          << fmt("%.2g", ps.v_pressure[q].error) << " (theory " << fmt("%.4f", ps.theory_v_pressure[q].exponent)
+          << "; affine Hertz FCC 1/4 and 1/6)\n";
   out << "  study file: " << out_path << "\n";
   return results;
 }
@@ -421,13 +511,19 @@ Captured capture(const CrystalMemberRun& r, const std::vector<double>& positions
   theory::ContactNetwork net;
   net.box_x = r.packing.box_x;
   net.box_y = r.packing.box_y;
-  net.k = r.c.contact.kn;
-  net.kt = r.c.contact.kt;
+  const crystal::ContactAt k0 = crystal::contact_at(r.c, r.packing.delta);
+  net.k = k0.kn;
+  net.kt = k0.kt;
   for (std::size_t p = 0; p < r.packing.size(); ++p)
     net.particles.push_back({r.packing.mass[p], r.packing.layer[p], r.packing.z[p], r.packing.radius[p], r.packing.inertia[p]});
   for (const auto& q : crystal::list_contacts(r.packing, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), r.c.contact.kn * q.overlap});
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
+                            crystal::static_normal_force(r.c, r.packing.radius[q.i], r.packing.radius[q.j], q.overlap)});
   theory::LatticeCellOptions lopt;
+  // Contact forces come from overlaps of positions far larger than them: at delta_0 = 1e-5 d and
+  // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
+  // bonds are the reference particle's either way; the tolerance only decides whether all agree.
+  lopt.tolerance = 1e-6;
   lopt.arm_shift = r.c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
   const int fl = r.packing.fixed_layers;
   c.t_window = tr.time.empty() ? 0.0 : tr.time.back();
@@ -579,6 +675,7 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
   CrystalStudy damp = load_crystal_study((studies / "crystal_damping.toml").string());
   CrystalStudy fric = load_crystal_study((studies / "crystal_friction.toml").string());
   CrystalStudy poly = load_crystal_study((studies / "crystal_poly.toml").string());
+  CrystalStudy hertz = load_crystal_study((studies / "hertz_pressure.toml").string());
   std::vector<double> fig_z = {10, 80, 150}, lambda_z = {10, 15, 20, 80, 150};
   if (quick) {
     // A 3 x 3 x 60 crystal: the far layer at z/l0 ~ 56, fits over 10..36 (analysis default).
@@ -592,11 +689,17 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
     damp.values = {0.0, 0.01, 0.1, 1.0};
     fric.values = {0.0, 0.5, 1.0, 2.0};  // the kt trend's points
     poly.values = {0.5, 2.0};
+    // Issue #14's confinement study: three overlaps over two decades on the same small crystal.
+    hertz.base.crystal->cells = {3, 3, 60};
+    hertz.base.integrator.t_end = 0.3e-3 * 218.29 / 689.24;  // the same layers as the linear runs (V 689 against 218 m/s)
+    hertz.positions = {10, 20, 30};
+    hertz.values = {1e-5, 1e-4, 1e-3};
+    hertz.text += "\n# quick\n";
     fig_z = {10, 20, 30};
     lambda_z = {10, 15, 20, 30};
   }
   // Fresh runs: drop earlier study files and batches in this directory.
-  for (const char* n : {"crystal_damping.h5", "crystal_friction.h5", "crystal_poly.h5"}) {
+  for (const char* n : {"crystal_damping.h5", "crystal_friction.h5", "crystal_poly.h5", "hertz_pressure.h5"}) {
     fs::remove(fs::path(out_dir) / n);
     fs::remove_all(fs::path(out_dir) / (std::string(n) + ".parts"));
   }
@@ -637,6 +740,9 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
     if (r.result.values[cv_value] == poly.values.back()) keep("poly_max", r);
   };
   const auto rp = run_crystal_study(poly, (fs::path(out_dir) / "crystal_poly.h5").string(), table, opt);
+  log << "figures crystal: Hertz-Mindlin confinement study (issue #14)\n";
+  opt.hook = {};
+  const auto rh = run_crystal_study(hertz, (fs::path(out_dir) / "hertz_pressure.h5").string(), table, opt);
 
   for (const char* k : {"p0", "fig4", "p_damped", "s0", "p0_friction", "s_kt2", "poly_max"})
     if (!cap.count(k)) throw RunError(std::string("figures crystal: no capture '") + k + "' (internal)");
@@ -790,8 +896,22 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
        << fmt("%.3f", r.values[cv_coordination0]) << ", " << fmt("%.1f", r.values[cv_v_first_peak]) << ", " << fmt("%.1f", r.values[cv_theory_v])
        << " | " << (r.values[cv_value] == 2.0 ? "9.975, up to 9 % off theory" : "—") << " | seed and we draw different radii; "
        << "coordination counts contacts of free particles (fixed ones included) |\n";
-  md << "\nFigures: fig2.png, fig3_left.png, fig3_right.png, fig4.png, fig5_p.png, fig5_s.png, fig6.png, fig7.png, fig8.png, fig9.png.\n"
-        "Data: crystal_damping.h5, crystal_friction.h5, crystal_poly.h5 (study files, data/SCHEMA.md §6), crystal_figures_data.h5.\n"
+  {  // Issue #14: Hertz-Mindlin sound speeds against the confinement.
+    const PressureSummary ps = pressure_summary(hertz, rh);
+    for (std::size_t q = 0; q < ps.modes.size(); ++q) {
+      md << "| Hertz-Mindlin " << ps.modes[q] << ": V ~ delta_0^n over delta_0/d = " << fmt("%g", hertz.values.front()) << " .. "
+         << fmt("%g", hertz.values.back()) << " | n = " << fmt("%.4f", ps.v_delta[q].exponent) << " +- "
+         << fmt("%.1g", ps.v_delta[q].error) << " (theory " << fmt("%.4f", ps.theory_v_delta[q].exponent)
+         << ") | 1/4 (affine FCC) | k_n, k_t ~ delta_0^(1/2); d' = d - delta_0 moves it by < 1e-3 |\n";
+      md << "| Hertz-Mindlin " << ps.modes[q] << ": V ~ sigma_0^n | n = " << fmt("%.4f", ps.v_pressure[q].exponent) << " +- "
+         << fmt("%.1g", ps.v_pressure[q].error) << " (theory " << fmt("%.4f", ps.theory_v_pressure[q].exponent)
+         << ") | 1/6 | sigma_0 ~ delta_0^(3/2), the measured prestress |\n";
+    }
+  }
+  md << "\nFigures: fig2.png, fig3_left.png, fig3_right.png, fig4.png, fig5_p.png, fig5_s.png, fig6.png, fig7.png, fig8.png, fig9.png,\n"
+        "hertz_pressure.png (issue #14).\n"
+        "Data: crystal_damping.h5, crystal_friction.h5, crystal_poly.h5, hertz_pressure.h5 (study files, data/SCHEMA.md §6), "
+        "crystal_figures_data.h5.\n"
         "\n## Study tables\n\n```\n"
      << table.str() << "```\n";
   {

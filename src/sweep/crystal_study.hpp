@@ -8,6 +8,9 @@
 //   vary = "kt_over_k"      Fig. 6 (sec. 3.5): P and S speeds against kt/k, theory from eq. (10)
 //   vary = "polydispersity" Figs. 8-9 (sec. 3.6): Delta a / delta; relaxed coordination, P speed
 //                           against the theory of the relaxed network, dispersion
+//   vary = "overlap"        issue #14: the static overlap delta_0/d (the confinement) of a Hertz
+//                           crystal; V_p, V_s against delta_0 and the prestress, power-law exponents
+//                           (affine FCC: V ~ delta_0^(1/4) ~ p^(1/6))
 //
 // The study file (data/SCHEMA.md §6) says `[study] kind = "crystal"`; the spin-chain loader
 // refuses that kind, so is_crystal_study() alone decides which loader a file goes to.
@@ -28,14 +31,14 @@
 
 namespace granwave::sweep {
 
-enum class CrystalVary { gamma_n, kt_over_k, polydispersity };
+enum class CrystalVary { gamma_n, kt_over_k, polydispersity, overlap };
 const char* to_string(CrystalVary v);
 
 struct CrystalStudy {
   std::string path, text, name;
   config::Case base;                // a crystal case (the frictionless P run of sec. 3.1, usually)
   CrystalVary vary = CrystalVary::gamma_n;
-  std::vector<double> values;       // gamma_0 (kg/s) | kt/k | Delta a / delta
+  std::vector<double> values;       // gamma_0 (kg/s) | kt/k | Delta a / delta | delta_0/d
   std::vector<char> modes{'P'};     // 'P' and/or 'S'
   std::vector<double> positions{10, 45, 80, 115, 150};  // z/l0 of the amplitude table (Fig. 3 right)
   std::size_t batch = 1;            // members per committed batch (a member is a whole wave run)
@@ -91,6 +94,20 @@ struct DampingSummary {  // vary = gamma_n, P members
   double t_c = 0.0;      // two-body t_c at gamma -> 0 (s)
 };
 DampingSummary damping_summary(const CrystalStudy& s, const std::vector<MemberResult>& members);
+
+// vary = overlap: least-squares power laws ln V = c + n ln x over the members of one mode, for the
+// measured half-peak speed and for the theory (eq. (10) for P; the lattice with rotations for S),
+// against x = delta_0/d and x = sigma_0 (the measured prestress). NaN with fewer than 2 members.
+struct PowerLaw {
+  double exponent = 0.0, error = 0.0;  // slope and its standard error (NaN error with 2 points)
+};
+PowerLaw power_law(const std::vector<double>& x, const std::vector<double>& y);
+struct PressureSummary {  // per mode present, P then S
+  std::vector<char> modes;
+  std::vector<PowerLaw> v_delta, v_pressure;                // measured half-peak speed
+  std::vector<PowerLaw> theory_v_delta, theory_v_pressure;  // theory at the same points
+};
+PressureSummary pressure_summary(const CrystalStudy& s, const std::vector<MemberResult>& members);
 
 // Called for each member after its run, from the worker thread (caller synchronises).
 using CrystalMemberHook = std::function<void(std::size_t index, const CrystalMemberRun&)>;

@@ -53,12 +53,22 @@ CrystalStudy parse_crystal_study(const std::string& text, const std::string& ori
   if (s.base.model != config::Model::crystal || !s.base.crystal)
     r.fail("study.case", "the base case must be a crystal case (model = \"crystal\")", st->get("case"));
 
-  const std::string vary = r.choice(*st, "study", "vary", {"gamma_n", "kt_over_k", "polydispersity"});
-  s.vary = vary == "gamma_n" ? CrystalVary::gamma_n : vary == "kt_over_k" ? CrystalVary::kt_over_k : CrystalVary::polydispersity;
+  const std::string vary = r.choice(*st, "study", "vary", {"gamma_n", "kt_over_k", "polydispersity", "overlap"});
+  s.vary = vary == "gamma_n"     ? CrystalVary::gamma_n
+           : vary == "kt_over_k" ? CrystalVary::kt_over_k
+           : vary == "overlap"   ? CrystalVary::overlap
+                                 : CrystalVary::polydispersity;
+  const bool hertz = s.base.contact.law == config::ContactLaw::hertz_mindlin;
+  if (hertz && (s.vary == CrystalVary::gamma_n || s.vary == CrystalVary::kt_over_k))
+    r.fail("study.vary", "\"" + vary + "\" varies a key of the linear law; the base case's law is \"hertz_mindlin\"",
+           st->get("vary"));
   s.values = r.numbers(*st, "study", "values");
   if (s.values.empty()) r.fail("study.values", "missing (the parameter values)");
   for (double v : s.values)
     if (v < 0.0) r.fail("study.values", "must be >= 0", st->get("values"));
+  if (s.vary == CrystalVary::overlap)
+    for (double v : s.values)
+      if (!(v > 0.0 && v < 0.1)) r.fail("study.values", "overlaps delta_0/d must be in (0, 0.1)", st->get("values"));
 
   if (const toml::node* n = st->get("modes")) {
     const toml::array* a = n->as_array();

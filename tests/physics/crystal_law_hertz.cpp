@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 
 #include "contact/hertz.hpp"
+#include "config/case.hpp"
 #include "contact/law.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/kernel.hpp"
@@ -98,4 +100,51 @@ TEST_CASE("a Hertz law defined in a test runs through the crystal kernel: two-bo
   dyn.step();
   CHECK(dyn.vz[0] == Approx(-v).epsilon(1e-4));
   CHECK(dyn.vz[1] == Approx(v).epsilon(1e-4));
+}
+
+// The real law of a case (contact.law = "hertz_mindlin", crystal::case_model) on the same two
+// spheres: the same closed forms, to 1e-4, for every tangential history (a head-on impact keeps
+// f_t = 0) and for the frictionless form; the energy is conserved (elastic normal law).
+TEST_CASE("the Hertz-Mindlin law of a case: two-body contact time and maximum overlap against the closed forms",
+          "[crystal][contact]") {
+  const double a = 1e-3, rho = 2500.0, E = 63e9, nu = 0.23, v = 0.05;
+  const double A = contact::hertz_constant_beads(E, nu, a, E, nu, a);
+  const crystal::Packing pk = two_spheres(a, rho);
+  const theory::HertzImpact hz = theory::hertz_impact(A, pk.mass[0], pk.mass[1], 2 * v);
+  for (const char* history : {"none", "displacement", "displacement_rescale", "force"}) {
+    config::ContactParams cp;
+    cp.law = config::ContactLaw::hertz_mindlin;
+    cp.youngs_modulus = E;
+    cp.poisson_ratio = nu;
+    cp.mindlin = std::string(history) != "none";
+    cp.tangential_history = std::string(history) == "force"                  ? config::TangentialHistory::force
+                            : std::string(history) == "displacement_rescale" ? config::TangentialHistory::displacement_rescale
+                                                                             : config::TangentialHistory::displacement;
+    crystal::Dynamics dyn(pk, crystal::case_model(cp, rho), hz.contact_time / 20000);
+    CHECK(dyn.friction() == cp.mindlin);
+    dyn.vz = {v, -v};
+    dyn.compute_forces_of_state();
+    const double e0 = dyn.kinetic_energy() + dyn.potential_energy();
+    double overlap_max = 0.0, t_prev = 0.0, overlap_prev = 0.0, t_end = -1.0, drift = 0.0;
+    while (dyn.time < 2 * hz.contact_time) {
+      dyn.step();
+      const double overlap = 2 * a - (dyn.z[1] - dyn.z[0]);
+      overlap_max = std::max(overlap_max, overlap);
+      drift = std::max(drift, std::abs(dyn.kinetic_energy() + dyn.potential_energy() - e0) / e0);
+      if (overlap_prev > 0.0 && overlap <= 0.0) {
+        t_end = t_prev + (dyn.time - t_prev) * overlap_prev / (overlap_prev - overlap);
+        break;
+      }
+      t_prev = dyn.time;
+      overlap_prev = overlap;
+    }
+    std::printf("hertz_mindlin (%s): t_c %.8g s (closed form %.8g, %.2g), delta_max %.8g m (%.8g, %.2g), drift %.2g\n",
+                history, t_end, hz.contact_time, t_end / hz.contact_time - 1, overlap_max, hz.max_overlap,
+                overlap_max / hz.max_overlap - 1, drift);
+    REQUIRE(t_end > 0.0);
+    CHECK(t_end == Approx(hz.contact_time).epsilon(1e-4));
+    CHECK(overlap_max == Approx(hz.max_overlap).epsilon(1e-4));
+    CHECK(drift < 1e-6);
+    CHECK(dyn.dissipated_energy() == 0.0);
+  }
 }
