@@ -231,21 +231,12 @@ int cmd_theory(const Args& args) {
   const auto& cr = *c.crystal;
 
   const crystal::Packing pk = crystal::make_packing(c);
-  // The contact as eq. (10) sees it: the linear law's keys, or Hertz-Mindlin linearised at the
-  // static overlap delta_0 (k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* sqrt(R* delta_0)); the
-  // prestress f0 is each contact's own static force (k delta, or the Hertz force).
+  // The contact as eq. (10) sees it: the linear law's keys, or Hertz-Mindlin linearised at each
+  // contact's overlap (delta_0 for a regular packing: k_n = 2 E* sqrt(R* delta_0), k_t = 8 G*
+  // sqrt(R* delta_0)); the prestress f0 is each contact's own static force (k delta, or Hertz's).
   const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
   const crystal::ContactAt k0 = crystal::contact_at(c, pk.delta);
-  theory::ContactNetwork net;
-  net.box_x = pk.box_x;
-  net.box_y = pk.box_y;
-  net.k = k0.kn;
-  net.kt = k0.kt;
-  for (std::size_t p = 0; p < pk.size(); ++p)
-    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
-  for (const auto& q : crystal::list_contacts(pk, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
-                            crystal::static_normal_force(c, pk.radius[q.i], pk.radius[q.j], q.overlap)});
+  const theory::ContactNetwork net = crystal::contact_network(c, pk);
 
   theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
   if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &slab.layer_lo, &slab.layer_hi);
@@ -365,7 +356,7 @@ int cmd_theory(const Args& args) {
               r.ratio_zxzx_yxyx, r.ratio_zzzz_zxzx);
   std::printf("symmetry: major %.2e, minor %.2e (kt term: major only)\n", r.major_asymmetry, r.minor_asymmetry);
   std::printf("V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (frictionless: %.4f, %.4f)%s\n", r.V_pz, r.V_sz, r.V_sy,
-              r.V_pz_frictionless, r.V_sz_frictionless, hertz ? " (no rotations; linearised at delta_0)" : "");
+              r.V_pz_frictionless, r.V_sz_frictionless, hertz ? " (no rotations; linearised at each contact's overlap)" : "");
   std::printf("lattice: omega_0 = %.1f 1/s (P), %.1f 1/s (S); v_k0 = omega_0 l0/2 = %.4f, %.4f m/s\n", r.omega0_p,
               r.omega0_s, r.V_k0_p, r.V_k0_s);
   std::printf("         with the static contact forces' geometric stiffness: %.1f, %.1f 1/s\n", r.omega0_p_prestressed,
