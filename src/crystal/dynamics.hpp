@@ -11,6 +11,7 @@
 //   2. per particle: sum of its contacts' forces and torques in a fixed order.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 #include "crystal/packing.hpp"
+#include "crystal/slab.hpp"
 
 namespace granwave::crystal {
 
@@ -39,6 +41,10 @@ struct ContactList {
   // before p's own), j_contacts[j_first[p] .. j_first[p + 1]), then those where p is i, the range
   // i_first[p] .. i_first[p + 1] of the list (sorted by i).
   std::vector<std::int32_t> j_first, j_contacts, i_first;
+  // Slab decomposition: the contacts [own_first, size()) have their particle i owned by this
+  // rank (the list is sorted by i; before own_first, i is a halo particle below). Global sums
+  // over contacts take these only, so a contact between two ranks counts once. Serial: 0.
+  std::size_t own_first = 0;
   std::size_t size() const { return i.size(); }
 };
 
@@ -55,19 +61,27 @@ class ContactModel {
   // Pass 1 at the current state; springs advance by `increment_time`; rates = false for a jump
   // of positions (no dashpots).
   virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
-  virtual double stored_energy(const ContactList& contacts) const = 0;  // J, touching contacts
+  // Adds the stored energy (J) of the touching contacts [first, size()) to e, in list order.
+  virtual void add_stored_energy(double& e, const ContactList& contacts, std::size_t first) const = 0;
 };
 
 // The law of a case: contact::LinearLuding with friction (k_t > 0 or gamma_t > 0), else the
 // frictionless contact::HookeLaw. Throws InputError for invalid parameters.
 std::shared_ptr<const ContactModel> case_model(const config::ContactParams& contact);
 
+// The contact list's skin: 0.1 mean radius of the packing (the same on every rank).
+double list_skin(const Packing& packing);
+
 class Dynamics {
  public:
   // The packing's fixed particles are not integrated; `dt` is the time step.
   Dynamics(const Packing& packing, const config::ContactParams& contact, double dt);
-  // The same with any contact law (crystal/kernel.hpp: model_of(law)).
-  Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt);
+  // The same with any contact law (crystal/kernel.hpp: model_of(law)). With a slab plan
+  // (crystal/slab.hpp), this rank's slab of an MPI run: the state holds the plan's particles
+  // [held_lo, held_hi) only, indexed from 0 (local index = global index - offset()), and every
+  // global quantity (energies, the rebuild trigger, coordination) is that of the whole crystal.
+  Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt,
+           const SlabPlan* slab = nullptr);
 
   // ---- state (SoA; public so observers and tests can read and set it) ----
   std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;  // positions (unwrapped), velocities, angular velocities
@@ -80,10 +94,22 @@ class Dynamics {
   long steps = 0;
   long rebuilds = 0;
   double work_in = 0.0;  // cumulative work done by driven particles on the rest (J)
+  double message_seconds = 0.0;  // slab: wall time of the halo exchanges and rebuild triggers
 
   std::size_t size() const { return x.size(); }
-  // The packing's lattice and per-particle layer and fixed flags; its positions, radii, masses
-  // and inertias are not kept twice: read x0, y0, z0, radius, mass, inertia.
+  // Slab decomposition (nullptr: serial). The particles this rank integrates and reports are
+  // [own_begin(), own_end()); the others are the halo, copies of the neighbours' boundary
+  // layers refreshed by exchange_halo (their forces are incomplete and never used).
+  const SlabPlan* slab() const { return slab_.get(); }
+  std::size_t offset() const { return offset_; }
+  std::size_t own_begin() const { return own_lo_; }
+  std::size_t own_end() const { return own_hi_; }
+  // Copies the neighbours' boundary layers (positions, velocities, angular velocities with a
+  // law with torques: what contact::Contact reads of a particle) into the halo. Serial: no-op.
+  void exchange_halo();
+  // The packing's lattice and per-particle layer and fixed flags (of the held particles, by
+  // local index); its positions, radii, masses and inertias are not kept twice: read x0, y0,
+  // z0, radius, mass, inertia.
   const Packing& packing() const { return packing_; }
   double dt() const { return dt_; }
   void set_dt(double dt) { dt_ = dt; }
@@ -94,6 +120,9 @@ class Dynamics {
 
   // Start (or stop) integrating particle p (velocity drive makes the source mobile).
   void set_mobile(std::size_t p, bool on);
+  // The same for a set of particles (local indices), with one list rebuild; under a slab plan
+  // every rank calls it together, with the particles it holds (possibly none).
+  void set_mobile(const std::vector<std::size_t>& which, bool on);
   // Rigid step of the particles in `which` by (dx, dy, dz), held afterwards: the contacts are
   // updated statically (normal overlaps only: a jump does not stretch the tangential springs, so
   // f_t = 0 at t = 0 as in seed 002; no dashpot) and the change of stored plus dissipated energy
@@ -121,6 +150,11 @@ class Dynamics {
   // dt^2/8 sum(|F|^2/m + |T|^2/I): velocity Verlet conserves E_kin + E_pot minus this exactly
   // for linear forces (the "shadow" energy), so it separates integrator error from physics.
   double verlet_correction() const;
+  // The four at once (one message relay under a slab plan; the same bits).
+  struct Energies {
+    double kinetic = 0.0, potential = 0.0, dissipated = 0.0, verlet_correction = 0.0;
+  };
+  Energies energies() const;
   int touching_contacts_of(std::size_t p) const;
   double max_displacement_since_build() const;
 
@@ -128,6 +162,12 @@ class Dynamics {
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
   template <bool Kick, bool Torques, bool ContactPointArm>
   void particle_pass(double h);
+  // Global sums: each rank adds its own terms in index order, relayed in rank order.
+  void relay(std::vector<double>& acc, const std::function<void(std::vector<double>&)>& add) const;
+  void add_kinetic(double& e) const;
+  void add_verlet(double& s) const;
+  void add_dissipated(double& e, const ContactList& list) const;  // contacts [own_first, size())
+  void check_layers() const;  // slab: every owned particle within z_tolerance of its layer
 
   Packing packing_;
   std::shared_ptr<const ContactModel> model_;
@@ -136,6 +176,10 @@ class Dynamics {
   double dt_ = 0.0;
   double skin_ = 0.0;
   double dissipated_before_ = 0.0;  // folded in at rebuilds
+  std::shared_ptr<const SlabPlan> slab_;
+  std::size_t offset_ = 0, own_lo_ = 0, own_hi_ = 0;
+  std::size_t halo_below_ = 0, halo_above_ = 0;  // particles sent to (and received from) each side
+  std::vector<double> send_below_, recv_below_, send_above_, recv_above_;
   // Displacements from x0 at the last list build, in single precision (memory): the skin test
   // needs them to ~1e-13 m, float gives 6e-8 of a displacement.
   std::vector<float> x_build_, y_build_, z_build_;

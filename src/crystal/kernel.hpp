@@ -181,17 +181,17 @@ class LawModel final : public ContactModel {
     else
       run(d, law_.without_rates(), inc);
   }
-  double stored_energy(const ContactList& C) const override {
+  void add_stored_energy(double& e_io, const ContactList& C, std::size_t first) const override {
     using History = typename Law::History;
     constexpr std::size_t NH = contact::history_columns<History>;
-    double e = 0.0;
     std::array<double, NH> h;
-    for (std::size_t c = 0; c < C.size(); ++c) {
+    double e = e_io;  // a local sum stays in a register (e_io might alias the list's arrays)
+    for (std::size_t c = first; c < C.size(); ++c) {
       if (C.delta[c] <= 0.0) continue;
       for_columns<NH>([&](std::size_t q) { h[q] = C.history_column(q)[c]; });
       law_.add_stored_energy(e, C.delta[c], contact::history_from<History>(h));
     }
-    return e;
+    e_io = e;
   }
   const Law& law() const { return law_; }
 

@@ -2,6 +2,7 @@
 // the time loop, and the observers of docs/design.md §2.2 sampled at the output interval.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "config/case.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/packing.hpp"
+#include "crystal/slab.hpp"
 
 namespace granwave::crystal {
 
@@ -52,6 +54,9 @@ struct RunResult {
   long steps = 0;
   long rebuilds = 0;
   double seconds = 0.0;  // wall time of the time loop
+  // Slab decomposition, rank 0 only: per rank, the time loop's wall time, the part of it spent
+  // in halo exchanges and rebuild triggers, and the process's CPU time in the loop (s).
+  std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds;
 };
 
 // Called at each sample with the dynamics and the sample index (e.g. VTK snapshots).
@@ -59,7 +64,12 @@ using SampleHook = std::function<void(const Dynamics&, std::size_t sample)>;
 
 // Excite and integrate to t_end. A NaN or an energy that grows beyond the available budget
 // stops the run: failed = true, traces hold the samples before the failure.
-RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {});
+// With `comm` of more than one rank (world_slab_comm(), crystal/slab.hpp), this rank's slab of
+// the run: every rank calls it with the same case and packing; rank 0's traces are the serial
+// run's, bit for bit, the other ranks' hold only the global series (time, coordination,
+// energies). Throws InputError (crystal.cells[2]) when the ranks cannot split the crystal.
+RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {},
+                   std::shared_ptr<SlabComm> comm = nullptr);
 
 // The trace file of SCHEMA.md §3 (with /system, provenance, case_toml, time_convention
 // "synchronous", root attribute status = "complete" or "failed: ..."), written via NAME.tmp.
