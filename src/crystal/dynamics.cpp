@@ -100,6 +100,7 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
     mobile[p] = packing_.fixed[p] ? 0 : 1;
   }
   skin_ = list_skin(packing);  // of the whole packing: the same on every rank
+  dissipated_before_.assign(static_cast<std::size_t>(std::max(0, packing.layers)), 0.0);
   rebuild();
   compute_forces(dt_, true);
 }
@@ -126,13 +127,6 @@ double Dynamics::max_displacement_since_build() const {
   return std::sqrt(m2);
 }
 
-void Dynamics::relay(std::vector<double>& acc, const std::function<void(std::vector<double>&)>& add) const {
-  if (slab_)
-    slab_->comm->relay(acc, add);
-  else
-    add(acc);
-}
-
 void Dynamics::exchange_halo() {
   if (!slab_) return;
   const std::size_t nf = friction_ ? 9 : 6;  // an angular velocity only for a law with torques
@@ -157,22 +151,21 @@ void Dynamics::check_layers() const {
   // A particle that leaves its layer by more than z_tolerance could meet one beyond the halo:
   // the slab cannot follow it. The first such particle (lowest index) is named on every rank.
   const SlabPlan& s = *slab_;
-  std::vector<double> bad{-1.0, 0.0};
-  slab_->comm->relay(bad, [&](std::vector<double>& b) {
-    if (b[0] >= 0.0) return;
-    for (std::size_t p = own_lo_; p < own_hi_; ++p) {
-      const double dz = z[p] - s.layer_z[packing_.layer[p]];
-      if (!(std::abs(dz) <= s.z_tolerance)) {
-        b[0] = static_cast<double>(p + offset_);
-        b[1] = dz;
-        return;
-      }
+  std::vector<double> mine{-1.0, 0.0}, all;  // (global index, offset) of this rank's first stray
+  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
+    const double dz = z[p] - s.layer_z[packing_.layer[p]];
+    if (!(std::abs(dz) <= s.z_tolerance)) {
+      mine = {static_cast<double>(p + offset_), dz};
+      break;
     }
-  });
-  if (bad[0] >= 0.0)
-    throw RunError("particle " + std::to_string(static_cast<long>(bad[0])) + " is " + std::to_string(bad[1]) +
-                   " m from its layer's height, beyond the " + std::to_string(s.z_tolerance) +
-                   " m the slab decomposition over MPI ranks allows (docs/design.md §2.8): run without mpirun");
+  }
+  slab_->comm->allgather(mine, all);
+  for (std::size_t r = 0; 2 * r < all.size(); ++r)  // rank order: the lowest index first
+    if (all[2 * r] >= 0.0)
+      throw RunError("particle " + std::to_string(static_cast<long>(all[2 * r])) + " is " +
+                     std::to_string(all[2 * r + 1]) + " m from its layer's height, beyond the " +
+                     std::to_string(s.z_tolerance) +
+                     " m the slab decomposition over MPI ranks allows (docs/design.md §2.8): run without mpirun");
 }
 
 void Dynamics::rebuild() {
@@ -197,13 +190,7 @@ void Dynamics::rebuild() {
     for (auto* v : {&pairs.image_x, &pairs.image_y}) v->resize(k);
   }
   ContactList& old = contacts;
-  {
-    std::vector<double> acc{dissipated_before_};
-    relay(acc, [&](std::vector<double>& a) {
-      add_dissipated(a[0], old);
-    });
-    dissipated_before_ = acc[0];
-  }
+  add_dissipated(dissipated_before_.data(), old);  // per layer: no message
   ContactList fresh;
   const std::size_t nc = pairs.size();
   fresh.i = std::move(pairs.i);
@@ -412,72 +399,96 @@ void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double
   work_in += potential_energy() + dissipated_energy() - before;
 }
 
-// The global sums below are plain loops in index order over the owned particles (contacts
-// whose i is owned); under a slab plan the running sum is relayed from rank to rank, which
-// adds the same terms in the same order as the serial loop.
-// (The sums run in a local variable: the argument might alias the state's arrays, which would
-// keep the compiler from holding it in a register; the additions are the same.)
-void Dynamics::add_kinetic(double& e_io) const {
-  double e = e_io;
+// Per-layer sums over the owned particles (contacts whose i is owned) in index order. Particles
+// and contacts come layer by layer, so kernel::LayerSum keeps the running sum in a register.
+void Dynamics::add_kinetic(double* s) const {
+  kernel::LayerSum sum(s);
   for (std::size_t p = own_lo_; p < own_hi_; ++p) {
     if (!mobile[p]) continue;
-    e += 0.5 * mass[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
-         0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
+    sum.at(packing_.layer[p]) += 0.5 * mass[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
+                                 0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
   }
-  e_io = e;
 }
 
-void Dynamics::add_verlet(double& s_io) const {
-  double s = s_io;
+void Dynamics::add_verlet(double* s) const {
+  kernel::LayerSum sum(s);
   for (std::size_t p = own_lo_; p < own_hi_; ++p) {
     if (!mobile[p]) continue;
-    s += (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
-         (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
+    sum.at(packing_.layer[p]) += (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
+                                 (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
   }
-  s_io = s;
 }
 
-void Dynamics::add_dissipated(double& e_io, const ContactList& C) const {
-  double e = e_io;
-  for (auto d = C.dissipated.begin() + static_cast<std::ptrdiff_t>(C.own_first); d != C.dissipated.end(); ++d) e += *d;
-  e_io = e;
+void Dynamics::add_dissipated(double* s, const ContactList& C) const {
+  kernel::LayerSum sum(s);
+  for (std::size_t c = C.own_first; c < C.size(); ++c) sum.at(packing_.layer[C.i[c]]) += C.dissipated[c];
+}
+
+void Dynamics::layer_totals(std::vector<double>* arrays, std::size_t k, double* totals) const {
+  const std::size_t nl = static_cast<std::size_t>(packing_.layers);
+  if (slab_) {  // this rank's layers to every rank; rank order is layer order
+    const SlabPlan& s = *slab_;
+    const std::size_t L0 = s.first_layer[s.rank], L1 = s.first_layer[s.rank + 1];
+    std::vector<double> mine, all;
+    mine.reserve(k * (L1 - L0));
+    for (std::size_t q = 0; q < k; ++q) mine.insert(mine.end(), arrays[q].begin() + L0, arrays[q].begin() + L1);
+    s.comm->allgather(mine, all);
+    for (int r = 0; r < s.ranks; ++r) {
+      const std::size_t a = s.first_layer[r], b = s.first_layer[r + 1];
+      for (std::size_t q = 0; q < k; ++q)
+        std::copy_n(all.data() + k * a + q * (b - a), b - a, arrays[q].begin() + static_cast<std::ptrdiff_t>(a));
+    }
+  }
+  for (std::size_t q = 0; q < k; ++q) {
+    double t = 0.0;
+    for (std::size_t L = 0; L < nl; ++L) t += arrays[q][L];
+    totals[q] = t;
+  }
 }
 
 double Dynamics::kinetic_energy() const {
-  std::vector<double> e{0.0};
-  relay(e, [&](std::vector<double>& a) { add_kinetic(a[0]); });
-  return e[0];
+  std::vector<double> s(dissipated_before_.size(), 0.0);
+  add_kinetic(s.data());
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return t;
 }
 
 double Dynamics::potential_energy() const {
-  std::vector<double> e{0.0};
-  relay(e, [&](std::vector<double>& a) { model_->add_stored_energy(a[0], contacts, contacts.own_first); });
-  return e[0];
+  std::vector<double> s(dissipated_before_.size(), 0.0);
+  model_->add_stored_energy(s.data(), contacts, contacts.own_first, packing_.layer.data());
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return t;
 }
 
 double Dynamics::dissipated_energy() const {
-  std::vector<double> e{dissipated_before_};
-  relay(e, [&](std::vector<double>& a) {
-    add_dissipated(a[0], contacts);
-  });
-  return e[0];
+  std::vector<double> s = dissipated_before_;
+  add_dissipated(s.data(), contacts);
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return t;
 }
 
 double Dynamics::verlet_correction() const {
-  std::vector<double> s{0.0};
-  relay(s, [&](std::vector<double>& a) { add_verlet(a[0]); });
-  return dt_ * dt_ / 8.0 * s[0];
+  std::vector<double> s(dissipated_before_.size(), 0.0);
+  add_verlet(s.data());
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return dt_ * dt_ / 8.0 * t;
 }
 
 Dynamics::Energies Dynamics::energies() const {
-  std::vector<double> acc{0.0, 0.0, dissipated_before_, 0.0};
-  relay(acc, [&](std::vector<double>& a) {
-    add_kinetic(a[0]);
-    model_->add_stored_energy(a[1], contacts, contacts.own_first);
-    add_dissipated(a[2], contacts);
-    add_verlet(a[3]);
-  });
-  return {acc[0], acc[1], acc[2], dt_ * dt_ / 8.0 * acc[3]};
+  const std::size_t nl = dissipated_before_.size();
+  std::vector<double> s[4] = {std::vector<double>(nl, 0.0), std::vector<double>(nl, 0.0), dissipated_before_,
+                              std::vector<double>(nl, 0.0)};
+  add_kinetic(s[0].data());
+  model_->add_stored_energy(s[1].data(), contacts, contacts.own_first, packing_.layer.data());
+  add_dissipated(s[2].data(), contacts);
+  add_verlet(s[3].data());
+  double t[4];
+  layer_totals(s, 4, t);
+  return {t[0], t[1], t[2], dt_ * dt_ / 8.0 * t[3]};
 }
 
 int Dynamics::touching_contacts_of(std::size_t p) const {

@@ -11,7 +11,6 @@
 //   2. per particle: sum of its contacts' forces and torques in a fixed order.
 #pragma once
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -42,8 +41,8 @@ struct ContactList {
   // i_first[p] .. i_first[p + 1] of the list (sorted by i).
   std::vector<std::int32_t> j_first, j_contacts, i_first;
   // Slab decomposition: the contacts [own_first, size()) have their particle i owned by this
-  // rank (the list is sorted by i; before own_first, i is a halo particle below). Global sums
-  // over contacts take these only, so a contact between two ranks counts once. Serial: 0.
+  // rank (the list is sorted by i; before own_first, i is a halo particle below). Sums over
+  // contacts take these only, so a contact between two ranks counts once. Serial: 0.
   std::size_t own_first = 0;
   std::size_t size() const { return i.size(); }
 };
@@ -61,8 +60,10 @@ class ContactModel {
   // Pass 1 at the current state; springs advance by `increment_time`; rates = false for a jump
   // of positions (no dashpots).
   virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
-  // Adds the stored energy (J) of the touching contacts [first, size()) to e, in list order.
-  virtual void add_stored_energy(double& e, const ContactList& contacts, std::size_t first) const = 0;
+  // Adds the stored energy (J) of each touching contact of [first, size()) to per_layer[layer of
+  // its particle i], in list order.
+  virtual void add_stored_energy(double* per_layer, const ContactList& contacts, std::size_t first,
+                                 const int* layer) const = 0;
 };
 
 // The law of a case: contact::LinearLuding with friction (k_t > 0 or gamma_t > 0), else the
@@ -144,13 +145,16 @@ class Dynamics {
   bool threaded() const { return size() >= parallel_min_particles; }
 
   // ---- energies (J) ----
+  // Each is a sum per layer (particles in index order, contacts in list order counted in the
+  // layer of their particle i), then over the layers in layer order: the same bits for any
+  // number of ranks (docs/design.md §2.8).
   double kinetic_energy() const;    // translational + rotational, mobile particles
   double potential_energy() const;  // (1/2) k delta^2 + (1/2) k_t |xi|^2 over touching contacts
   double dissipated_energy() const; // cumulative: dashpots, sliding, springs lost on opening
   // dt^2/8 sum(|F|^2/m + |T|^2/I): velocity Verlet conserves E_kin + E_pot minus this exactly
   // for linear forces (the "shadow" energy), so it separates integrator error from physics.
   double verlet_correction() const;
-  // The four at once (one message relay under a slab plan; the same bits).
+  // The four at once (one message under a slab plan; the same bits).
   struct Energies {
     double kinetic = 0.0, potential = 0.0, dissipated = 0.0, verlet_correction = 0.0;
   };
@@ -162,11 +166,13 @@ class Dynamics {
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
   template <bool Kick, bool Torques, bool ContactPointArm>
   void particle_pass(double h);
-  // Global sums: each rank adds its own terms in index order, relayed in rank order.
-  void relay(std::vector<double>& acc, const std::function<void(std::vector<double>&)>& add) const;
-  void add_kinetic(double& e) const;
-  void add_verlet(double& s) const;
-  void add_dissipated(double& e, const ContactList& list) const;  // contacts [own_first, size())
+  // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
+  void add_kinetic(double* s) const;
+  void add_verlet(double* s) const;
+  void add_dissipated(double* s, const ContactList& list) const;
+  // The totals of `k` per-layer arrays (each packing().layers long): under a slab plan every
+  // rank first receives the other ranks' layers; then each array's layers are added in order.
+  void layer_totals(std::vector<double>* arrays, std::size_t k, double* totals) const;
   void check_layers() const;  // slab: every owned particle within z_tolerance of its layer
 
   Packing packing_;
@@ -175,7 +181,7 @@ class Dynamics {
   double arm_shift_ = 0.0;  // 0: arm a_i (eq. (4)); 1/2: arm a_i - delta/2 (contact point)
   double dt_ = 0.0;
   double skin_ = 0.0;
-  double dissipated_before_ = 0.0;  // folded in at rebuilds
+  std::vector<double> dissipated_before_;  // per layer, folded in at rebuilds
   std::shared_ptr<const SlabPlan> slab_;
   std::size_t offset_ = 0, own_lo_ = 0, own_hi_ = 0;
   std::size_t halo_below_ = 0, halo_above_ = 0;  // particles sent to (and received from) each side

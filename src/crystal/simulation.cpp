@@ -177,24 +177,24 @@ double coordination(const Dynamics& dyn) {
     ++particles;
     contacts += dyn.touching_contacts_of(p);
   }
-  if (const SlabPlan* s = dyn.slab()) {  // whole numbers: exact in doubles, relayed as any sum
-    std::vector<double> n{0.0, 0.0};
-    s->comm->relay(n, [&](std::vector<double>& a) {
-      a[0] += static_cast<double>(contacts);
-      a[1] += static_cast<double>(particles);
-    });
-    contacts = static_cast<long>(n[0]);
-    particles = static_cast<long>(n[1]);
+  if (const SlabPlan* s = dyn.slab()) {  // whole numbers: exact in doubles and in any order
+    std::vector<double> all;
+    s->comm->allgather({static_cast<double>(contacts), static_cast<double>(particles)}, all);
+    contacts = particles = 0;
+    for (std::size_t r = 0; 2 * r < all.size(); ++r) {
+      contacts += static_cast<long>(all[2 * r]);
+      particles += static_cast<long>(all[2 * r + 1]);
+    }
   }
   return particles ? static_cast<double>(contacts) / particles : 0.0;
 }
 
 namespace {
 
-// Every observer is a sum per layer over the owned particles or contacts in index order (the
-// layer's rows are its owner's: each layer's sums are complete on the rank owning it), or a
-// global sum relayed in rank order (Dynamics::energies, coordination). Under a slab plan rank 0
-// gathers the rows; the other ranks keep the global series only.
+// Every observer is a sum per layer over the owned particles or contacts in index order (each
+// layer's sums are complete on the rank owning it), or a total over layers in layer order
+// (Dynamics::energies), or an integer count (coordination). Under a slab plan rank 0 gathers the
+// rows; the other ranks keep the global series only.
 void sample(const Dynamics& dyn, Traces& tr) {
   const Packing& pk = dyn.packing();
   const std::size_t nl = tr.nlayers;
@@ -248,24 +248,25 @@ double process_cpu_seconds() {  // all threads of the process
 // The particle to blame for a blow-up: the first non-finite one, else the fastest (the lowest
 // index of equals): (global index, vx, vy, vz).
 std::array<double, 4> culprit(const Dynamics& dyn) {
-  // acc: found a non-finite one (0/1), index, |v|^2 of the fastest so far, vx, vy, vz
-  std::vector<double> acc{0.0, 0.0, -1.0, 0.0, 0.0, 0.0};
-  auto scan = [&](std::vector<double>& a) {
-    if (a[0] != 0.0) return;
-    for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
-      const double v2 = dyn.vx[p] * dyn.vx[p] + dyn.vy[p] * dyn.vy[p] + dyn.vz[p] * dyn.vz[p];
-      const bool bad = !std::isfinite(v2) || !std::isfinite(dyn.x[p] + dyn.y[p] + dyn.z[p]);
-      if (bad || v2 > a[2]) {
-        a = {bad ? 1.0 : 0.0, static_cast<double>(p + dyn.offset()), v2, dyn.vx[p], dyn.vy[p], dyn.vz[p]};
-        if (bad) return;
-      }
+  // This rank's candidate: non-finite (0/1), index, |v|^2, vx, vy, vz.
+  std::vector<double> mine{0.0, 0.0, -1.0, 0.0, 0.0, 0.0};
+  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
+    const double v2 = dyn.vx[p] * dyn.vx[p] + dyn.vy[p] * dyn.vy[p] + dyn.vz[p] * dyn.vz[p];
+    const bool bad = !std::isfinite(v2) || !std::isfinite(dyn.x[p] + dyn.y[p] + dyn.z[p]);
+    if (bad || v2 > mine[2]) {
+      mine = {bad ? 1.0 : 0.0, static_cast<double>(p + dyn.offset()), v2, dyn.vx[p], dyn.vy[p], dyn.vz[p]};
+      if (bad) break;
     }
-  };
-  if (const SlabPlan* s = dyn.slab())
-    s->comm->relay(acc, scan);
-  else
-    scan(acc);
-  return {acc[1], acc[3], acc[4], acc[5]};
+  }
+  std::vector<double> all = mine;
+  if (const SlabPlan* s = dyn.slab()) s->comm->allgather(mine, all);
+  // The serial scan over the ranks' candidates in rank order (= index order).
+  const double* best = all.data();
+  for (std::size_t r = 1; 6 * r < all.size(); ++r) {
+    const double* c = all.data() + 6 * r;
+    if (best[0] == 0.0 && (c[0] != 0.0 || c[2] > best[2])) best = c;
+  }
+  return {best[1], best[3], best[4], best[5]};
 }
 
 }  // namespace
@@ -349,9 +350,10 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   res.steps = dyn.steps;
   res.rebuilds = dyn.rebuilds;
-  if (plan) {  // how the work split: every rank's times, to rank 0
-    std::vector<double> all;
-    plan->comm->gather({res.seconds, dyn.message_seconds, process_cpu_seconds() - cpu0}, all);
+  {  // how the work split: every rank's times, to rank 0 (serial: the one process's)
+    const std::vector<double> mine{res.seconds, dyn.message_seconds, process_cpu_seconds() - cpu0};
+    std::vector<double> all = mine;
+    if (plan) plan->comm->gather(mine, all);
     for (std::size_t r = 0; 3 * r < all.size(); ++r) {
       res.rank_seconds.push_back(all[3 * r]);
       res.rank_message_seconds.push_back(all[3 * r + 1]);

@@ -54,8 +54,8 @@ struct RunResult {
   long steps = 0;
   long rebuilds = 0;
   double seconds = 0.0;  // wall time of the time loop
-  // Slab decomposition, rank 0 only: per rank, the time loop's wall time, the part of it spent
-  // in halo exchanges and rebuild triggers, and the process's CPU time in the loop (s).
+  // Per rank (serial: one), on rank 0 only: the time loop's wall time, the part of it spent in
+  // halo exchanges and rebuild triggers, and the process's CPU time in the loop (s).
   std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds;
 };
 

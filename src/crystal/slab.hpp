@@ -6,14 +6,14 @@
 // and angular velocities: what a contact law can read of a particle (contact::Contact). A contact
 // between two ranks' particles is evaluated by both, from identical inputs, so both hold the
 // same per-contact history (whatever columns the law declares) and none is ever communicated.
-// Global sums are relayed from rank to rank in rank order (= particle and contact order), so
-// each is the serial loop's sum, bit for bit, with no change to the serial code.
+// Global sums are taken per layer (in index order within the layer) and the layers added in
+// layer order, serially as on R ranks: every rank gathers the per-layer values, so each total is
+// the serial run's, bit for bit, and the same on every rank.
 //
 // The communicator is an interface without MPI types: slab_mpi.cpp implements it (the crystal's
 // only MPI code); a serial run has none (Dynamics::slab() == nullptr).
 #pragma once
 #include <cstddef>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,10 +34,8 @@ class SlabComm {
                         const std::vector<double>& to_above, std::vector<double>& from_above) = 0;
   // Maximum over ranks (exact in any order).
   virtual double max(double v) = 0;
-  // A fold in rank order: rank 0 applies `add` to acc, sends it to rank 1, which applies its
-  // own, ...; the last rank's acc reaches every rank. A sum relayed like this is the serial
-  // loop's sum when each rank adds its owned particles (or contacts) in index order.
-  virtual void relay(std::vector<double>& acc, const std::function<void(std::vector<double>&)>& add) = 0;
+  // Every rank receives every rank's `mine`, concatenated in rank order, into `all`.
+  virtual void allgather(const std::vector<double>& mine, std::vector<double>& all) = 0;
   // Rank 0 receives every rank's `mine`, concatenated in rank order, into `all` (others: untouched).
   virtual void gather(const std::vector<double>& mine, std::vector<double>& all) = 0;
 };

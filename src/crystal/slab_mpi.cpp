@@ -15,7 +15,7 @@ namespace granwave::crystal {
 #ifdef GRANWAVE_MPI
 namespace {
 
-constexpr int kTagUp = 1701, kTagDown = 1702, kTagRelay = 1703;
+constexpr int kTagUp = 1701, kTagDown = 1702;
 
 int count_of(std::size_t n) {
   if (n > static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error("internal: an MPI message of more than 2^31 doubles");
@@ -48,12 +48,17 @@ class MpiSlabComm final : public SlabComm {
     return m;
   }
 
-  void relay(std::vector<double>& acc, const std::function<void(std::vector<double>&)>& add) override {
-    const int n = count_of(acc.size());
-    if (rank_ > 0) MPI_Recv(acc.data(), n, MPI_DOUBLE, rank_ - 1, kTagRelay, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    add(acc);
-    if (rank_ + 1 < size_) MPI_Send(acc.data(), n, MPI_DOUBLE, rank_ + 1, kTagRelay, MPI_COMM_WORLD);
-    MPI_Bcast(acc.data(), n, MPI_DOUBLE, size_ - 1, MPI_COMM_WORLD);
+  void allgather(const std::vector<double>& mine, std::vector<double>& all) override {
+    const int n = count_of(mine.size());
+    std::vector<int> counts(size_), displs(size_);
+    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    long total = 0;
+    for (int r = 0; r < size_; ++r) {
+      displs[r] = count_of(static_cast<std::size_t>(total));
+      total += counts[r];
+    }
+    all.resize(static_cast<std::size_t>(total));
+    MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, MPI_COMM_WORLD);
   }
 
   void gather(const std::vector<double>& mine, std::vector<double>& all) override {
