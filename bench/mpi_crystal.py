@@ -13,9 +13,10 @@ time is the median of the repetitions. Every R-rank granwave trace is compared w
 (every dataset's bits: tests/mpi/sweep_ranks.py's comparison), so no speed is quoted for a wrong run.
 
 Printed per set-up: the time loop's wall time (granwave's `wall_seconds`, LAMMPS' "Loop time"),
-the whole command's wall time, per rank the wall time spent in halo messages and rebuild triggers
-(`mpi_rank_message_seconds`) and the CPU time (`mpi_rank_cpu_seconds`; Open MPI polls while it
-waits, so CPU time counts waiting too), LAMMPS' own Comm share of the loop, and the load average.
+the whole command's wall time, per rank the wall time in MPI calls (`mpi_rank_message_seconds`)
+and the rank's own work: its CPU time in the loop minus its CPU time in MPI calls (Open MPI polls
+while it waits, so CPU time alone counts waiting too), LAMMPS' own Comm share of the loop, and
+the load average.
 On a machine shared with other jobs (more runnable processes than cores) ranks that must meet every
 step wait for each other's turns: quote wall-time speed-ups only with a quiet machine's load.
 """
@@ -71,8 +72,9 @@ def granwave_run(gw, mpirun, ranks, case, system, out, env):
         cmd = mpirun + ["-n", str(ranks)] + cmd
     wall, stdout = timed(cmd, os.path.dirname(out), env)
     s = json.loads(stdout[stdout.index("{"):])
-    return dict(wall=wall, loop=s["wall_seconds"], msg=s.get("mpi_rank_message_seconds", []),
-                cpu=s.get("mpi_rank_cpu_seconds", []), rank_loop=s.get("mpi_rank_seconds", []),
+    return dict(wall=wall, loop=s["wall_seconds"], msg=s["mpi_rank_message_seconds"],
+                cpu=[c - m for c, m in zip(s["mpi_rank_cpu_seconds"], s["mpi_rank_message_cpu_seconds"])],
+                rank_loop=s["mpi_rank_seconds"],
                 particles=s["particles"], steps=s["steps"])
 
 
@@ -157,11 +159,11 @@ def main():
             res[name].append(r)
             print("  rep %d %-36s loop %7.3f s  command %7.3f s  load %.2f%s" %
                   (k + 1, name, r["loop"], r["wall"], r["load"],
-                   ("  messages %s s, CPU %s s" % (["%.3f" % x for x in r["msg"]], ["%.3f" % x for x in r["cpu"]]))
+                   ("  MPI wall %s s, own work (CPU) %s s" % (["%.3f" % x for x in r["msg"]], ["%.3f" % x for x in r["cpu"]]))
                    if r.get("msg") else ("  LAMMPS Comm %.1f %%" % r["comm_pct"] if r.get("comm_pct") is not None else "")),
                   flush=True)
     loads.append(loadavg())
-    print("\n| set-up | particles | time loop (s) | command (s) | per rank: messages / CPU (s) | load |")
+    print("\n| set-up | particles | time loop (s) | command (s) | per rank: MPI wall / own work CPU (s) | load |")
     print("|---|---|---|---|---|---|")
     for name, code, ranks, tag in setups:
         rs = res[name]
@@ -177,11 +179,11 @@ def main():
     def loop(i):
         return med([r["loop"] for r in res[setups[i][0]]])
 
-    def cpu_max(i):  # the busiest process's CPU time in the loop
+    def cpu_max(i):  # the busiest process's own work (CPU time outside MPI calls)
         return med([max(r["cpu"]) for r in res[setups[i][0]]])
-    print("\nstrong scaling, time loop wall: %.2fx (CPU time of the busiest process: %.2fx); weak scaling "
-          "efficiency, wall: %.2f (CPU: %.2f)" % (loop(0) / loop(1), cpu_max(0) / cpu_max(1), loop(0) / loop(3),
-                                                 cpu_max(0) / cpu_max(3)))
+    print("\nstrong scaling, time loop wall: %.2fx (own work of the busiest rank: %.2fx); weak scaling "
+          "efficiency, wall: %.2f (own work: %.2f)" % (loop(0) / loop(1), cpu_max(0) / cpu_max(1), loop(0) / loop(3),
+                                                      cpu_max(0) / cpu_max(3)))
     print("load average after: %.2f" % loads[-1])
 
 

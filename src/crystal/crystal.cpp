@@ -143,7 +143,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   double coordination0 = 0.0, coordination_end = 0.0;
   long steps = 0, rebuilds = 0;
   std::size_t samples = 0;
-  std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds;
+  std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
   {
     const RunResult r = simulate(c, packing, hook, comm);
     if (vtk) vtk->finish();
@@ -165,6 +165,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
     rank_seconds = r.rank_seconds;
     rank_message_seconds = r.rank_message_seconds;
     rank_cpu_seconds = r.rank_cpu_seconds;
+    rank_message_cpu_seconds = r.rank_message_cpu_seconds;
   }
   if (!root) return 0;
 
@@ -179,7 +180,8 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
         << ", \"steps\": " << steps << ", \"samples\": " << samples << ", \"mpi_ranks\": " << ranks
         << ", \"mpi_rank_seconds\": " << json_array(rank_seconds)
         << ", \"mpi_rank_message_seconds\": " << json_array(rank_message_seconds)
-        << ", \"mpi_rank_cpu_seconds\": " << json_array(rank_cpu_seconds) << ", \"wall_seconds\": " << seconds
+        << ", \"mpi_rank_cpu_seconds\": " << json_array(rank_cpu_seconds)
+        << ", \"mpi_rank_message_cpu_seconds\": " << json_array(rank_message_cpu_seconds) << ", \"wall_seconds\": " << seconds
         << ", \"particle_steps_per_second\": " << pss << ", \"mode\": \"" << (shear ? "S" : "P")
         << "\", \"speed_theory\": " << (shear ? d.v_s : d.v_p) << ", \"coordination\": " << coordination0
         << ", \"work_in\": " << work_in << ", \"dissipated\": " << dissipated << ", \"energy_residual\": " << residual
@@ -193,9 +195,10 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
         << " particle-steps/s), " << rebuilds << " contact-list builds\n";
     if (ranks > 1) {
       out << "  split over " << ranks << " MPI ranks (slabs of whole layers, docs/design.md §2.8); per rank, time loop"
-          << " / of it in halo messages / CPU (s):";
+          << " wall / of it in MPI calls, CPU / of it in MPI calls (s):";
       for (int q = 0; q < ranks; ++q)
-        out << (q ? "," : "") << " " << rank_seconds[q] << " / " << rank_message_seconds[q] << " / " << rank_cpu_seconds[q];
+        out << (q ? "," : "") << " " << rank_seconds[q] << " / " << rank_message_seconds[q] << ", " << rank_cpu_seconds[q]
+            << " / " << rank_message_cpu_seconds[q];
       out << "\n";
     }
     out << "  coordination " << coordination0 << " -> " << coordination_end << "\n";

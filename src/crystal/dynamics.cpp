@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -367,10 +366,8 @@ void Dynamics::step() {
   time += dt_;
   ++steps;
   if (slab_) {
-    const auto t0 = std::chrono::steady_clock::now();
     exchange_halo();  // positions at t + dt, velocities at t + dt/2: what the contact pass reads
     m2 = slab_->comm->max(m2);  // every rank rebuilds on the same step
-    message_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   if (std::sqrt(m2) > 0.5 * skin_) rebuild();
   compute_forces(dt_, true, true);  // forces at t + dt and the second half kick

@@ -95,7 +95,6 @@ class Dynamics {
   long steps = 0;
   long rebuilds = 0;
   double work_in = 0.0;  // cumulative work done by driven particles on the rest (J)
-  double message_seconds = 0.0;  // slab: wall time of the halo exchanges and rebuild triggers
 
   std::size_t size() const { return x.size(); }
   // Slab decomposition (nullptr: serial). The particles this rank integrates and reports are

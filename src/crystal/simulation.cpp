@@ -328,6 +328,7 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   if (hook) hook(dyn, 0);
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = process_cpu_seconds();
+  const double msg0 = comm ? comm->message_seconds : 0.0, msg_cpu0 = comm ? comm->message_cpu_seconds : 0.0;
   for (long s = 1; s <= d.steps; ++s) {
     dyn.step();
     if (s % d.sample_every != 0) continue;
@@ -351,13 +352,15 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   res.steps = dyn.steps;
   res.rebuilds = dyn.rebuilds;
   {  // how the work split: every rank's times, to rank 0 (serial: the one process's)
-    const std::vector<double> mine{res.seconds, dyn.message_seconds, process_cpu_seconds() - cpu0};
+    const std::vector<double> mine{res.seconds, plan ? comm->message_seconds - msg0 : 0.0, process_cpu_seconds() - cpu0,
+                                   plan ? comm->message_cpu_seconds - msg_cpu0 : 0.0};
     std::vector<double> all = mine;
     if (plan) plan->comm->gather(mine, all);
-    for (std::size_t r = 0; 3 * r < all.size(); ++r) {
-      res.rank_seconds.push_back(all[3 * r]);
-      res.rank_message_seconds.push_back(all[3 * r + 1]);
-      res.rank_cpu_seconds.push_back(all[3 * r + 2]);
+    for (std::size_t r = 0; 4 * r < all.size(); ++r) {
+      res.rank_seconds.push_back(all[4 * r]);
+      res.rank_message_seconds.push_back(all[4 * r + 1]);
+      res.rank_cpu_seconds.push_back(all[4 * r + 2]);
+      res.rank_message_cpu_seconds.push_back(all[4 * r + 3]);
     }
   }
   return res;

@@ -54,9 +54,9 @@ struct RunResult {
   long steps = 0;
   long rebuilds = 0;
   double seconds = 0.0;  // wall time of the time loop
-  // Per rank (serial: one), on rank 0 only: the time loop's wall time, the part of it spent in
-  // halo exchanges and rebuild triggers, and the process's CPU time in the loop (s).
-  std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds;
+  // Per rank (serial: one), on rank 0 only: the time loop's wall time and CPU time, and the parts
+  // of each spent in MPI calls (halo exchanges, rebuild triggers, the samples' gathers) (s).
+  std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
 };
 
 // Called at each sample with the dynamics and the sample index (e.g. VTK snapshots).

@@ -38,6 +38,9 @@ class SlabComm {
   virtual void allgather(const std::vector<double>& mine, std::vector<double>& all) = 0;
   // Rank 0 receives every rank's `mine`, concatenated in rank order, into `all` (others: untouched).
   virtual void gather(const std::vector<double>& mine, std::vector<double>& all) = 0;
+  // Time spent in the calls above so far (s): wall clock, and this process's CPU time (Open MPI
+  // polls while it waits, so waiting costs CPU too).
+  double message_seconds = 0.0, message_cpu_seconds = 0.0;
 };
 
 // The communicator of MPI_COMM_WORLD when MPI runs with more than one rank, else nullptr.

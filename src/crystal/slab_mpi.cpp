@@ -2,6 +2,7 @@
 // when CMake found MPI; without it there is no communicator and every run is serial. MPI itself
 // is started by sweep::MpiSession in main (only under a launcher); this file only uses it.
 // Every call comes from the main thread between the OpenMP passes.
+#include <ctime>
 #include <stdexcept>
 
 #include "crystal/slab.hpp"
@@ -16,6 +17,28 @@ namespace granwave::crystal {
 namespace {
 
 constexpr int kTagUp = 1701, kTagDown = 1702;
+
+double cpu_now() {  // all threads of the process
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Adds a call's wall and CPU time to the communicator's counters.
+class Timed {
+ public:
+  explicit Timed(SlabComm& c) : c_(c), wall_(MPI_Wtime()), cpu_(cpu_now()) {}
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+  ~Timed() {
+    c_.message_seconds += MPI_Wtime() - wall_;
+    c_.message_cpu_seconds += cpu_now() - cpu_;
+  }
+
+ private:
+  SlabComm& c_;
+  double wall_, cpu_;
+};
 
 int count_of(std::size_t n) {
   if (n > static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error("internal: an MPI message of more than 2^31 doubles");
@@ -33,6 +56,7 @@ class MpiSlabComm final : public SlabComm {
 
   void exchange(const std::vector<double>& to_below, std::vector<double>& from_below, const std::vector<double>& to_above,
                 std::vector<double>& from_above) override {
+    const Timed timed(*this);
     const int below = rank_ > 0 ? rank_ - 1 : MPI_PROC_NULL;
     const int above = rank_ + 1 < size_ ? rank_ + 1 : MPI_PROC_NULL;
     // Upwards: my top layers to the rank above, the rank below's top layers into my lower halo.
@@ -43,12 +67,14 @@ class MpiSlabComm final : public SlabComm {
   }
 
   double max(double v) override {
+    const Timed timed(*this);
     double m = v;
     MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     return m;
   }
 
   void allgather(const std::vector<double>& mine, std::vector<double>& all) override {
+    const Timed timed(*this);
     const int n = count_of(mine.size());
     std::vector<int> counts(size_), displs(size_);
     MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
@@ -62,6 +88,7 @@ class MpiSlabComm final : public SlabComm {
   }
 
   void gather(const std::vector<double>& mine, std::vector<double>& all) override {
+    const Timed timed(*this);
     const int n = count_of(mine.size());
     std::vector<int> counts(rank_ == 0 ? size_ : 0), displs(rank_ == 0 ? size_ : 0);
     MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
