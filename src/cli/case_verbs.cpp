@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/resources.hpp"
 #include "models.hpp"
+#include "sweep/distributed.hpp"
 
 namespace granwave::cli {
 namespace {
@@ -119,6 +120,9 @@ int cmd_run(const Args& args) {
   }
   req.json = has_flag(args, "--json");
   req.quiet = has_flag(args, "--quiet");
+  if (c.model == config::Model::chain && sweep::world_size() > 1)
+    throw InputError(c.path + ": case.model = \"chain\": a chain run is not split over MPI ranks (a crystal run is); "
+                     "run it without mpirun (or with -n 1)");
   return c.model == config::Model::chain ? chain::run(c, req, std::cout) : crystal::run(c, req, std::cout);
 }
 

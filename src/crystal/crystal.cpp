@@ -42,6 +42,13 @@ std::string json_string(const std::string& s) {
   return o + "\"";
 }
 
+std::string json_array(const std::vector<double>& v) {
+  std::ostringstream o;
+  o << std::setprecision(10) << "[";
+  for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << v[i];
+  return o.str() + "]";
+}
+
 std::string trace_path_for(const config::Case& c, const RunRequest& req) {
   return req.trace_path.empty() ? c.name + ".h5" : req.trace_path;
 }
@@ -126,12 +133,30 @@ void build(const config::Case& c, const std::string& system_path) {
   w.commit();
 }
 
-int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
+int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   const std::string trace_path = trace_path_for(c, req);
+  // Under mpirun with R > 1: this rank's slab of the run (crystal/slab.hpp). Every rank runs
+  // the same code on the same case; rank 0 alone writes the trace and prints.
+  const std::shared_ptr<SlabComm> comm = world_slab_comm();
+  const int ranks = comm ? comm->ranks() : 1;
+  const bool root = !comm || comm->rank() == 0;
+  std::ostream none(nullptr);
+  std::ostream& out = root ? out_all : none;
+  std::ostream& err = root ? std::cerr : none;
+  if (ranks > 1) {
+    const int nl = c.crystal->cells[2];
+    if (ranks > max_slab_ranks(nl))
+      throw InputError(c.path + ": crystal.cells[2] = " + std::to_string(nl) + " layers cannot be split over " +
+                       std::to_string(ranks) + " MPI ranks: each rank owns whole layers, so at most " +
+                       std::to_string(max_slab_ranks(nl)) + " ranks");
+    if (c.output.vtk_every > 0)
+      throw InputError(c.path + ": output.vtk_every = " + std::to_string(c.output.vtk_every) +
+                       ": VTK snapshots are not written by a run split over MPI ranks (set 0, or run without mpirun)");
+  }
   Assessment a = assess(c, req.limits);  // the refusals of `granwave check`, before anything is allocated
   check_output_space(a, trace_path);
   enforce(a, c.path);
-  for (const auto& w : a.warnings) std::cerr << "granwave run: warning: " << w << "\n";
+  for (const auto& w : a.warnings) err << "granwave run: warning: " << w << "\n";
   Packing packing;
   if (req.system_path.empty()) {
     packing = make_packing(c);
@@ -153,11 +178,12 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
   double coordination0 = 0.0, coordination_end = 0.0;
   long steps = 0, rebuilds = 0;
   std::size_t samples = 0;
+  std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
   {
-    const RunResult r = simulate(c, packing, hook);
+    const RunResult r = simulate(c, packing, hook, comm);
     if (vtk) vtk->finish();
-    write_trace(c, packing, r, trace_path);
-    if (r.failed) throw RunError(r.error + " (samples so far kept in " + trace_path + ")");
+    if (root) write_trace(c, packing, r, trace_path);
+    if (r.failed) throw RunError(r.error + " (samples so far kept in " + trace_path + ")");  // on every rank
     const Traces& t = r.traces;
     const std::size_t last = t.samples() - 1;
     auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
@@ -171,7 +197,12 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
     rebuilds = r.rebuilds;
     seconds = r.seconds;
     samples = t.samples();
+    rank_seconds = r.rank_seconds;
+    rank_message_seconds = r.rank_message_seconds;
+    rank_cpu_seconds = r.rank_cpu_seconds;
+    rank_message_cpu_seconds = r.rank_message_cpu_seconds;
   }
+  if (!root) return 0;
 
   // The measures: `granwave analyze` of the trace just written (one ruler, src/analysis).
   const analysis::FileReport rep = analysis::report_file(trace_path);
@@ -182,7 +213,11 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
   if (req.json) {
     out << std::setprecision(10) << "{\"schema\": \"granwave-run/1\", \"case\": " << json_string(c.name)
         << ", \"model\": \"crystal\", \"trace\": " << json_string(trace_path) << ", \"particles\": " << packing.size()
-        << ", \"steps\": " << steps << ", \"samples\": " << samples << ", \"wall_seconds\": " << seconds
+        << ", \"steps\": " << steps << ", \"samples\": " << samples << ", \"mpi_ranks\": " << ranks
+        << ", \"mpi_rank_seconds\": " << json_array(rank_seconds)
+        << ", \"mpi_rank_message_seconds\": " << json_array(rank_message_seconds)
+        << ", \"mpi_rank_cpu_seconds\": " << json_array(rank_cpu_seconds)
+        << ", \"mpi_rank_message_cpu_seconds\": " << json_array(rank_message_cpu_seconds) << ", \"wall_seconds\": " << seconds
         << ", \"particle_steps_per_second\": " << pss << ", \"mode\": \"" << (shear ? "S" : "P")
         << "\", \"speed_theory\": " << (shear ? d.v_s : d.v_p) << ", \"speed_theory_lattice\": ";
     if (std::isfinite(v_lattice))
@@ -199,6 +234,14 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out) {
     out << std::setprecision(5);
     out << "crystal " << c.name << ": " << packing.size() << " particles, " << steps << " steps in " << seconds << " s (" << pss
         << " particle-steps/s), " << rebuilds << " contact-list builds\n";
+    if (ranks > 1) {
+      out << "  split over " << ranks << " MPI ranks (slabs of whole layers, docs/design.md §2.8); per rank, time loop"
+          << " wall / of it in MPI calls, CPU / of it in MPI calls (s):";
+      for (int q = 0; q < ranks; ++q)
+        out << (q ? "," : "") << " " << rank_seconds[q] << " / " << rank_message_seconds[q] << ", " << rank_cpu_seconds[q]
+            << " / " << rank_message_cpu_seconds[q];
+      out << "\n";
+    }
     out << "  coordination " << coordination0 << " -> " << coordination_end << "\n";
     const bool kt = c.contact.kt > 0.0;
     out << "  theory: " << (shear ? "V_s = " : "V_p = ") << (shear ? d.v_s : d.v_p) << " m/s ("

@@ -78,37 +78,70 @@ std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp, 
   return model_of(contact::HookeLaw<false>(normal));
 }
 
+double list_skin(const Packing& packing) {
+  // Skin: 5 % of a diameter keeps next-nearest FCC neighbours (sqrt(2) d away) out of the
+  // list while small-amplitude waves never trigger a rebuild.
+  const std::size_t n = packing.size();
+  const double a_mean = std::accumulate(packing.radius.begin(), packing.radius.end(), 0.0) / std::max<std::size_t>(1, n);
+  return 0.1 * a_mean;
+}
+
 Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, double dt)
     : Dynamics(packing, case_model(cp, packing_density(packing)), dt) {}
 
-Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt)
-    : packing_(packing), model_(std::move(model)), dt_(dt) {
+Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt, const SlabPlan* slab)
+    : model_(std::move(model)), dt_(dt) {
   friction_ = model_->torques();
   arm_shift_ = model_->arm_shift();
   if (!(dt > 0.0)) throw InputError("integrator.dt must be > 0");
-  const std::size_t n = packing.size();
-  x = x0 = packing.x;
-  y = y0 = packing.y;
-  z = z0 = packing.z;
+  // The particles held: all, or this rank's slab and halo (a contiguous range).
+  const std::size_t lo = slab ? slab->held_lo : 0, hi = slab ? slab->held_hi : packing.size();
+  const std::size_t n = hi - lo;
+  auto part = [&](const auto& v) { return std::decay_t<decltype(v)>(v.begin() + lo, v.begin() + hi); };
+  offset_ = lo;
+  own_lo_ = slab ? slab->own_lo - lo : 0;
+  own_hi_ = slab ? slab->own_hi - lo : n;
+  if (slab) {
+    slab_ = std::make_shared<const SlabPlan>(*slab);
+    const SlabPlan& s = *slab_;
+    const int r = s.rank, h = s.halo;
+    const int L0 = s.first_layer[r], L1 = s.first_layer[r + 1];
+    halo_below_ = r > 0 ? s.layer_start[L0 + h] - s.layer_start[L0] : 0;
+    halo_above_ = r + 1 < s.ranks ? s.layer_start[L1] - s.layer_start[L1 - h] : 0;
+  }
+  // Only the lattice, the layers and the fixed flags of the packing are kept here.
+  packing_.box_x = packing.box_x;
+  packing_.box_y = packing.box_y;
+  packing_.d = packing.d;
+  packing_.d_prime = packing.d_prime;
+  packing_.l0 = packing.l0;
+  packing_.delta = packing.delta;
+  packing_.nx = packing.nx;
+  packing_.ny = packing.ny;
+  packing_.layers = packing.layers;
+  packing_.fixed_layers = packing.fixed_layers;
+  packing_.relaxed = packing.relaxed;
+  packing_.relax_steps = packing.relax_steps;
+  packing_.relax_ratio = packing.relax_ratio;
+  packing_.layer = part(packing.layer);
+  packing_.fixed = part(packing.fixed);
+  x = x0 = part(packing.x);
+  y = y0 = part(packing.y);
+  z = z0 = part(packing.z);
   for (auto* v : {&vx, &vy, &vz, &wx, &wy, &wz, &fx, &fy, &fz, &tx, &ty, &tz}) v->assign(n, 0.0);
-  radius = packing.radius;
-  mass = packing.mass;
-  inertia = packing.inertia;
+  radius = part(packing.radius);
+  mass = part(packing.mass);
+  inertia = part(packing.inertia);
   inv_mass.resize(n);
   inv_inertia.resize(n);
   mobile.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     inv_mass[p] = 1.0 / mass[p];
     inv_inertia[p] = 1.0 / inertia[p];
-    mobile[p] = packing.fixed[p] ? 0 : 1;
+    mobile[p] = packing_.fixed[p] ? 0 : 1;
   }
-  // Not kept twice (memory): x0, y0, z0, radius, mass and inertia hold them.
-  for (auto* v : {&packing_.x, &packing_.y, &packing_.z, &packing_.radius, &packing_.mass, &packing_.inertia})
-    *v = std::vector<double>();
-  // Skin: 5 % of a diameter keeps next-nearest FCC neighbours (sqrt(2) d away) out of the
-  // list while small-amplitude waves never trigger a rebuild.
-  const double a_mean = std::accumulate(radius.begin(), radius.end(), 0.0) / std::max<std::size_t>(1, n);
-  skin_ = 0.1 * a_mean;
+  skin_ = list_skin(packing);  // of the whole packing: the same on every rank
+  dissipated_before_.assign(static_cast<std::size_t>(std::max(0, packing.layers)), 0.0);
   rebuild();
   compute_forces(dt_, true);
 }
@@ -119,24 +152,86 @@ void Dynamics::set_mobile(std::size_t p, bool on) {
   rebuild();  // pairs of two non-mobile particles are not in the list
 }
 
+void Dynamics::set_mobile(const std::vector<std::size_t>& which, bool on) {
+  for (std::size_t p : which) mobile[p] = on;
+  rebuild();  // collective under a slab plan: every rank rebuilds, holding the particles or not
+}
+
 double Dynamics::max_displacement_since_build() const {
   double m2 = 0.0;
-  for (std::size_t p = 0; p < size(); ++p) {
+  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
     const double dx = (x[p] - x0[p]) - x_build_[p], dy = (y[p] - y0[p]) - y_build_[p],
                  dz = (z[p] - z0[p]) - z_build_[p];
     m2 = std::max(m2, dx * dx + dy * dy + dz * dz);
   }
+  if (slab_) m2 = slab_->comm->max(m2);
   return std::sqrt(m2);
+}
+
+void Dynamics::exchange_halo() {
+  if (!slab_) return;
+  const std::size_t nf = friction_ ? 9 : 6;  // an angular velocity only for a law with torques
+  std::array<std::vector<double>*, 9> f{&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz};
+  auto pack = [&](std::vector<double>& buf, std::size_t first, std::size_t count) {
+    buf.resize(nf * count);
+    for (std::size_t k = 0; k < nf; ++k) std::copy_n(f[k]->data() + first, count, buf.data() + k * count);
+  };
+  auto unpack = [&](const std::vector<double>& buf, std::size_t first, std::size_t count) {
+    for (std::size_t k = 0; k < nf; ++k) std::copy_n(buf.data() + k * count, count, f[k]->data() + first);
+  };
+  pack(send_below_, own_lo_, halo_below_);
+  pack(send_above_, own_hi_ - halo_above_, halo_above_);
+  recv_below_.resize(nf * own_lo_);
+  recv_above_.resize(nf * (size() - own_hi_));
+  slab_->comm->exchange(send_below_, recv_below_, send_above_, recv_above_);
+  unpack(recv_below_, 0, own_lo_);
+  unpack(recv_above_, own_hi_, size() - own_hi_);
+}
+
+void Dynamics::check_layers() const {
+  // A particle that leaves its layer by more than z_tolerance could meet one beyond the halo:
+  // the slab cannot follow it. The first such particle (lowest index) is named on every rank.
+  const SlabPlan& s = *slab_;
+  std::vector<double> mine{-1.0, 0.0}, all;  // (global index, offset) of this rank's first stray
+  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
+    const double dz = z[p] - s.layer_z[packing_.layer[p]];
+    if (!(std::abs(dz) <= s.z_tolerance)) {
+      mine = {static_cast<double>(p + offset_), dz};
+      break;
+    }
+  }
+  slab_->comm->allgather(mine, all);
+  for (std::size_t r = 0; 2 * r < all.size(); ++r)  // rank order: the lowest index first
+    if (all[2 * r] >= 0.0)
+      throw RunError("particle " + std::to_string(static_cast<long>(all[2 * r])) + " is " +
+                     std::to_string(all[2 * r + 1]) + " m from its layer's height, beyond the " +
+                     std::to_string(s.z_tolerance) +
+                     " m the slab decomposition over MPI ranks allows (docs/design.md §2.8): run without mpirun");
 }
 
 void Dynamics::rebuild() {
   const std::size_t n = size();
+  if (slab_) check_layers();
   std::vector<std::uint8_t> skip(n);
   for (std::size_t p = 0; p < n; ++p) skip[p] = !mobile[p];
   PairList pairs = find_pairs(x.data(), y.data(), z.data(), radius.data(), n, packing_.box_x, packing_.box_y, skin_,
                               skip.data());
+  if (slab_) {
+    // Pairs of two halo particles are left out: the neighbour owning them evaluates them.
+    std::size_t k = 0;
+    for (std::size_t c = 0; c < pairs.size(); ++c) {
+      if (static_cast<std::size_t>(pairs.j[c]) < own_lo_ || static_cast<std::size_t>(pairs.i[c]) >= own_hi_) continue;
+      pairs.i[k] = pairs.i[c];
+      pairs.j[k] = pairs.j[c];
+      pairs.image_x[k] = pairs.image_x[c];
+      pairs.image_y[k] = pairs.image_y[c];
+      ++k;
+    }
+    for (auto* v : {&pairs.i, &pairs.j}) v->resize(k);
+    for (auto* v : {&pairs.image_x, &pairs.image_y}) v->resize(k);
+  }
   ContactList& old = contacts;
-  for (double e : old.dissipated) dissipated_before_ += e;
+  add_dissipated(dissipated_before_.data(), old);  // per layer: no message
   ContactList fresh;
   const std::size_t nc = pairs.size();
   fresh.i = std::move(pairs.i);
@@ -188,6 +283,8 @@ void Dynamics::rebuild() {
     std::vector<std::int32_t> fill(fresh.j_first.begin(), fresh.j_first.end() - 1);
     for (std::size_t c = 0; c < nc; ++c) fresh.j_contacts[fill[fresh.j[c]]++] = static_cast<std::int32_t>(c);
   }
+  fresh.own_first = static_cast<std::size_t>(
+      std::lower_bound(fresh.i.begin(), fresh.i.end(), static_cast<std::int32_t>(own_lo_)) - fresh.i.begin());
   contacts = std::move(fresh);
   x_build_.resize(n);
   y_build_.resize(n);
@@ -207,7 +304,7 @@ void Dynamics::rebuild() {
 template <bool Kick, bool Torques, bool ContactPointArm>
 void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
-  const std::int64_t n = static_cast<std::int64_t>(size());
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
   constexpr bool fr = Torques;
   const std::int32_t* __restrict j_first = C.j_first.data();
   const std::int32_t* __restrict j_contacts = C.j_contacts.data();
@@ -220,7 +317,7 @@ void Dynamics::particle_pass(double h) {
   const double* __restrict cnz = C.nf_z.data();
   const double* __restrict cdelta = C.delta.data();
 #pragma omp parallel for schedule(static) if (threaded())
-  for (std::int64_t p = 0; p < n; ++p) {
+  for (std::int64_t p = p0; p < p1; ++p) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
     // Both spheres feel -a n x f^t (contact::tangential_torque); j gets -f (s + (-f) is s - f).
@@ -284,12 +381,13 @@ void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
 
 void Dynamics::step() {
   const double h = 0.5 * dt_;
-  const std::int64_t n = static_cast<std::int64_t>(size());
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
   // First half kick and drift (translation; sphere orientation is not needed), with the
-  // largest displacement since the list was built (a max: exact in any order).
+  // largest displacement since the list was built (a max: exact in any order). The halo is
+  // not integrated here: its owner does it, and exchange_halo copies it.
   double m2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : m2) if (threaded())
-  for (std::int64_t p = 0; p < n; ++p) {
+  for (std::int64_t p = p0; p < p1; ++p) {
     if (mobile[p]) {
       vx[p] += h * fx[p] * inv_mass[p];
       vy[p] += h * fy[p] * inv_mass[p];
@@ -309,6 +407,10 @@ void Dynamics::step() {
   }
   time += dt_;
   ++steps;
+  if (slab_) {
+    exchange_halo();  // positions at t + dt, velocities at t + dt/2: what the contact pass reads
+    m2 = slab_->comm->max(m2);  // every rank rebuilds on the same step
+  }
   if (std::sqrt(m2) > 0.5 * skin_) rebuild();
   compute_forces(dt_, true, true);  // forces at t + dt and the second half kick
 }
@@ -336,32 +438,96 @@ void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double
   work_in += potential_energy() + dissipated_energy() - before;
 }
 
-double Dynamics::kinetic_energy() const {
-  double e = 0.0;
-  for (std::size_t p = 0; p < size(); ++p) {
+// Per-layer sums over the owned particles (contacts whose i is owned) in index order. Particles
+// and contacts come layer by layer, so kernel::LayerSum keeps the running sum in a register.
+void Dynamics::add_kinetic(double* s) const {
+  kernel::LayerSum sum(s);
+  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
     if (!mobile[p]) continue;
-    e += 0.5 * mass[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
-         0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
+    sum.at(packing_.layer[p]) += 0.5 * mass[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
+                                 0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
   }
-  return e;
 }
 
-double Dynamics::potential_energy() const { return model_->stored_energy(contacts, radius); }
+void Dynamics::add_verlet(double* s) const {
+  kernel::LayerSum sum(s);
+  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
+    if (!mobile[p]) continue;
+    sum.at(packing_.layer[p]) += (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
+                                 (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
+  }
+}
+
+void Dynamics::add_dissipated(double* s, const ContactList& C) const {
+  kernel::LayerSum sum(s);
+  for (std::size_t c = C.own_first; c < C.size(); ++c) sum.at(packing_.layer[C.i[c]]) += C.dissipated[c];
+}
+
+void Dynamics::layer_totals(std::vector<double>* arrays, std::size_t k, double* totals) const {
+  const std::size_t nl = static_cast<std::size_t>(packing_.layers);
+  if (slab_) {  // this rank's layers to every rank; rank order is layer order
+    const SlabPlan& s = *slab_;
+    const std::size_t L0 = s.first_layer[s.rank], L1 = s.first_layer[s.rank + 1];
+    std::vector<double> mine, all;
+    mine.reserve(k * (L1 - L0));
+    for (std::size_t q = 0; q < k; ++q) mine.insert(mine.end(), arrays[q].begin() + L0, arrays[q].begin() + L1);
+    s.comm->allgather(mine, all);
+    for (int r = 0; r < s.ranks; ++r) {
+      const std::size_t a = s.first_layer[r], b = s.first_layer[r + 1];
+      for (std::size_t q = 0; q < k; ++q)
+        std::copy_n(all.data() + k * a + q * (b - a), b - a, arrays[q].begin() + static_cast<std::ptrdiff_t>(a));
+    }
+  }
+  for (std::size_t q = 0; q < k; ++q) {
+    double t = 0.0;
+    for (std::size_t L = 0; L < nl; ++L) t += arrays[q][L];
+    totals[q] = t;
+  }
+}
+
+double Dynamics::kinetic_energy() const {
+  std::vector<double> s(dissipated_before_.size(), 0.0);
+  add_kinetic(s.data());
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return t;
+}
+
+double Dynamics::potential_energy() const {
+  std::vector<double> s(dissipated_before_.size(), 0.0);
+  model_->add_stored_energy(s.data(), contacts, contacts.own_first, packing_.layer.data(), radius.data());
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return t;
+}
 
 double Dynamics::dissipated_energy() const {
-  double e = dissipated_before_;
-  for (double d : contacts.dissipated) e += d;
-  return e;
+  std::vector<double> s = dissipated_before_;
+  add_dissipated(s.data(), contacts);
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return t;
 }
 
 double Dynamics::verlet_correction() const {
-  double s = 0.0;
-  for (std::size_t p = 0; p < size(); ++p) {
-    if (!mobile[p]) continue;
-    s += (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
-         (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
-  }
-  return dt_ * dt_ / 8.0 * s;
+  std::vector<double> s(dissipated_before_.size(), 0.0);
+  add_verlet(s.data());
+  double t = 0.0;
+  layer_totals(&s, 1, &t);
+  return dt_ * dt_ / 8.0 * t;
+}
+
+Dynamics::Energies Dynamics::energies() const {
+  const std::size_t nl = dissipated_before_.size();
+  std::vector<double> s[4] = {std::vector<double>(nl, 0.0), std::vector<double>(nl, 0.0), dissipated_before_,
+                              std::vector<double>(nl, 0.0)};
+  add_kinetic(s[0].data());
+  model_->add_stored_energy(s[1].data(), contacts, contacts.own_first, packing_.layer.data(), radius.data());
+  add_dissipated(s[2].data(), contacts);
+  add_verlet(s[3].data());
+  double t[4];
+  layer_totals(s, 4, t);
+  return {t[0], t[1], t[2], dt_ * dt_ / 8.0 * t[3]};
 }
 
 int Dynamics::touching_contacts_of(std::size_t p) const {

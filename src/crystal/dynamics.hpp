@@ -19,6 +19,7 @@
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 #include "crystal/packing.hpp"
+#include "crystal/slab.hpp"
 
 namespace granwave::crystal {
 
@@ -40,6 +41,10 @@ struct ContactList {
   // before p's own), j_contacts[j_first[p] .. j_first[p + 1]), then those where p is i, the range
   // i_first[p] .. i_first[p + 1] of the list (sorted by i).
   std::vector<std::int32_t> j_first, j_contacts, i_first;
+  // Slab decomposition: the contacts [own_first, size()) have their particle i owned by this
+  // rank (the list is sorted by i; before own_first, i is a halo particle below). Sums over
+  // contacts take these only, so a contact between two ranks counts once. Serial: 0.
+  std::size_t own_first = 0;
   std::size_t size() const { return i.size(); }
 };
 
@@ -56,7 +61,10 @@ class ContactModel {
   // Pass 1 at the current state; springs advance by `increment_time`; rates = false for a jump
   // of positions (no dashpots).
   virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
-  virtual double stored_energy(const ContactList& contacts, const std::vector<double>& radius) const = 0;  // J, touching contacts
+  // Adds the stored energy (J) of each touching contact of [first, size()) to per_layer[layer of
+  // its particle i], in list order (radius: the particles' radii, for laws whose energy depends on them).
+  virtual void add_stored_energy(double* per_layer, const ContactList& contacts, std::size_t first,
+                                 const int* layer, const double* radius) const = 0;
 };
 
 // The law of a case: law = "linear": contact::LinearLuding with friction (k_t > 0 or gamma_t > 0),
@@ -68,12 +76,19 @@ contact::HertzMindlinParams hertz_mindlin_params(const config::ContactParams& co
 // rho of the packing's particles, m/((4/3) pi a^3) of the first one (0 for an empty packing).
 double packing_density(const Packing& packing);
 
+// The contact list's skin: 0.1 mean radius of the packing (the same on every rank).
+double list_skin(const Packing& packing);
+
 class Dynamics {
  public:
   // The packing's fixed particles are not integrated; `dt` is the time step.
   Dynamics(const Packing& packing, const config::ContactParams& contact, double dt);
-  // The same with any contact law (crystal/kernel.hpp: model_of(law)).
-  Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt);
+  // The same with any contact law (crystal/kernel.hpp: model_of(law)). With a slab plan
+  // (crystal/slab.hpp), this rank's slab of an MPI run: the state holds the plan's particles
+  // [held_lo, held_hi) only, indexed from 0 (local index = global index - offset()), and every
+  // global quantity (energies, the rebuild trigger, coordination) is that of the whole crystal.
+  Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt,
+           const SlabPlan* slab = nullptr);
 
   // ---- state (SoA; public so observers and tests can read and set it) ----
   std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;  // positions (unwrapped), velocities, angular velocities
@@ -88,8 +103,19 @@ class Dynamics {
   double work_in = 0.0;  // cumulative work done by driven particles on the rest (J)
 
   std::size_t size() const { return x.size(); }
-  // The packing's lattice and per-particle layer and fixed flags; its positions, radii, masses
-  // and inertias are not kept twice: read x0, y0, z0, radius, mass, inertia.
+  // Slab decomposition (nullptr: serial). The particles this rank integrates and reports are
+  // [own_begin(), own_end()); the others are the halo, copies of the neighbours' boundary
+  // layers refreshed by exchange_halo (their forces are incomplete and never used).
+  const SlabPlan* slab() const { return slab_.get(); }
+  std::size_t offset() const { return offset_; }
+  std::size_t own_begin() const { return own_lo_; }
+  std::size_t own_end() const { return own_hi_; }
+  // Copies the neighbours' boundary layers (positions, velocities, angular velocities with a
+  // law with torques: what contact::Contact reads of a particle) into the halo. Serial: no-op.
+  void exchange_halo();
+  // The packing's lattice and per-particle layer and fixed flags (of the held particles, by
+  // local index); its positions, radii, masses and inertias are not kept twice: read x0, y0,
+  // z0, radius, mass, inertia.
   const Packing& packing() const { return packing_; }
   double dt() const { return dt_; }
   void set_dt(double dt) { dt_ = dt; }
@@ -100,6 +126,9 @@ class Dynamics {
 
   // Start (or stop) integrating particle p (velocity drive makes the source mobile).
   void set_mobile(std::size_t p, bool on);
+  // The same for a set of particles (local indices), with one list rebuild; under a slab plan
+  // every rank calls it together, with the particles it holds (possibly none).
+  void set_mobile(const std::vector<std::size_t>& which, bool on);
   // Rigid step of the particles in `which` by (dx, dy, dz), held afterwards: the contacts are
   // updated statically (normal overlaps only: a jump does not stretch the tangential springs, so
   // f_t = 0 at t = 0 as in seed 002; no dashpot) and the change of stored plus dissipated energy
@@ -121,12 +150,20 @@ class Dynamics {
   bool threaded() const { return size() >= parallel_min_particles; }
 
   // ---- energies (J) ----
+  // Each is a sum per layer (particles in index order, contacts in list order counted in the
+  // layer of their particle i), then over the layers in layer order: the same bits for any
+  // number of ranks (docs/design.md §2.8).
   double kinetic_energy() const;    // translational + rotational, mobile particles
   double potential_energy() const;  // (1/2) k delta^2 + (1/2) k_t |xi|^2 over touching contacts
   double dissipated_energy() const; // cumulative: dashpots, sliding, springs lost on opening
   // dt^2/8 sum(|F|^2/m + |T|^2/I): velocity Verlet conserves E_kin + E_pot minus this exactly
   // for linear forces (the "shadow" energy), so it separates integrator error from physics.
   double verlet_correction() const;
+  // The four at once (one message under a slab plan; the same bits).
+  struct Energies {
+    double kinetic = 0.0, potential = 0.0, dissipated = 0.0, verlet_correction = 0.0;
+  };
+  Energies energies() const;
   int touching_contacts_of(std::size_t p) const;
   double max_displacement_since_build() const;
 
@@ -134,6 +171,14 @@ class Dynamics {
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
   template <bool Kick, bool Torques, bool ContactPointArm>
   void particle_pass(double h);
+  // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
+  void add_kinetic(double* s) const;
+  void add_verlet(double* s) const;
+  void add_dissipated(double* s, const ContactList& list) const;
+  // The totals of `k` per-layer arrays (each packing().layers long): under a slab plan every
+  // rank first receives the other ranks' layers; then each array's layers are added in order.
+  void layer_totals(std::vector<double>* arrays, std::size_t k, double* totals) const;
+  void check_layers() const;  // slab: every owned particle within z_tolerance of its layer
 
   Packing packing_;
   std::shared_ptr<const ContactModel> model_;
@@ -141,7 +186,11 @@ class Dynamics {
   double arm_shift_ = 0.0;  // 0: arm a_i (eq. (4)); 1/2: arm a_i - delta/2 (contact point)
   double dt_ = 0.0;
   double skin_ = 0.0;
-  double dissipated_before_ = 0.0;  // folded in at rebuilds
+  std::vector<double> dissipated_before_;  // per layer, folded in at rebuilds
+  std::shared_ptr<const SlabPlan> slab_;
+  std::size_t offset_ = 0, own_lo_ = 0, own_hi_ = 0;
+  std::size_t halo_below_ = 0, halo_above_ = 0;  // particles sent to (and received from) each side
+  std::vector<double> send_below_, recv_below_, send_above_, recv_above_;
   // Displacements from x0 at the last list build, in single precision (memory): the skin test
   // needs them to ~1e-13 m, float gives 6e-8 of a displacement.
   std::vector<float> x_build_, y_build_, z_build_;

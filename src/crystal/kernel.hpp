@@ -30,6 +30,32 @@ namespace kernel {
 
 inline constexpr std::int64_t kBlock = 1024;  // contacts per block of the contact pass
 
+// s[layer] += ... in call order, the current layer's running sum held in a register (terms come
+// layer by layer, particles and contacts being stored so: the layer rarely changes). The same
+// additions in the same order as s[layer] += v.
+class LayerSum {
+ public:
+  explicit LayerSum(double* s) : s_(s) {}
+  LayerSum(const LayerSum&) = delete;
+  LayerSum& operator=(const LayerSum&) = delete;
+  ~LayerSum() {
+    if (layer_ >= 0) s_[layer_] = sum_;
+  }
+  double& at(int layer) {
+    if (layer != layer_) {
+      if (layer_ >= 0) s_[layer_] = sum_;
+      layer_ = layer;
+      sum_ = s_[layer];
+    }
+    return sum_;
+  }
+
+ private:
+  double* s_;
+  int layer_ = -1;
+  double sum_ = 0.0;
+};
+
 // f(0), ..., f(N - 1), unrolled (history columns).
 template <std::size_t N, class F>
 __attribute__((always_inline)) inline void for_columns(F&& f) {
@@ -181,20 +207,21 @@ class LawModel final : public ContactModel {
     else
       run(d, law_.without_rates(), inc);
   }
-  double stored_energy(const ContactList& C, const std::vector<double>& radius) const override {
+  void add_stored_energy(double* per_layer, const ContactList& C, std::size_t first, const int* layer,
+                         const double* radius) const override {
     using History = typename Law::History;
     constexpr std::size_t NH = contact::history_columns<History>;
-    double e = 0.0;
     std::array<double, NH> h;
-    for (std::size_t c = 0; c < C.size(); ++c) {
+    LayerSum sum(per_layer);
+    for (std::size_t c = first; c < C.size(); ++c) {
       if (C.delta[c] <= 0.0) continue;
       for_columns<NH>([&](std::size_t q) { h[q] = C.history_column(q)[c]; });
       if constexpr (contact::StoredEnergyOfRadii<Law>)
-        law_.add_stored_energy(e, C.delta[c], contact::history_from<History>(h), radius[C.i[c]], radius[C.j[c]]);
+        law_.add_stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h), radius[C.i[c]],
+                               radius[C.j[c]]);
       else
-        law_.add_stored_energy(e, C.delta[c], contact::history_from<History>(h));
+        law_.add_stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h));
     }
-    return e;
   }
   const Law& law() const { return law_; }
 

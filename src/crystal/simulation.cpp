@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -266,16 +268,29 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
 
 double coordination(const Dynamics& dyn) {
   long contacts = 0, particles = 0;
-  for (std::size_t p = 0; p < dyn.size(); ++p) {
+  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
     if (dyn.packing().fixed[p]) continue;
     ++particles;
     contacts += dyn.touching_contacts_of(p);
+  }
+  if (const SlabPlan* s = dyn.slab()) {  // whole numbers: exact in doubles and in any order
+    std::vector<double> all;
+    s->comm->allgather({static_cast<double>(contacts), static_cast<double>(particles)}, all);
+    contacts = particles = 0;
+    for (std::size_t r = 0; 2 * r < all.size(); ++r) {
+      contacts += static_cast<long>(all[2 * r]);
+      particles += static_cast<long>(all[2 * r + 1]);
+    }
   }
   return particles ? static_cast<double>(contacts) / particles : 0.0;
 }
 
 namespace {
 
+// Every observer is a sum per layer over the owned particles or contacts in index order (each
+// layer's sums are complete on the rank owning it), or a total over layers in layer order
+// (Dynamics::energies), or an integer count (coordination). Under a slab plan rank 0 gathers the
+// rows; the other ranks keep the global series only.
 void sample(const Dynamics& dyn, Traces& tr) {
   const Packing& pk = dyn.packing();
   const std::size_t nl = tr.nlayers;
@@ -283,7 +298,7 @@ void sample(const Dynamics& dyn, Traces& tr) {
   std::vector<double> zz, zx;
   layer_stress(dyn, zz, zx);
   std::vector<double> uz(nl, 0.0), ux(nl, 0.0), vz(nl, 0.0), vx(nl, 0.0), count(nl, 0.0);
-  for (std::size_t p = 0; p < dyn.size(); ++p) {
+  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
     const int L = pk.layer[p];
     uz[L] += dyn.z[p] - dyn.z0[p];
     ux[L] += dyn.x[p] - dyn.x0[p];
@@ -291,43 +306,76 @@ void sample(const Dynamics& dyn, Traces& tr) {
     vx[L] += dyn.vx[p];
     count[L] += 1.0;
   }
-  for (std::size_t L = 0; L < nl; ++L) {
-    const double w = count[L] > 0.0 ? 1.0 / count[L] : 0.0;
-    tr.stress_zz.push_back(zz[L]);
-    tr.stress_zx.push_back(zx[L]);
-    tr.displacement_z.push_back(uz[L] * w);
-    tr.displacement_x.push_back(ux[L] * w);
-    tr.velocity_z.push_back(vz[L] * w);
-    tr.velocity_x.push_back(vx[L] * w);
-  }
+  const SlabPlan* slab = dyn.slab();
+  const std::size_t L0 = slab ? slab->first_layer[slab->rank] : 0, L1 = slab ? slab->first_layer[slab->rank + 1] : nl;
+  std::vector<double> rows;  // [6][L1 - L0]: this rank's layers, field by field
+  rows.reserve(6 * (L1 - L0));
+  for (const auto* f : {&zz, &zx}) rows.insert(rows.end(), f->begin() + L0, f->begin() + L1);
+  for (const auto* f : {&uz, &ux, &vz, &vx})
+    for (std::size_t L = L0; L < L1; ++L) rows.push_back((*f)[L] * (count[L] > 0.0 ? 1.0 / count[L] : 0.0));
+  std::vector<double> all;
+  if (slab)
+    slab->comm->gather(rows, all);
+  else
+    all = std::move(rows);
+  if (!slab || slab->rank == 0)
+    for (int r = 0; r < (slab ? slab->ranks : 1); ++r) {
+      const std::size_t a = slab ? slab->first_layer[r] : 0, b = slab ? slab->first_layer[r + 1] : nl;
+      const double* block = all.data() + 6 * a;  // the ranks' blocks follow each other in layer order
+      const std::array out{&tr.stress_zz, &tr.stress_zx, &tr.displacement_z, &tr.displacement_x, &tr.velocity_z,
+                           &tr.velocity_x};
+      for (std::size_t k = 0; k < 6; ++k) out[k]->insert(out[k]->end(), block + k * (b - a), block + (k + 1) * (b - a));
+    }
   tr.coordination.push_back(coordination(dyn));
-  tr.kinetic.push_back(dyn.kinetic_energy());
-  tr.potential.push_back(dyn.potential_energy());
-  tr.dissipated.push_back(dyn.dissipated_energy());
+  const Dynamics::Energies e = dyn.energies();
+  tr.kinetic.push_back(e.kinetic);
+  tr.potential.push_back(e.potential);
+  tr.dissipated.push_back(e.dissipated);
   tr.work_in.push_back(dyn.work_in);
-  tr.verlet_correction.push_back(dyn.verlet_correction());
+  tr.verlet_correction.push_back(e.verlet_correction);
 }
 
-// The particle to blame for a blow-up: the first non-finite one, else the fastest.
-std::size_t culprit(const Dynamics& dyn) {
-  std::size_t worst = 0;
-  double vmax = -1.0;
-  for (std::size_t p = 0; p < dyn.size(); ++p) {
+double process_cpu_seconds() {  // all threads of the process
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The particle to blame for a blow-up: the first non-finite one, else the fastest (the lowest
+// index of equals): (global index, vx, vy, vz).
+std::array<double, 4> culprit(const Dynamics& dyn) {
+  // This rank's candidate: non-finite (0/1), index, |v|^2, vx, vy, vz.
+  std::vector<double> mine{0.0, 0.0, -1.0, 0.0, 0.0, 0.0};
+  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
     const double v2 = dyn.vx[p] * dyn.vx[p] + dyn.vy[p] * dyn.vy[p] + dyn.vz[p] * dyn.vz[p];
-    if (!std::isfinite(v2) || !std::isfinite(dyn.x[p] + dyn.y[p] + dyn.z[p])) return p;
-    if (v2 > vmax) {
-      vmax = v2;
-      worst = p;
+    const bool bad = !std::isfinite(v2) || !std::isfinite(dyn.x[p] + dyn.y[p] + dyn.z[p]);
+    if (bad || v2 > mine[2]) {
+      mine = {bad ? 1.0 : 0.0, static_cast<double>(p + dyn.offset()), v2, dyn.vx[p], dyn.vy[p], dyn.vz[p]};
+      if (bad) break;
     }
   }
-  return worst;
+  std::vector<double> all = mine;
+  if (const SlabPlan* s = dyn.slab()) s->comm->allgather(mine, all);
+  // The serial scan over the ranks' candidates in rank order (= index order).
+  const double* best = all.data();
+  for (std::size_t r = 1; 6 * r < all.size(); ++r) {
+    const double* c = all.data() + 6 * r;
+    if (best[0] == 0.0 && (c[0] != 0.0 || c[2] > best[2])) best = c;
+  }
+  return {best[1], best[3], best[4], best[5]};
 }
 
 }  // namespace
 
-RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook) {
+RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook,
+                   std::shared_ptr<SlabComm> comm) {
   const Derived d = derive(c);
-  Dynamics dyn(packing, case_model(c.contact, c.crystal->density), d.dt);
+  std::optional<SlabPlan> plan;
+  if (comm && comm->ranks() > 1) {
+    if (hook) throw InputError(c.path + ": output.vtk_every: VTK snapshots are not written by a run split over MPI ranks");
+    plan = plan_slab(packing, list_skin(packing), comm, c.path);
+  }
+  Dynamics dyn(packing, case_model(c.contact, c.crystal->density), d.dt, plan ? &*plan : nullptr);
   RunResult res;
   Traces& tr = res.traces;
   tr.nlayers = static_cast<std::size_t>(packing.layers);
@@ -347,21 +395,25 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   }
 
   // Excitation at t = 0 (secs. 2.2 B, 3.1): all bottom fixed layers together.
-  std::vector<std::size_t> source;
-  for (std::size_t p = 0; p < dyn.size(); ++p)
-    if (packing.fixed[p] && packing.layer[p] < packing.fixed_layers) source.push_back(p);
+  // (By global index; `held`: the local indices of those this rank holds, owned or halo: every
+  // rank moves its copies the same way.)
+  std::vector<std::size_t> source, held;
+  for (std::size_t p = 0; p < packing.size(); ++p)
+    if (packing.fixed[p] && packing.layer[p] < packing.fixed_layers) {
+      source.push_back(p);
+      if (p >= dyn.offset() && p - dyn.offset() < dyn.size()) held.push_back(p - dyn.offset());
+    }
   const bool p_mode = c.excitation.mode == config::Excitation::Mode::P;
   const double e_start = dyn.potential_energy();
   if (c.excitation.drive == config::Excitation::Drive::displacement) {
     const double step = c.excitation.amplitude * packing.d;  // a step of amplitude * d, held
-    dyn.displace(source, p_mode ? 0.0 : step, 0.0, p_mode ? step : 0.0);
+    dyn.displace(held, p_mode ? 0.0 : step, 0.0, p_mode ? step : 0.0);
   } else {
     // Initial source velocity, no displacement control afterwards: the source is integrated.
-    for (std::size_t p : source) dyn.set_mobile(p, true);
-    for (std::size_t p : source) {
-      (p_mode ? dyn.vz[p] : dyn.vx[p]) = c.excitation.amplitude;
-      dyn.work_in += 0.5 * dyn.mass[p] * c.excitation.amplitude * c.excitation.amplitude;
-    }
+    dyn.set_mobile(held, true);
+    for (std::size_t p : held) (p_mode ? dyn.vz[p] : dyn.vx[p]) = c.excitation.amplitude;
+    for (std::size_t p : source)  // the packing's masses: the same sum on every rank
+      dyn.work_in += 0.5 * packing.mass[p] * c.excitation.amplitude * c.excitation.amplitude;
     // F(0) of the state (x(0), v(0)): the dashpots see the source's initial velocity, as in
     // LIGGGHTS' setup and the YADE driver's first step (before: F(0) of the source at rest).
     dyn.compute_forces_of_state();
@@ -371,6 +423,8 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   sample(dyn, tr);
   if (hook) hook(dyn, 0);
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
+  const double msg0 = comm ? comm->message_seconds : 0.0, msg_cpu0 = comm ? comm->message_cpu_seconds : 0.0;
   for (long s = 1; s <= d.steps; ++s) {
     dyn.step();
     if (s % d.sample_every != 0) continue;
@@ -378,11 +432,12 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
     const double e = tr.kinetic.back() + tr.potential.back();
     // Energy can only leave (dashpots, friction); growth beyond the budget is an instability.
     if (!std::isfinite(e) || e > 1.5 * budget + 1e-30) {
-      const std::size_t p = culprit(dyn);
+      const auto [index, ux, uy, uz] = culprit(dyn);
+      const auto p = static_cast<std::size_t>(index);
       std::ostringstream msg;
       msg << "crystal run unstable at step " << s << " (t = " << dyn.time << " s): E_kin + E_pot = " << e
           << " J against " << budget << " J available; particle " << p << " (layer " << packing.layer[p]
-          << ") has velocity (" << dyn.vx[p] << ", " << dyn.vy[p] << ", " << dyn.vz[p] << ") m/s";
+          << ") has velocity (" << ux << ", " << uy << ", " << uz << ") m/s";
       res.failed = true;
       res.error = msg.str();
       break;
@@ -392,6 +447,18 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   res.steps = dyn.steps;
   res.rebuilds = dyn.rebuilds;
+  {  // how the work split: every rank's times, to rank 0 (serial: the one process's)
+    const std::vector<double> mine{res.seconds, plan ? comm->message_seconds - msg0 : 0.0, process_cpu_seconds() - cpu0,
+                                   plan ? comm->message_cpu_seconds - msg_cpu0 : 0.0};
+    std::vector<double> all = mine;
+    if (plan) plan->comm->gather(mine, all);
+    for (std::size_t r = 0; 4 * r < all.size(); ++r) {
+      res.rank_seconds.push_back(all[4 * r]);
+      res.rank_message_seconds.push_back(all[4 * r + 1]);
+      res.rank_cpu_seconds.push_back(all[4 * r + 2]);
+      res.rank_message_cpu_seconds.push_back(all[4 * r + 3]);
+    }
+  }
   return res;
 }
 

@@ -2,6 +2,7 @@
 // the time loop, and the observers of docs/design.md §2.2 sampled at the output interval.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "crystal/dynamics.hpp"
 #include "crystal/packing.hpp"
 #include "theory/crystal_theory.hpp"
+#include "crystal/slab.hpp"
 
 namespace granwave::crystal {
 
@@ -78,6 +80,9 @@ struct RunResult {
   long steps = 0;
   long rebuilds = 0;
   double seconds = 0.0;  // wall time of the time loop
+  // Per rank (serial: one), on rank 0 only: the time loop's wall time and CPU time, and the parts
+  // of each spent in MPI calls (halo exchanges, rebuild triggers, the samples' gathers) (s).
+  std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
 };
 
 // Called at each sample with the dynamics and the sample index (e.g. VTK snapshots).
@@ -85,7 +90,12 @@ using SampleHook = std::function<void(const Dynamics&, std::size_t sample)>;
 
 // Excite and integrate to t_end. A NaN or an energy that grows beyond the available budget
 // stops the run: failed = true, traces hold the samples before the failure.
-RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {});
+// With `comm` of more than one rank (world_slab_comm(), crystal/slab.hpp), this rank's slab of
+// the run: every rank calls it with the same case and packing; rank 0's traces are the serial
+// run's, bit for bit, the other ranks' hold only the global series (time, coordination,
+// energies). Throws InputError (crystal.cells[2]) when the ranks cannot split the crystal.
+RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {},
+                   std::shared_ptr<SlabComm> comm = nullptr);
 
 // The trace file of SCHEMA.md §3 (with /system, provenance, case_toml, time_convention
 // "synchronous", root attribute status = "complete" or "failed: ..."), written via NAME.tmp.

@@ -225,9 +225,9 @@ int world_size() { return g_world.size; }
 
 std::string mpi_refusal(const std::string& verb) {
   if (!g_world.refusal.empty()) return g_world.refusal;
-  if (g_world.size > 1 && verb != "sweep")
-    return "started as " + std::to_string(g_world.size) + " MPI ranks, but only `granwave sweep` is distributed over ranks " +
-           "(docs/design.md §2.8); run `granwave " + verb + "` without mpirun (or with -n 1)";
+  if (g_world.size > 1 && verb != "sweep" && verb != "run")
+    return "started as " + std::to_string(g_world.size) + " MPI ranks, but only `granwave sweep` and a crystal's `granwave " +
+           "run` are distributed over ranks (docs/design.md §2.8); run `granwave " + verb + "` without mpirun (or with -n 1)";
   return "";
 }
 

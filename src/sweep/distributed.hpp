@@ -50,8 +50,9 @@ int world_size();    // 1 without MPI
 inline bool is_root() { return world_rank() == 0; }
 
 // Why `granwave VERB` cannot run as started ("" = it can): a build without MPI started as R > 1
-// ranks (each would run the whole job and write the same files), or a verb other than sweep on
-// R > 1 ranks (not distributed yet).
+// ranks (each would run the whole job and write the same files), or a verb other than sweep and
+// run on R > 1 ranks (not distributed; `run` splits a crystal into slabs, crystal/slab.hpp, and
+// refuses a chain).
 std::string mpi_refusal(const std::string& verb);
 
 // Runs f on rank 0 only; if it throws, every rank throws (rank 0 its own exception, the others a

@@ -4,7 +4,7 @@
   sweep_ranks.py identity MPI GRANWAVE STUDY DIR RANKS THREADS  mpirun -n RANKS == the single-process file
   sweep_ranks.py resume   MPI GRANWAVE STUDY DIR                kill -9 of rank 1, then of rank 0, then finish
   sweep_ranks.py idle     MPI GRANWAVE STUDY DIR                more ranks than members: idle ranks, same file
-  sweep_ranks.py refused  MPI GRANWAVE CASE DIR                 `run` on 2 ranks: exit 2, one message
+  sweep_ranks.py refused  MPI GRANWAVE CASE DIR                 `build` on 2 ranks: exit 2, one message
   sweep_ranks.py nompi    MPI GRANWAVE STUDY DIR                a build without MPI started as 2 ranks: exit 2
 
 MPI is the build's GRANWAVE_MPI (ON/OFF). Each test uses its own DIR (ctest -j runs them at once).
@@ -233,13 +233,13 @@ def idle(gw, study, d):
 def refused(gw, case, d):
     out = os.path.join(d, "refused.h5")
     fresh(out)
-    p = run(mpirun(2) + [gw, "run", case, "-o", out], expect=2)
-    msg = "only `granwave sweep` is distributed"
+    p = run(mpirun(2) + [gw, "build", case, "-o", out], expect=2)
+    msg = "are distributed over ranks"
     if p.stderr.count(msg) != 1:
         fail("expected the refusal once on stderr:\n" + p.stderr)
     if os.path.exists(out) or os.path.exists(out + ".tmp"):
-        fail("a refused run wrote " + out)
-    print("granwave run on 2 ranks: exit 2, refused once: " + p.stderr.strip().splitlines()[0])
+        fail("a refused build wrote " + out)
+    print("granwave build on 2 ranks: exit 2, refused once: " + p.stderr.strip().splitlines()[0])
 
 
 def nompi(gw, study, d):
