@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """granwave, LAMMPS and LIGGGHTS side by side: the same crystal, one thread, end to end.
 
-    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,long]
+    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,hertz,long]
         [--codes granwave,lammps,liggghts] [--granwave build/granwave] [--granwave-avx2 build-avx2/granwave]
         [--reps 3] [--out table.md] [--json results.json] [--workdir DIR] [--keep]
 
@@ -114,7 +114,7 @@ CASES = {
     # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
     "small": ("data/cases/crystal40.toml", {}, None),
 }
-DEFAULT_CASES = ("frictionless", "friction", "long")
+DEFAULT_CASES = ("frictionless", "friction", "hertz", "long")
 
 
 class BenchError(Exception):

@@ -252,7 +252,9 @@ int cmd_theory(const Args& args) {
   // Hertz: the two-body impact of two free mean particles (no confinement), closing at v_impact:
   // the excitation's velocity for a velocity drive, else 1 m/s (t_c scales as v^(-1/5)).
   theory::HertzImpact impact;
+  theory::DampedHertzImpact damped;
   if (hertz) {
+    damped = theory::damped_hertz_impact(c.contact.damping_ratio, clip);
     const double E_star = c.contact.youngs_modulus / (2.0 * (1.0 - c.contact.poisson_ratio * c.contact.poisson_ratio));
     const double A = 4.0 / 3.0 * E_star * std::sqrt(0.5 * cr.radius);
     const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
@@ -275,8 +277,11 @@ int cmd_theory(const Args& args) {
         << "  \"hertz_impact\": {\"velocity\": " << quantity(impact.velocity, "m/s")
         << ", \"t_c\": " << quantity(impact.contact_time, "s") << ", \"max_overlap\": " << quantity(impact.max_overlap, "m")
         << ", \"peak_force\": " << quantity(impact.peak_force, "N") << ", \"A\": " << quantity(impact.hertz_constant, "N/m^1.5")
+        << ", \"restitution\": " << quantity(damped.restitution, "1") << ", \"t_c_damped\": "
+        << quantity(damped.time_ratio * impact.contact_time, "s")
         << ", \"note\": \"two free mean particles closing at velocity (the velocity drive's, else 1 m/s): t_c = 2.86827 "
-           "(m*^2/(R* E*^2 v))^(1/5), delta_max = (5 m* v^2/(4 A))^(2/5)\"},\n";
+           "(m*^2/(R* E*^2 v))^(1/5), delta_max = (5 m* v^2/(4 A))^(2/5) (elastic); restitution and t_c_damped with the case's "
+           "damping_ratio (and normal_tension), the same at every velocity\"},\n";
     o << "  \"V_pz\": " << quantity(r.V_pz, "m/s") << ",\n";
     o << "  \"V_sz\": " << quantity(r.V_sz, "m/s") << ",\n";
     o << "  \"V_sy\": " << quantity(r.V_sy, "m/s") << ",\n";
@@ -345,8 +350,10 @@ int cmd_theory(const Args& args) {
     std::printf("Hertz-Mindlin linearised at delta_0 = %.6g m: k_n = 2 E* sqrt(R* delta_0) = %.6g N/m, k_t = 8 G* sqrt(R* "
                 "delta_0) = %.6g N/m, f0 = %.6g N, gamma_n = %.6g kg/s\n",
                 pk.delta, k0.kn, k0.kt, k0.f_n, k0.gamma_n);
-    std::printf("Hertz impact of two free particles at %.4g m/s: t_c = %.6g s, delta_max = %.6g m, peak force %.6g N\n",
-                impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force);
+    std::printf("Hertz impact of two free particles at %.4g m/s: t_c = %.6g s, delta_max = %.6g m, peak force %.6g N "
+                "(elastic); with damping_ratio %g: restitution %.6f, t_c = %.6g s (at any velocity: t_c ~ v^(-1/5))\n",
+                impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force, c.contact.damping_ratio,
+                damped.restitution, damped.time_ratio * impact.contact_time);
   }
   std::printf("representative slab: layers %d..%d, %d particles, coordination %.4f, rho_bulk = %.6g kg/m^3\n",
               r.layer_lo, r.layer_hi, r.n_particles, r.coordination, r.rho_bulk);

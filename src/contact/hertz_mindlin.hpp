@@ -29,8 +29,9 @@
 // history is path dependent the same way (|f_t|^2/(2 k_t), YADE's). Slip losses are booked as in
 // contact/tangential_spring.hpp: the Coulomb force times the slip, (|f_test| - f_C)/k_t.
 //
-// Branch-free throughout (selects; the slip needs a root and a division, cheap next to the
-// contact radius' root): no deferred contacts, the kernel's loop vectorises whole.
+// Branch-free throughout (selects), so the kernel's loop vectorises on AVX2; the vector sweep
+// finishes sticking contacts and defers sliding ones (the slip's root and divisions) to the exact
+// evaluation, as contact/linear_luding.hpp does.
 #pragma once
 #include <cmath>
 #include <numbers>
@@ -199,7 +200,6 @@ struct HertzMindlinLaw {
       }
     }
   }
-
 
  public:
   // The tangential energy of the last evaluation is lost when the contact opens.
