@@ -758,7 +758,7 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
         else
           md << (f == 0 ? "below its kt = 0 value at every kt, not monotonically: the S wave turns the particles, and "
                           "the (u_x, theta_y) coupling reshapes the pulse with kt (no single factor); the seed's S "
-                          "statement holds"
+                          "statement holds against kt = 0, not between the kt > 0 values"
                         : f == 1 ? "below its kt = 0 value at every kt, by more than the stress"
                                  : "falls with kt");
         md << " |\n";
