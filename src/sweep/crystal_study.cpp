@@ -693,9 +693,13 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
            << pm(L.lambda_vt.value / f4.a.l0, L.lambda_vt.error / f4.a.l0, "%.1f") << "; the leading pulse alone: "
            << fmt("%.1f", L.local_speed.value * L.duration.value / f4.a.l0) << "; the first oscillation in a snapshot: "
            << fmt("%.1f", L.oscillation_length.value / f4.a.l0) << " | " << (seeded ? fmt("%g", seed_lambda[q]) + " ± 1" : "—")
-           << " | T = the full first oscillation (1 % arrival to the third 1 % crossing), the seed's reading: a wavelength is a "
-              "full cycle, and V T is the length of the first oscillation in space (snapshot when the first peak passes z). "
-              "The leading pulse alone (1 % arrival to the next crossing, `period = \"pulse\"`) is about 3/4 of it |\n";
+           << " | "
+           << (q == 0 ? "T = the full first oscillation (1 % arrival to the third 1 % crossing), the seed's reading: a "
+                        "wavelength is a full cycle, and V T is the length of the first oscillation in space (snapshot when "
+                        "the first peak passes z). The leading pulse alone (1 % arrival to the next crossing, "
+                        "`period = \"pulse\"`) is about 3/4 of it"
+                      : "as at z/l0 = " + fmt("%g", lambda_z[0]))
+           << " |\n";
         md << "| lambda/l0 = 2 pi/k(V) at z/l0 = " << lambda_z[q] << " | " << fmt("%.1f", 2 * std::numbers::pi / L.k_from_speed.value / f4.a.l0)
            << " | " << (seeded ? fmt("%g", seed_lambda_k[q]) : "—") << " | from the local speed and the fitted V(k->0); far from the source it is ill-conditioned (seed sec. 3.4) |\n";
       }
