@@ -540,6 +540,9 @@ Captured capture(const CrystalMemberRun& r, const std::vector<double>& positions
 // from the far end can come back (t <= (2 z_last - z)/V, V the member's lattice speed).
 struct TrendPoint {
   double v_lattice = 0.0;
+  // (k + kt - 3 f0/d')/(k + kt - f0/d'): the layer stress per unit interface force of a P wave (the
+  // arm and the direction of the prestressed contacts turn with the gap, docs/design.md §3).
+  double stress_factor = kNaN;
   std::array<std::vector<double>, 3> peak;  // stress, velocity, displacement; one per position
 };
 
@@ -552,6 +555,13 @@ TrendPoint trend_point(const CrystalMemberRun& r, const std::vector<double>& pos
                                                             S ? &tr.velocity_x : &tr.velocity_z,
                                                             S ? &tr.displacement_x : &tr.displacement_z};
   const double z_last = tr.layer_z[tr.nlayers - 1 - r.packing.fixed_layers];
+  for (const auto& q : crystal::list_contacts(r.packing, false))
+    if (!r.packing.fixed[q.i] && !r.packing.fixed[q.j]) {
+      const double g = r.c.contact.kn * q.overlap / std::sqrt(q.bx * q.bx + q.by * q.by + q.bz * q.bz);  // f0/d'
+      const double K = r.c.contact.kn + r.c.contact.kt;
+      tp.stress_factor = (K - 3.0 * g) / (K - g);
+      break;
+    }
   for (double zq : positions) {
     std::size_t L = tr.nlayers;
     for (std::size_t p = 0; p < tr.nlayers; ++p)
@@ -768,9 +778,13 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
            << pm(L.lambda_vt.value / f4.a.l0, L.lambda_vt.error / f4.a.l0, "%.1f") << "; the leading pulse alone: "
            << fmt("%.1f", L.local_speed.value * L.duration.value / f4.a.l0) << "; the first oscillation in a snapshot: "
            << fmt("%.1f", L.oscillation_length.value / f4.a.l0) << " | " << (seeded ? fmt("%g", seed_lambda[q]) + " ± 1" : "—")
-           << " | T = the full first oscillation (1 % arrival to the third 1 % crossing), the seed's reading: a wavelength is a "
-              "full cycle, and V T is the length of the first oscillation in space (snapshot when the first peak passes z). "
-              "The leading pulse alone (1 % arrival to the next crossing, `period = \"pulse\"`) is about 3/4 of it |\n";
+           << " | "
+           << (q == 0 ? "T = the full first oscillation (1 % arrival to the third 1 % crossing), the seed's reading: a "
+                        "wavelength is a full cycle, and V T is the length of the first oscillation in space (snapshot when "
+                        "the first peak passes z). The leading pulse alone (1 % arrival to the next crossing, "
+                        "`period = \"pulse\"`) is about 3/4 of it"
+                      : "as at z/l0 = " + fmt("%g", lambda_z[0]))
+           << " |\n";
         md << "| lambda/l0 = 2 pi/k(V) at z/l0 = " << lambda_z[q] << " | " << fmt("%.1f", 2 * std::numbers::pi / L.k_from_speed.value / f4.a.l0)
            << " | " << (seeded ? fmt("%g", seed_lambda_k[q]) : "—") << " | from the local speed and the fitted V(k->0); far from the source it is ill-conditioned (seed sec. 3.4) |\n";
       }
@@ -811,7 +825,8 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
   // with a force F0 that does not depend on kt, while the chain of layers is stiffer by kt. For u_z
   // alone (a P wave turns no particle), m u'' = K (u_{n+1} - 2 u_n + u_{n-1}) with K ~ k + kt - f0/d':
   // u = (F0/K) w(t sqrt(K/m)) with w the same for every kt, hence first peaks of u ~ 1/K, of
-  // v ~ 1/sqrt(K) = V(0)/V(kt) (lattice speeds), of the interface forces and the stress ~ F0: constant.
+  // v ~ 1/sqrt(K) = V(0)/V(kt) (lattice speeds), of the interface forces ~ F0: constant; the layer
+  // stress per interface force is TrendPoint::stress_factor, 1 to order delta/d'.
   if (trend.count({'P', 0.0}) && trend.count({'S', 0.0})) {
     for (char mode : {'P', 'S'}) {
       const TrendPoint& t0 = trend.at({mode, 0.0});
@@ -821,10 +836,11 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
           if (key.first != mode || key.second == 0.0) continue;
           cell << (cell.tellp() > 0 ? "; " : "") << "kt/k = " << key.second << ": ";
           for (std::size_t q = 0; q < fig_z.size(); ++q)
-            cell << (q ? ", " : "") << fmt("%.3f", tp.peak[f][q] / t0.peak[f][q]);
-          if (mode == 'P' && f > 0) {
+            cell << (q ? ", " : "") << fmt(mode == 'P' && f == 0 ? "%.4f" : "%.3f", tp.peak[f][q] / t0.peak[f][q]);
+          if (mode == 'P') {
             const double r = t0.v_lattice / tp.v_lattice;
-            cell << " (closed form " << fmt("%.3f", f == 1 ? r : r * r) << ")";
+            cell << " (closed form "
+                 << (f == 0 ? fmt("%.4f", tp.stress_factor / t0.stress_factor) : fmt("%.3f", f == 1 ? r : r * r)) << ")";
           }
         }
         const char* field = mode == 'P' ? (f == 0 ? "sigma_zz (total)" : f == 1 ? "v_z" : "u_z")
@@ -834,17 +850,19 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
         md << " | " << cell.str() << " | " << (f == 0 ? "'the first peak amplitude decreases as kt is increasing' (P and S)" : "")
            << " | ";
         if (mode == 'P')
-          md << (f == 0 ? "closed form 1: the step's force on the first free layer is the normal springs' alone (the "
-                          "tangential springs start at f_t = 0), and for a P wave every force of the chain scales with "
-                          "it; the seed's P statement does not hold for the total stress"
+          md << (f == 0 ? "the step's force on the first free layer is the normal springs' alone (the tangential "
+                          "springs start at f_t = 0), and for a P wave every interface force scales with it; the stress "
+                          "adds the prestress's turning arm, (k + kt - 3 f0/d')/(k + kt - f0/d'): a rise of order "
+                          "delta/d'. The seed's P statement does not hold for the total stress"
                         : f == 1 ? "falls as V(0)/V(kt) (lattice speeds): the seed's statement holds for the particle "
                                    "velocity (and the kinetic energy, its square)"
                                  : "falls as (V(0)/V(kt))^2, as a stress from the normal forces alone would");
         else
           md << (f == 0 ? "below its kt = 0 value at every kt, not monotonically: the S wave turns the particles, and "
                           "the (u_x, theta_y) coupling reshapes the pulse with kt (no single factor); the seed's S "
-                          "statement holds"
-                        : "falls, more than the stress");
+                          "statement holds against kt = 0, not between the kt > 0 values"
+                        : f == 1 ? "below its kt = 0 value at every kt, by more than the stress"
+                                 : "falls with kt");
         md << " |\n";
       }
     }
