@@ -1,5 +1,6 @@
 // Throughput of the crystal time step (issue 4, "Speed"): particle-steps per second for the
-// 3200-particle crystal of seed 002 with and without friction, on one and two threads; the
+// 3200-particle crystal of seed 002 with and without friction (and with Hertz-Mindlin contacts,
+// issue #14: data/cases/crystal_hertz.toml), on one and two threads; the
 // cost per step as the number of layers grows; memory per particle.
 // Usage: bench_crystal [steps=2000] [repeats=3]
 // Each figure is the best of `repeats` measurements, by wall clock and by CPU time (on a loaded
@@ -81,9 +82,14 @@ StepCost seconds_per_step(crystal::Dynamics& dyn, long steps, int repeats, int t
   return best;
 }
 
+// Issue #14: the same crystal of glass beads with Hertz normal and Mindlin tangential forces.
+config::Case hertz_case() {
+  return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_hertz.toml");
+}
+
 crystal::Dynamics excited(const config::Case& c) {
   const crystal::Packing p = crystal::make_packing(c);
-  crystal::Dynamics dyn(p, c.contact, *c.integrator.dt);
+  crystal::Dynamics dyn(p, crystal::case_model(c.contact, c.crystal->density), crystal::derive(c).dt);
   std::vector<std::size_t> source;
   for (std::size_t q = 0; q < p.size(); ++q)
     if (p.layer[q] < p.fixed_layers) source.push_back(q);
@@ -133,11 +139,15 @@ int main(int argc, char** argv) {
     double kt;
     config::LeverArm arm;
     const char* name;
+    bool hertz = false;
+    config::Case make() const { return hertz ? hertz_case() : seed_case(200, kt, arm); }
   };
-  for (const Row& row : {Row{0.0, config::LeverArm::radius, "4x4x200, frictionless"},
-                         Row{1e5, config::LeverArm::radius, "4x4x200, kt = k (friction)"},
-                         Row{1e5, config::LeverArm::contact_point, "4x4x200, kt = k, contact-point arm"}}) {
-    const config::Case c = seed_case(200, row.kt, row.arm);
+  const Row rows[] = {Row{0.0, config::LeverArm::radius, "4x4x200, frictionless"},
+                      Row{1e5, config::LeverArm::radius, "4x4x200, kt = k (friction)"},
+                      Row{1e5, config::LeverArm::contact_point, "4x4x200, kt = k, contact-point arm"},
+                      Row{0.0, config::LeverArm::radius, "4x4x200, Hertz-Mindlin", true}};
+  for (const Row& row : rows) {
+    const config::Case c = row.make();
     for (int threads : {1, 2}) {
 #ifdef _OPENMP
       omp_set_num_threads(threads);
@@ -158,10 +168,8 @@ int main(int argc, char** argv) {
   // The passes alone, 1 thread: ns per contact for the contact pass, per particle for a step.
   std::printf("\npasses alone (1 thread, fastest of %d calls)\n%-34s %9s %14s %16s %16s\n", 50 * repeats, "case",
               "contacts", "ns/contact", "step ns/particle", "step-contact ns");
-  for (const Row& row : {Row{0.0, config::LeverArm::radius, "4x4x200, frictionless"},
-                         Row{1e5, config::LeverArm::radius, "4x4x200, kt = k (friction)"},
-                         Row{1e5, config::LeverArm::contact_point, "4x4x200, kt = k, contact-point arm"}}) {
-    crystal::Dynamics dyn = excited(seed_case(200, row.kt, row.arm));
+  for (const Row& row : rows) {
+    crystal::Dynamics dyn = excited(row.make());
     dyn.parallel_min_particles = dyn.size() + 1;
     for (int k = 0; k < 20; ++k) dyn.step();
     const int calls = 50 * repeats;

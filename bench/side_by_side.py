@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """granwave, LAMMPS and LIGGGHTS side by side: the same crystal, one thread, end to end.
 
-    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,long]
+    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,hertz,long]
         [--codes granwave,lammps,liggghts] [--granwave build/granwave] [--granwave-avx2 build-avx2/granwave]
         [--reps 3] [--out table.md] [--json results.json] [--workdir DIR] [--keep]
 
@@ -29,6 +29,9 @@ frictionless  data/cases/crystal_p.toml: the seed's 4 x 4 x 200 FCC crystal (320
 friction      data/cases/crystal_kt10.toml: the same with kt = k, mu = 0.5, lever_arm = "contact_point"
               (seed 002 sec. 3.5)
 long          crystal_p with 4 x 4 x 20000 cells (320 000 particles), 200 steps
+hertz         data/cases/crystal_hertz.toml: the same crystal of glass beads with Hertz normal and Mindlin
+              tangential forces (issue #14), 6000 steps of 1.7e-7 s; LAMMPS `pair_style granular` with
+              `hertz/material E 0 nu tangential mindlin NULL 0 mu`, LIGGGHTS `model hertz tangential history`
 small         data/cases/crystal40.toml (4 x 4 x 40, 1300 steps): a smoke case for the tests, not a benchmark
 
 Each code's set-up, and why it is the fastest fair equivalent
@@ -104,10 +107,14 @@ CASES = {
     "frictionless": ("data/cases/crystal_p.toml", {}, None),
     "friction": ("data/cases/crystal_kt10.toml", {}, None),
     "long": ("data/cases/crystal_p.toml", {"cells": "[4, 4, 20000]", "t_end": "4e-5"}, "1:4"),
+    # issue #14: Hertz normal + Mindlin tangential, the same 4 x 4 x 200 crystal (glass beads at
+    # delta_0 = 1e-4 d), 6000 steps of dt = 1.7e-7 s (t_c/52), output every 5 steps as above
+    "hertz": ("data/cases/crystal_hertz.toml",
+              {"dt_over_tc": ("dt", "1.7e-7"), "t_end": "1.02e-3", "interval": "8.5e-7"}, None),
     # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
     "small": ("data/cases/crystal40.toml", {}, None),
 }
-DEFAULT_CASES = ("frictionless", "friction", "long")
+DEFAULT_CASES = ("frictionless", "friction", "hertz", "long")
 
 
 class BenchError(Exception):
@@ -204,7 +211,8 @@ def case_text(name: str) -> str:
         text = f.read()
     text = re.sub(r'(?m)^name = ".*"$', 'name = "bench_%s"' % name, text, count=1)
     for key, val in repl.items():
-        text, n = re.subn(r"(?m)^%s = .*$" % re.escape(key), "%s = %s" % (key, val), text, count=1)
+        new_key, val = val if isinstance(val, tuple) else (key, val)  # (key, value): the line takes another key
+        text, n = re.subn(r"(?m)^%s = .*$" % re.escape(key), "%s = %s" % (new_key, val), text, count=1)
         if n != 1:
             raise BenchError("%s: no key %s to replace for case %s" % (base, key, name))
     return text
@@ -214,11 +222,21 @@ def _g(x: float) -> str:
     return repr(float(x))
 
 
+def is_hertz(case: dict) -> bool:
+    return case.get("contact", {}).get("law", "linear") == "hertz_mindlin"
+
+
 def _check_renderable(case: dict, system: dict) -> None:
     """The decks render the benchmark's crystals; anything else is refused, not approximated."""
     c = T.contact_params(case)
     ex = T.excitation(case)
     bad = []
+    if is_hertz(case):
+        if c.get("damping_ratio", 0.0) != 0:
+            bad.append("damping_ratio must be 0 (each code's Hertz damping has its own constant)")
+        if c.get("tangential", "mindlin") != "mindlin" or c.get("tangential_history", "displacement") != "displacement":
+            bad.append('tangential = "mindlin" with tangential_history = "displacement" only (LAMMPS mindlin, '
+                       "LIGGGHTS tangential history)")
     if case["case"]["model"] != "crystal":
         bad.append("model = %r (crystal only)" % case["case"]["model"])
     if c["gamma_n"] != 0 or c["gamma_t"] != 0:
@@ -266,8 +284,10 @@ def deck_values(case: dict, system: dict) -> dict:
     nsteps, every = T.sampling(case, dt)
     r = float(np.min(system["radius"]))
     z0 = float(np.min(np.asarray(system["position"], float)[lay["layer"] == 0, 2]))
-    friction = c["kt"] > 0
-    return dict(case_name=case["case"]["name"], dt=_g(dt), nsteps=nsteps, every=every,
+    hertz = is_hertz(case)
+    friction = c["kt"] > 0 or hertz
+    return dict(case_name=case["case"]["name"], dt=_g(dt), nsteps=nsteps, every=every, hertz=hertz,
+                youngs=c.get("youngs_modulus", 0.0), poisson=c.get("poisson_ratio", 0.0),
                 skin=_g(SKIN_OVER_RADIUS * r), neigh_every=NEIGH_EVERY, l0=_g(lay["l0"]),
                 origin=_g(z0 - 0.5 * lay["l0"]), friction=friction, kn=c["kn"], kt=c["kt"], mu=c["mu_static"],
                 excitation_line="displace_atoms  source move 0 0 %s units box" % _g(float(T.excitation(case)["amplitude"]) * lay["d"]),
@@ -276,7 +296,15 @@ def deck_values(case: dict, system: dict) -> dict:
 
 def render_lammps(case: dict, system: dict, workdir: str) -> dict:
     v = deck_values(case, system)
-    if v["friction"]:
+    v["pair_coeff"] = ""
+    if v["hertz"]:
+        # pair granular: F_n = (4/3) E* a delta with E* mixed from E, nu (hertz/material; eta_n0 = 0: no
+        # damping), Mindlin's k_t = 8 G* a from the same E, nu (NULL), no tangential damping, mu
+        v["pair_style"] = "granular"
+        v["pair_coeff"] = "hertz/material %s 0.0 %s tangential mindlin NULL 0.0 %s" % (
+            _g(v["youngs"]), _g(v["poisson"]), _g(v["mu"]))
+        v["variant"] = "(granular hertz/material + tangential mindlin, fix nve/sphere)"
+    elif v["friction"]:
         v["pair_style"] = "gran/hooke/history %s %s 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["kt"]), _g(v["mu"]))
         v["variant"] = "(gran/hooke/history, fix nve/sphere)"
     else:
@@ -294,11 +322,31 @@ def render_lammps(case: dict, system: dict, workdir: str) -> dict:
 def render_liggghts(case: dict, system: dict, workdir: str) -> dict:
     v = deck_values(case, system)
     nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
+    three = lambda x: " ".join([_g(x)] * 3)  # noqa: E731
     v.update(kn9=nine(v["kn"]), kt9=nine(v["kt"]), zero9=nine(0.0), mu9=nine(v["mu"]),
              tangential="history" if v["friction"] else "no_history",
              # LIGGGHTS 3.8 refuses shear history with newton on (pair_gran.cpp: "requires newton pair off")
              newton="off" if v["friction"] else "on",
              variant="(hooke/stiffness, tangential %s)" % ("history" if v["friction"] else "no_history"))
+    if v["hertz"]:
+        # model hertz: k_n = (4/3) E* sqrt(R* delta), k_t = 8 G* sqrt(R* delta) from youngsModulus and
+        # poissonsRatio; coefficientRestitution 1: ln e = 0, no damping
+        v["properties"] = "\n".join([
+            "hard_particles  yes  # E = 63 GPa: LIGGGHTS refuses E > 1e9 Pa in SI units without it",
+            "fix             m1 all property/global youngsModulus peratomtype " + three(v["youngs"]),
+            "fix             m2 all property/global poissonsRatio peratomtype " + three(v["poisson"]),
+            "fix             m3 all property/global coefficientRestitution peratomtypepair 3 " + nine(1.0),
+            "fix             m5 all property/global coefficientFriction peratomtypepair 3 " + nine(v["mu"])])
+        v["pair_style"] = "gran model hertz tangential history"
+        v["variant"] = "(hertz, tangential history)"
+    else:
+        v["properties"] = "\n".join([
+            "fix             m1 all property/global kn peratomtypepair 3 " + v["kn9"],
+            "fix             m2 all property/global kt peratomtypepair 3 " + v["kt9"],
+            "fix             m3 all property/global gamman_abs peratomtypepair 3 " + v["zero9"],
+            "fix             m4 all property/global gammat_abs peratomtypepair 3 " + v["zero9"],
+            "fix             m5 all property/global coefficientFriction peratomtypepair 3 " + v["mu9"]])
+        v["pair_style"] = "gran model hooke/stiffness tangential %s absolute_damping on limitForce off" % v["tangential"]
     with open(os.path.join(DECKS, "liggghts_crystal.in.tmpl")) as f:
         deck = string.Template(f.read()).substitute(v)
     write_data_file(os.path.join(workdir, "data.system"), system, v["lay"])

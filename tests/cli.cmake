@@ -75,3 +75,22 @@ s = lambda v: v.decode() if isinstance(v, bytes) else str(v); \
 assert (s(a['contact_law']), s(a['tangential_history'])) == ('linear', 'displacement'), dict(a); \
 assert (s(b['contact_law']), s(b['tangential_history']), s(b['lever_arm'])) == ('hertz_mindlin', 'force', 'contact_point'), dict(b)\"")
 set_tests_properties("cli: crystal traces record contact_law and tangential_history" PROPERTIES LABELS "cli")
+# Issue #14: granwave theory of a Hertz-Mindlin case, against the closed forms linearised at delta_0
+# (glass beads: E = 63 GPa, nu = 0.23, rho = 2500, a = 1 mm, delta_0 = 1e-4 d): k_n = 2 E* sqrt(R* delta_0),
+# k_t = 8 G* sqrt(R* delta_0), f0 = (4/3) E* sqrt(R*) delta_0^(3/2), eq. (10)'s V_pz = d' sqrt(k_n/m) sqrt(1 + k_t/k_n),
+# the linearised t_c = pi sqrt(m*/k_n), the Hertz impact time at 1 m/s 2.86827 (m*^2/(R* E*^2 v))^(1/5); to the JSON's 10 digits.
+add_test(NAME "cli: theory of a Hertz-Mindlin case: k_n, k_t, f0, V_pz, t_c against the closed forms at delta_0"
+  COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_hertz.toml --json --nk 9 > ${CLI_TMP}/hertz_theory.json && \
+/usr/bin/python3 -c \"import json, math; d = json.load(open('${CLI_TMP}/hertz_theory.json')); v = lambda k: d[k]['value']; \
+E, nu, rho, a = 63e9, 0.23, 2500.0, 1e-3; d0 = 1e-4 * 2 * a; Rs = a / 2; m = rho * 4 / 3 * math.pi * a ** 3; ms = m / 2; \
+Es = E / (2 * (1 - nu * nu)); Gs = E / (2 * (1 + nu)) / (2 * (2 - nu)); kn = 2 * Es * math.sqrt(Rs * d0); kt = 8 * Gs * math.sqrt(Rs * d0); \
+close = lambda x, y, e: abs(x / y - 1) < e; dp = 2 * a - d0; \
+assert d['contact_law'] == 'hertz_mindlin'; \
+assert close(v('k_n'), kn, 2e-9) and close(v('k_t'), kt, 2e-9), (v('k_n'), kn, v('k_t'), kt); \
+assert close(v('f0'), 4 / 3 * Es * math.sqrt(Rs) * d0 ** 1.5, 2e-9); \
+assert close(v('V_pz'), dp * math.sqrt(kn / m) * math.sqrt(1 + kt / kn), 2e-9), v('V_pz'); \
+assert close(v('V_pz_frictionless'), dp * math.sqrt(kn / m), 2e-9); \
+assert close(v('V_pz_lattice'), v('V_pz'), 1e-4); \
+assert close(v('t_c'), math.pi * math.sqrt(ms / kn), 2e-9); \
+h = d['hertz_impact']; assert close(h['t_c']['value'], 2.86827 * (ms * ms / (Rs * Es * Es * 1.0)) ** 0.2, 1e-6)\"")
+set_tests_properties("cli: theory of a Hertz-Mindlin case: k_n, k_t, f0, V_pz, t_c against the closed forms at delta_0" PROPERTIES LABELS "cli")

@@ -231,21 +231,12 @@ int cmd_theory(const Args& args) {
   const auto& cr = *c.crystal;
 
   const crystal::Packing pk = crystal::make_packing(c);
-  // The contact as eq. (10) sees it: the linear law's keys, or Hertz-Mindlin linearised at the
-  // static overlap delta_0 (k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* sqrt(R* delta_0)); the
-  // prestress f0 is each contact's own static force (k delta, or the Hertz force).
+  // The contact as eq. (10) sees it: the linear law's keys, or Hertz-Mindlin linearised at each
+  // contact's overlap (delta_0 for a regular packing: k_n = 2 E* sqrt(R* delta_0), k_t = 8 G*
+  // sqrt(R* delta_0)); the prestress f0 is each contact's own static force (k delta, or Hertz's).
   const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
   const crystal::ContactAt k0 = crystal::contact_at(c, pk.delta);
-  theory::ContactNetwork net;
-  net.box_x = pk.box_x;
-  net.box_y = pk.box_y;
-  net.k = k0.kn;
-  net.kt = k0.kt;
-  for (std::size_t p = 0; p < pk.size(); ++p)
-    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
-  for (const auto& q : crystal::list_contacts(pk, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
-                            crystal::static_normal_force(c, pk.radius[q.i], pk.radius[q.j], q.overlap)});
+  const theory::ContactNetwork net = crystal::contact_network(c, pk);
 
   theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
   if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &slab.layer_lo, &slab.layer_hi);
@@ -261,7 +252,9 @@ int cmd_theory(const Args& args) {
   // Hertz: the two-body impact of two free mean particles (no confinement), closing at v_impact:
   // the excitation's velocity for a velocity drive, else 1 m/s (t_c scales as v^(-1/5)).
   theory::HertzImpact impact;
+  theory::DampedHertzImpact damped;
   if (hertz) {
+    damped = theory::damped_hertz_impact(c.contact.damping_ratio, clip);
     const double E_star = c.contact.youngs_modulus / (2.0 * (1.0 - c.contact.poisson_ratio * c.contact.poisson_ratio));
     const double A = 4.0 / 3.0 * E_star * std::sqrt(0.5 * cr.radius);
     const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
@@ -284,8 +277,11 @@ int cmd_theory(const Args& args) {
         << "  \"hertz_impact\": {\"velocity\": " << quantity(impact.velocity, "m/s")
         << ", \"t_c\": " << quantity(impact.contact_time, "s") << ", \"max_overlap\": " << quantity(impact.max_overlap, "m")
         << ", \"peak_force\": " << quantity(impact.peak_force, "N") << ", \"A\": " << quantity(impact.hertz_constant, "N/m^1.5")
+        << ", \"restitution\": " << quantity(damped.restitution, "1") << ", \"t_c_damped\": "
+        << quantity(damped.time_ratio * impact.contact_time, "s")
         << ", \"note\": \"two free mean particles closing at velocity (the velocity drive's, else 1 m/s): t_c = 2.86827 "
-           "(m*^2/(R* E*^2 v))^(1/5), delta_max = (5 m* v^2/(4 A))^(2/5)\"},\n";
+           "(m*^2/(R* E*^2 v))^(1/5), delta_max = (5 m* v^2/(4 A))^(2/5) (elastic); restitution and t_c_damped with the case's "
+           "damping_ratio (and normal_tension), the same at every velocity\"},\n";
     o << "  \"V_pz\": " << quantity(r.V_pz, "m/s") << ",\n";
     o << "  \"V_sz\": " << quantity(r.V_sz, "m/s") << ",\n";
     o << "  \"V_sy\": " << quantity(r.V_sy, "m/s") << ",\n";
@@ -354,8 +350,10 @@ int cmd_theory(const Args& args) {
     std::printf("Hertz-Mindlin linearised at delta_0 = %.6g m: k_n = 2 E* sqrt(R* delta_0) = %.6g N/m, k_t = 8 G* sqrt(R* "
                 "delta_0) = %.6g N/m, f0 = %.6g N, gamma_n = %.6g kg/s\n",
                 pk.delta, k0.kn, k0.kt, k0.f_n, k0.gamma_n);
-    std::printf("Hertz impact of two free particles at %.4g m/s: t_c = %.6g s, delta_max = %.6g m, peak force %.6g N\n",
-                impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force);
+    std::printf("Hertz impact of two free particles at %.4g m/s: t_c = %.6g s, delta_max = %.6g m, peak force %.6g N "
+                "(elastic); with damping_ratio %g: restitution %.6f, t_c = %.6g s (at any velocity: t_c ~ v^(-1/5))\n",
+                impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force, c.contact.damping_ratio,
+                damped.restitution, damped.time_ratio * impact.contact_time);
   }
   std::printf("representative slab: layers %d..%d, %d particles, coordination %.4f, rho_bulk = %.6g kg/m^3\n",
               r.layer_lo, r.layer_hi, r.n_particles, r.coordination, r.rho_bulk);
@@ -365,7 +363,7 @@ int cmd_theory(const Args& args) {
               r.ratio_zxzx_yxyx, r.ratio_zzzz_zxzx);
   std::printf("symmetry: major %.2e, minor %.2e (kt term: major only)\n", r.major_asymmetry, r.minor_asymmetry);
   std::printf("V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (frictionless: %.4f, %.4f)%s\n", r.V_pz, r.V_sz, r.V_sy,
-              r.V_pz_frictionless, r.V_sz_frictionless, hertz ? " (no rotations; linearised at delta_0)" : "");
+              r.V_pz_frictionless, r.V_sz_frictionless, hertz ? " (no rotations; linearised at each contact's overlap)" : "");
   std::printf("lattice: omega_0 = %.1f 1/s (P), %.1f 1/s (S); v_k0 = omega_0 l0/2 = %.4f, %.4f m/s\n", r.omega0_p,
               r.omega0_s, r.V_k0_p, r.V_k0_s);
   std::printf("         with the static contact forces' geometric stiffness: %.1f, %.1f 1/s\n", r.omega0_p_prestressed,

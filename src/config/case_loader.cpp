@@ -331,9 +331,6 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
       if (!(c.crystal->overlap > 0.0))
         r.fail("crystal.overlap", "must be > 0 with contact.law = \"hertz_mindlin\" (a confined crystal: the Hertz "
                "stiffness vanishes at zero overlap)", root.get("crystal"));
-      if (c.crystal->polydispersity > 0.0)
-        r.fail("crystal.polydispersity", "must be 0 with contact.law = \"hertz_mindlin\" (the polydisperse relaxation "
-               "and theory are those of the linear law only so far)", root.get("crystal"));
     }
     if (const toml::table* e = r.table(root, "", "excitation", false)) c.excitation = read_excitation(r, *e);
   }

@@ -29,8 +29,9 @@
 // history is path dependent the same way (|f_t|^2/(2 k_t), YADE's). Slip losses are booked as in
 // contact/tangential_spring.hpp: the Coulomb force times the slip, (|f_test| - f_C)/k_t.
 //
-// Branch-free throughout (selects; the slip needs a root and a division, cheap next to the
-// contact radius' root): no deferred contacts, the kernel's loop vectorises whole.
+// Branch-free throughout (selects), so the kernel's loop vectorises on AVX2; the vector sweep
+// finishes sticking contacts and defers sliding ones (the slip's root and divisions) to the exact
+// evaluation, as contact/linear_luding.hpp does.
 #pragma once
 #include <cmath>
 #include <numbers>
@@ -126,7 +127,20 @@ struct HertzMindlinLaw {
     shift = p.contact_point_arm ? 0.5 : 0.0;
   }
 
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const {
+  // Any contact: sticking or sliding (eqs. (5), (7), (8)).
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
+  // The kernel's vector sweep: sticking contacts finished, sliding ones deferred to the exact
+  // evaluation above (their root and divisions cost more than the rest of the law), bit for bit
+  // the same results as evaluating every contact exactly.
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const
+    requires(H != MindlinHistory::none)
+  {
+    return respond<false>(c, h);
+  }
+
+ private:
+  template <bool Exact>
+  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
     const double d = select(c.delta > 0.0, c.delta, 0.0);
     const double r_eff = c.a_i * c.a_j / (c.a_i + c.a_j);
     const double a = std::sqrt(r_eff * d);  // contact radius
@@ -165,22 +179,29 @@ struct HertzMindlinLaw {
       const double limit = select(h.sliding != 0.0, f_dynamic, p.mu_static * f_pos);
       const double magnitude2 = f_test.squaredNorm();
       const bool sliding = magnitude2 > limit * limit;
-      const double magnitude = std::sqrt(magnitude2);
-      // Eq. (8): f_t = f_C^d t while sliding (magnitude > limit >= f_dynamic >= 0, so t is defined).
-      const Vec3 f_t = select(sliding, f_test * (f_dynamic / magnitude), f_test);
-      if constexpr (H == MindlinHistory::force) {
-        h.t_x = f_t.x(), h.t_y = f_t.y(), h.t_z = f_t.z();
+      const Vec3 kept_stick = H == MindlinHistory::force ? f_test : xi;
+      if constexpr (!Exact) {  // sticking: f_t = f_test; a sliding contact is evaluated again exactly
+        h.t_x = kept_stick.x(), h.t_y = kept_stick.y(), h.t_z = kept_stick.z();
+        h.sliding = 0.0;
+        h.a = a;
+        return {f_n * c.n + f_test, c.n.cross(f_test), loss, sliding};
       } else {
-        const Vec3 kept = select(sliding, f_t * (-1.0 / k_t), xi);  // eq. (7)
+        const double magnitude = std::sqrt(magnitude2);
+        // Eq. (8): f_t = f_C^d t while sliding (magnitude > limit >= f_dynamic >= 0, so t is defined).
+        const Vec3 f_t = select(sliding, f_test * (f_dynamic / magnitude), f_test);
+        // Eq. (7): the history of a slip holds the Coulomb force (as a displacement: -f_t/k_t).
+        const Vec3 kept_slip = H == MindlinHistory::force ? f_t : f_t * (-1.0 / k_t);
+        const Vec3 kept = select(sliding, kept_slip, kept_stick);
         h.t_x = kept.x(), h.t_y = kept.y(), h.t_z = kept.z();
+        h.sliding = select(sliding, 1.0, 0.0);
+        h.a = a;
+        loss += select(sliding, f_dynamic * (magnitude - f_dynamic) / k_t, 0.0);  // Coulomb force x slip
+        return {f_n * c.n + f_t, c.n.cross(f_t), loss};
       }
-      h.sliding = select(sliding, 1.0, 0.0);
-      h.a = a;
-      loss += select(sliding, f_dynamic * (magnitude - f_dynamic) / k_t, 0.0);  // Coulomb force x slip
-      return {f_n * c.n + f_t, c.n.cross(f_t), loss};
     }
   }
 
+ public:
   // The tangential energy of the last evaluation is lost when the contact opens.
   double opening_loss(const History& h) const {
     if constexpr (H == MindlinHistory::none) {

@@ -58,13 +58,13 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
   out << "  d = " << p.d << " m, d' = d(1 - overlap) = " << p.d_prime << " m, l0 = d'/sqrt(2) = " << p.l0
       << " m, delta = " << p.delta << " m, box " << p.box_x << " x " << p.box_y << " m\n";
   out << "  mass m = " << d.mass << " kg, m_ij = " << d.m_ij << " kg\n";
-  out << "  contact: omega = sqrt(k/m_ij - eta_0^2) = " << d.omega << " 1/s, t_c = pi/omega = " << d.t_c
+  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
+  out << (hertz ? "  contact linearised at delta_0" : "  contact") << ": omega = sqrt(k/m_ij - eta_0^2) = " << d.omega << " 1/s, t_c = pi/omega = " << d.t_c
       << " s, restitution exp(-eta_0 t_c) = " << d.restitution
       << (c.contact.normal_tension == config::NormalTension::clip ? " (\"allow\" value; \"clip\" ends earlier)" : "")
       << "\n";
   out << "  dt = " << d.dt << " s = t_c/" << d.t_c / d.dt << "; stability limit (conservative) " << d.dt_stable
       << " s; " << d.steps << " steps, a sample every " << d.sample_every << " steps\n";
-  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
   if (hertz)
     out << "  contact law hertz_mindlin (tangential history " << tangential_history_name(c.contact)
         << "), linearised at delta_0: k_n = 2 E* sqrt(R* delta_0) = " << d.kn << " N/m, k_t = 8 G* sqrt(R* delta_0) = "

@@ -374,18 +374,16 @@ int Dynamics::touching_contacts_of(std::size_t p) const {
 
 // ---- relaxation ----
 
-RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps) {
-  config::ContactParams cp;
-  cp.kn = kn;
-  cp.kt = 0.0;
-  cp.gamma_n = 0.0;
+namespace {
+
+// FIRE with the frictionless, undamped form of a law whose stiffest contact has time t_c.
+RelaxResult fire(Packing& packing, std::shared_ptr<const ContactModel> model, double t_c, double tolerance,
+                 long max_steps) {
   // FIRE parameters of Bitzek et al., PRL 97, 170201 (2006).
-  const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
-  const double t_c = contact::contact_time({kn, 0.0, false}, 0.5 * m_min);
   const double dt_max = 0.1 * t_c, f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
   const int n_min = 5, n_quiet = 50;
   double dt = 0.02 * t_c, alpha = alpha_0;
-  Dynamics dyn(packing, cp, dt);
+  Dynamics dyn(packing, std::move(model), dt);
   const std::size_t n = dyn.size();
   long since_reset = 0, quiet = 0;
   RelaxResult res;
@@ -433,6 +431,37 @@ RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps)
   }
   throw RunError("relaxation did not reach E_kin/E_pot < " + std::to_string(tolerance) + " within " +
                  std::to_string(max_steps) + " steps");
+}
+
+}  // namespace
+
+RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps) {
+  config::ContactParams cp;
+  cp.kn = kn;
+  cp.kt = 0.0;
+  cp.gamma_n = 0.0;
+  const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
+  const double t_c = contact::contact_time({kn, 0.0, false}, 0.5 * m_min);
+  return fire(packing, case_model(cp, packing_density(packing)), t_c, tolerance, max_steps);
+}
+
+RelaxResult relax(Packing& packing, const config::ContactParams& contact, double density, double tolerance,
+                  long max_steps) {
+  if (contact.law == config::ContactLaw::linear) return relax(packing, contact.kn, tolerance, max_steps);
+  // Hertz (frictionless, undamped): the time step from the stiffest contact the packing starts
+  // with, k_n at the largest initial overlap between the two largest radii (R*, the overlap and
+  // k_n grow with them) and the smallest mass.
+  config::ContactParams cp = contact;
+  cp.mindlin = false;
+  cp.damping_ratio = 0.0;
+  cp.normal_tension = config::NormalTension::allow;
+  const double a_max = *std::max_element(packing.radius.begin(), packing.radius.end());
+  const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
+  const double overlap_max = 2.0 * a_max - packing.d_prime;
+  const contact::HertzMindlinStiffness s =
+      contact::hertz_mindlin_at(hertz_mindlin_params(cp, density), 0.5 * a_max, 0.5 * m_min, overlap_max);
+  const double t_c = std::numbers::pi * std::sqrt(0.5 * m_min / s.k_n);
+  return fire(packing, case_model(cp, density), t_c, tolerance, max_steps);
 }
 
 }  // namespace granwave::crystal

@@ -156,5 +156,8 @@ struct RelaxResult {
   double ratio = 0.0;
 };
 RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps = 2000000);
+// The same with the case's law, frictionless and undamped (Hertz: k_n at the largest initial overlap).
+RelaxResult relax(Packing& packing, const config::ContactParams& contact, double density, double tolerance,
+                  long max_steps = 2000000);
 
 }  // namespace granwave::crystal

@@ -71,7 +71,7 @@ Packing lattice_packing(const config::Case& c) {
 Packing make_packing(const config::Case& c) {
   Packing p = lattice_packing(c);
   if (c.crystal->polydispersity > 0.0) {
-    const RelaxResult r = relax(p, c.contact.kn, c.crystal->relax_tolerance);
+    const RelaxResult r = relax(p, c.contact, c.crystal->density, c.crystal->relax_tolerance);
     p.relaxed = true;
     p.relax_steps = r.steps;
     p.relax_ratio = r.ratio;

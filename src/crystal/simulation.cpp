@@ -13,6 +13,10 @@
 namespace granwave::crystal {
 
 ContactAt contact_at(const config::Case& c, double delta) {
+  return contact_between(c, c.crystal->radius, c.crystal->radius, delta);
+}
+
+ContactAt contact_between(const config::Case& c, double a_i, double a_j, double delta) {
   ContactAt k;
   if (c.contact.law == config::ContactLaw::linear) {
     k.f_n = c.contact.kn * delta;
@@ -21,15 +25,39 @@ ContactAt contact_at(const config::Case& c, double delta) {
     k.gamma_n = c.contact.gamma_n;
     return k;
   }
-  const double a = c.crystal->radius;
-  const double m = c.crystal->density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
+  const double m_i = c.crystal->density * 4.0 / 3.0 * std::numbers::pi * a_i * a_i * a_i;
+  const double m_j = c.crystal->density * 4.0 / 3.0 * std::numbers::pi * a_j * a_j * a_j;
   const contact::HertzMindlinParams p = hertz_mindlin_params(c.contact, c.crystal->density);
-  const contact::HertzMindlinStiffness s = contact::hertz_mindlin_at(p, 0.5 * a, 0.5 * m, delta);
+  const contact::HertzMindlinStiffness s =
+      contact::hertz_mindlin_at(p, a_i * a_j / (a_i + a_j), m_i * m_j / (m_i + m_j), delta);
   k.f_n = s.f_n;
   k.kn = s.k_n;
   k.kt = c.contact.mindlin ? s.k_t : 0.0;
   k.gamma_n = s.gamma_n;
   return k;
+}
+
+theory::ContactNetwork contact_network(const config::Case& c, const Packing& pk) {
+  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
+  const ContactAt k0 = contact_at(c, pk.delta);
+  theory::ContactNetwork net;
+  net.box_x = pk.box_x;
+  net.box_y = pk.box_y;
+  net.k = k0.kn;
+  net.kt = k0.kt;
+  for (std::size_t p = 0; p < pk.size(); ++p)
+    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
+  for (const auto& q : list_contacts(pk, true)) {
+    theory::NetworkContact nc{q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
+                              static_normal_force(c, pk.radius[q.i], pk.radius[q.j], q.overlap)};
+    if (hertz) {
+      const ContactAt kc = contact_between(c, pk.radius[q.i], pk.radius[q.j], q.overlap);
+      nc.k = kc.kn;
+      nc.kt = kc.kt;
+    }
+    net.contacts.push_back(nc);
+  }
+  return net;
 }
 
 double static_normal_force(const config::Case& c, double a_i, double a_j, double delta) {
@@ -110,7 +138,10 @@ Derived derive(const config::Case& c) {
   const double a_min = a - k.polydispersity * delta;
   const double m_min = k.density * 4.0 / 3.0 * std::numbers::pi * a_min * a_min * a_min;
   const double z = 12.0;
-  const ContactAt stiffest = hertz ? contact_at(c, d.delta_max) : ContactAt{0.0, d.kn, d.kt, d.gamma_n};
+  // (polydisperse: the largest radii, whose overlaps start up to 2 polydispersity delta larger)
+  const double a_max = a + k.polydispersity * delta;
+  const ContactAt stiffest = hertz ? contact_between(c, a_max, a_max, d.delta_max + 2.0 * k.polydispersity * delta)
+                                   : ContactAt{0.0, d.kn, d.kt, d.gamma_n};
   const double gamma_t = hertz ? 0.0 : c.contact.gamma_t;
   const double omega_max = std::sqrt(2.0 * z * (stiffest.kn + 3.5 * stiffest.kt) / m_min);
   const double eta_max = z * (stiffest.gamma_n + gamma_t) / (2.0 * m_min);

@@ -9,6 +9,7 @@
 #include "config/case.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/packing.hpp"
+#include "theory/crystal_theory.hpp"
 
 namespace granwave::crystal {
 
@@ -38,6 +39,12 @@ struct ContactAt {
   double f_n = 0.0, kn = 0.0, kt = 0.0, gamma_n = 0.0;
 };
 ContactAt contact_at(const config::Case& c, double delta);
+// The same for a contact of radii a_i, a_j (Hertz: R* = a_i a_j/(a_i + a_j), m* of the two masses).
+ContactAt contact_between(const config::Case& c, double a_i, double a_j, double delta);
+// The packing's contact network for the theory (theory/crystal_theory.hpp): particles, contacts
+// with their static normal forces (the prestress), the law's stiffnesses (linear: the keys; Hertz-
+// Mindlin: each contact's own, linearised at its overlap; the network's k, kt at delta_0).
+theory::ContactNetwork contact_network(const config::Case& c, const Packing& packing);
 // The static normal force of a contact of radii a_i, a_j at overlap delta (theory's prestress).
 double static_normal_force(const config::Case& c, double a_i, double a_j, double delta);
 // The trace's name of the law and of its tangential history (root attributes contact_law,

@@ -143,17 +143,8 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   out.sigma0 = n0 ? s0 / n0 : kNaN;
 
   // Eq. (10) from this member's own (relaxed) contact network, as `granwave theory` does.
-  theory::ContactNetwork net;
-  net.box_x = out.packing.box_x;
-  net.box_y = out.packing.box_y;
-  net.k = der.kn;  // the linear law's kn, kt; Hertz-Mindlin's linearised at the static overlap
-  net.kt = der.kt;
-  for (std::size_t p = 0; p < out.packing.size(); ++p)
-    net.particles.push_back(
-        {out.packing.mass[p], out.packing.layer[p], out.packing.z[p], out.packing.radius[p], out.packing.inertia[p]});
-  for (const auto& q : crystal::list_contacts(out.packing, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
-                            crystal::static_normal_force(out.c, out.packing.radius[q.i], out.packing.radius[q.j], q.overlap)});
+  // (the linear law's kn, kt; Hertz-Mindlin's linearised at each contact's overlap)
+  const theory::ContactNetwork net = crystal::contact_network(out.c, out.packing);
   const auto th = theory::crystal_prediction(net, {fl, out.packing.layers - 1 - fl});
   const bool S = m.mode == 'S';
   const auto ct = theory::linear_contact_time(der.kn, der.gamma_n, der.m_ij,
@@ -507,17 +498,7 @@ Captured capture(const CrystalMemberRun& r, const std::vector<double>& positions
   c.mode = r.trace.mode;
 
   // Lattice branches of this very packing (prestress and lever arm of the case).
-  theory::ContactNetwork net;
-  net.box_x = r.packing.box_x;
-  net.box_y = r.packing.box_y;
-  const crystal::ContactAt k0 = crystal::contact_at(r.c, r.packing.delta);
-  net.k = k0.kn;
-  net.kt = k0.kt;
-  for (std::size_t p = 0; p < r.packing.size(); ++p)
-    net.particles.push_back({r.packing.mass[p], r.packing.layer[p], r.packing.z[p], r.packing.radius[p], r.packing.inertia[p]});
-  for (const auto& q : crystal::list_contacts(r.packing, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
-                            crystal::static_normal_force(r.c, r.packing.radius[q.i], r.packing.radius[q.j], q.overlap)});
+  const theory::ContactNetwork net = crystal::contact_network(r.c, r.packing);
   theory::LatticeCellOptions lopt;
   // Contact forces come from overlaps of positions far larger than them: at delta_0 = 1e-5 d and
   // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's

@@ -93,14 +93,15 @@ CrystalPrediction crystal_prediction(const ContactNetwork& net, SlabSelection sl
     const int w = (inside(c.i) ? 1 : 0) + (inside(c.j) ? 1 : 0);
     if (w == 0) continue;
     ends += w;
-    geo.push_back({c.branch, net.k, net.kt, 0.5 * w});
+    const double kc = c.k_of(net.k), ktc = c.kt_of(net.kt);
+    geo.push_back({c.branch, kc, ktc, 0.5 * w});
     if (net.particles[c.i].layer != net.particles[c.j].layer) {
       const double l = c.branch.norm();
       const Vec3 n = c.branch / l;
-      kp += w * directional_stiffness(ez, n, net.k, net.kt, 0.0);
-      ks += w * directional_stiffness(ex, n, net.k, net.kt, 0.0);
-      kp_pre += w * directional_stiffness(ez, n, net.k, net.kt, c.normal_force / l);
-      ks_pre += w * directional_stiffness(ex, n, net.k, net.kt, c.normal_force / l);
+      kp += w * directional_stiffness(ez, n, kc, ktc, 0.0);
+      ks += w * directional_stiffness(ex, n, kc, ktc, 0.0);
+      kp_pre += w * directional_stiffness(ez, n, kc, ktc, c.normal_force / l);
+      ks_pre += w * directional_stiffness(ex, n, kc, ktc, c.normal_force / l);
     }
   }
   r.coordination = static_cast<double>(ends) / r.n_particles;

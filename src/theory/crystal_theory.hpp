@@ -7,6 +7,7 @@
 // Pure: the input is a list of particles (mass, layer) and contacts (branch vector, normal force);
 // src/cli/theory.cpp fills it from the crystal's packing. Unit-tested on synthetic FCC networks.
 #pragma once
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,11 @@ struct NetworkContact {
   int i = 0, j = 0;               // particle indices
   Vec3 branch = Vec3::Zero();     // from i to j, minimum image (m)
   double normal_force = 0.0;      // static repulsive normal force k delta (N); prestress term only
+  // This contact's own stiffnesses (N/m), e.g. Hertz-Mindlin linearised at its overlap; NaN: the
+  // network's k, kt.
+  double k = std::numeric_limits<double>::quiet_NaN(), kt = std::numeric_limits<double>::quiet_NaN();
+  double k_of(double network_k) const { return k == k ? k : network_k; }
+  double kt_of(double network_kt) const { return kt == kt ? kt : network_kt; }
 };
 struct ContactNetwork {
   std::vector<NetworkParticle> particles;

@@ -397,9 +397,11 @@ std::optional<LatticeCell> lattice_cell(const ContactNetwork& net, SlabSelection
     const double l = c.branch.norm();
     const double delta = net.particles[c.i].radius + net.particles[c.j].radius - l;
     if (inside(c.i))
-      bonds[c.i].push_back({c.branch, net.k, net.kt, c.normal_force, net.particles[c.i].radius - opt.arm_shift * delta});
+      bonds[c.i].push_back({c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force,
+                            net.particles[c.i].radius - opt.arm_shift * delta});
     if (inside(c.j))
-      bonds[c.j].push_back({-c.branch, net.k, net.kt, c.normal_force, net.particles[c.j].radius - opt.arm_shift * delta});
+      bonds[c.j].push_back({-c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force,
+                            net.particles[c.j].radius - opt.arm_shift * delta});
   }
   // Reference: the first particle of the middle layer.
   const int mid_layer = (lo + hi) / 2;

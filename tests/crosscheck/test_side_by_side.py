@@ -115,6 +115,32 @@ def test_lammps_and_liggghts_decks_with_friction(tmp_path, cases_dir):
     assert "fix             layers all ave/spatial 5 1 5 z " in lig and "$" not in lig
 
 
+def test_hertz_decks(tmp_path, cases_dir):
+    """Issue #14's row: LAMMPS pair granular hertz/material + mindlin, LIGGGHTS model hertz with
+    tangential history, from the case's E and nu; damped or force-history cases are refused."""
+    text = S.case_text("hertz")
+    assert 'law = "hertz_mindlin"' in text and "dt = 1.7e-7" in text and "dt_over_tc" not in text
+    assert "t_end = 1.02e-3" in text and "interval = 8.5e-7" in text      # 6000 steps, output every 5
+    case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
+    case["contact"] = dict(law="hertz_mindlin", youngs_modulus=63e9, poisson_ratio=0.23, mu_static=0.5,
+                           mu_dynamic=0.5)
+    S.render_lammps(case, system, str(tmp_path))
+    deck = (tmp_path / "in.lammps").read_text()
+    assert "pair_style      granular\n" in deck
+    assert "pair_coeff      * * hertz/material 63000000000.0 0.0 0.23 tangential mindlin NULL 0.0 0.5\n" in deck
+    assert "fix             integr free nve/sphere" in deck and "$" not in deck
+    S.render_liggghts(case, system, str(tmp_path))
+    lig = (tmp_path / "in.liggghts").read_text()
+    assert "hard_particles  yes" in lig and "pair_style      gran model hertz tangential history\n" in lig
+    assert "youngsModulus peratomtype 63000000000.0 63000000000.0 63000000000.0" in lig
+    assert "coefficientRestitution peratomtypepair 3 " + " ".join(["1.0"] * 9) in lig
+    assert "newton          off" in lig and "kn peratomtypepair" not in lig and "$" not in lig
+    for bad in (dict(damping_ratio=0.1), dict(tangential_history="force"), dict(tangential="none")):
+        c = dict(case, contact=dict(case["contact"], **bad))
+        with pytest.raises(S.BenchError):
+            S.render_lammps(c, system, str(tmp_path))
+
+
 def test_liggghts_deck_frictionless(tmp_path, cases_dir):
     case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
     S.render_liggghts(case, system, str(tmp_path))

@@ -204,3 +204,47 @@ TEST_CASE("Hertz-Mindlin: how the histories follow a changing overlap", "[contac
                                contact::hertz_energy(contact::hertz_constant_beads(63e9, 0.23, kA, 63e9, 0.23, kA), d1);
   CHECK((e2 - e1) - normal_change == Approx(0.5 * (s2.k_t - s1.k_t) * xi * xi).epsilon(1e-9));
 }
+
+TEMPLATE_TEST_CASE_SIG("Hertz-Mindlin: the kernel's vector sweep finishes sticking contacts bit for bit as the exact "
+                       "evaluation, and defers exactly the sliding ones",
+                       "[contact]", ((MindlinHistory H), H), MindlinHistory::displacement,
+                       MindlinHistory::displacement_rescale, MindlinHistory::force) {
+  auto p = glass();
+  p.mu_static = 0.5;
+  p.mu_dynamic = 0.3;
+  p.damping_ratio = 0.1;
+  const contact::HertzMindlinLaw<true, H> law(p);
+  using History = typename contact::HertzMindlinLaw<true, H>::History;
+  History h_exact, h_vector;
+  int deferred = 0, finished = 0;
+  // A loaded contact sheared back and forth with growing and shrinking overlap: it sticks, slides,
+  // sticks again.
+  for (int step = 0; step < 400; ++step) {
+    const double delta = 2e-7 * (1.0 + 0.5 * std::sin(0.05 * step));
+    const double v = 0.3 * std::sin(0.031 * step);
+    Contact c = touching(delta, 1e-3 * std::cos(0.05 * step), Vec3(v, 0.2 * v, 0), 1e-8);
+    c.n = Vec3(0.0, 0.6, 0.8);  // a tilted normal: the history is turned each step
+    c.dv = Vec3(v, 0.2 * v, 0) - c.delta_dot * c.n;
+    History h_try = h_vector;
+    const auto rv = law.evaluate(c, h_try, contact::Deferrable{});
+    const auto re = law.evaluate(c, h_exact);
+    if (rv.deferred) {
+      ++deferred;
+      CHECK(h_exact.sliding == 1.0);  // deferred: exactly the contacts that slide
+    } else {
+      ++finished;
+      CHECK(h_exact.sliding == 0.0);
+      CHECK(rv.force.x() == re.force.x());
+      CHECK(rv.force.y() == re.force.y());
+      CHECK(rv.force.z() == re.force.z());
+      CHECK(rv.nf.x() == re.nf.x());
+      CHECK(rv.loss == re.loss);
+      CHECK(h_try.t_x == h_exact.t_x);
+      CHECK(h_try.t_y == h_exact.t_y);
+      CHECK(h_try.a == h_exact.a);
+    }
+    h_vector = h_exact;  // the kernel continues from the exact history
+  }
+  CHECK(deferred > 10);
+  CHECK(finished > 10);
+}
