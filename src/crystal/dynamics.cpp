@@ -150,7 +150,7 @@ void Dynamics::check_layers() const {
   // A particle that leaves its layer by more than z_tolerance could meet one beyond the halo:
   // the slab cannot follow it. The first such particle (lowest index) is named on every rank.
   const SlabPlan& s = *slab_;
-  std::vector<double> mine{-1.0, 0.0}, all;  // (global index, offset) of this rank's first stray
+  std::vector<double> mine{-1.0, 0.0}, all;  // (global index, z - layer_z) of this rank's first stray
   for (std::size_t p = own_lo_; p < own_hi_; ++p) {
     const double dz = z[p] - s.layer_z[packing_.layer[p]];
     if (!(std::abs(dz) <= s.z_tolerance)) {
