@@ -103,7 +103,9 @@ int cmd_run(const Args& args) {
       "  NAME.tmp and renamed when complete. Then it measures that trace with the code of\n"
       "  `granwave analyze TRACE` (default options): the same numbers, one ruler.\n"
       "  --json prints one JSON object (schema \"granwave-run/1\", data/SCHEMA.md §3.1): the run's\n"
-      "  own numbers and, under \"analysis\", exactly what `granwave analyze TRACE --json` prints";
+      "  own numbers and, under \"analysis\", exactly what `granwave analyze TRACE --json` prints.\n"
+      "  Under `mpirun -n R` a crystal run is split into slabs of whole layers (R <= layers) and\n"
+      "  writes the serial run's trace file bit for bit (README \"MPI\"); a chain run is refused";
   if (wants_help(args)) {
     std::cout << usage << "\n" << kLimitsHelp << "\n";
     return 0;

@@ -192,7 +192,7 @@ void Dynamics::check_layers() const {
   // A particle that leaves its layer by more than z_tolerance could meet one beyond the halo:
   // the slab cannot follow it. The first such particle (lowest index) is named on every rank.
   const SlabPlan& s = *slab_;
-  std::vector<double> mine{-1.0, 0.0}, all;  // (global index, offset) of this rank's first stray
+  std::vector<double> mine{-1.0, 0.0}, all;  // (global index, z - layer_z) of this rank's first stray
   for (std::size_t p = own_lo_; p < own_hi_; ++p) {
     const double dz = z[p] - s.layer_z[packing_.layer[p]];
     if (!(std::abs(dz) <= s.z_tolerance)) {
@@ -301,10 +301,12 @@ void Dynamics::rebuild() {
 // kick of velocity Verlet follows at once (the forces are then still in cache). The torque of
 // contact c on p is -arm n x f^t with arm = a_p (eq. (4)), or a_p - delta_c/2 with
 // ContactPointArm: then -a_p sum(n x f^t) + (1/2) sum(delta_c n x f^t).
-template <bool Kick, bool Torques, bool ContactPointArm>
+template <bool Kick, bool Torques, bool ContactPointArm, bool Whole>
 void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
-  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
+  // Whole (serial): from particle 0, a constant, which keeps a register free in the loop
+  // (frictionless, 1.3 % of a step; bench_crystal).
+  const std::int64_t p0 = Whole ? 0 : static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
   constexpr bool fr = Torques;
   const std::int32_t* __restrict j_first = C.j_first.data();
   const std::int32_t* __restrict j_contacts = C.j_contacts.data();
@@ -371,12 +373,20 @@ void Dynamics::particle_pass(double h) {
 
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
   model_->contact_pass(*this, inc, dashpots);
-  if (!friction_)
-    kick ? particle_pass<true, false, false>(0.5 * dt_) : particle_pass<false, false, false>(0.0);
-  else if (arm_shift_ != 0.0)
-    kick ? particle_pass<true, true, true>(0.5 * dt_) : particle_pass<false, true, true>(0.0);
-  else
-    kick ? particle_pass<true, true, false>(0.5 * dt_) : particle_pass<false, true, false>(0.0);
+  if (slab_) {
+    if (!friction_)
+      kick ? particle_pass<true, false, false, false>(0.5 * dt_) : particle_pass<false, false, false, false>(0.0);
+    else if (arm_shift_ != 0.0)
+      kick ? particle_pass<true, true, true, false>(0.5 * dt_) : particle_pass<false, true, true, false>(0.0);
+    else
+      kick ? particle_pass<true, true, false, false>(0.5 * dt_) : particle_pass<false, true, false, false>(0.0);
+  } else if (!friction_) {
+    kick ? particle_pass<true, false, false, true>(0.5 * dt_) : particle_pass<false, false, false, true>(0.0);
+  } else if (arm_shift_ != 0.0) {
+    kick ? particle_pass<true, true, true, true>(0.5 * dt_) : particle_pass<false, true, true, true>(0.0);
+  } else {
+    kick ? particle_pass<true, true, false, true>(0.5 * dt_) : particle_pass<false, true, false, true>(0.0);
+  }
 }
 
 void Dynamics::step() {

@@ -169,7 +169,7 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
-  template <bool Kick, bool Torques, bool ContactPointArm>
+  template <bool Kick, bool Torques, bool ContactPointArm, bool Whole>
   void particle_pass(double h);
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   void add_kinetic(double* s) const;
