@@ -101,11 +101,21 @@ struct MindlinTangential {
   double t_x = 0.0, t_y = 0.0, t_z = 0.0;  // xi (m) or f_t (N), by the history kind
   double sliding = 0.0;                    // 1: the dynamic (sliding) case is active
   double a = 0.0;                          // contact radius at the last evaluation (m)
+  bool was_sliding() const { return sliding != 0.0; }
+  void set_sliding(bool s) { sliding = s ? 1.0 : 0.0; }
+};
+// mu^s = mu^d: the flag would select between two equal limits, so it is not kept (8 bytes and a
+// load and a store per contact and step).
+struct MindlinTangentialOneMu {
+  double t_x = 0.0, t_y = 0.0, t_z = 0.0;
+  double a = 0.0;
+  bool was_sliding() const { return false; }
+  void set_sliding(bool) {}
 };
 
 // Damped: the normal dashpot (beta > 0 or clip_tension). H: the tangential history (none:
-// frictionless Hertz, no torques).
-template <bool Damped, MindlinHistory H>
+// frictionless Hertz, no torques). Hysteresis: mu^s != mu^d (the stick/slip flag is kept).
+template <bool Damped, MindlinHistory H, bool Hysteresis = true>
 struct HertzMindlinLaw {
   HertzMindlinParams p;
   double e_star = 0.0, g8 = 0.0;  // E*, 8 G*
@@ -113,13 +123,16 @@ struct HertzMindlinLaw {
   double beta2 = 0.0;             // 2 beta
   double shift = 0.0;             // lever arm a_p - shift delta
 
-  using Tangential = MindlinTangential;
-  using History = std::conditional_t<H == MindlinHistory::none, MindlinNone, MindlinTangential>;
+  using Tangential = std::conditional_t<Hysteresis, MindlinTangential, MindlinTangentialOneMu>;
+  using History = std::conditional_t<H == MindlinHistory::none, MindlinNone, Tangential>;
   static constexpr bool torques = H != MindlinHistory::none;
 
   explicit HertzMindlinLaw(const HertzMindlinParams& params) : p(params) {
     p.validate();
     if (!Damped) p.damping_ratio = 0.0, p.clip_tension = false;
+    if (!Hysteresis && p.mu_static != p.mu_dynamic)
+      throw InputError("contact.mu_static = " + std::to_string(p.mu_static) + " and contact.mu_dynamic = " +
+                       std::to_string(p.mu_dynamic) + ": this form of the law needs mu^s = mu^d");
     e_star = p.e_star();
     g8 = 8.0 * p.g_star();
     mass_factor = p.density * 4.0 / 3.0 * std::numbers::pi;
@@ -176,13 +189,13 @@ struct HertzMindlinLaw {
       }
       const double f_pos = select(p.coulomb_on_magnitude, std::abs(f_n), select(f_n < 0.0, 0.0, f_n));
       const double f_dynamic = p.mu_dynamic * f_pos;
-      const double limit = select(h.sliding != 0.0, f_dynamic, p.mu_static * f_pos);
+      const double limit = select(h.was_sliding(), f_dynamic, p.mu_static * f_pos);
       const double magnitude2 = f_test.squaredNorm();
       const bool sliding = magnitude2 > limit * limit;
       const Vec3 kept_stick = H == MindlinHistory::force ? f_test : xi;
       if constexpr (!Exact) {  // sticking: f_t = f_test; a sliding contact is evaluated again exactly
         h.t_x = kept_stick.x(), h.t_y = kept_stick.y(), h.t_z = kept_stick.z();
-        h.sliding = 0.0;
+        h.set_sliding(false);
         h.a = a;
         return {f_n * c.n + f_test, c.n.cross(f_test), loss, sliding};
       } else {
@@ -193,7 +206,7 @@ struct HertzMindlinLaw {
         const Vec3 kept_slip = H == MindlinHistory::force ? f_t : f_t * (-1.0 / k_t);
         const Vec3 kept = select(sliding, kept_slip, kept_stick);
         h.t_x = kept.x(), h.t_y = kept.y(), h.t_z = kept.z();
-        h.sliding = select(sliding, 1.0, 0.0);
+        h.set_sliding(sliding);
         h.a = a;
         loss += select(sliding, f_dynamic * (magnitude - f_dynamic) / k_t, 0.0);  // Coulomb force x slip
         return {f_n * c.n + f_t, c.n.cross(f_t), loss};
@@ -218,10 +231,11 @@ struct HertzMindlinLaw {
   }
   double arm_shift() const { return shift; }
   bool dissipates() const { return Damped || H != MindlinHistory::none; }
-  HertzMindlinLaw<false, H> without_rates() const { return HertzMindlinLaw<false, H>(p); }
+  HertzMindlinLaw<false, H, Hysteresis> without_rates() const { return HertzMindlinLaw<false, H, Hysteresis>(p); }
 
  private:
-  double tangential_energy(const Tangential& h, double k_t) const {
+  template <class T>
+  double tangential_energy(const T& h, double k_t) const {
     const double s2 = h.t_x * h.t_x + h.t_y * h.t_y + h.t_z * h.t_z;
     if constexpr (H == MindlinHistory::force)
       return select(k_t > 0.0, 0.5 * s2 / k_t, 0.0);  // |f_t|^2/(2 k_t); a select, not ?: (vectorises on AVX2)

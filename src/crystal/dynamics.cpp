@@ -23,8 +23,18 @@ namespace {
 
 template <contact::MindlinHistory H>
 std::shared_ptr<const ContactModel> hertz_model(const contact::HertzMindlinParams& p) {
-  if (p.damping_ratio > 0.0 || p.clip_tension) return model_of(contact::HertzMindlinLaw<true, H>(p));
-  return model_of(contact::HertzMindlinLaw<false, H>(p));
+  const bool damped = p.damping_ratio > 0.0 || p.clip_tension;
+  if constexpr (H == contact::MindlinHistory::none) {
+    if (damped) return model_of(contact::HertzMindlinLaw<true, H>(p));
+    return model_of(contact::HertzMindlinLaw<false, H>(p));
+  } else {
+    // mu^s = mu^d: the same law without the stick/slip flag (bit for bit: it selects between equal limits).
+    const bool hysteresis = p.mu_static != p.mu_dynamic;
+    if (damped && hysteresis) return model_of(contact::HertzMindlinLaw<true, H, true>(p));
+    if (damped) return model_of(contact::HertzMindlinLaw<true, H, false>(p));
+    if (hysteresis) return model_of(contact::HertzMindlinLaw<false, H, true>(p));
+    return model_of(contact::HertzMindlinLaw<false, H, false>(p));
+  }
 }
 
 }  // namespace

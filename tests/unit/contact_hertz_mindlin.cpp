@@ -248,3 +248,32 @@ TEMPLATE_TEST_CASE_SIG("Hertz-Mindlin: the kernel's vector sweep finishes sticki
   CHECK(deferred > 10);
   CHECK(finished > 10);
 }
+
+TEMPLATE_TEST_CASE_SIG("Hertz-Mindlin without the stick/slip flag (mu^s = mu^d) is the full law bit for bit",
+                       "[contact]", ((MindlinHistory H), H), MindlinHistory::displacement,
+                       MindlinHistory::displacement_rescale, MindlinHistory::force) {
+  auto p = glass();
+  p.damping_ratio = 0.1;
+  const contact::HertzMindlinLaw<true, H, true> full(p);
+  const contact::HertzMindlinLaw<true, H, false> one_mu(p);
+  typename decltype(full)::History hf;
+  typename decltype(one_mu)::History ho;
+  int slid = 0;
+  for (int step = 0; step < 400; ++step) {
+    const double delta = 2e-7 * (1.0 + 0.5 * std::sin(0.05 * step));
+    const double v = 0.3 * std::sin(0.031 * step);
+    Contact c = touching(delta, 1e-3 * std::cos(0.05 * step), Vec3(v, 0.2 * v, 0), 1e-8);
+    const auto rf = full.evaluate(c, hf);
+    const auto ro = one_mu.evaluate(c, ho);
+    slid += hf.sliding != 0.0;
+    CHECK(rf.force.x() == ro.force.x());
+    CHECK(rf.force.y() == ro.force.y());
+    CHECK(rf.force.z() == ro.force.z());
+    CHECK(rf.loss == ro.loss);
+    CHECK(hf.t_x == ho.t_x);
+    CHECK(hf.a == ho.a);
+  }
+  CHECK(slid > 10);
+  p.mu_dynamic = 0.4;
+  CHECK_THAT(message_of([&] { contact::HertzMindlinLaw<true, H, false>{p}; }), Catch::Contains("mu^s = mu^d"));
+}
