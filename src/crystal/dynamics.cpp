@@ -308,6 +308,8 @@ double Dynamics::potential_energy() const { return model_->stored_energy(contact
 
 double Dynamics::dissipated_energy() const {
   double e = dissipated_before_;
+  // A law that never dissipates leaves every entry +0.0: the sum would return e unchanged.
+  if (!model_->dissipates()) return e;
   for (double d : contacts.dissipated) e += d;
   return e;
 }

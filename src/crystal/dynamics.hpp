@@ -56,6 +56,8 @@ class ContactModel {
   // of positions (no dashpots).
   virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
   virtual double stored_energy(const ContactList& contacts) const = 0;  // J, touching contacts
+  // false: the law never dissipates (ContactList::dissipated stays zero, sums of it are skipped).
+  virtual bool dissipates() const { return true; }
 };
 
 // The law of a case: contact::LinearLuding with friction (k_t > 0 or gamma_t > 0), else the
