@@ -170,8 +170,9 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
 
 double coordination(const Dynamics& dyn) {
   // Touching contacts per mobile-layer particle: each touching contact counts once for each of
-  // its two spheres that is not fixed. One sweep of the contact list in order (integer sums:
-  // the same count as summing Dynamics::touching_contacts_of over the particles, 5x cheaper).
+  // its two spheres that is not fixed. One sweep of the contact list (integer sums: the same
+  // count as summing Dynamics::touching_contacts_of over the particles; 27 -> 19 us per sample
+  // on the 3200-particle crystal).
   const auto& fixed = dyn.packing().fixed;
   long particles = 0;
   for (std::size_t p = 0; p < dyn.size(); ++p) particles += !fixed[p];
