@@ -100,7 +100,7 @@ crystal::Dynamics excited(const config::Case& c) {
 // The vector extensions this binary was compiled for (the loops use what the compiler may).
 const char* build_flags() {
 #if defined(__AVX512F__)
-  return "AVX-512F (512-bit vectors)";
+  return "AVX-512F (AVX-512VL, 256-bit vectors in the crystal's loops)";
 #elif defined(__AVX2__)
   return "AVX2 (256-bit vectors, no AVX-512)";
 #elif defined(__AVX__)

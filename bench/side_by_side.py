@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """granwave, LAMMPS and LIGGGHTS side by side: the same crystal, one thread, end to end.
 
-    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,hertz,long]
+    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,friction_radius,hertz,long]
         [--codes granwave,lammps,liggghts] [--granwave build/granwave] [--granwave-avx2 build-avx2/granwave]
         [--reps 3] [--out table.md] [--json results.json] [--workdir DIR] [--keep]
 
@@ -27,7 +27,11 @@ Cases (`--cases`)
 frictionless  data/cases/crystal_p.toml: the seed's 4 x 4 x 200 FCC crystal (3200 particles), kt = 0,
               6000 steps of 2e-7 s, step of the two bottom layers by 1e-4 d (seed 002 secs. 3.1-3.3)
 friction      data/cases/crystal_kt10.toml: the same with kt = k, mu = 0.5, lever_arm = "contact_point"
-              (seed 002 sec. 3.5)
+              (seed 002 sec. 3.5): LIGGGHTS' physics (its tangential arm is the contact point); LAMMPS
+              runs its own, the radius arm, so its ratio in this row compares different physics
+friction_radius
+              the same with lever_arm = "radius" (seed 002 eq. (4)): LAMMPS' gran/hooke/history physics,
+              the fair row against LAMMPS; LIGGGHTS is not run in it (its arm is the contact point)
 long          crystal_p with 4 x 4 x 20000 cells (320 000 particles), 200 steps
 hertz         data/cases/crystal_hertz.toml: the same crystal of glass beads with Hertz normal and Mindlin
               tangential forces (issue #14), 6000 steps of 1.7e-7 s; LAMMPS `pair_style granular` with
@@ -43,8 +47,9 @@ LAMMPS (bench/decks/lammps_crystal.in.tmpl):
   * frictionless: `pair_style gran/hooke kn 0 0 0 mu 0` (no shear history to store, look up or rotate)
     and `fix nve` (no torque acts, so no rotational integration); with friction
     `gran/hooke/history kn kt 0 0 mu 0` and `fix nve/sphere`. LAMMPS's tangential arm is the radius a
-    (pair_gran_hooke_history.cpp: radi * omega, radi * torque), i.e. granwave's lever_arm = "radius";
-    granwave times its (dearer) "contact_point" here, as LIGGGHTS uses.
+    (pair_gran_hooke_history.cpp: radi * omega, radi * torque), i.e. granwave's lever_arm = "radius":
+    the case friction_radius compares the same physics; in the case friction granwave runs its (dearer)
+    "contact_point", LIGGGHTS' physics.
   * `newton on`: each pair once, ghosts included (faster than `off` on the 3200-particle crystal,
     one run each on a busy machine: loop 4.1 s against 5.3 s frictionless, 4.8 against 5.2 s with
     friction).
@@ -106,6 +111,7 @@ NEIGH_EVERY = 10             # displacement check every 10 steps (no rebuild hap
 CASES = {
     "frictionless": ("data/cases/crystal_p.toml", {}, None),
     "friction": ("data/cases/crystal_kt10.toml", {}, None),
+    "friction_radius": ("data/cases/crystal_kt10.toml", {"lever_arm": '"radius"'}, None),
     "long": ("data/cases/crystal_p.toml", {"cells": "[4, 4, 20000]", "t_end": "4e-5"}, "1:4"),
     # issue #14: Hertz normal + Mindlin tangential, the same 4 x 4 x 200 crystal (glass beads at
     # delta_0 = 1e-4 d), 6000 steps of dt = 1.7e-7 s (t_c/52), output every 5 steps as above
@@ -114,7 +120,9 @@ CASES = {
     # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
     "small": ("data/cases/crystal40.toml", {}, None),
 }
-DEFAULT_CASES = ("frictionless", "friction", "hertz", "long")
+DEFAULT_CASES = ("frictionless", "friction", "friction_radius", "hertz", "long")
+# The codes that run the same physics as granwave in a case (default: all of CODES).
+CASE_CODES = {"friction_radius": ("granwave", "lammps")}
 
 
 class BenchError(Exception):
@@ -551,6 +559,7 @@ class Runner:
 
 def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, timeout: float, env: dict,
                keep: bool, log=print) -> dict:
+    runners = [r for r in runners if r.code in CASE_CODES.get(name, CODES)]
     cdir = os.path.join(root, name)
     os.makedirs(cdir, exist_ok=True)
     case_path = os.path.join(cdir, "case.toml")
@@ -604,6 +613,7 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
 def summarize(res: dict, runners: list) -> dict:
     """Medians and paired ratios of one case."""
     runs = res["runs"]
+    runners = [r for r in runners if r.key in runs]
     out = {}
     for r in runners:
         w = [x["wall"] for x in runs[r.key]]
@@ -646,6 +656,9 @@ def table(results: list, runners: list, codes: list) -> str:
                 if c not in codes:
                     row += ["not run (--codes)", "-"]
                     continue
+                if c not in t:
+                    row += ["not run (other physics)", "-"]
+                    continue
                 rt = sm["ratios"]["%s/%s" % (c, g.key)]
                 row += ["%s / %s" % (_s(t[c]["wall"]), _s(t[c]["cpu"])), "%s (%s)" % (_x(rt["wall"]), _x(rt["cpu"]))]
             lines.append("| " + " | ".join(row) + " |")
@@ -660,7 +673,9 @@ def sanity_table(results: list, runners: list) -> str:
         row = [res["case"]]
         for r in runners:
             s = res["sanity"].get(r.key, {})
-            if s.get("v_half") is not None:
+            if r.key not in res["runs"]:
+                row.append("not run")
+            elif s.get("v_half") is not None:
                 rng = s.get("z_over_l0") or ["?", "?"]
                 row.append("%.3f (z/l0 %s..%s)" % (s["v_half"], rng[0], rng[1]))
             else:
@@ -678,6 +693,9 @@ def memory_table(results: list, runners: list) -> str:
     for res in results:
         row = [res["case"]]
         for r in runners:
+            if r.key not in res["runs"]:
+                row.append("not run")
+                continue
             kb = max(x["maxrss_kb"] for x in res["runs"][r.key])
             row.append("%.0f; %.2f" % (kb / 1024.0, kb * 1.024 / res["particles"]))
         lines.append("| " + " | ".join(row) + " |")

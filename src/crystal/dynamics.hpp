@@ -65,6 +65,8 @@ class ContactModel {
   // its particle i], in list order (radius: the particles' radii, for laws whose energy depends on them).
   virtual void add_stored_energy(double* per_layer, const ContactList& contacts, std::size_t first,
                                  const int* layer, const double* radius) const = 0;
+  // false: the law never dissipates (ContactList::dissipated stays zero, sums of it are skipped).
+  virtual bool dissipates() const { return true; }
 };
 
 // The law of a case: law = "linear": contact::LinearLuding with friction (k_t > 0 or gamma_t > 0),

@@ -201,6 +201,7 @@ class LawModel final : public ContactModel {
   std::size_t history_columns() const override { return contact::history_columns<typename Law::History>; }
   bool torques() const override { return Law::torques; }
   double arm_shift() const override { return law_.arm_shift(); }
+  bool dissipates() const override { return law_.dissipates(); }
   void contact_pass(Dynamics& d, double inc, bool rates) const override {
     if (rates)
       run(d, law_, inc);

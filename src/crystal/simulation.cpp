@@ -227,16 +227,36 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
       zz_a = zz[L];
       zx_a = zx[L];
     };
+    const double* a = dyn.radius.data();
     for (std::size_t c0 = 0; c0 < C.size(); c0 += kBlock) {
       const std::size_t c1 = std::min(C.size(), c0 + kBlock);
+      // The distance r = |r_j - r_i| from the overlap the contact pass stored at these positions,
+      // delta = (a_i + a_j) - r: while r/2 <= a_i + a_j <= 2r that subtraction is exact (Sterbenz),
+      // so (a_i + a_j) - delta gives the root's r bit for bit without x, y and the root. Checked
+      // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the root.
+      bool exact = true;
       for (std::size_t c = c0; c < c1; ++c) {
-        const int i = C.i[c], j = C.j[c];
-        const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
-        const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
-        const double bz = dyn.z[j] - dyn.z[i];
-        const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
-        arm_u_i[c - c0] = (dyn.radius[i] - 0.5 * C.delta[c]) * u_z;
-        arm_u_j[c - c0] = (dyn.radius[j] - 0.5 * C.delta[c]) * u_z;
+        const double reach = a[C.i[c]] + a[C.j[c]], delta = C.delta[c];
+        exact &= (delta >= -0.5 * reach) & (delta <= 0.25 * reach);
+      }
+      if (exact) {
+        for (std::size_t c = c0; c < c1; ++c) {
+          const int i = C.i[c], j = C.j[c];
+          const double bz = dyn.z[j] - dyn.z[i];
+          const double u_z = bz / ((a[i] + a[j]) - C.delta[c]);
+          arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
+          arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
+        }
+      } else {
+        for (std::size_t c = c0; c < c1; ++c) {
+          const int i = C.i[c], j = C.j[c];
+          const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
+          const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
+          const double bz = dyn.z[j] - dyn.z[i];
+          const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
+          arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
+          arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
+        }
       }
       for (std::size_t c = c0; c < c1; ++c) {
         if (C.delta[c] <= 0.0) continue;

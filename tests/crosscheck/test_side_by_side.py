@@ -74,6 +74,13 @@ def test_case_texts():
     fr = S.case_text("friction")
     assert "kt = 100000" in fr and 'lever_arm = "contact_point"' in fr and "mu_static = 0.5" in fr
     assert "kt = 0.0" in S.case_text("frictionless")
+    # the fair row against LAMMPS: its gran/hooke/history arm is the radius; LIGGGHTS (contact point) not run
+    radius = S.case_text("friction_radius")
+    assert 'lever_arm = "radius"' in radius and 'lever_arm = "contact_point"' not in radius
+    changed = [(a, b) for a, b in zip(fr.splitlines(), radius.splitlines()) if a != b]
+    assert changed == [('name = "bench_friction"', 'name = "bench_friction_radius"'),
+                       ('lever_arm = "contact_point"', 'lever_arm = "radius"')]
+    assert S.CASE_CODES["friction_radius"] == ("granwave", "lammps")
 
 
 def test_lammps_deck_frictionless(tmp_path, cases_dir):
@@ -266,6 +273,13 @@ def test_table_and_ratios_from_runs():
     s = S.sanity_table([res], runners)
     assert "218.694 (z/l0 10..150)" in s and "4.5e-09" in s
     assert "31; 10.24" in S.memory_table([res], runners)            # 32000 KiB over 3200 particles
+    # a case that runs without LIGGGHTS (other physics): its columns say so
+    lig = S.Runner("liggghts", "liggghts", "liggghts", "LIGGGHTS")
+    res_r = dict(res, case="friction_radius")
+    t = S.table([res_r], runners + [lig], ["granwave", "lammps", "liggghts"])
+    assert "| friction_radius | 3200 x 6000 | granwave | 2.20 / 1.10 | 9.90 / 5.50 | 4.00x (4.00x) | " \
+           "not run (other physics) | - |" in t
+    assert "not run" in S.sanity_table([res_r], runners + [lig]) and "not run" in S.memory_table([res_r], runners + [lig])
 
 
 # ---------------------------------------------------------------- real codes (short)
