@@ -107,3 +107,11 @@ assert close(v('V_pz_lattice'), v('V_pz'), 1e-4); \
 assert close(v('t_c'), math.pi * math.sqrt(ms / kn), 2e-9); \
 h = d['hertz_impact']; assert close(h['t_c']['value'], 2.86827 * (ms * ms / (Rs * Es * Es * 1.0)) ** 0.2, 1e-6)\"")
 set_tests_properties("cli: theory of a Hertz-Mindlin case: k_n, k_t, f0, V_pz, t_c against the closed forms at delta_0" PROPERTIES LABELS "cli")
+# A Hertz-Mindlin run's summary takes the lattice speed from the law linearised at delta_0 (it read
+# the linear law's kn, 0 for a Hertz case, and printed 0 m/s): a P wave turns no particle, so the
+# lattice speed is eq. (10)'s up to the prestress term (2/3) delta_0/d' (7e-5 here).
+add_test(NAME "cli: run --json of a Hertz-Mindlin crystal gives the lattice P speed of the linearised law"
+  COMMAND sh -c "${GW} run ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_hertz_small.toml -o ${CLI_TMP}/hm_lattice.h5 --json > ${CLI_TMP}/hm_lattice.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/hm_lattice.json')); \
+v, w = d['speed_theory'], d['speed_theory_lattice']; assert abs(w / v - 1) < 1e-3, (v, w)\"")
+set_tests_properties("cli: run --json of a Hertz-Mindlin crystal gives the lattice P speed of the linearised law" PROPERTIES LABELS "cli")

@@ -58,15 +58,8 @@ std::string trace_path_for(const config::Case& c, const RunRequest& req) {
 // a Bravais lattice (polydisperse). Eq. (10)'s affine kt term holds the rotations that an S wave
 // drives: with kt > 0 only this one predicts the S speed (seed 002 sec. 3.5, docs/design.md §3).
 double lattice_speed(const config::Case& c, const Packing& pk, bool shear) {
-  theory::ContactNetwork net;
-  net.box_x = pk.box_x;
-  net.box_y = pk.box_y;
-  net.k = c.contact.kn;
-  net.kt = c.contact.kt;
-  for (std::size_t p = 0; p < pk.size(); ++p)
-    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
-  for (const auto& q : list_contacts(pk, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+  // The network of the case's law, linearised at each contact's static overlap (any law).
+  const theory::ContactNetwork net = contact_network(c, pk);
   theory::LatticeCellOptions opt;
   opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
   const auto cell = theory::lattice_cell(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, opt);

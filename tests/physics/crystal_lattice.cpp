@@ -35,15 +35,7 @@ struct Lattice {
 };
 
 Lattice lattice_theory(const config::Case& c, const crystal::Packing& pk) {
-  theory::ContactNetwork net;
-  net.box_x = pk.box_x;
-  net.box_y = pk.box_y;
-  net.k = c.contact.kn;
-  net.kt = c.contact.kt;
-  for (std::size_t p = 0; p < pk.size(); ++p)
-    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
-  for (const auto& q : crystal::list_contacts(pk, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+  const theory::ContactNetwork net = crystal::contact_network(c, pk);
   const theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
   theory::LatticeCellOptions opt;
   opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;

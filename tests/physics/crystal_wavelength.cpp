@@ -65,15 +65,7 @@ analysis::CrystalTrace to_trace(const crystal::RunResult& r, const crystal::Pack
 
 // Long-wave speed along z of the lattice dynamics with rotations and prestress of this packing.
 double lattice_speed(const config::Case& c, const crystal::Packing& pk, bool shear) {
-  theory::ContactNetwork net;
-  net.box_x = pk.box_x;
-  net.box_y = pk.box_y;
-  net.k = c.contact.kn;
-  net.kt = c.contact.kt;
-  for (std::size_t p = 0; p < pk.size(); ++p)
-    net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p], pk.radius[p], pk.inertia[p]});
-  for (const auto& q : crystal::list_contacts(pk, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+  const theory::ContactNetwork net = crystal::contact_network(c, pk);
   const auto cell = theory::lattice_cell(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, {});
   REQUIRE(cell);
   return theory::lattice_long_wave(*cell, theory::Vec3::UnitZ())
