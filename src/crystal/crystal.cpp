@@ -236,7 +236,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
       out << "\n";
     }
     out << "  coordination " << coordination0 << " -> " << coordination_end << "\n";
-    const bool kt = c.contact.kt > 0.0;
+    const bool kt = d.kt > 0.0;  // Hertz-Mindlin: k_t linearised at delta_0
     out << "  theory: " << (shear ? "V_s = " : "V_p = ") << (shear ? d.v_s : d.v_p) << " m/s ("
         << (shear && kt ? "eq. 10 without its kt term" : "eq. 10") << ", branch d'" << (!shear && kt ? ", affine kt" : "")
         << "), ";
