@@ -281,7 +281,8 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
     pos = np.asarray(system["position"], float)
     fixed = np.asarray(system["fixed"], int).astype(bool)
     layer = lay["layer"]
-    types = np.where(fixed, np.where(layer < lay["fixed_layers"], 3, 2), 1)
+    # types: 1 free, 2 fixed (top, and for a velocity drive the wall below the source), 3 the source
+    types = np.where(T.source_mask(fixed, layer, lay["fixed_layers"], ex["drive"]), 3, np.where(fixed, 2, 1))
     sty = crystal_style(c, m)
     for key, used in sty["conventions"].items():
         asked = c.get(key)
@@ -312,7 +313,8 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
         vv = float(ex["amplitude"])
         exl = "velocity        source set %s %s %s units box" % tuple(_g(vv * a) for a in axis)
     vdrive = ex["drive"] != "displacement"
-    exclude = "exclude type 2 2 exclude type 2 3" + ("" if vdrive else " exclude type 3 3")
+    # pairs of two fixed particles; with a velocity drive the source (3) feels the wall (2)
+    exclude = "exclude type 2 2" if vdrive else "exclude type 2 2 exclude type 2 3 exclude type 3 3"
     facts.update(lay={k: v for k, v in lay.items() if k != "layer"}, conventions=sty["conventions"],
                  pair_style=sty["style"], tangential=sty["tangential"], damped=T.has_dashpot(c), clip=sty["clip"])
     return _template("crystal.in.tmpl").substitute(
@@ -422,7 +424,7 @@ def convert_crystal(workdir, case, system, facts):
         gamma_n, kn, hertz = hmp["zeta"], 0.0, (HM.e_star(hmp["E"], hmp["nu"]), hmp["zeta"])
     mobile = ~fixed
     if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
-        mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
+        mobile = mobile | T.source_mask(fixed, layer, lay["fixed_layers"], "velocity")
     bx, by, dt = lay["box_x"], lay["box_y"], facts["dt"]
     ncol = 6 if facts["tangential"] else 3
     times = []

@@ -115,7 +115,8 @@ def render(case: dict, system: dict, workdir: str) -> dict:
         lay = T.crystal_layout(system)
         fixed = np.asarray(system["fixed"], int).astype(bool)
         layer = lay["layer"]
-        types = np.where(fixed, np.where(layer < lay["fixed_layers"], 3, 2), 1)
+        # types: 1 free, 2 fixed (top, and for a velocity drive the wall below the source), 3 the source
+        types = np.where(T.source_mask(fixed, layer, lay["fixed_layers"], ex["drive"]), 3, np.where(fixed, 2, 1))
         zmin, zmax = float(pos[:, 2].min()), float(pos[:, 2].max())
         rmax = float(r.max())
         # x, y periodic with the system's lengths (the packing starts at x = y = 0, images by minimum image)
@@ -134,12 +135,14 @@ def render(case: dict, system: dict, workdir: str) -> dict:
             s = float(ex["amplitude"]) * lay["d"]
             exl = "displace_atoms  source move %s %s %s units box" % tuple(_g(s * a) for a in axis)
         else:
-            # granwave's velocity drive: the source layers become free particles with an initial
-            # velocity (integrated, interacting with each other), not moved at a constant velocity.
+            # granwave's velocity drive: the source layer becomes free particles with an initial
+            # velocity (integrated, between the fixed wall layer and the crystal), not moved at a
+            # constant velocity.
             vv = float(ex["amplitude"])
             exl = "velocity        source set %s %s %s units box" % tuple(_g(vv * a) for a in axis)
         vdrive = ex["drive"] != "displacement"
-        exclude = "exclude type 2 2 exclude type 2 3" + ("" if vdrive else " exclude type 3 3")
+        # pairs of two fixed particles; with a velocity drive the source (3) feels the wall (2)
+        exclude = "exclude type 2 2" if vdrive else "exclude type 2 2 exclude type 2 3 exclude type 3 3"
         free_types = "1 3" if vdrive else "1"
         limit_force = "on" if c["normal_tension"] == "clip" else "off"
         if c["law"] == "hertz_mindlin":
@@ -147,7 +150,7 @@ def render(case: dict, system: dict, workdir: str) -> dict:
             with_history = c["tangential"] == "mindlin"
         else:
             contact_lines = (
-                "# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed top, 3 fixed source: "
+                "# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed, 3 source: "
                 "one material)\n"
                 "fix             m1 all property/global kn peratomtypepair 3 %s\n"
                 "fix             m2 all property/global kt peratomtypepair 3 %s\n"
@@ -309,7 +312,7 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             kt = lambda i1, i2, p: HM.k_t_rows(g_star, p, r, i1, i2, lay["box_x"], lay["box_y"])  # noqa: E731
         mobile = ~fixed
         if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
-            mobile = mobile | (fixed & (layer < lay["fixed_layers"]))
+            mobile = mobile | T.source_mask(fixed, layer, lay["fixed_layers"], "velocity")
         out_rows = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx")}
         for s, cols, rows, pr in frames:
             steps.append(s)

@@ -304,11 +304,12 @@ def run_crystal(case, system, dt, nsteps, every):
     fixed = np.asarray(system["fixed"], int).astype(bool)
     layer = lay["layer"]
     n = len(m)
-    # The source: all bottom fixed layers. A displacement drive moves them by a held step; a velocity
-    # drive (granwave: set_mobile) makes them free particles with an initial velocity, integrated from
-    # then on (not moved at a constant velocity), interacting with each other and the first free layer.
-    source = fixed & (layer < lay["fixed_layers"])
+    # The source. A displacement drive moves all bottom fixed layers by a held step; a velocity drive
+    # (granwave: set_mobile) makes the innermost bottom fixed layer free particles with an initial
+    # velocity, integrated from then on (not moved at a constant velocity), between the fixed layers
+    # below it (the wall that holds the prestress) and the first free layer.
     vdrive = ex["drive"] != "displacement"
+    source = T.source_mask(fixed, layer, lay["fixed_layers"], ex["drive"])
     dyn_fixed = fixed & ~source if vdrive else fixed
     cells = case["crystal"]["cells"]
     if min(int(cells[0]), int(cells[1])) < 3:
@@ -453,7 +454,8 @@ def run_crystal(case, system, dt, nsteps, every):
                 if abs(it.phys.kn - c["kn"]) > 1e-9 * c["kn"] or abs(it.phys.ks - c["kt"]) > 1e-9 * max(c["kt"], 1):
                     fail("FrictPhys kn/ks = %g/%g, expected %g/%g" % (it.phys.kn, it.phys.ks, c["kn"], c["kt"]), 1)
                 break
-    # ... then the source (all bottom fixed layers) makes its step, and the leapfrog starts.
+    # ... then the source (the bottom fixed layers; for a velocity drive the innermost one) makes its
+    # step, and the leapfrog starts.
     src = [k for k in range(n) if source[k]]
     axis = 2 if ex["mode"] == "P" else 0
     v0 = np.zeros((n, 3))

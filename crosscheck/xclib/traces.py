@@ -88,6 +88,16 @@ def excitation(case: dict) -> dict:
     return e
 
 
+def source_mask(fixed, layer, fixed_layers: int, drive: str):
+    """The particles the excitation moves (SCHEMA.md §1, `drive`): every bottom fixed layer for a
+    displacement step; for the velocity drive only the innermost one, freed with its initial
+    velocity, the fixed layers below it staying as the wall that holds the prestress."""
+    fixed = np.asarray(fixed, bool)
+    layer = np.asarray(layer)
+    first = fixed_layers - 1 if drive != "displacement" else 0
+    return fixed & (layer < fixed_layers) & (layer >= first)
+
+
 def read_system(path: str) -> dict:
     """All datasets (numpy arrays) and root attributes of a system file (SCHEMA.md §2)."""
     out: dict = {"attrs": {}}

@@ -334,6 +334,11 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
                "stiffness vanishes at zero overlap)", root.get("crystal"));
     }
     if (const toml::table* e = r.table(root, "", "excitation", false)) c.excitation = read_excitation(r, *e);
+    // The velocity drive frees the innermost bottom fixed layer; the layers below it stay as the
+    // wall that holds the prestress (freed, they would be pushed out by it).
+    if (c.excitation.drive == Excitation::Drive::velocity && c.crystal->fixed_layers < 2)
+      r.fail("crystal.fixed_layers", "must be >= 2 with excitation.drive = \"velocity\" (one driven layer in front of a "
+             "fixed wall layer; got " + std::to_string(c.crystal->fixed_layers) + ")", root.get("crystal"));
   }
 
   // [integrator]

@@ -414,12 +414,17 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
     for (int L = 0; L < packing.layers; ++L) tr.layer_z.push_back(z_sum[L] / count[L] - z_driven);
   }
 
-  // Excitation at t = 0 (secs. 2.2 B, 3.1): all bottom fixed layers together.
+  // Excitation at t = 0 (secs. 2.2 B, 3.1): a displacement step moves all bottom fixed layers
+  // together; the velocity drive ("an initial velocity as a perturbation of the layer, without
+  // controlling its displacement further on", sec. 3.1) frees the innermost one only, the layers
+  // below it staying fixed as the wall that holds the prestress.
   // (By global index; `held`: the local indices of those this rank holds, owned or halo: every
   // rank moves its copies the same way.)
+  const int first_source_layer =
+      c.excitation.drive == config::Excitation::Drive::velocity ? packing.fixed_layers - 1 : 0;
   std::vector<std::size_t> source, held;
   for (std::size_t p = 0; p < packing.size(); ++p)
-    if (packing.fixed[p] && packing.layer[p] < packing.fixed_layers) {
+    if (packing.fixed[p] && packing.layer[p] < packing.fixed_layers && packing.layer[p] >= first_source_layer) {
       source.push_back(p);
       if (p >= dyn.offset() && p - dyn.offset() < dyn.size()) held.push_back(p - dyn.offset());
     }

@@ -129,3 +129,22 @@ def test_lockstep_reads_both_dumps_a_frame_at_a_time_and_refuses_a_gap(tmp_path)
     pairs.write_text(frame(0, 0, "c1 c2", []) + frame(6, 0, "c1 c2", []))
     with pytest.raises(ValueError, match="step 6 where"):
         list(D.lockstep(str(atoms), str(pairs)))
+
+
+def _atom_types(data):
+    """Type of each atom of a LAMMPS data file (atom style sphere: id type diameter density x y z)."""
+    atoms = data.split("Atoms")[1].strip().splitlines()[1:]
+    return np.array([int(ln.split()[1]) for ln in atoms if ln.strip()])
+
+
+def test_velocity_drive_frees_the_innermost_bottom_layer_in_front_of_the_wall(tmp_path, cases_dir):
+    """SCHEMA.md §1: the velocity drive frees one layer (type 3, integrated with the free type 1); the
+    fixed layer below it (type 2, with the top) is the wall, and its pairs with the source are kept."""
+    facts, deck, data = _render(tmp_path, cases_dir, "crystal_small_velocity.toml")
+    types = _atom_types(data)
+    per_layer = 640 // 40
+    assert len(types) == 640 and np.count_nonzero(types == 3) == per_layer          # one layer
+    assert np.count_nonzero(types == 2) == 3 * per_layer                             # the wall and the 2 top layers
+    assert "exclude type 2 2\n" in deck and "exclude type 2 3" not in deck and "exclude type 3 3" not in deck
+    assert "velocity        source set 0.0 0.0 0.01 units box" in deck
+    assert "fix             integr free" in deck and "group           free type 1 3" in deck

@@ -173,6 +173,30 @@ def test_a_suite_runs_its_cases_then_its_studies(tmp_path):
 
 
 @needs_codes
+@needs_codes
+@needs_lammps
+def test_velocity_drive_agrees_in_four_codes(tmp_path):
+    """The velocity drive frees the innermost bottom fixed layer in front of the fixed wall layer
+    (SCHEMA.md §1): every driver must free the same particles, keep the wall's contacts with the
+    source, and start the source at v(0) with its dashpots seeing it. Measured: every pair within
+    2e-9 (traces), granwave~lammps vs LAMMPS 3e-10."""
+    gw = harness.find_granwave(None)
+    if gw is None:
+        pytest.skip("granwave not built")
+    p, report = _run(["--codes", "granwave,yade,liggghts,lammps", "--granwave", gw,
+                      os.path.join(HERE, "cases", "crystal_small_velocity.toml")], tmp_path)
+    assert p.returncode == 0 and "| xc_crystal_small_velocity | PASS |" in p.stdout, p.stdout + p.stderr
+    for pair in ("granwave-yade", "granwave-liggghts", "yade-liggghts", "granwave~lammps-lammps"):
+        rows = [ln for ln in report.splitlines() if ln.startswith("| %s | trace_max_rel |" % pair)]
+        assert rows and all(float(r.split("|")[4]) < 1e-8 for r in rows), (pair, rows)
+    # every code held the wall (layer 0) and started the source (layer 1) at the amplitude, 0.01 m/s
+    for code in ("granwave", "yade", "liggghts", "lammps"):
+        tr = T.read_trace(str(tmp_path / "rep" / "crystal_small_velocity" / code / "traces.h5"))
+        vz, uz = tr["/crystal/layer_velocity_z"], tr["/crystal/layer_displacement_z"]
+        assert abs(vz[:, 0]).max() == 0.0 and abs(uz[:, 0]).max() == 0.0, code
+        assert vz[0, 1] == pytest.approx(0.01, rel=1e-12) and abs(uz[-1, 1]) > 0.0, code
+
+
 def test_polydisperse_crystal_agrees_in_three_codes(tmp_path):
     """A relaxed polydisperse packing has residual forces and a layer spacing off the lattice's: it
     caught granwave writing lattice layer positions (speeds 2e-5 off) and YADE's driver reading a

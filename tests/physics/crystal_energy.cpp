@@ -92,48 +92,64 @@ TEST_CASE("energy audit closes for an S wave with either lever arm", "[crystal][
   }
 }
 
-TEST_CASE("energy audit closes for the velocity drive (freed source layers with an initial velocity)",
+TEST_CASE("velocity drive: one freed layer in front of the wall, the prestress held, the energy audit closed",
           "[crystal][energy]") {
-  // The source layers become free particles with v(0) = amplitude; work_in is their kick. The
-  // prestress then pushes them out (the release dominates: E_kin reaches half the stored
-  // energy) and their contacts open. F(0) is the force of the state (x(0), v(0)): with a
-  // dashpot it must see v(0). Frictionless, so that the opening contacts are the only event.
+  // The innermost bottom fixed layer becomes free particles with v(0) = amplitude (seed 002 sec.
+  // 3.1: "an initial velocity as a perturbation of the layer, without controlling its displacement
+  // further on"); the fixed layer below it stays as the wall that holds the prestress. (When every
+  // bottom fixed layer was freed, the prestress pushed them out: sigma_zz fell to -sigma_0 near the
+  // source within 0.16 ms and E_kin reached half the stored energy.) work_in is the kick. F(0) is the
+  // force of the state (x(0), v(0)): with a dashpot it must see v(0).
   struct Run {
-    double work_in, kick, stored, kinetic, dissipated, residual;  // residual: max |shadow balance| (J)
+    double work_in, kick, sigma_0, largest_stress_change, dissipated, residual;  // residual: max |shadow balance| (J)
   };
-  auto run = [](double gamma_n, double dt) {
-    config::Case c = small(gamma_n, 0.0, dt);
+  auto run = [](double gamma_n, double kt, double dt = 2e-7) {
+    config::Case c = small(gamma_n, kt, dt);
     c.excitation.drive = config::Excitation::Drive::velocity;
-    c.excitation.amplitude = 1e-3;
+    c.excitation.amplitude = 1e-2;
     const crystal::Packing p = crystal::make_packing(c);
     const crystal::RunResult r = crystal::simulate(c, p);
     REQUIRE_FALSE(r.failed);
     const crystal::Traces& t = r.traces;
     const std::size_t last = t.samples() - 1;
-    // The kick, from the case alone (not from the packing's arrays that work_in sums): a layer is
-    // a cells[0] x cells[1] square net (sec. 2.2), so the source (the fixed bottom layers) holds
-    // cells[0] cells[1] fixed_layers particles of mass rho (4/3) pi a^3, each at v(0) = amplitude.
+    // The kick, from the case alone (not from the packing's arrays that work_in sums): a layer is a
+    // cells[0] x cells[1] square net (sec. 2.2) of particles of mass rho (4/3) pi a^3.
     const auto& k = *c.crystal;
-    const double n_source = static_cast<double>(k.cells[0]) * k.cells[1] * k.fixed_layers;
-    const double kick = 0.5 * n_source * (k.density * 4.0 / 3.0 * std::numbers::pi * std::pow(k.radius, 3)) * 1e-3 * 1e-3;
+    const double n_source = static_cast<double>(k.cells[0]) * k.cells[1];
+    const double v0 = c.excitation.amplitude;
+    const double kick = 0.5 * n_source * (k.density * 4.0 / 3.0 * std::numbers::pi * std::pow(k.radius, 3)) * v0 * v0;
+    // The FCC prestress from the case alone: 2 sqrt(2) k delta / d'^2 (sec. 2.2, d' = 2a - delta).
+    const double delta = k.overlap * 2.0 * k.radius, d_prime = 2.0 * k.radius - delta;
+    const double sigma_0 = 2.0 * std::numbers::sqrt2 * c.contact.kn * delta / (d_prime * d_prime);
+    // Every layer away from the ends (2 .. L - 3) stays near its t = 0 stress: the wave is a small
+    // perturbation of a crystal that stays confined.
+    double change = 0.0;
+    const std::size_t layers = t.nlayers;
+    for (std::size_t s = 0; s < t.samples(); ++s)
+      for (std::size_t L = 2; L + 3 <= layers; ++L)
+        change = std::max(change, std::abs(t.stress_zz[s * layers + L] - t.stress_zz[L]));
     auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
     double residual = 0.0;
     for (std::size_t k = 0; k < t.samples(); ++k)
       residual = std::max(residual, std::abs(total(k) - total(0) - (t.verlet_correction[k] - t.verlet_correction[0])));
-    std::printf("velocity drive, gamma_n = %g, dt = %g: work_in %.6g J, E_pot(0) %.4g J, E_kin(end) %.4g J, "
-                "dissipated %.4g J, max shadow residual %.3g J\n",
-                gamma_n, dt, t.work_in[last], t.potential[0], t.kinetic[last], t.dissipated[last], residual);
-    return Run{t.work_in[last], kick, t.potential[0], t.kinetic[last], t.dissipated[last], residual};
+    std::printf("velocity drive, gamma_n = %g, kt = %g, dt = %g: work_in %.6g J (kick %.6g J), sigma_0 %.6g Pa, largest "
+                "|sigma_zz - sigma_zz(0)| %.4g Pa, dissipated %.4g J, max shadow residual %.3g J\n",
+                gamma_n, kt, dt, t.work_in[last], kick, sigma_0, change, t.dissipated[last], residual);
+    return Run{t.work_in[last], kick, sigma_0, change, t.dissipated[last], residual};
   };
-  const Run a = run(0.0, 2e-7);
+  const Run a = run(0.0, 0.0);
   CHECK(a.work_in / a.kick == Approx(1.0).epsilon(1e-12));
-  CHECK(a.kinetic > 0.1 * a.stored);
+  // The layer's strain is v0 sqrt(m/k)/d' ~ 4.6e-5 against the prestress' delta/d' = 1e-3: the wave
+  // stays within a few per cent of sigma_0 (measured 0.9 %, 1.3 % with k_t); freed, the source had dropped it by 2 sigma_0.
+  CHECK(a.largest_stress_change < 0.05 * a.sigma_0);
   CHECK(a.dissipated == 0.0);
-  CHECK(a.residual < 1e-5 * a.stored);
-  // What is left is the integrator's error at contacts that open between two steps: O(dt^2).
-  const Run h = run(0.0, 1e-7);
-  CHECK(h.residual < 0.35 * a.residual);
-  const Run d = run(0.1, 2e-7);
-  CHECK(d.dissipated > 0.01 * d.kinetic);
-  CHECK(d.residual < 5e-3 * d.dissipated);
+  CHECK(a.residual < 1e-6 * a.work_in);  // linear springs, no contact opens: round-off
+  const Run f = run(0.0, 1e5);  // tangential springs (the S-coupling of the source's spin)
+  CHECK(f.largest_stress_change < 0.05 * f.sigma_0);
+  CHECK(f.residual < 1e-6 * f.work_in);
+  const Run d = run(0.1, 1e5);  // the dashpots between the wall and the moving source dissipate
+  CHECK(d.dissipated > 0.5 * d.work_in);
+  CHECK(d.residual < 5e-3 * d.dissipated);  // measured 4.3e-3: the dashpot's integration error ...
+  const Run dh = run(0.1, 1e5, 1e-7);
+  CHECK(dh.residual < 0.6 * d.residual);  // ... which shrinks with dt
 }
