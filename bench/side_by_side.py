@@ -76,7 +76,9 @@ So that nobody benchmarks a wrong set-up, the last repetition's output of every 
 by the one ruler, `granwave analyze --json` (LAMMPS' and LIGGGHTS' layer files are turned into
 trace files first): the half-peak P speed (z/l0 = 10..150; 1..4 for `long`, whose 200 steps carry
 the front about 6 layers), and the largest difference of sigma_zz from granwave's trace over all
-layers and samples, relative to granwave's largest stress change (the wave's peak).
+layers and samples, relative to granwave's largest stress change (the wave's peak), beside what the
+layer file's printed digits allow (half a unit in the last digit; LIGGGHTS prints 6 digits, so on the
+`hertz` case, a wave of 1e-3 of the prestress, its 1.9e-3 is its output's resolution, not its physics).
 """
 from __future__ import annotations
 
@@ -427,6 +429,29 @@ def analyze_speed(granwave: str, trace: str, layers: str | None) -> dict:
     return dict(v_half=v.get("value"), v_half_err=v.get("error"), z_over_l0=v.get("z_over_l0"))
 
 
+# Significant digits of each code's layer file: LAMMPS `fix ave/chunk ... format " %.10g"` (the deck above);
+# LIGGGHTS 3.8's `fix ave/spatial` has no format keyword and prints "%g", 6 digits.
+PRINTED_DIGITS = {"lammps": 10, "liggghts": 6}
+
+
+def stress_resolution(ref_trace: str, layer_file: str, system_path: str, digits: int) -> float | None:
+    """What the layer file's printed digits alone allow: max over samples and layers of half a unit in
+    the last printed digit of the per-atom mean c_sa[3], turned into sigma_zz as layers_to_trace does
+    (count / (l_x l_y l0)), relative to granwave's peak stress change. A wave small against the
+    prestress (the `hertz` case: 1e-7 d on a 1e-4 d overlap) sits in the last digits of %g."""
+    import h5py
+    with h5py.File(ref_trace, "r") as a:
+        s0 = a["/crystal/layer_stress_zz"][()]
+    lay = T.crystal_layout(T.read_system(system_path))
+    _, _, count, vals = read_layer_file(layer_file)
+    mean = np.abs(vals[:, :, 0])
+    safe = np.where(mean > 0, mean, 1.0)
+    ulp = np.where(mean > 0, 10.0 ** (np.floor(np.log10(safe)) - (digits - 1)), 0.0)
+    peak = float(np.max(np.abs(s0 - s0[0])))
+    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
+    return None if peak <= 0 else float(np.max(0.5 * count * ulp)) / vol / peak
+
+
 def stress_deviation(ref_trace: str, trace: str) -> float | None:
     """max |sigma_zz - sigma_zz(granwave)| over all samples and layers / max |sigma_zz(granwave) - its t = 0|."""
     import h5py
@@ -602,6 +627,8 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
             s = analyze_speed(granwave, tr, layers)
             if ref_trace and r.code != "granwave":
                 s["stress_dev"] = stress_deviation(ref_trace, tr)
+                s["stress_resolution"] = stress_resolution(ref_trace, os.path.join(last_dir[r.key], "layers.txt"),
+                                                           system_path, PRINTED_DIGITS[r.code])
         except (ValueError, OSError, RuntimeError) as e:
             s = dict(error=str(e))
         sanity[r.key] = s
@@ -682,7 +709,9 @@ def sanity_table(results: list, runners: list) -> str:
                 row.append("error: %s" % s.get("error", "?")[:60])
         for r in runners:
             if r.code != "granwave":
-                row.append(_s(res["sanity"].get(r.key, {}).get("stress_dev"), "%.1e"))
+                sr = res["sanity"].get(r.key, {})
+                row.append(_s(sr.get("stress_dev"), "%.1e") + (" (printed digits allow %.1e)" % sr["stress_resolution"]
+                                                               if sr.get("stress_resolution") is not None else ""))
         lines.append("| " + " | ".join(row) + " |")
     return "\n".join(lines)
 
