@@ -365,6 +365,9 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         extra["normal_tension"] = cp["normal_tension"]          # limitForce off / on: both available
         extra["coulomb_normal"] = T.coulomb_normal_used(cp, "LIGGGHTS")
         extra["contact_law"] = cp["law"]
+        if "contact_distance_factor" in extra["deck"]:
+            # measured (probe_linear.py): with the factor a contact that opens loses its spring, as in LAMMPS
+            extra["history_on_contact_loss"] = "zeroed"
         if cp["law"] == "hertz_mindlin":
             extra["tangential_history"] = HM.history_used(cp, HM.LIGGGHTS_TANGENTIAL_HISTORY, "LIGGGHTS")
     T.write_trace(out, code="liggghts", code_version=version, case_text=case_text, case_name=case["case"]["name"],

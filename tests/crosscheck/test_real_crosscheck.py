@@ -351,3 +351,6 @@ def test_polydisperse_crystal_with_friction_in_four_codes(tmp_path):
     # the twist is reported with its size: well above the judged pairs, below the case's 1e-6 per layer
     assert len(yade) == 3 and all(r[6].strip() == "EXPECTED-DIFF" for r in yade)
     assert 1e-7 < max(float(r[4]) for r in yade) < 1e-6, yade
+    for code in ("liggghts", "lammps"):
+        tr = T.read_trace(str(tmp_path / "rep" / "crystal_small_poly2_friction" / code / "traces.h5"))
+        assert tr["attrs"]["history_on_contact_loss"] == "zeroed", code
