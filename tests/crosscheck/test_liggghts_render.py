@@ -42,11 +42,14 @@ def test_crystal_deck(tmp_path, cases_dir):
     assert "displace_atoms  source move 0.0 0.0 2.0000000000000002e-07 units box" in deck   # 1e-4 * d, exact
     assert deck.index("run             1") < deck.index("displace_atoms") < deck.index("fix             integr free")
     assert "boundary        p p f" in deck and "exclude type 2 2" in deck
+    # with a spring: a contact that opens loses it (LIGGGHTS' surfacesClose needs a factor above 1)
+    assert "neigh_modify    delay 0 contact_distance_factor 1.01 exclude type 2 2" in deck
     assert "640 atoms" in data
     # frictionless: six columns, no history, and the seed's "allow" (limitForce off)
     (tmp_path / "kt0").mkdir()
     facts, deck, data = _render(tmp_path / "kt0", cases_dir, "crystal_small.toml")
     assert "limitForce off" in deck and "history\n" not in deck and "c_cpl[7]" not in deck
+    assert "contact_distance_factor" not in deck       # kt = 0: no spring to lose, the deck as before
 
 
 def test_dump_reader_and_pair_dedup(tmp_path):
