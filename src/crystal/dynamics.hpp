@@ -173,8 +173,8 @@ class Dynamics {
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
   template <bool Torques, bool Threaded>
   bool kick_drift();
-  template <bool Kick, bool Torques, bool ContactPointArm, bool Whole>
-  void particle_pass(double h);
+  template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
+  void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   void add_kinetic(double* s) const;
   void add_verlet(double* s) const;
