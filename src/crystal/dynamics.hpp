@@ -171,8 +171,10 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
-  template <bool Kick, bool Torques, bool ContactPointArm, bool Whole>
-  void particle_pass(double h);
+  template <bool Torques, bool Threaded>
+  bool kick_drift();
+  template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
+  void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   void add_kinetic(double* s) const;
   void add_verlet(double* s) const;
@@ -188,6 +190,7 @@ class Dynamics {
   double arm_shift_ = 0.0;  // 0: arm a_i (eq. (4)); 1/2: arm a_i - delta/2 (contact point)
   double dt_ = 0.0;
   double skin_ = 0.0;
+  double far2_ = 0.0;  // a particle is more than skin/2 from its place at the build when d^2 > far2_
   std::vector<double> dissipated_before_;  // per layer, folded in at rebuilds
   std::shared_ptr<const SlabPlan> slab_;
   std::size_t offset_ = 0, own_lo_ = 0, own_hi_ = 0;
