@@ -99,6 +99,10 @@ class Dynamics {
   std::vector<double> radius, mass, inv_mass, inv_inertia, inertia;
   std::vector<std::uint8_t> mobile;                     // 1 = integrated
   ContactList contacts;
+  // The contact pass's copy of the particle state it reads, as rows of four doubles
+  // (crystal/kernel.hpp's gather), refreshed at every pass: 96 bytes per particle with a law
+  // with torques, empty otherwise.
+  std::vector<double> gather_rows;
   double time = 0.0;
   long steps = 0;
   long rebuilds = 0;

@@ -19,8 +19,8 @@ std::string fmt(const char* f, double x) {
 }
 
 // Measured costs (granwave run, /usr/bin/time maxrss): 18.6 MB with 3200 particles, 72.0 MB with
-// 51200, 245 MB with 204800 (1125 bytes per particle: state, contact list with history, packing),
-// and 9.4 kB per stored sample of the 200-layer crystal (6 layer fields x 8 bytes, in vectors that
+// 51200, 245 MB with 204800 (1125 bytes per particle: state, contact list with history, packing;
+// with friction the contact pass's particle rows add 96, crystal/kernel.hpp), and 9.4 kB per stored sample of the 200-layer crystal (6 layer fields x 8 bytes, in vectors that
 // grow by doubling). Rounded up: 20 MB fixed, 1300 bytes per particle, 2.5 x the stored series (a
 // vector's growth, and the analysis of the written trace, which reads it back and transforms one
 // field), 400 bytes per particle for a VTK snapshot (ASCII).

@@ -1,13 +1,16 @@
 // Contact laws of seed 002 sec. 2.1: the linear normal contact (two-body t_c, restitution) run
 // through the crystal dynamics, and the tangential spring of eqs. (2)-(8).
+#include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 #include "core/error.hpp"
 #include "crystal/dynamics.hpp"
+#include "crystal/kernel.hpp"
 
 using namespace granwave;
 using contact::Vec3;
@@ -224,4 +227,54 @@ TEST_CASE("contact-point lever arm: a - delta/2 in eq. (4) and in both torques, 
   const Vec3 total = r01.cross(Vec3(dyn.fx[0], dyn.fy[0], dyn.fz[0])) + Vec3(dyn.tx[0], dyn.ty[0], dyn.tz[0]) +
                      Vec3(dyn.tx[1], dyn.ty[1], dyn.tz[1]);
   CHECK(total.norm() < 1e-12 * torque.norm());
+}
+
+TEST_CASE("contact-pass gather: the columns are the direct loads' values, bit for bit", "[crystal][contact]") {
+  // Particle rows (x y z a | v | w) and 4k + 3 contacts (vector quads and the scalar tail) with
+  // random indices and images; each column must equal the contact's own arithmetic on the
+  // particle arrays (the same operations in the same order).
+  namespace K = crystal::kernel;
+  const int np = 37;
+  const std::int64_t m = 4 * 9 + 3;
+  std::vector<double> p(12 * np);
+  unsigned s = 12345u;
+  auto rnd = [&] { return (s = s * 1664525u + 1013904223u) / 4294967296.0 - 0.5; };
+  for (double& v : p) v = rnd() * 1e-3;
+  const double* pos = p.data();
+  const double* vel = pos + 4 * np;
+  const double* rot = pos + 8 * np;
+  std::vector<std::int32_t> ci(m), cj(m);
+  std::vector<std::int8_t> imx(m), imy(m);
+  for (std::int64_t c = 0; c < m; ++c) {
+    ci[c] = static_cast<std::int32_t>((rnd() + 0.5) * np);
+    cj[c] = static_cast<std::int32_t>((rnd() + 0.5) * np);
+    imx[c] = static_cast<std::int8_t>(c % 3 - 1);
+    imy[c] = static_cast<std::int8_t>((c / 3) % 3 - 1);
+  }
+  const double box_x = 3.7e-3, box_y = 2.9e-3;
+  K::Gathered g;
+  K::gather(g, 0, m, ci.data(), cj.data(), imx.data(), imy.data(), box_x, box_y, pos, vel, rot);
+  using G = K::Gathered;
+  int mismatches = 0;
+  for (std::int64_t c = 0; c < m; ++c) {
+    const std::int64_t i = 4 * std::int64_t{ci[c]}, j = 4 * std::int64_t{cj[c]};
+    const double expect[G::kColumns] = {pos[j] + imx[c] * box_x - pos[i],
+                                        pos[j + 1] + imy[c] * box_y - pos[i + 1],
+                                        pos[j + 2] - pos[i + 2],
+                                        pos[i + 3] + pos[j + 3],
+                                        pos[i + 3],
+                                        pos[j + 3],
+                                        vel[i] - vel[j],
+                                        vel[i + 1] - vel[j + 1],
+                                        vel[i + 2] - vel[j + 2],
+                                        rot[i],
+                                        rot[i + 1],
+                                        rot[i + 2],
+                                        rot[j],
+                                        rot[j + 1],
+                                        rot[j + 2]};
+    for (int q = 0; q < G::kColumns; ++q) mismatches += std::bit_cast<std::uint64_t>(g.col[q][c]) !=
+                                                       std::bit_cast<std::uint64_t>(expect[q]);
+  }
+  CHECK(mismatches == 0);
 }
