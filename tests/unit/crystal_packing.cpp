@@ -8,6 +8,7 @@
 #include <iterator>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
 #include "config/case.hpp"
 #include "core/error.hpp"
@@ -202,4 +203,67 @@ TEST_CASE("the source step does not stretch the tangential springs: f_t = 0 at t
     CHECK(frictional.work_in > 0.0);
     CHECK(frictional.work_in == frictionless.work_in);
   }
+}
+
+TEST_CASE("the list is rebuilt exactly when a particle has moved more than half the skin", "[crystal][neighbors]") {
+  // Dynamics::step compares d^2 = dx^2 + dy^2 + dz^2 with the largest double whose root is <=
+  // skin/2; the decision must be the root's, sqrt(d^2) > skin/2, in the last bits too, where
+  // d^2 > (skin/2)^2 differs. A fixed particle is moved by hand in x and y (step() does not move
+  // it, the others barely move in one step); the moves are searched for near the threshold.
+  config::Case c = small_case();
+  c.crystal->cells = {2, 2, 8};
+  // A radius whose skin has (skin/2)^2 below the largest d^2 with root <= skin/2 (about half do).
+  auto gap = [](double half) {
+    double g = half * half;
+    while (std::sqrt(std::nextafter(g, 1.0)) <= half) g = std::nextafter(g, 1.0);
+    return g > half * half;
+  };
+  crystal::Packing p;
+  for (int k = 0; k < 100; ++k) {
+    c.crystal->radius = 1e-3 * (1.0 + 0.01 * k);
+    p = crystal::make_packing(c);
+    if (gap(0.5 * crystal::list_skin(p))) break;
+  }
+  const double half = 0.5 * crystal::list_skin(p);
+  REQUIRE(gap(half));
+  std::size_t q = 0;
+  while (!p.fixed[q]) ++q;
+  struct Move {
+    double x, y;
+    bool far;
+  };
+  std::vector<Move> moves;
+  bool root_near_square_far = false;  // sqrt(d^2) <= skin/2 although d^2 > (skin/2)^2
+  for (int k = 0; k < 4000 && !(root_near_square_far && moves.size() >= 6); ++k) {
+    const double ux = 0.6 + 1e-4 * k, x = p.x[q] + ux * half;
+    const double dx = x - p.x[q];
+    double y = p.y[q] + std::sqrt(half * half - dx * dx);
+    for (int t = 0; t < 8; ++t) y = std::nextafter(y, -1.0);
+    for (int t = 0; t < 16; ++t, y = std::nextafter(y, 1.0)) {
+      const double dy = y - p.y[q], d2 = dx * dx + dy * dy + 0.0 * 0.0;
+      const bool far = std::sqrt(d2) > half, square = d2 > half * half;
+      if (far != square && !root_near_square_far) {
+        root_near_square_far = true;
+        moves.push_back({x, y, far});
+      } else if (moves.size() < 6 && t % 5 == 0) {
+        moves.push_back({x, y, far});
+      }
+    }
+  }
+  REQUIRE(root_near_square_far);  // the threshold's last bits are exercised
+  for (const double o : {0.9 * half, std::nextafter(half, 1.0), 1.1 * half})
+    moves.push_back({p.x[q] + o, p.y[q], std::sqrt((p.x[q] + o - p.x[q]) * (p.x[q] + o - p.x[q])) > half});
+  int rebuilt = 0;
+  for (const Move& m : moves) {
+    crystal::Dynamics dyn(p, c.contact, crystal::derive(c).dt);
+    dyn.x[q] = m.x;  // x_build is 0 at construction: the displacement since the build is x - x0
+    dyn.y[q] = m.y;
+    const long before = dyn.rebuilds;
+    dyn.step();
+    INFO("move (" << m.x - p.x[q] << ", " << m.y - p.y[q] << "), half skin " << half);
+    CHECK((dyn.rebuilds > before) == m.far);
+    rebuilt += m.far;
+  }
+  CHECK(rebuilt >= 2);
+  CHECK(rebuilt < static_cast<int>(moves.size()));
 }
