@@ -1,5 +1,7 @@
 #include "core/version.hpp"
 
+#include "git_describe.h"  // GRANWAVE_GIT_DESCRIBE, written at each build (cmake/git_describe.cmake)
+
 namespace granwave {
 const char* version() { return GRANWAVE_VERSION; }
 const char* git_describe() { return GRANWAVE_GIT_DESCRIBE; }
