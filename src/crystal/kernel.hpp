@@ -10,6 +10,9 @@
 // same bits. Every contact writes only its own entries: results do not depend on the thread
 // count or on which sweep evaluates a contact.
 //
+// Laws with torques read their particle data from gathered columns (gathered_contact_pass), the
+// others directly (direct_contact_pass): the same per-contact arithmetic, the same bits.
+//
 // A law from outside (a test, a new model) runs through the same kernel:
 //   crystal::Dynamics dyn(packing, crystal::model_of(MyLaw{...}), dt);
 #pragma once
@@ -83,12 +86,10 @@ void in_blocks(std::int64_t n, bool threaded, const Body& body) {
 // chunk then reads them as vectors. The few operations done there (the image shift, r_j - r_i,
 // a_i + a_j, v_i - v_j) are those of the contact's own evaluation, in the same order, lane-wise
 // IEEE: the same bits as the scalar path.
-
-
+//
 // The gather serves the laws with torques (20 particle values per contact; there it pays: kt = k,
 // AVX2, 10.6 -> 9.6 ns per contact, Hertz-Mindlin 11.6 -> 9.6). A frictionless law reads 10
-// per contact, and rows cost more than they save (2.5 -> 3.0 ns): it reads the particles'
-// arrays itself.
+// per contact, and rows cost more than they save (2.5 -> 3.0 ns): direct_contact_pass below.
 inline constexpr std::int64_t kChunk = 128;  // contacts per gather: their columns stay in L1 (256: 11.4 ns)
 
 struct Gathered {
@@ -219,10 +220,12 @@ inline void fill_rows(const Dynamics& d, double* rows) {
   }
 }
 
-// The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law
-// dissipates) the dissipated energy. `inc` is the time the springs advance by.
+// The contact pass of a law without torques: it reads half the particle values of a frictional
+// law (positions, radii, velocities), loaded directly from the particle arrays; rows would cost
+// more than they save (AVX-512 build 2.4 -> 2.6 ns per contact; AVX2 2.5 -> 2.6 even with this
+// same loop written around the gather's columns).
 template <class Law, bool Dissipative>
-void contact_pass(Dynamics& d, const Law& law, double inc) {
+void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
   using History = typename Law::History;
   static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
   constexpr std::size_t NH = contact::history_columns<History>;
@@ -234,25 +237,16 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
   const std::int32_t* cj = C.j.data();
   const std::int8_t* imx = C.image_x.data();
   const std::int8_t* imy = C.image_y.data();
-  constexpr bool Rows = Torques;  // gather rows (above)
-  using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
-  // The particle rows the gather reads (x, y, z, a | v | w), refreshed from the SoA state.
-  if constexpr (Rows) {
-    d.gather_rows.resize(12 * d.size());
-    fill_rows(d, d.gather_rows.data());
-  } else {
-    std::vector<double>().swap(d.gather_rows);
-  }
-  const double* prow_pos = d.gather_rows.data();
-  const double* prow_vel = prow_pos + 4 * d.size();
-  const double* prow_rot = prow_pos + 8 * d.size();
   const double* px = d.x.data();
   const double* py = d.y.data();
   const double* pz = d.z.data();
   const double* pvx = d.vx.data();
   const double* pvy = d.vy.data();
   const double* pvz = d.vz.data();
+  const double* pwx = d.wx.data();
+  const double* pwy = d.wy.data();
+  const double* pwz = d.wz.data();
   const double* pa = d.radius.data();
   double* cdelta = C.delta.data();
   double* cfx = C.f_x.data();
@@ -264,29 +258,20 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
   double* diss = C.dissipated.data();
   std::array<double*, NH> hist{};
   for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
-  // One contact: g's entry u is contact c. In the vector sweep (Deferrable) a contact the law
-  // defers is left untouched and reported; the exact sweep evaluates it again from the same
-  // history. Pointers and the law are captured by value (OpenMP would share them by reference,
-  // which the vectoriser cannot see through).
-  auto one = [=](std::int64_t c, std::int64_t u, const auto& g, auto vector_sweep)
+  // One contact. In the vector sweep (Deferrable) a contact the law defers is left untouched
+  // and reported; the exact sweep evaluates it again from the same history. Pointers and the
+  // law are captured by value (OpenMP would share them by reference, which the vectoriser
+  // cannot see through).
+  // shx[u], shy[u]: the image offsets of j (m) of contact c = c0 + u of the block.
+  auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, auto vector_sweep)
                  __attribute__((always_inline)) -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
-    double bx, by, bz, reach, a_i, a_j;  // r_j - r_i with j at its periodic image, a_i + a_j, radii
-    contact::Vec3 dv;                    // v_i - v_j
-    if constexpr (Rows) {
-      bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
-      reach = g.col[G::reach][u], a_i = g.col[G::a_i][u], a_j = g.col[G::a_j][u];
-      dv = contact::Vec3(g.col[G::dvx][u], g.col[G::dvy][u], g.col[G::dvz][u]);
-    } else {
-      const int i = ci[c], j = cj[c];
-      bx = px[j] + g.shx[u] - px[i];  // image_x box_x, as the neighbour search takes it
-      by = py[j] + g.shy[u] - py[i];
-      bz = pz[j] - pz[i];
-      a_i = pa[i], a_j = pa[j];
-      reach = a_i + a_j;
-      dv = contact::Vec3(pvx[i] - pvx[j], pvy[i] - pvy[j], pvz[i] - pvz[j]);
-    }
+    const int i = ci[c], j = cj[c];
+    const double bx = px[j] + shx[u] - px[i];  // image_x box_x, as the neighbour search takes it
+    const double by = py[j] + shy[u] - py[i];
+    const double bz = pz[j] - pz[i];
     const double r2 = bx * bx + by * by + bz * bz;
+    const double reach = pa[i] + pa[j];
     const double r = std::sqrt(r2);
     const double delta = reach - r;
     const bool open = r >= reach;  // no force; the history is lost
@@ -294,14 +279,14 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
     contact::Contact k;
     k.n = contact::Vec3(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
     k.delta = delta;
-    k.dv = dv;
+    k.dv = contact::Vec3(pvx[i] - pvx[j], pvy[i] - pvy[j], pvz[i] - pvz[j]);
     k.delta_dot = -(k.n.x() * k.dv.x() + k.n.y() * k.dv.y() + k.n.z() * k.dv.z());
     if constexpr (Torques) {
-      k.w_i = contact::Vec3(g.col[G::wix][u], g.col[G::wiy][u], g.col[G::wiz][u]);
-      k.w_j = contact::Vec3(g.col[G::wjx][u], g.col[G::wjy][u], g.col[G::wjz][u]);
+      k.w_i = contact::Vec3(pwx[i], pwy[i], pwz[i]);
+      k.w_j = contact::Vec3(pwx[j], pwy[j], pwz[j]);
     }
-    k.a_i = a_i;
-    k.a_j = a_j;
+    k.a_i = pa[i];
+    k.a_j = pa[j];
     k.dt = inc;
     std::array<double, NH> h0;
     for_columns<NH>([&](std::size_t q) { h0[q] = hist[q][c]; });
@@ -331,15 +316,122 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
     cfz[c] = select(open, 0.0, res.force.z());
     return deferred;
   };
-  // The contacts [c0, c1), a chunk at a time: the chunk's particle data are gathered into
-  // columns (row loads and transposes), then the loop over its contacts reads them as vectors.
-  // The contacts [c0, c1) of a block. With rows, a chunk at a time: the chunk's particle data
-  // are gathered into columns (row loads and transposes), then the loop over its contacts reads
-  // them as vectors.
   auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
-    auto sweep = [=](std::int64_t s0, std::int64_t s1, const auto& g) __attribute__((always_inline)) {
+    double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
+    for (std::int64_t c = c0; c < c1; ++c) {
+      shx[c - c0] = imx[c] * box_x;
+      shy[c - c0] = imy[c] * box_y;
+    }
+    if constexpr (Defers) {
+      std::int32_t deferred[kBlock];
+      std::int32_t any = 0;
+#pragma GCC ivdep
+      for (std::int64_t c = c0; c < c1; ++c) {
+        deferred[c - c0] = one(c, c - c0, shx, shy, std::true_type{});
+        any |= deferred[c - c0];
+      }
+      if (any)
+        for (std::int64_t c = c0; c < c1; ++c)
+          if (deferred[c - c0]) one(c, c - c0, shx, shy, std::false_type{});
+    } else {
+#pragma GCC ivdep
+      for (std::int64_t c = c0; c < c1; ++c) one(c, c - c0, shx, shy, std::true_type{});
+    }
+  };
+  in_blocks(nc, d.threaded(), range);
+}
+
+// The contact pass of a law with torques, from gathered columns (above).
+template <class Law, bool Dissipative>
+void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
+  using History = typename Law::History;
+  static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
+  constexpr std::size_t NH = contact::history_columns<History>;
+  constexpr bool Torques = Law::torques;
+  constexpr bool Defers = contact::DefersContacts<Law>;
+  ContactList& C = d.contacts;
+  const std::int64_t nc = static_cast<std::int64_t>(C.size());
+  const std::int32_t* ci = C.i.data();
+  const std::int32_t* cj = C.j.data();
+  const std::int8_t* imx = C.image_x.data();
+  const std::int8_t* imy = C.image_y.data();
+  static_assert(Torques, "the gathered columns hold w_i and w_j");
+  using G = Gathered;
+  const double box_x = d.packing().box_x, box_y = d.packing().box_y;
+  // The particle rows the gather reads (x, y, z, a | v | w), refreshed from the SoA state.
+  d.gather_rows.resize(12 * d.size());
+  fill_rows(d, d.gather_rows.data());
+  const double* prow_pos = d.gather_rows.data();
+  const double* prow_vel = prow_pos + 4 * d.size();
+  const double* prow_rot = prow_pos + 8 * d.size();
+  double* cdelta = C.delta.data();
+  double* cfx = C.f_x.data();
+  double* cfy = C.f_y.data();
+  double* cfz = C.f_z.data();
+  double* cnx = C.nf_x.data();
+  double* cny = C.nf_y.data();
+  double* cnz = C.nf_z.data();
+  double* diss = C.dissipated.data();
+  std::array<double*, NH> hist{};
+  for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
+  // One contact: g's entry u is contact c. In the vector sweep (Deferrable) a contact the law
+  // defers is left untouched and reported; the exact sweep evaluates it again from the same
+  // history. Pointers and the law are captured by value (OpenMP would share them by reference,
+  // which the vectoriser cannot see through).
+  auto one = [=](std::int64_t c, std::int64_t u, const G& g, auto vector_sweep)
+                 __attribute__((always_inline)) -> bool {
+    constexpr bool Vector = decltype(vector_sweep)::value;
+    // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j
+    const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
+    const double reach = g.col[G::reach][u], a_i = g.col[G::a_i][u], a_j = g.col[G::a_j][u];
+    const contact::Vec3 dv(g.col[G::dvx][u], g.col[G::dvy][u], g.col[G::dvz][u]);
+    const double r2 = bx * bx + by * by + bz * bz;
+    const double r = std::sqrt(r2);
+    const double delta = reach - r;
+    const bool open = r >= reach;  // no force; the history is lost
+    const double inv_r = 1.0 / r;
+    contact::Contact k;
+    k.n = contact::Vec3(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
+    k.delta = delta;
+    k.dv = dv;
+    k.delta_dot = -(k.n.x() * k.dv.x() + k.n.y() * k.dv.y() + k.n.z() * k.dv.z());
+    k.w_i = contact::Vec3(g.col[G::wix][u], g.col[G::wiy][u], g.col[G::wiz][u]);
+    k.w_j = contact::Vec3(g.col[G::wjx][u], g.col[G::wjy][u], g.col[G::wjz][u]);
+    k.a_i = a_i;
+    k.a_j = a_j;
+    k.dt = inc;
+    std::array<double, NH> h0;
+    for_columns<NH>([&](std::size_t q) { h0[q] = hist[q][c]; });
+    History h = contact::history_from<History>(h0);
+    contact::Response res;
+    if constexpr (Vector && Defers)
+      res = law.evaluate(k, h, contact::Deferrable{});
+    else
+      res = law.evaluate(k, h);
+    const bool deferred = Vector && Defers && res.deferred;
+    // History: kept for a deferred contact (the exact sweep starts from it again), lost on opening.
+    const std::array<double, NH> h1 = contact::history_to(h);
+    using contact::select;
+    for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
+    cnx[c] = select(open, 0.0, res.nf.x());
+    cny[c] = select(open, 0.0, res.nf.y());
+    cnz[c] = select(open, 0.0, res.nf.z());
+    if constexpr (Dissipative) {
+      const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
+      diss[c] = select(deferred, diss[c], diss[c] + lost);
+    }
+    cdelta[c] = delta;
+    cfx[c] = select(open, 0.0, res.force.x());
+    cfy[c] = select(open, 0.0, res.force.y());
+    cfz[c] = select(open, 0.0, res.force.z());
+    return deferred;
+  };
+  // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
+  // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
+  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
+    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g) __attribute__((always_inline)) {
       if constexpr (Defers) {
-        std::int32_t deferred[kBlock];
+        std::int32_t deferred[kChunk];
         std::int32_t any = 0;
 #pragma GCC ivdep
         for (std::int64_t c = s0; c < s1; ++c) {
@@ -354,25 +446,24 @@ void contact_pass(Dynamics& d, const Law& law, double inc) {
         for (std::int64_t c = s0; c < s1; ++c) one(c, c - s0, g, std::true_type{});
       }
     };
-    if constexpr (Rows) {
-      Gathered g;
-      for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
-        const std::int64_t s1 = std::min(c1, s0 + kChunk);
-        gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
-        sweep(s0, s1, g);
-      }
-    } else {
-      struct {
-        double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
-      } o;
-      for (std::int64_t c = c0; c < c1; ++c) {
-        o.shx[c - c0] = imx[c] * box_x;
-        o.shy[c - c0] = imy[c] * box_y;
-      }
-      sweep(c0, c1, o);
+    G g;
+    for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
+      const std::int64_t s1 = std::min(c1, s0 + kChunk);
+      gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
+      sweep(s0, s1, g);
     }
   };
   in_blocks(nc, d.threaded(), range);
+}
+
+// The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law
+// dissipates) the dissipated energy. `inc` is the time the springs advance by.
+template <class Law, bool Dissipative>
+void contact_pass(Dynamics& d, const Law& law, double inc) {
+  if constexpr (Law::torques)
+    gathered_contact_pass<Law, Dissipative>(d, law, inc);
+  else
+    direct_contact_pass<Law, Dissipative>(d, law, inc);
 }
 
 // A law as the dynamics sees it. `rates = false` evaluates the law without its rate terms
