@@ -261,9 +261,6 @@ void Dynamics::rebuild() {
   fresh.image_x = std::move(pairs.image_x);
   fresh.image_y = std::move(pairs.image_y);
   for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
-  const bool torques = model_->torques();
-  if (torques)
-    for (auto* v : {&fresh.nf_x, &fresh.nf_y, &fresh.nf_z}) v->assign(nc, 0.0);
   const std::size_t nh = model_->history_columns();
   fresh.history_columns = nh;
   fresh.history.assign(nh * nc, 0.0);
@@ -283,11 +280,6 @@ void Dynamics::rebuild() {
       fresh.f_x[c] = old.f_x[u];
       fresh.f_y[c] = old.f_y[u];
       fresh.f_z[c] = old.f_z[u];
-      if (torques) {
-        fresh.nf_x[c] = old.nf_x[u];
-        fresh.nf_y[c] = old.nf_y[u];
-        fresh.nf_z[c] = old.nf_z[u];
-      }
     }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
   }
   // Per-particle contact lists in contact order, for the deterministic gather: the contacts
@@ -414,9 +406,77 @@ void Dynamics::particle_pass(double h) {
   }
 }
 
+// The particle pass from the contact pass's per-particle sums (contact_sums, Rows rows per
+// particle: 1 force, 2 and n x f^t, 3 and delta n x f^t): the same torques and kick as
+// particle_pass, from sums made in the same order. The rows are zeroed for the next contact pass
+// (the halo's too: its sums are incomplete and never used).
+template <bool Kick, int Rows>
+void Dynamics::finish_pass(double h) {
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
+  double* __restrict rf = contact_sums.data();
+  double* __restrict rn = rf + 4 * n;
+  double* __restrict rd = rf + 8 * n;
+  double* __restrict pfx = fx.data();
+  double* __restrict pfy = fy.data();
+  double* __restrict pfz = fz.data();
+  double* __restrict ptx = tx.data();
+  double* __restrict pty = ty.data();
+  double* __restrict ptz = tz.data();
+  double* __restrict pvx = vx.data();
+  double* __restrict pvy = vy.data();
+  double* __restrict pvz = vz.data();
+  double* __restrict pwx = wx.data();
+  double* __restrict pwy = wy.data();
+  double* __restrict pwz = wz.data();
+  const double* __restrict a = radius.data();
+  const double* __restrict im = inv_mass.data();
+  const double* __restrict ii = inv_inertia.data();
+  const std::uint8_t* __restrict on = mobile.data();
+  for (std::int64_t p = p0; p < p1; ++p) {
+    const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
+    pfx[p] = sx;
+    pfy[p] = sy;
+    pfz[p] = sz;
+    double tqx = 0.0, tqy = 0.0, tqz = 0.0;
+    if constexpr (Rows == 3) {
+      tqx = -a[p] * rn[4 * p] + 0.5 * rd[4 * p];
+      tqy = -a[p] * rn[4 * p + 1] + 0.5 * rd[4 * p + 1];
+      tqz = -a[p] * rn[4 * p + 2] + 0.5 * rd[4 * p + 2];
+    } else if constexpr (Rows == 2) {
+      tqx = -a[p] * rn[4 * p];
+      tqy = -a[p] * rn[4 * p + 1];
+      tqz = -a[p] * rn[4 * p + 2];
+    }
+    if constexpr (Rows >= 2) {
+      ptx[p] = tqx;
+      pty[p] = tqy;
+      ptz[p] = tqz;
+    }
+    if (Kick && on[p]) {
+      pvx[p] += h * sx * im[p];
+      pvy[p] += h * sy * im[p];
+      pvz[p] += h * sz * im[p];
+      if constexpr (Rows >= 2) {
+        pwx[p] += h * tqx * ii[p];
+        pwy[p] += h * tqy * ii[p];
+        pwz[p] += h * tqz * ii[p];
+      }
+    }
+  }
+  std::fill(rf, rf + 4 * Rows * n, 0.0);
+}
+
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
+  sum_rows_ = 0;
   model_->contact_pass(*this, inc, dashpots);
   const double h = kick ? 0.5 * dt_ : 0.0;
+  switch (sum_rows_) {  // the contact pass made the sums (one thread)
+    case 1: return kick ? finish_pass<true, 1>(h) : finish_pass<false, 1>(h);
+    case 2: return kick ? finish_pass<true, 2>(h) : finish_pass<false, 2>(h);
+    case 3: return kick ? finish_pass<true, 3>(h) : finish_pass<false, 3>(h);
+    default: break;
+  }
   const bool threads = threaded();
   auto pass = [&]<bool Torques, bool ContactPointArm>() {
     if (threads)
