@@ -433,7 +433,54 @@ void Dynamics::finish_pass(double h) {
   const double* __restrict im = inv_mass.data();
   const double* __restrict ii = inv_inertia.data();
   const std::uint8_t* __restrict on = mobile.data();
-  for (std::int64_t p = p0; p < p1; ++p) {
+  std::int64_t p = p0;
+#ifdef GRANWAVE_GATHER_VECTORS
+  // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
+  // the rows zeroed behind them.
+  {
+    using kernel::load4, kernel::store4, kernel::transpose4, kernel::V4;
+    typedef long long V4m __attribute__((vector_size(32)));
+    const V4 zero{0.0, 0.0, 0.0, 0.0}, half{0.5, 0.5, 0.5, 0.5}, hv{h, h, h, h};
+    auto rows_of = [&](double* r, V4& cx, V4& cy, V4& cz) __attribute__((always_inline)) {
+      V4 unused;
+      transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
+      store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
+    };
+    for (; p + 4 <= p1; p += 4) {
+      V4 sx, sy, sz;
+      rows_of(rf + 4 * p, sx, sy, sz);
+      store4(pfx + p, sx), store4(pfy + p, sy), store4(pfz + p, sz);
+      V4 tqx = zero, tqy = zero, tqz = zero;
+      if constexpr (Rows >= 2) {
+        V4 nx, ny, nz;
+        rows_of(rn + 4 * p, nx, ny, nz);
+        const V4 na = -load4(a + p);
+        tqx = na * nx, tqy = na * ny, tqz = na * nz;
+        if constexpr (Rows == 3) {
+          V4 dx, dy, dz;
+          rows_of(rd + 4 * p, dx, dy, dz);
+          tqx = tqx + half * dx, tqy = tqy + half * dy, tqz = tqz + half * dz;
+        }
+        store4(ptx + p, tqx), store4(pty + p, tqy), store4(ptz + p, tqz);
+      }
+      if constexpr (Kick) {
+        const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+        const V4 imv = load4(im + p);
+        auto kick = [&](double* v, const V4& s, const V4& inv) __attribute__((always_inline)) {
+          const V4 old = load4(v);
+          store4(v, m ? old + hv * s * inv : old);
+        };
+        kick(pvx + p, sx, imv), kick(pvy + p, sy, imv), kick(pvz + p, sz, imv);
+        if constexpr (Rows >= 2) {
+          const V4 iiv = load4(ii + p);
+          kick(pwx + p, tqx, iiv), kick(pwy + p, tqy, iiv), kick(pwz + p, tqz, iiv);
+        }
+      }
+    }
+  }
+#endif
+  const std::int64_t zeroed = p;  // rows [p0, zeroed) are zero again
+  for (; p < p1; ++p) {
     const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
     pfx[p] = sx;
     pfy[p] = sy;
@@ -464,7 +511,10 @@ void Dynamics::finish_pass(double h) {
       }
     }
   }
-  std::fill(rf, rf + 4 * Rows * n, 0.0);
+  for (int k = 0; k < Rows; ++k) {  // the others (the halo's sums are incomplete and never used)
+    std::fill(rf + 4 * (k * n), rf + 4 * (k * n + p0), 0.0);
+    std::fill(rf + 4 * (k * n + zeroed), rf + 4 * (k * n + n), 0.0);
+  }
 }
 
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
@@ -558,6 +608,75 @@ bool Dynamics::kick_drift() {
     return far;
   };
   std::int64_t far = 0;
+#ifdef GRANWAVE_GATHER_VECTORS
+  // One thread: four particles at a time with explicit vectors. GCC vectorises `range` by the
+  // narrowest type it reads (the uint8 mobile flag: 32 particles per iteration, eight registers
+  // per double, most of them spilled); here the flag becomes a lane mask. The same operations.
+  if constexpr (!Threaded) {
+    using kernel::load4, kernel::store4, kernel::V4;
+    typedef long long V4m __attribute__((vector_size(32)));
+    typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
+    const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
+    // Serial, no slab (this rank holds every particle): write the gather rows too, so that the
+    // contact pass need not copy the state into them again.
+    const std::int64_t n = static_cast<std::int64_t>(size());
+    double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
+                                                                                                : nullptr;
+    V4m far4{0, 0, 0, 0};
+    std::int64_t p = p0;
+    for (; p + 4 <= p1; p += 4) {
+      const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+      const V4 imv = load4(im + p);
+      auto drift = [&](double* v, double* r, const double* f, const double* r0, const float* rb)
+                       __attribute__((always_inline)) -> V4 {
+        const V4 v0 = load4(v + p), x0 = load4(r + p);
+        const V4 v1 = m ? v0 + hv * load4(f + p) * imv : v0;
+        const V4 x1 = m ? x0 + dtv * v1 : x0;
+        store4(v + p, v1);
+        store4(r + p, x1);
+        return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
+      };
+      const V4 dx = drift(pvx, px, pfx, x0p, xb);
+      const V4 dy = drift(pvy, py, pfy, y0p, yb);
+      const V4 dz = drift(pvz, pz, pfz, z0p, zb);
+      if constexpr (Torques) {
+        const V4 iiv = load4(ii + p);
+        for (auto [w, t] : {std::pair{pwx, ptx}, std::pair{pwy, pty}, std::pair{pwz, ptz}}) {
+          const V4 w0 = load4(w + p);
+          store4(w + p, m ? w0 + hv * load4(t + p) * iiv : w0);
+        }
+      }
+      far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+      if (rows) {  // the contact pass's rows of these four particles (kernel::fill_rows)
+        const V4 zero{0.0, 0.0, 0.0, 0.0};
+        V4 r0, r1, r2, r3;
+        auto put = [&](double* block, const double* cx, const double* cy, const double* cz, const V4& last)
+                       __attribute__((always_inline)) {
+          kernel::transpose4(load4(cx + p), load4(cy + p), load4(cz + p), last, r0, r1, r2, r3);
+          store4(block + 4 * p, r0), store4(block + 4 * p + 4, r1), store4(block + 4 * p + 8, r2),
+              store4(block + 4 * p + 12, r3);
+        };
+        put(rows, px, py, pz, load4(radius.data() + p));
+        put(rows + 4 * n, pvx, pvy, pvz, zero);
+        put(rows + 8 * n, pwx, pwy, pwz, zero);
+      }
+    }
+    far = range(p, p1);
+    far |= far4[0] | far4[1] | far4[2] | far4[3];
+    if (rows) {
+      for (; p < p1; ++p) {
+        double* r = rows + 4 * p;
+        r[0] = px[p], r[1] = py[p], r[2] = pz[p], r[3] = radius[p];
+        r = rows + 4 * n + 4 * p;
+        r[0] = pvx[p], r[1] = pvy[p], r[2] = pvz[p], r[3] = 0.0;
+        r = rows + 8 * n + 4 * p;
+        r[0] = pwx[p], r[1] = pwy[p], r[2] = pwz[p], r[3] = 0.0;
+      }
+      rows_fresh_ = true;
+    }
+    return far != 0;
+  }
+#endif
   if constexpr (Threaded) {
     constexpr std::int64_t kBlock = 1024;
     const std::int64_t nb = (p1 - p0 + kBlock - 1) / kBlock;

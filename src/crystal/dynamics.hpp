@@ -105,6 +105,13 @@ class Dynamics {
   // (crystal/kernel.hpp's gather), refreshed at every pass: 96 bytes per particle with a law
   // with torques, empty otherwise.
   std::vector<double> gather_rows;
+  // The rows hold the current state (written by the one-thread drift of step()); the contact
+  // pass then uses them as they are, once.
+  bool take_fresh_rows() {
+    const bool fresh = rows_fresh_;
+    rows_fresh_ = false;
+    return fresh;
+  }
   // Per-particle sums of a one-thread contact pass (crystal/kernel.hpp's scatter), rows of four
   // doubles: f, and with a law with torques n x f^t, and with the contact-point arm
   // delta n x f^t (each kind a block of 4 size() doubles); read and zeroed by the particle pass.
@@ -199,6 +206,7 @@ class Dynamics {
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   template <bool Kick, int Rows>
   void finish_pass(double h);  // pass 2 from contact_sums (one thread)
+  bool rows_fresh_ = false;    // gather_rows hold the state kick_drift left
   int sum_rows_ = 0;           // rows per particle the last contact pass filled in contact_sums (0: none)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   void add_kinetic(double* s) const;

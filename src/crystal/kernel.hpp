@@ -443,8 +443,10 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
   // The particle rows the gather reads (x, y, z, a | v | w), refreshed from the SoA state.
-  d.gather_rows.resize(12 * d.size());
-  fill_rows(d, d.gather_rows.data());
+  if (!d.take_fresh_rows()) {
+    d.gather_rows.resize(12 * d.size());
+    fill_rows(d, d.gather_rows.data());
+  }
   const double* prow_pos = d.gather_rows.data();
   const double* prow_vel = prow_pos + 4 * d.size();
   const double* prow_rot = prow_pos + 8 * d.size();
@@ -509,12 +511,17 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
       res = law.evaluate(k, h, contact::Deferrable{});
     else
       res = law.evaluate(k, h);
-    const bool deferred = Vector && Defers && res.deferred;
+    // A law whose vector evaluation never dissipates (contact::LosslessSweep): that sweep leaves
+    // the dissipated energy alone and defers an opening contact that loses stored energy.
+    constexpr bool Quiet = Vector && Defers && Dissipative && contact::LosslessSweep<Law>;
+    using contact::select;
+    bool deferred = Vector && Defers && res.deferred;
+    if constexpr (Quiet)  // bitwise: no branch in the vector loop
+      deferred = deferred | (open & (law.opening_loss(contact::history_from<History>(h0)) != 0.0));
     // History: kept for a deferred contact (the exact sweep starts from it again), lost on opening.
     const std::array<double, NH> h1 = contact::history_to(h);
-    using contact::select;
     for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
-    if constexpr (Dissipative) {
+    if constexpr (Dissipative && !Quiet) {
       const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
       diss[c] = select(deferred, diss[c], diss[c] + lost);
     }
