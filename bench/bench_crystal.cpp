@@ -46,7 +46,7 @@ std::size_t state_bytes(const crystal::Dynamics& d) {
                         &d.ty, &d.tz, &d.x0, &d.y0, &d.z0, &d.radius, &d.mass, &d.inv_mass, &d.inv_inertia,
                         &d.inertia})
     b += bytes(*v);
-  b += bytes(d.mobile) + bytes(d.gather_rows);
+  b += bytes(d.mobile) + bytes(d.gather_rows) + bytes(d.contact_sums);
   const auto& C = d.contacts;
   b += bytes(C.i) + bytes(C.j) + bytes(C.image_x) + bytes(C.image_y) + bytes(C.j_first) + bytes(C.j_contacts) + bytes(C.i_first);
   for (const auto* v : {&C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,

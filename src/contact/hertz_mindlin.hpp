@@ -126,6 +126,7 @@ struct HertzMindlinLaw {
   using Tangential = std::conditional_t<Hysteresis, MindlinTangential, MindlinTangentialOneMu>;
   using History = std::conditional_t<H == MindlinHistory::none, MindlinNone, Tangential>;
   static constexpr bool torques = H != MindlinHistory::none;
+  static constexpr bool lossless_sweep = !Damped;  // undamped, a sticking contact dissipates nothing
 
   explicit HertzMindlinLaw(const HertzMindlinParams& params) : p(params) {
     p.validate();

@@ -30,6 +30,13 @@
 //                                     finish returns deferred = true and is evaluated again,
 //                                     from the same history, by evaluate(Contact, History&) in a
 //                                     scalar sweep (its vector results are discarded).
+// and optionally, with it:
+//   static constexpr bool lossless_sweep;
+//                                     true when the Deferrable evaluation's loss is always 0 (no
+//                                     dashpots: a sticking contact dissipates nothing); the
+//                                     kernel's vector sweep then skips the dissipated-energy
+//                                     bookkeeping and defers a contact that opens with a nonzero
+//                                     opening_loss to the exact sweep (the same sums: x + 0 = x).
 // Every contact writes only its own entries, so results do not depend on the sweep, the block
 // or the thread that evaluates it.
 #pragma once
@@ -74,6 +81,9 @@ template <class Law>
 concept DefersContacts = requires(const Law& law, const Contact& c, typename Law::History& h) {
   { law.evaluate(c, h, Deferrable{}) } -> std::same_as<Response>;
 };
+
+template <class Law>
+concept LosslessSweep = DefersContacts<Law> && requires { requires Law::lossless_sweep; };
 
 // Number of double columns a law's history takes in the flat per-contact storage.
 template <class History>

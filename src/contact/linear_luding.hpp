@@ -44,6 +44,7 @@ struct LinearLudingLaw {
   };
   using History = std::conditional_t<Hysteresis, SpringAndFlag, Spring>;
   static constexpr bool torques = true;
+  static constexpr bool lossless_sweep = !Dashpots;  // a sticking contact without dashpots dissipates nothing
 
   LinearLudingLaw(const LinearSpringDashpotParams& n, const TangentialSpringParams& t, bool contact_point_arm)
       : normal(n), tangential(t), shift(contact_point_arm ? 0.5 : 0.0) {
@@ -89,12 +90,12 @@ struct LinearLudingLaw {
     double slip_loss = 0.0;
     bool deferred = false;
     if constexpr (Exact) {
-      const TangentialResult res = tangential_force(tangential, xi, vt, f_n, h.was_sliding());
+      const TangentialResult res = tangential_force<Dashpots>(tangential, xi, vt, f_n, h.was_sliding());
       ft = res.force;
       slip_loss = res.slip_loss;
       h.set(res.spring, res.sliding);
     } else {
-      const TangentialTest test = tangential_test(tangential, xi, vt, f_n, h.was_sliding());
+      const TangentialTest test = tangential_test<Dashpots>(tangential, xi, vt, f_n, h.was_sliding());
       ft = test.force;
       deferred = test.sliding;
       h.set(xi, false);

@@ -84,9 +84,13 @@ struct TangentialTest {
   double f_dynamic;   // f_C^d = mu^d max(f_n, 0)
   bool sliding;       // the dynamic case (2) applies
 };
+// Dashpot = false: a law without tangential dashpot (gamma_t = 0) skips the 0 v_t term (the
+// same force; at most the sign of a zero component differs).
+template <bool Dashpot = true>
 inline TangentialTest tangential_test(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
                                       bool was_sliding) {
-  const Vec3 f_test = -p.kt * xi - p.gamma_t * vt;  // eq. (5)
+  Vec3 f_test = -p.kt * xi;  // eq. (5)
+  if constexpr (Dashpot) f_test = f_test - p.gamma_t * vt;
   const double f_pos = select(p.coulomb_on_magnitude, std::abs(f_n), select(f_n < 0.0, 0.0, f_n));  // max(f_n, 0)
   const double f_static = p.mu_static * f_pos;    // f_C^s
   const double f_dynamic = p.mu_dynamic * f_pos;  // f_C^d
@@ -116,9 +120,10 @@ inline TangentialResult sliding_force(const TangentialSpringParams& p, const Tan
 }
 
 // Eqs. (5), (7), (8): static case (1), f^t = f_o^t with the spring kept (6), or case (2).
+template <bool Dashpot = true>
 inline TangentialResult tangential_force(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,
                                          bool was_sliding) {
-  const TangentialTest test = tangential_test(p, xi, vt, f_n, was_sliding);
+  const TangentialTest test = tangential_test<Dashpot>(p, xi, vt, f_n, was_sliding);
   if (!test.sliding) return {test.force, xi, false, 0.0};
   return sliding_force(p, test, vt);
 }

@@ -261,9 +261,6 @@ void Dynamics::rebuild() {
   fresh.image_x = std::move(pairs.image_x);
   fresh.image_y = std::move(pairs.image_y);
   for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
-  const bool torques = model_->torques();
-  if (torques)
-    for (auto* v : {&fresh.nf_x, &fresh.nf_y, &fresh.nf_z}) v->assign(nc, 0.0);
   const std::size_t nh = model_->history_columns();
   fresh.history_columns = nh;
   fresh.history.assign(nh * nc, 0.0);
@@ -283,11 +280,6 @@ void Dynamics::rebuild() {
       fresh.f_x[c] = old.f_x[u];
       fresh.f_y[c] = old.f_y[u];
       fresh.f_z[c] = old.f_z[u];
-      if (torques) {
-        fresh.nf_x[c] = old.nf_x[u];
-        fresh.nf_y[c] = old.nf_y[u];
-        fresh.nf_z[c] = old.nf_z[u];
-      }
     }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
   }
   // Per-particle contact lists in contact order, for the deterministic gather: the contacts
@@ -414,9 +406,127 @@ void Dynamics::particle_pass(double h) {
   }
 }
 
+// The particle pass from the contact pass's per-particle sums (contact_sums, Rows rows per
+// particle: 1 force, 2 and n x f^t, 3 and delta n x f^t): the same torques and kick as
+// particle_pass, from sums made in the same order. The rows are zeroed for the next contact pass
+// (the halo's too: its sums are incomplete and never used).
+template <bool Kick, int Rows>
+void Dynamics::finish_pass(double h) {
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
+  double* __restrict rf = contact_sums.data();
+  double* __restrict rn = rf + 4 * n;
+  double* __restrict rd = rf + 8 * n;
+  double* __restrict pfx = fx.data();
+  double* __restrict pfy = fy.data();
+  double* __restrict pfz = fz.data();
+  double* __restrict ptx = tx.data();
+  double* __restrict pty = ty.data();
+  double* __restrict ptz = tz.data();
+  double* __restrict pvx = vx.data();
+  double* __restrict pvy = vy.data();
+  double* __restrict pvz = vz.data();
+  double* __restrict pwx = wx.data();
+  double* __restrict pwy = wy.data();
+  double* __restrict pwz = wz.data();
+  const double* __restrict a = radius.data();
+  const double* __restrict im = inv_mass.data();
+  const double* __restrict ii = inv_inertia.data();
+  const std::uint8_t* __restrict on = mobile.data();
+  std::int64_t p = p0;
+#ifdef GRANWAVE_GATHER_VECTORS
+  // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
+  // the rows zeroed behind them.
+  {
+    using kernel::load4, kernel::store4, kernel::transpose4, kernel::V4;
+    typedef long long V4m __attribute__((vector_size(32)));
+    const V4 zero{0.0, 0.0, 0.0, 0.0}, half{0.5, 0.5, 0.5, 0.5}, hv{h, h, h, h};
+    auto rows_of = [&](double* r, V4& cx, V4& cy, V4& cz) __attribute__((always_inline)) {
+      V4 unused;
+      transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
+      store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
+    };
+    for (; p + 4 <= p1; p += 4) {
+      V4 sx, sy, sz;
+      rows_of(rf + 4 * p, sx, sy, sz);
+      store4(pfx + p, sx), store4(pfy + p, sy), store4(pfz + p, sz);
+      V4 tqx = zero, tqy = zero, tqz = zero;
+      if constexpr (Rows >= 2) {
+        V4 nx, ny, nz;
+        rows_of(rn + 4 * p, nx, ny, nz);
+        const V4 na = -load4(a + p);
+        tqx = na * nx, tqy = na * ny, tqz = na * nz;
+        if constexpr (Rows == 3) {
+          V4 dx, dy, dz;
+          rows_of(rd + 4 * p, dx, dy, dz);
+          tqx = tqx + half * dx, tqy = tqy + half * dy, tqz = tqz + half * dz;
+        }
+        store4(ptx + p, tqx), store4(pty + p, tqy), store4(ptz + p, tqz);
+      }
+      if constexpr (Kick) {
+        const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+        const V4 imv = load4(im + p);
+        auto kick = [&](double* v, const V4& s, const V4& inv) __attribute__((always_inline)) {
+          const V4 old = load4(v);
+          store4(v, m ? old + hv * s * inv : old);
+        };
+        kick(pvx + p, sx, imv), kick(pvy + p, sy, imv), kick(pvz + p, sz, imv);
+        if constexpr (Rows >= 2) {
+          const V4 iiv = load4(ii + p);
+          kick(pwx + p, tqx, iiv), kick(pwy + p, tqy, iiv), kick(pwz + p, tqz, iiv);
+        }
+      }
+    }
+  }
+#endif
+  const std::int64_t zeroed = p;  // rows [p0, zeroed) are zero again
+  for (; p < p1; ++p) {
+    const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
+    pfx[p] = sx;
+    pfy[p] = sy;
+    pfz[p] = sz;
+    double tqx = 0.0, tqy = 0.0, tqz = 0.0;
+    if constexpr (Rows == 3) {
+      tqx = -a[p] * rn[4 * p] + 0.5 * rd[4 * p];
+      tqy = -a[p] * rn[4 * p + 1] + 0.5 * rd[4 * p + 1];
+      tqz = -a[p] * rn[4 * p + 2] + 0.5 * rd[4 * p + 2];
+    } else if constexpr (Rows == 2) {
+      tqx = -a[p] * rn[4 * p];
+      tqy = -a[p] * rn[4 * p + 1];
+      tqz = -a[p] * rn[4 * p + 2];
+    }
+    if constexpr (Rows >= 2) {
+      ptx[p] = tqx;
+      pty[p] = tqy;
+      ptz[p] = tqz;
+    }
+    if (Kick && on[p]) {
+      pvx[p] += h * sx * im[p];
+      pvy[p] += h * sy * im[p];
+      pvz[p] += h * sz * im[p];
+      if constexpr (Rows >= 2) {
+        pwx[p] += h * tqx * ii[p];
+        pwy[p] += h * tqy * ii[p];
+        pwz[p] += h * tqz * ii[p];
+      }
+    }
+  }
+  for (int k = 0; k < Rows; ++k) {  // the others (the halo's sums are incomplete and never used)
+    std::fill(rf + 4 * (k * n), rf + 4 * (k * n + p0), 0.0);
+    std::fill(rf + 4 * (k * n + zeroed), rf + 4 * (k * n + n), 0.0);
+  }
+}
+
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
+  sum_rows_ = 0;
   model_->contact_pass(*this, inc, dashpots);
   const double h = kick ? 0.5 * dt_ : 0.0;
+  switch (sum_rows_) {  // the contact pass made the sums (one thread)
+    case 1: return kick ? finish_pass<true, 1>(h) : finish_pass<false, 1>(h);
+    case 2: return kick ? finish_pass<true, 2>(h) : finish_pass<false, 2>(h);
+    case 3: return kick ? finish_pass<true, 3>(h) : finish_pass<false, 3>(h);
+    default: break;
+  }
   const bool threads = threaded();
   auto pass = [&]<bool Torques, bool ContactPointArm>() {
     if (threads)
@@ -498,6 +608,75 @@ bool Dynamics::kick_drift() {
     return far;
   };
   std::int64_t far = 0;
+#ifdef GRANWAVE_GATHER_VECTORS
+  // One thread: four particles at a time with explicit vectors. GCC vectorises `range` by the
+  // narrowest type it reads (the uint8 mobile flag: 32 particles per iteration, eight registers
+  // per double, most of them spilled); here the flag becomes a lane mask. The same operations.
+  if constexpr (!Threaded) {
+    using kernel::load4, kernel::store4, kernel::V4;
+    typedef long long V4m __attribute__((vector_size(32)));
+    typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
+    const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
+    // Serial, no slab (this rank holds every particle): write the gather rows too, so that the
+    // contact pass need not copy the state into them again.
+    const std::int64_t n = static_cast<std::int64_t>(size());
+    double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
+                                                                                                : nullptr;
+    V4m far4{0, 0, 0, 0};
+    std::int64_t p = p0;
+    for (; p + 4 <= p1; p += 4) {
+      const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+      const V4 imv = load4(im + p);
+      auto drift = [&](double* v, double* r, const double* f, const double* r0, const float* rb)
+                       __attribute__((always_inline)) -> V4 {
+        const V4 v0 = load4(v + p), x0 = load4(r + p);
+        const V4 v1 = m ? v0 + hv * load4(f + p) * imv : v0;
+        const V4 x1 = m ? x0 + dtv * v1 : x0;
+        store4(v + p, v1);
+        store4(r + p, x1);
+        return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
+      };
+      const V4 dx = drift(pvx, px, pfx, x0p, xb);
+      const V4 dy = drift(pvy, py, pfy, y0p, yb);
+      const V4 dz = drift(pvz, pz, pfz, z0p, zb);
+      if constexpr (Torques) {
+        const V4 iiv = load4(ii + p);
+        for (auto [w, t] : {std::pair{pwx, ptx}, std::pair{pwy, pty}, std::pair{pwz, ptz}}) {
+          const V4 w0 = load4(w + p);
+          store4(w + p, m ? w0 + hv * load4(t + p) * iiv : w0);
+        }
+      }
+      far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+      if (rows) {  // the contact pass's rows of these four particles (kernel::fill_rows)
+        const V4 zero{0.0, 0.0, 0.0, 0.0};
+        V4 r0, r1, r2, r3;
+        auto put = [&](double* block, const double* cx, const double* cy, const double* cz, const V4& last)
+                       __attribute__((always_inline)) {
+          kernel::transpose4(load4(cx + p), load4(cy + p), load4(cz + p), last, r0, r1, r2, r3);
+          store4(block + 4 * p, r0), store4(block + 4 * p + 4, r1), store4(block + 4 * p + 8, r2),
+              store4(block + 4 * p + 12, r3);
+        };
+        put(rows, px, py, pz, load4(radius.data() + p));
+        put(rows + 4 * n, pvx, pvy, pvz, zero);
+        put(rows + 8 * n, pwx, pwy, pwz, zero);
+      }
+    }
+    far = range(p, p1);
+    far |= far4[0] | far4[1] | far4[2] | far4[3];
+    if (rows) {
+      for (; p < p1; ++p) {
+        double* r = rows + 4 * p;
+        r[0] = px[p], r[1] = py[p], r[2] = pz[p], r[3] = radius[p];
+        r = rows + 4 * n + 4 * p;
+        r[0] = pvx[p], r[1] = pvy[p], r[2] = pvz[p], r[3] = 0.0;
+        r = rows + 8 * n + 4 * p;
+        r[0] = pwx[p], r[1] = pwy[p], r[2] = pwz[p], r[3] = 0.0;
+      }
+      rows_fresh_ = true;
+    }
+    return far != 0;
+  }
+#endif
   if constexpr (Threaded) {
     constexpr std::int64_t kBlock = 1024;
     const std::int64_t nb = (p1 - p0 + kBlock - 1) / kBlock;

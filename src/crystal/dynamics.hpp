@@ -9,6 +9,8 @@
 //   1. per contact (crystal/kernel.hpp, templated over the law): overlap, normal and tangential
 //      force, n x f^t, history, dissipation;
 //   2. per particle: sum of its contacts' forces and torques in a fixed order.
+// On one thread pass 1 makes the sums of pass 2 itself, in the same order (kernel.hpp's scatter:
+// the same bits), and pass 2 only finishes torques and kicks (finish_pass).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -28,9 +30,9 @@ struct ContactList {
   std::vector<std::int32_t> i, j;
   std::vector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y (|image| <= 127)
   std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
-  std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N
+  std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see store_contact_forces)
   std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
-                                           // empty for a law without torques
+                                           // threaded runs of a law with torques only (else empty)
   std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
   // The law's history (contact/law.hpp), column by column: history[k * size() + c].
   std::vector<double> history;
@@ -103,6 +105,29 @@ class Dynamics {
   // (crystal/kernel.hpp's gather), refreshed at every pass: 96 bytes per particle with a law
   // with torques, empty otherwise.
   std::vector<double> gather_rows;
+  // The rows hold the current state (written by the one-thread drift of step()); the contact
+  // pass then uses them as they are, once.
+  bool take_fresh_rows() {
+    const bool fresh = rows_fresh_;
+    rows_fresh_ = false;
+    return fresh;
+  }
+  // Per-particle sums of a one-thread contact pass (crystal/kernel.hpp's scatter), rows of four
+  // doubles: f, and with a law with torques n x f^t, and with the contact-point arm
+  // delta n x f^t (each kind a block of 4 size() doubles); read and zeroed by the particle pass.
+  // 32, 64 or 96 bytes per particle; empty when threaded.
+  std::vector<double> contact_sums;
+  // false: a one-thread contact pass of a law with torques may leave ContactList::f_x, f_y, f_z
+  // stale (it sums straight into contact_sums; nf_x, nf_y, nf_z are then empty); set it
+  // for the passes whose contact forces are read (the layer stress of a sample).
+  bool store_contact_forces = true;
+  // The contact pass announces that it fills `rows` rows per particle of contact_sums (all zero
+  // on entry); returns them.
+  double* begin_contact_sums(int rows) {
+    contact_sums.resize(4 * static_cast<std::size_t>(rows) * size(), 0.0);
+    sum_rows_ = rows;
+    return contact_sums.data();
+  }
   double time = 0.0;
   long steps = 0;
   long rebuilds = 0;
@@ -179,6 +204,10 @@ class Dynamics {
   bool kick_drift();
   template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
+  template <bool Kick, int Rows>
+  void finish_pass(double h);  // pass 2 from contact_sums (one thread)
+  bool rows_fresh_ = false;    // gather_rows hold the state kick_drift left
+  int sum_rows_ = 0;           // rows per particle the last contact pass filled in contact_sums (0: none)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   void add_kinetic(double* s) const;
   void add_verlet(double* s) const;

@@ -92,6 +92,11 @@ void in_blocks(std::int64_t n, bool threaded, const Body& body) {
 // per contact, and rows cost more than they save (2.5 -> 3.0 ns): direct_contact_pass below.
 inline constexpr std::int64_t kChunk = 128;  // contacts per gather: their columns stay in L1 (256: 11.4 ns)
 
+// A chunk's results on the way to the scatter: f and n x f^t (scatter, below).
+struct Sums {
+  alignas(64) double col[6][kChunk];
+};
+
 struct Gathered {
   // r_j - r_i at j's image; a_i + a_j; the radii; v_i - v_j; w_i, w_j.
   enum Column { bx, by, bz, reach, a_i, a_j, dvx, dvy, dvz, wix, wiy, wiz, wjx, wjy, wjz, kColumns };
@@ -220,6 +225,73 @@ inline void fill_rows(const Dynamics& d, double* rows) {
   }
 }
 
+// ---- The scatter: contact sums straight into per-particle rows (one thread) ----
+// On one thread the contact pass adds each contact's f (laws with torques: and n x f^t, and
+// delta n x f^t for the contact-point arm) to per-particle rows of four doubles (K rows per
+// particle: f | n x f^t | delta n x f^t, each row kind a block of 4 n doubles) right after a
+// chunk of contacts is evaluated, while its values are still in L1; Dynamics then only finishes
+// the torques and kicks (finish_pass), instead of re-reading every contact's values through the
+// per-particle contact lists (the particle pass: 23 % of a friction run, AVX2). The order of the
+// additions is the particle pass's: the list is sorted by i and i < j, so in list order a
+// particle first meets the contacts where it is j, then its own range as i; each sum starts from
+// 0.0 and adds (j: subtracts the force) in that order, lane-wise IEEE: the same bits. The sums
+// of the current i stay in registers over the list's run of equal i; j's are read and written.
+#ifdef GRANWAVE_GATHER_VECTORS
+template <int K>
+struct ScatterState {
+  std::int64_t cur = -1;  // the particle i whose sums are in registers
+  V4 sum[K]{};
+};
+
+template <int K>
+[[gnu::always_inline]] inline void scatter_one(ScatterState<K>& st, double* __restrict rows, std::int64_t n,
+                                               std::int64_t i, std::int64_t j, const V4& f, const V4& nf,
+                                               double delta) {
+  if (i != st.cur) {
+    if (st.cur >= 0)
+      for (int k = 0; k < K; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+    st.cur = i;
+    for (int k = 0; k < K; ++k) st.sum[k] = load4(rows + 4 * (k * n + i));
+  }
+  st.sum[0] = st.sum[0] + f;
+  store4(rows + 4 * j, load4(rows + 4 * j) - f);
+  if constexpr (K >= 2) {
+    st.sum[1] = st.sum[1] + nf;
+    store4(rows + 4 * (n + j), load4(rows + 4 * (n + j)) + nf);
+  }
+  if constexpr (K >= 3) {
+    const V4 d{delta, delta, delta, delta};
+    const V4 dn = d * nf;
+    st.sum[2] = st.sum[2] + dn;
+    store4(rows + 4 * (2 * n + j), load4(rows + 4 * (2 * n + j)) + dn);
+  }
+}
+
+// The m contacts (their i, j, forces, n x f^t, overlaps, indexed from 0) into the rows.
+template <int K>
+[[gnu::always_inline]] inline void scatter(double* rows, std::int64_t n, std::int64_t m, const std::int32_t* ci,
+                                           const std::int32_t* cj, const double* cfx, const double* cfy,
+                                           const double* cfz, const double* cnx, const double* cny,
+                                           const double* cnz, const double* cdelta) {
+  ScatterState<K> st;
+  const V4 zero{0.0, 0.0, 0.0, 0.0};
+  V4 f[4], nf[4];
+  std::int64_t c = 0;
+  for (; c + 4 <= m; c += 4) {
+    transpose4(load4(cfx + c), load4(cfy + c), load4(cfz + c), zero, f[0], f[1], f[2], f[3]);
+    if constexpr (K >= 2) transpose4(load4(cnx + c), load4(cny + c), load4(cnz + c), zero, nf[0], nf[1], nf[2], nf[3]);
+    for (int q = 0; q < 4; ++q) scatter_one<K>(st, rows, n, ci[c + q], cj[c + q], f[q], nf[q], K >= 3 ? cdelta[c + q] : 0.0);
+  }
+  for (; c < m; ++c) {
+    const V4 fc{cfx[c], cfy[c], cfz[c], 0.0};
+    const V4 nc = K >= 2 ? V4{cnx[c], cny[c], cnz[c], 0.0} : zero;
+    scatter_one<K>(st, rows, n, ci[c], cj[c], fc, nc, K >= 3 ? cdelta[c] : 0.0);
+  }
+  if (st.cur >= 0)
+    for (int k = 0; k < K; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+}
+#endif
+
 // The contact pass of a law without torques: it reads half the particle values of a frictional
 // law (positions, radii, velocities), loaded directly from the particle arrays; rows would cost
 // more than they save (AVX-512 build 2.4 -> 2.6 ns per contact; AVX2 2.5 -> 2.6 even with this
@@ -316,6 +388,12 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
     cfz[c] = select(open, 0.0, res.force.z());
     return deferred;
   };
+  // One thread: the forces go straight into the particles' rows (scatter, above).
+  double* sum_rows = nullptr;
+  const std::int64_t np = static_cast<std::int64_t>(d.size());
+#ifdef GRANWAVE_GATHER_VECTORS
+  if (!d.threaded()) sum_rows = d.begin_contact_sums(1);
+#endif
   auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
     for (std::int64_t c = c0; c < c1; ++c) {
@@ -337,9 +415,15 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
 #pragma GCC ivdep
       for (std::int64_t c = c0; c < c1; ++c) one(c, c - c0, shx, shy, std::true_type{});
     }
+#ifdef GRANWAVE_GATHER_VECTORS
+    if (sum_rows)
+      scatter<1>(sum_rows, np, c1 - c0, ci + c0, cj + c0, cfx + c0, cfy + c0, cfz + c0, nullptr, nullptr, nullptr,
+                 nullptr);
+#endif
   };
   in_blocks(nc, d.threaded(), range);
 }
+
 
 // The contact pass of a law with torques, from gathered columns (above).
 template <class Law, bool Dissipative>
@@ -359,11 +443,29 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
   // The particle rows the gather reads (x, y, z, a | v | w), refreshed from the SoA state.
-  d.gather_rows.resize(12 * d.size());
-  fill_rows(d, d.gather_rows.data());
+  if (!d.take_fresh_rows()) {
+    d.gather_rows.resize(12 * d.size());
+    fill_rows(d, d.gather_rows.data());
+  }
   const double* prow_pos = d.gather_rows.data();
   const double* prow_vel = prow_pos + 4 * d.size();
   const double* prow_rot = prow_pos + 8 * d.size();
+  // One thread: the sums go straight into the particles' rows (scatter, above); 0: none,
+  // 1: radius arm, 2: contact-point arm.
+  const std::int64_t np = static_cast<std::int64_t>(d.size());
+  int scatter_mode = 0;
+  double* sum_rows = nullptr;
+  const bool keep_forces = d.store_contact_forces;
+#ifdef GRANWAVE_GATHER_VECTORS
+  if (!d.threaded()) {
+    scatter_mode = law.arm_shift() != 0.0 ? 2 : 1;
+    sum_rows = d.begin_contact_sums(scatter_mode + 1);
+  }
+#endif
+  // Per-contact n x f^t: only the particle pass of the threaded route reads it (made here, not
+  // at the list's build: 24 bytes per contact a one-thread run does not need).
+  if (scatter_mode == 0)
+    for (auto* v : {&C.nf_x, &C.nf_y, &C.nf_z}) v->resize(C.size());
   double* cdelta = C.delta.data();
   double* cfx = C.f_x.data();
   double* cfy = C.f_y.data();
@@ -378,9 +480,10 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   // defers is left untouched and reported; the exact sweep evaluates it again from the same
   // history. Pointers and the law are captured by value (OpenMP would share them by reference,
   // which the vectoriser cannot see through).
-  auto one = [=](std::int64_t c, std::int64_t u, const G& g, auto vector_sweep)
+  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Sums& o, auto vector_sweep, auto scatter_sweep)
                  __attribute__((always_inline)) -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
+    constexpr bool Scatter = decltype(scatter_sweep)::value;
     // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j
     const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
     const double reach = g.col[G::reach][u], a_i = g.col[G::a_i][u], a_j = g.col[G::a_j][u];
@@ -408,52 +511,81 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
       res = law.evaluate(k, h, contact::Deferrable{});
     else
       res = law.evaluate(k, h);
-    const bool deferred = Vector && Defers && res.deferred;
+    // A law whose vector evaluation never dissipates (contact::LosslessSweep): that sweep leaves
+    // the dissipated energy alone and defers an opening contact that loses stored energy.
+    constexpr bool Quiet = Vector && Defers && Dissipative && contact::LosslessSweep<Law>;
+    using contact::select;
+    bool deferred = Vector && Defers && res.deferred;
+    if constexpr (Quiet)  // bitwise: no branch in the vector loop
+      deferred = deferred | (open & (law.opening_loss(contact::history_from<History>(h0)) != 0.0));
     // History: kept for a deferred contact (the exact sweep starts from it again), lost on opening.
     const std::array<double, NH> h1 = contact::history_to(h);
-    using contact::select;
     for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
-    cnx[c] = select(open, 0.0, res.nf.x());
-    cny[c] = select(open, 0.0, res.nf.y());
-    cnz[c] = select(open, 0.0, res.nf.z());
-    if constexpr (Dissipative) {
+    if constexpr (Dissipative && !Quiet) {
       const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
       diss[c] = select(deferred, diss[c], diss[c] + lost);
     }
     cdelta[c] = delta;
-    cfx[c] = select(open, 0.0, res.force.x());
-    cfy[c] = select(open, 0.0, res.force.y());
-    cfz[c] = select(open, 0.0, res.force.z());
+    const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
+                          select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
+                          select(open, 0.0, res.nf.y()), select(open, 0.0, res.nf.z())};
+    if constexpr (Scatter) {
+      for (int q = 0; q < 6; ++q) o.col[q][u] = fo[q];
+    } else {
+      cfx[c] = fo[0], cfy[c] = fo[1], cfz[c] = fo[2];
+      cnx[c] = fo[3], cny[c] = fo[4], cnz[c] = fo[5];
+    }
     return deferred;
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
-  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
-    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g) __attribute__((always_inline)) {
+  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) __attribute__((always_inline)) {
+    constexpr bool Scatter = decltype(scatter_sweep)::value;
+    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Sums& o) __attribute__((always_inline)) {
       if constexpr (Defers) {
         std::int32_t deferred[kChunk];
         std::int32_t any = 0;
 #pragma GCC ivdep
         for (std::int64_t c = s0; c < s1; ++c) {
-          deferred[c - s0] = one(c, c - s0, g, std::true_type{});
+          deferred[c - s0] = one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
           any |= deferred[c - s0];
         }
         if (any)
           for (std::int64_t c = s0; c < s1; ++c)
-            if (deferred[c - s0]) one(c, c - s0, g, std::false_type{});
+            if (deferred[c - s0]) one(c, c - s0, g, o, std::false_type{}, scatter_sweep);
       } else {
 #pragma GCC ivdep
-        for (std::int64_t c = s0; c < s1; ++c) one(c, c - s0, g, std::true_type{});
+        for (std::int64_t c = s0; c < s1; ++c) one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
       }
     };
     G g;
+    Sums o;
     for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
       const std::int64_t s1 = std::min(c1, s0 + kChunk);
       gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
-      sweep(s0, s1, g);
+      sweep(s0, s1, g, o);
+#ifdef GRANWAVE_GATHER_VECTORS
+      if constexpr (Scatter) {
+        if (scatter_mode == 1)
+          scatter<2>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3], o.col[4],
+                     o.col[5], cdelta + s0);
+        else
+          scatter<3>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3], o.col[4],
+                     o.col[5], cdelta + s0);
+        if (keep_forces)
+          for (std::int64_t u = 0; u < s1 - s0; ++u) {
+            cfx[s0 + u] = o.col[0][u];
+            cfy[s0 + u] = o.col[1][u];
+            cfz[s0 + u] = o.col[2][u];
+          }
+      }
+#endif
     }
   };
-  in_blocks(nc, d.threaded(), range);
+  if (scatter_mode != 0)
+    range(0, nc, std::true_type{});
+  else
+    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
 }
 
 // The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law
