@@ -6,6 +6,10 @@
 #pragma GCC target("prefer-vector-width=256")
 #include "crystal/dynamics.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -43,6 +47,14 @@ std::shared_ptr<const ContactModel> hertz_model(const contact::HertzMindlinParam
 }
 
 }  // namespace
+
+int Dynamics::threads_available() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
 
 double packing_density(const Packing& p) {
   if (p.mass.empty()) return 0.0;

@@ -176,9 +176,12 @@ class Dynamics {
   void step();
 
   // OpenMP is used from this many particles on (fork/join costs more than it saves on small
-  // crystals, and much more on a loaded machine); results do not depend on it.
+  // crystals, and much more on a loaded machine), and only when OpenMP may run more than one
+  // thread (else the one-thread route, which sums forces in the contact pass, is faster);
+  // results do not depend on it.
   std::size_t parallel_min_particles = 20000;
-  bool threaded() const { return size() >= parallel_min_particles; }
+  bool threaded() const { return size() >= parallel_min_particles && threads_available() > 1; }
+  static int threads_available();  // omp_get_max_threads(); 1 without OpenMP
 
   // ---- energies (J) ----
   // Each is a sum per layer (particles in index order, contacts in list order counted in the

@@ -178,6 +178,12 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
   // per-particle rows (crystal/kernel.hpp's scatter); threaded, the particle pass sums the stored
   // per-contact values. Both add in the same order: every force, torque and position agrees to
   // the last bit, for both lever arms, a sliding law (deferred contacts) and Hertz-Mindlin.
+  // The threaded route needs OpenMP with two threads (skipped, loudly, without).
+#ifdef _OPENMP
+  omp_set_num_threads(2);
+#endif
+  const int got = test_support::openmp_threads(2);
+  if (got < 2) test_support::skip("OpenMP gives " + std::to_string(got) + " thread(s): the two-pass route untested");
   config::Case c = load("crystal_small");
   c.contact.kt = 1e5;
   c.contact.gamma_n = 0.1;
