@@ -125,8 +125,22 @@ double fastest(int calls, F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const long steps = argc > 1 ? std::atol(argv[1]) : 2000;
-  const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  // bench_crystal [STEPS [REPEATS]]: whole numbers >= 1 (anything else, --help included: usage, exit 2)
+  auto usage = [] {
+    std::fprintf(stderr, "usage: bench_crystal [STEPS [REPEATS]]  (steps per measurement, default 2000; best of "
+                         "REPEATS, default 3; whole numbers >= 1)\n");
+    std::exit(2);
+  };
+  auto count = [&](int k, long fallback) -> long {
+    if (argc <= k) return fallback;
+    char* end = nullptr;
+    const long v = std::strtol(argv[k], &end, 10);
+    if (end == argv[k] || *end != '\0' || v < 1) usage();
+    return v;
+  };
+  if (argc > 3) usage();
+  const long steps = count(1, 2000);
+  const int repeats = static_cast<int>(count(2, 3));
   int max_threads = 1;
 #ifdef _OPENMP
   max_threads = omp_get_max_threads();
