@@ -414,9 +414,74 @@ void Dynamics::particle_pass(double h) {
   }
 }
 
+// The particle pass from the contact pass's per-particle sums (contact_sums): the same torques
+// and kick as particle_pass, from sums made in the same order; the rows are zeroed for the next
+// contact pass (the halo's too: its sums are incomplete and never used).
+template <bool Kick, bool ContactPointArm>
+void Dynamics::finish_pass(double h) {
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
+  double* __restrict rf = contact_sums.data();
+  double* __restrict rn = rf + 4 * n;
+  double* __restrict rd = rf + 8 * n;
+  double* __restrict pfx = fx.data();
+  double* __restrict pfy = fy.data();
+  double* __restrict pfz = fz.data();
+  double* __restrict ptx = tx.data();
+  double* __restrict pty = ty.data();
+  double* __restrict ptz = tz.data();
+  double* __restrict pvx = vx.data();
+  double* __restrict pvy = vy.data();
+  double* __restrict pvz = vz.data();
+  double* __restrict pwx = wx.data();
+  double* __restrict pwy = wy.data();
+  double* __restrict pwz = wz.data();
+  const double* __restrict a = radius.data();
+  const double* __restrict im = inv_mass.data();
+  const double* __restrict ii = inv_inertia.data();
+  const std::uint8_t* __restrict on = mobile.data();
+  for (std::int64_t p = p0; p < p1; ++p) {
+    const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
+    const double nx = rn[4 * p], ny = rn[4 * p + 1], nz = rn[4 * p + 2];
+    pfx[p] = sx;
+    pfy[p] = sy;
+    pfz[p] = sz;
+    double tqx, tqy, tqz;
+    if constexpr (ContactPointArm) {
+      tqx = -a[p] * nx + 0.5 * rd[4 * p];
+      tqy = -a[p] * ny + 0.5 * rd[4 * p + 1];
+      tqz = -a[p] * nz + 0.5 * rd[4 * p + 2];
+    } else {
+      tqx = -a[p] * nx;
+      tqy = -a[p] * ny;
+      tqz = -a[p] * nz;
+    }
+    ptx[p] = tqx;
+    pty[p] = tqy;
+    ptz[p] = tqz;
+    if (Kick && on[p]) {
+      pvx[p] += h * sx * im[p];
+      pvy[p] += h * sy * im[p];
+      pvz[p] += h * sz * im[p];
+      pwx[p] += h * tqx * ii[p];
+      pwy[p] += h * tqy * ii[p];
+      pwz[p] += h * tqz * ii[p];
+    }
+  }
+  std::fill(rf, rf + 12 * n, 0.0);
+}
+
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
+  sums_filled_ = false;
   model_->contact_pass(*this, inc, dashpots);
   const double h = kick ? 0.5 * dt_ : 0.0;
+  if (sums_filled_) {
+    if (arm_shift_ != 0.0)
+      kick ? finish_pass<true, true>(h) : finish_pass<false, true>(h);
+    else
+      kick ? finish_pass<true, false>(h) : finish_pass<false, false>(h);
+    return;
+  }
   const bool threads = threaded();
   auto pass = [&]<bool Torques, bool ContactPointArm>() {
     if (threads)

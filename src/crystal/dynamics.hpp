@@ -103,6 +103,20 @@ class Dynamics {
   // (crystal/kernel.hpp's gather), refreshed at every pass: 96 bytes per particle with a law
   // with torques, empty otherwise.
   std::vector<double> gather_rows;
+  // Per-particle sums of the contact pass, as rows of four doubles (f | n x f^t | delta n x f^t,
+  // crystal/kernel.hpp's scatter), filled by a one-thread pass of a law with torques and read
+  // (and zeroed) by the particle pass: 96 bytes per particle then, empty otherwise.
+  std::vector<double> contact_sums;
+  // false: a one-thread pass of a law with torques may leave ContactList::f_x, f_y, f_z (and
+  // nf_x, ...) stale (it sums straight into contact_sums); set it for the passes whose contact
+  // forces are read (the layer stress of a sample).
+  bool store_contact_forces = true;
+  // The contact pass announces that it fills contact_sums (zero on entry); returns its rows.
+  double* begin_contact_sums() {
+    contact_sums.resize(12 * size(), 0.0);
+    sums_filled_ = true;
+    return contact_sums.data();
+  }
   double time = 0.0;
   long steps = 0;
   long rebuilds = 0;
@@ -179,6 +193,9 @@ class Dynamics {
   bool kick_drift();
   template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
+  template <bool Kick, bool ContactPointArm>
+  void finish_pass(double h);  // pass 2 from contact_sums (one thread, a law with torques)
+  bool sums_filled_ = false;   // the last contact pass filled contact_sums
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   void add_kinetic(double* s) const;
   void add_verlet(double* s) const;

@@ -92,6 +92,11 @@ void in_blocks(std::int64_t n, bool threaded, const Body& body) {
 // per contact, and rows cost more than they save (2.5 -> 3.0 ns): direct_contact_pass below.
 inline constexpr std::int64_t kChunk = 128;  // contacts per gather: their columns stay in L1 (256: 11.4 ns)
 
+// A chunk's results on the way to the scatter: f and n x f^t (scatter, below).
+struct Sums {
+  alignas(64) double col[6][kChunk];
+};
+
 struct Gathered {
   // r_j - r_i at j's image; a_i + a_j; the radii; v_i - v_j; w_i, w_j.
   enum Column { bx, by, bz, reach, a_i, a_j, dvx, dvy, dvz, wix, wiy, wiz, wjx, wjy, wjz, kColumns };
@@ -341,6 +346,82 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
   in_blocks(nc, d.threaded(), range);
 }
 
+// ---- The scatter: contact sums straight into per-particle rows (one thread) ----
+// On one thread the contact pass adds each contact's f and n x f^t (and delta n x f^t for the
+// contact-point arm) to per-particle rows (f | n x f^t | delta n x f^t, four doubles each) right
+// after its chunk is evaluated, while the chunk's values are still in L1; Dynamics then only
+// finishes the torques and kicks (finish_pass), instead of re-reading every contact's six values
+// through the per-particle contact lists. The order of the additions is that of the particle
+// pass: the list is sorted by i and i < j, so in list order a particle first meets the contacts
+// where it is j, then its own range as i; each sum starts from 0.0 and adds (j: subtracts the
+// force) in that order, lane-wise IEEE: the same bits. The running sums of the current i are
+// kept in registers (the list's runs of equal i), j's are read and written in memory.
+#ifdef GRANWAVE_GATHER_VECTORS
+template <bool ContactPointArm>
+struct ScatterState {
+  std::int64_t cur = -1;  // the particle i whose sums are in registers
+  V4 f{}, nf{}, dnf{};
+};
+
+template <bool ContactPointArm>
+[[gnu::always_inline]] inline void scatter_one(ScatterState<ContactPointArm>& st, double* __restrict rows,
+                                               std::int64_t n, std::int64_t i, std::int64_t j, const V4& f,
+                                               const V4& nf, double delta) {
+  double* __restrict rf = rows;
+  double* __restrict rn = rows + 4 * n;
+  double* __restrict rd = rows + 8 * n;
+  if (i != st.cur) {
+    if (st.cur >= 0) {
+      store4(rf + 4 * st.cur, st.f);
+      store4(rn + 4 * st.cur, st.nf);
+      if constexpr (ContactPointArm) store4(rd + 4 * st.cur, st.dnf);
+    }
+    st.cur = i;
+    st.f = load4(rf + 4 * i);
+    st.nf = load4(rn + 4 * i);
+    if constexpr (ContactPointArm) st.dnf = load4(rd + 4 * i);
+  }
+  st.f = st.f + f;
+  st.nf = st.nf + nf;
+  store4(rf + 4 * j, load4(rf + 4 * j) - f);
+  store4(rn + 4 * j, load4(rn + 4 * j) + nf);
+  if constexpr (ContactPointArm) {
+    const V4 d{delta, delta, delta, delta};
+    const V4 dn = d * nf;
+    st.dnf = st.dnf + dn;
+    store4(rd + 4 * j, load4(rd + 4 * j) + dn);
+  }
+}
+
+// The m contacts of a chunk (their i, j, overlaps; f and n x f^t in o) into the rows; st's sums
+// are written back at the end.
+template <bool ContactPointArm>
+[[gnu::always_inline]] inline void scatter(double* rows, std::int64_t n, std::int64_t m, const std::int32_t* ci,
+                                           const std::int32_t* cj, const Sums& o, const double* cdelta) {
+  ScatterState<ContactPointArm> st;
+  const V4 zero{0.0, 0.0, 0.0, 0.0};
+  const double *cfx = o.col[0], *cfy = o.col[1], *cfz = o.col[2], *cnx = o.col[3], *cny = o.col[4], *cnz = o.col[5];
+  std::int64_t c = 0;
+  for (; c + 4 <= m; c += 4) {
+    V4 f0, f1, f2, f3, n0, n1, n2, n3;
+    transpose4(load4(cfx + c), load4(cfy + c), load4(cfz + c), zero, f0, f1, f2, f3);
+    transpose4(load4(cnx + c), load4(cny + c), load4(cnz + c), zero, n0, n1, n2, n3);
+    scatter_one(st, rows, n, ci[c], cj[c], f0, n0, cdelta[c]);
+    scatter_one(st, rows, n, ci[c + 1], cj[c + 1], f1, n1, cdelta[c + 1]);
+    scatter_one(st, rows, n, ci[c + 2], cj[c + 2], f2, n2, cdelta[c + 2]);
+    scatter_one(st, rows, n, ci[c + 3], cj[c + 3], f3, n3, cdelta[c + 3]);
+  }
+  for (; c < m; ++c)
+    scatter_one(st, rows, n, ci[c], cj[c], V4{cfx[c], cfy[c], cfz[c], 0.0}, V4{cnx[c], cny[c], cnz[c], 0.0},
+                cdelta[c]);
+  if (st.cur >= 0) {
+    store4(rows + 4 * st.cur, st.f);
+    store4(rows + 4 * n + 4 * st.cur, st.nf);
+    if constexpr (ContactPointArm) store4(rows + 8 * n + 4 * st.cur, st.dnf);
+  }
+}
+#endif
+
 // The contact pass of a law with torques, from gathered columns (above).
 template <class Law, bool Dissipative>
 void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
@@ -374,13 +455,26 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   double* diss = C.dissipated.data();
   std::array<double*, NH> hist{};
   for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
+  // One thread: the sums go straight into the particles' rows (scatter, above); 0: none,
+  // 1: radius arm, 2: contact-point arm.
+  const std::int64_t np = static_cast<std::int64_t>(d.size());
+  int scatter_mode = 0;
+  double* sum_rows = nullptr;
+  const bool keep_forces = d.store_contact_forces;
+#ifdef GRANWAVE_GATHER_VECTORS
+  if (!d.threaded()) {
+    scatter_mode = law.arm_shift() != 0.0 ? 2 : 1;
+    sum_rows = d.begin_contact_sums();
+  }
+#endif
   // One contact: g's entry u is contact c. In the vector sweep (Deferrable) a contact the law
   // defers is left untouched and reported; the exact sweep evaluates it again from the same
   // history. Pointers and the law are captured by value (OpenMP would share them by reference,
   // which the vectoriser cannot see through).
-  auto one = [=](std::int64_t c, std::int64_t u, const G& g, auto vector_sweep)
+  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Sums& o, auto vector_sweep, auto scatter_sweep)
                  __attribute__((always_inline)) -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
+    constexpr bool Scatter = decltype(scatter_sweep)::value;
     // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j
     const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
     const double reach = g.col[G::reach][u], a_i = g.col[G::a_i][u], a_j = g.col[G::a_j][u];
@@ -413,47 +507,69 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
     const std::array<double, NH> h1 = contact::history_to(h);
     using contact::select;
     for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
-    cnx[c] = select(open, 0.0, res.nf.x());
-    cny[c] = select(open, 0.0, res.nf.y());
-    cnz[c] = select(open, 0.0, res.nf.z());
     if constexpr (Dissipative) {
       const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
       diss[c] = select(deferred, diss[c], diss[c] + lost);
     }
     cdelta[c] = delta;
-    cfx[c] = select(open, 0.0, res.force.x());
-    cfy[c] = select(open, 0.0, res.force.y());
-    cfz[c] = select(open, 0.0, res.force.z());
+    const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
+                          select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
+                          select(open, 0.0, res.nf.y()), select(open, 0.0, res.nf.z())};
+    if constexpr (Scatter) {
+      for (int q = 0; q < 6; ++q) o.col[q][u] = fo[q];
+    } else {
+      cfx[c] = fo[0], cfy[c] = fo[1], cfz[c] = fo[2];
+      cnx[c] = fo[3], cny[c] = fo[4], cnz[c] = fo[5];
+    }
     return deferred;
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
-  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
-    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g) __attribute__((always_inline)) {
+  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) __attribute__((always_inline)) {
+    constexpr bool Scatter = decltype(scatter_sweep)::value;
+    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Sums& o) __attribute__((always_inline)) {
       if constexpr (Defers) {
         std::int32_t deferred[kChunk];
         std::int32_t any = 0;
 #pragma GCC ivdep
         for (std::int64_t c = s0; c < s1; ++c) {
-          deferred[c - s0] = one(c, c - s0, g, std::true_type{});
+          deferred[c - s0] = one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
           any |= deferred[c - s0];
         }
         if (any)
           for (std::int64_t c = s0; c < s1; ++c)
-            if (deferred[c - s0]) one(c, c - s0, g, std::false_type{});
+            if (deferred[c - s0]) one(c, c - s0, g, o, std::false_type{}, scatter_sweep);
       } else {
 #pragma GCC ivdep
-        for (std::int64_t c = s0; c < s1; ++c) one(c, c - s0, g, std::true_type{});
+        for (std::int64_t c = s0; c < s1; ++c) one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
       }
     };
     G g;
+    Sums o;
     for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
       const std::int64_t s1 = std::min(c1, s0 + kChunk);
       gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
-      sweep(s0, s1, g);
+      sweep(s0, s1, g, o);
+#ifdef GRANWAVE_GATHER_VECTORS
+      if constexpr (Scatter) {
+        if (scatter_mode == 1)
+          scatter<false>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o, cdelta + s0);
+        else
+          scatter<true>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o, cdelta + s0);
+        if (keep_forces)
+          for (std::int64_t u = 0; u < s1 - s0; ++u) {
+            cfx[s0 + u] = o.col[0][u];
+            cfy[s0 + u] = o.col[1][u];
+            cfz[s0 + u] = o.col[2][u];
+          }
+      }
+#endif
     }
   };
-  in_blocks(nc, d.threaded(), range);
+  if (scatter_mode != 0)
+    range(0, nc, std::true_type{});
+  else
+    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
 }
 
 // The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law
