@@ -317,6 +317,7 @@ void Dynamics::rebuild() {
     z_build_[p] = static_cast<float>(z[p] - z0[p]);
   }
   ++rebuilds;
+  ++list_builds_;
 }
 
 // Sum of each particle's contact forces and torques in contact order; with Kick, the half
@@ -613,24 +614,82 @@ void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double
   work_in += potential_energy() + dissipated_energy() - before;
 }
 
-// Per-layer sums over the owned particles (contacts whose i is owned) in index order. Particles
-// and contacts come layer by layer, so kernel::LayerSum keeps the running sum in a register.
-void Dynamics::add_kinetic(double* s) const {
-  kernel::LayerSum sum(s);
-  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
-    if (!mobile[p]) continue;
-    sum.at(packing_.layer[p]) += 0.5 * mass[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
-                                 0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
+// Per-layer sums over the owned particles (contacts whose i is owned) in index order, several
+// layers at a time (layer_chains: each layer's terms in its order, the same bits as one
+// kernel::LayerSum walk).
+const Dynamics::LayerOrder& Dynamics::layer_order() const {
+  if (order_build_ == list_builds_) return order_;
+  const ContactList& C = contacts;
+  const std::size_t nl = static_cast<std::size_t>(std::max(0, packing_.layers)), nc = C.size();
+  const int* layer = packing_.layer.data();
+  const std::uint8_t* fixed = packing_.fixed.data();
+  LayerOrder& o = order_;
+  o.particles.build(nl, own_hi_ - own_lo_, [&](std::size_t k) { return layer[own_lo_ + k]; });
+  for (std::int32_t& p : o.particles.entries) p += static_cast<std::int32_t>(own_lo_);
+  o.contacts.build(nl, nc - C.own_first, [&](std::size_t k) { return layer[C.i[C.own_first + k]]; });
+  for (std::int32_t& c : o.contacts.entries) c += static_cast<std::int32_t>(C.own_first);
+  {  // the ends in list order, i before j, numbered c (i) and nc + c (j)
+    std::vector<std::int32_t> layer_of(2 * nc);
+    for (std::size_t c = 0; c < nc; ++c) {
+      const bool both_fixed = fixed[C.i[c]] && fixed[C.j[c]];
+      layer_of[2 * c] = both_fixed ? -1 : layer[C.i[c]];
+      layer_of[2 * c + 1] = both_fixed ? -1 : layer[C.j[c]];
+    }
+    o.ends.build(nl, 2 * nc, [&](std::size_t k) { return layer_of[k]; });
+    for (std::int32_t& e : o.ends.entries)
+      e = e % 2 ? static_cast<std::int32_t>(nc) + e / 2 : e / 2;
+  }
+  auto counted = [&](std::size_t p) { return p >= own_lo_ && p < own_hi_ && !fixed[p]; };
+  o.counted_ends.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c)
+    o.counted_ends[c] = static_cast<std::uint8_t>(counted(static_cast<std::size_t>(C.i[c])) +
+                                                  counted(static_cast<std::size_t>(C.j[c])));
+  o.free_particles = 0;
+  for (std::size_t p = own_lo_; p < own_hi_; ++p) o.free_particles += !fixed[p];
+  order_build_ = list_builds_;
+  return order_;
+}
+
+void Dynamics::add_particle_energies(double* kinetic, double* verlet) const {
+  const double *m = mass.data(), *inertia_ = inertia.data(), *im = inv_mass.data(), *ii = inv_inertia.data();
+  const double *pvx = vx.data(), *pvy = vy.data(), *pvz = vz.data(), *pwx = wx.data(), *pwy = wy.data(),
+               *pwz = wz.data();
+  const double *pfx = fx.data(), *pfy = fy.data(), *pfz = fz.data(), *ptx = tx.data(), *pty = ty.data(),
+               *ptz = tz.data();
+  const std::uint8_t* on = mobile.data();
+  auto kin = [=](std::int32_t p) {
+    return 0.5 * m[p] * (pvx[p] * pvx[p] + pvy[p] * pvy[p] + pvz[p] * pvz[p]) +
+           0.5 * inertia_[p] * (pwx[p] * pwx[p] + pwy[p] * pwy[p] + pwz[p] * pwz[p]);
+  };
+  auto ver = [=](std::int32_t p) {
+    return (pfx[p] * pfx[p] + pfy[p] * pfy[p] + pfz[p] * pfz[p]) * im[p] +
+           (ptx[p] * ptx[p] + pty[p] * pty[p] + ptz[p] * ptz[p]) * ii[p];
+  };
+  // One walk, the two sums' running values in registers (kernel::LayerSum; particles come layer
+  // by layer): the terms cost more than the chains here, so layer_chains does not pay.
+  if (kinetic && verlet) {
+    kernel::LayerSum k(kinetic), v(verlet);
+    for (std::size_t p = own_lo_; p < own_hi_; ++p) {
+      if (!on[p]) continue;
+      const int L = packing_.layer[p];
+      k.at(L) += kin(static_cast<std::int32_t>(p));
+      v.at(L) += ver(static_cast<std::int32_t>(p));
+    }
+  } else if (kinetic) {
+    kernel::LayerSum sum(kinetic);
+    for (std::size_t p = own_lo_; p < own_hi_; ++p)
+      if (on[p]) sum.at(packing_.layer[p]) += kin(static_cast<std::int32_t>(p));
+  } else if (verlet) {
+    kernel::LayerSum sum(verlet);
+    for (std::size_t p = own_lo_; p < own_hi_; ++p)
+      if (on[p]) sum.at(packing_.layer[p]) += ver(static_cast<std::int32_t>(p));
   }
 }
 
-void Dynamics::add_verlet(double* s) const {
-  kernel::LayerSum sum(s);
-  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
-    if (!mobile[p]) continue;
-    sum.at(packing_.layer[p]) += (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
-                                 (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
-  }
+void Dynamics::add_dissipated(double* s) const {
+  const double* loss = contacts.dissipated.data();
+  layer_chains<8>(layer_order().contacts, std::array{s},
+                  [=](std::array<double, 1>& acc, std::int32_t c) { acc[0] += loss[c]; });
 }
 
 void Dynamics::add_dissipated(double* s, const ContactList& C) const {
@@ -662,7 +721,7 @@ void Dynamics::layer_totals(std::vector<double>* arrays, std::size_t k, double* 
 
 double Dynamics::kinetic_energy() const {
   std::vector<double> s(dissipated_before_.size(), 0.0);
-  add_kinetic(s.data());
+  add_particle_energies(s.data(), nullptr);
   double t = 0.0;
   layer_totals(&s, 1, &t);
   return t;
@@ -670,7 +729,7 @@ double Dynamics::kinetic_energy() const {
 
 double Dynamics::potential_energy() const {
   std::vector<double> s(dissipated_before_.size(), 0.0);
-  model_->add_stored_energy(s.data(), contacts, contacts.own_first, packing_.layer.data(), radius.data());
+  model_->add_stored_energy(s.data(), contacts, layer_order().contacts, radius.data());
   double t = 0.0;
   layer_totals(&s, 1, &t);
   return t;
@@ -679,7 +738,7 @@ double Dynamics::potential_energy() const {
 double Dynamics::dissipated_energy() const {
   std::vector<double> s = dissipated_before_;
   // A law that never dissipates leaves every entry +0.0: adding them would change nothing.
-  if (model_->dissipates()) add_dissipated(s.data(), contacts);
+  if (model_->dissipates()) add_dissipated(s.data());
   double t = 0.0;
   layer_totals(&s, 1, &t);  // collective under a slab plan: every rank calls it
   return t;
@@ -687,7 +746,7 @@ double Dynamics::dissipated_energy() const {
 
 double Dynamics::verlet_correction() const {
   std::vector<double> s(dissipated_before_.size(), 0.0);
-  add_verlet(s.data());
+  add_particle_energies(nullptr, s.data());
   double t = 0.0;
   layer_totals(&s, 1, &t);
   return dt_ * dt_ / 8.0 * t;
@@ -697,10 +756,9 @@ Dynamics::Energies Dynamics::energies() const {
   const std::size_t nl = dissipated_before_.size();
   std::vector<double> s[4] = {std::vector<double>(nl, 0.0), std::vector<double>(nl, 0.0), dissipated_before_,
                               std::vector<double>(nl, 0.0)};
-  add_kinetic(s[0].data());
-  model_->add_stored_energy(s[1].data(), contacts, contacts.own_first, packing_.layer.data(), radius.data());
-  add_dissipated(s[2].data(), contacts);
-  add_verlet(s[3].data());
+  add_particle_energies(s[0].data(), s[3].data());
+  model_->add_stored_energy(s[1].data(), contacts, layer_order().contacts, radius.data());
+  add_dissipated(s[2].data());
   double t[4];
   layer_totals(s, 4, t);
   return {t[0], t[1], t[2], dt_ * dt_ / 8.0 * t[3]};

@@ -163,6 +163,22 @@ Derived derive(const config::Case& c) {
   return d;
 }
 
+namespace {
+// The layer stress's terms (a - delta/2) u_z f_z and f_x of n contacts' ends i and j; +0.0 for
+// an open contact (the restrict pointers let the loop vectorise).
+void end_terms(std::size_t n, const double* __restrict delta, const double* __restrict f_z,
+               const double* __restrict f_x, const double* __restrict arm_u_i, const double* __restrict arm_u_j,
+               double* __restrict z_i, double* __restrict x_i, double* __restrict z_j, double* __restrict x_j) {
+  for (std::size_t c = 0; c < n; ++c) {
+    const bool open = delta[c] <= 0.0;
+    z_i[c] = open ? 0.0 : arm_u_i[c] * f_z[c];
+    x_i[c] = open ? 0.0 : arm_u_i[c] * f_x[c];
+    z_j[c] = open ? 0.0 : arm_u_j[c] * f_z[c];
+    x_j[c] = open ? 0.0 : arm_u_j[c] * f_x[c];
+  }
+}
+}  // namespace
+
 void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<double>& zx,
                   std::vector<double>* particle_stress) {
   const Packing& pk = dyn.packing();
@@ -199,55 +215,38 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
         }
     }
   } else {
-    // The same sums, faster (a sample costs about as much as a time step otherwise): per block,
-    // first every contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z in a loop that vectorises
-    // (a root and a division each), then the sums in contact order. The two layers last summed
-    // into stay in registers (the same additions in the same order, without a store and reload
-    // of the running sum between two contacts).
+    // The same sums, faster (a sample costs about as much as a time step otherwise). First, in
+    // loops that vectorise, every contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z (a root and
+    // a division each) and the four terms they make with f_z and f_x (+0.0 for an open contact:
+    // subtracting it changes no sum). Then each layer's sums over the ends of its contacts in
+    // list order (Dynamics::LayerOrder::ends, i before j), several layers side by side
+    // (layer_chains): the same subtractions in the same order.
+    const std::size_t nc = C.size();
+    static thread_local std::vector<double> terms;  // f_z terms of the ends (i: c, j: nc + c), then f_x terms
+    terms.resize(4 * nc);
+    double* t_z = terms.data();
+    double* t_x = t_z + 2 * nc;
+    const double* a = dyn.radius.data();
+    const double *z = dyn.z.data(), *delta = C.delta.data(), *f_z = C.f_z.data(), *f_x = C.f_x.data();
+    const std::int32_t *pi = C.i.data(), *pj = C.j.data();
     constexpr std::size_t kBlock = 256;
     double arm_u_i[kBlock], arm_u_j[kBlock];
-    int la = -1, lb = -1;  // the layers held in (zz_a, zx_a) and (zz_b, zx_b); a: the last one used
-    double zz_a = 0.0, zx_a = 0.0, zz_b = 0.0, zx_b = 0.0;
-    auto hold = [&](int L) {
-      if (L == la) return;
-      if (L == lb) {
-        std::swap(la, lb);
-        std::swap(zz_a, zz_b);
-        std::swap(zx_a, zx_b);
-        return;
-      }
-      if (lb >= 0) {
-        zz[lb] = zz_b;
-        zx[lb] = zx_b;
-      }
-      lb = la;
-      zz_b = zz_a;
-      zx_b = zx_a;
-      la = L;
-      zz_a = zz[L];
-      zx_a = zx[L];
-    };
-    const double* a = dyn.radius.data();
-    for (std::size_t c0 = 0; c0 < C.size(); c0 += kBlock) {
-      const std::size_t c1 = std::min(C.size(), c0 + kBlock);
+    for (std::size_t c0 = 0; c0 < nc; c0 += kBlock) {
+      const std::size_t c1 = std::min(nc, c0 + kBlock);
       // The distance r = |r_j - r_i| from the overlap the contact pass stored at these positions,
       // delta = (a_i + a_j) - r: while r/2 <= a_i + a_j <= 2r that subtraction is exact (Sterbenz),
       // so (a_i + a_j) - delta gives the root's r bit for bit without x, y and the root. Checked
-      // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the root.
-      bool exact = true;
+      // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the
+      // block again with the root.
+      std::int64_t exact = 0;
       for (std::size_t c = c0; c < c1; ++c) {
-        const double reach = a[C.i[c]] + a[C.j[c]], delta = C.delta[c];
-        exact &= (delta >= -0.5 * reach) & (delta <= 0.25 * reach);
+        const double reach = a[pi[c]] + a[pj[c]];
+        exact += ((delta[c] >= -0.5 * reach) & (delta[c] <= 0.25 * reach)) ? 1 : 0;
+        const double u_z = (z[pj[c]] - z[pi[c]]) / (reach - delta[c]);
+        arm_u_i[c - c0] = (a[pi[c]] - 0.5 * delta[c]) * u_z;
+        arm_u_j[c - c0] = (a[pj[c]] - 0.5 * delta[c]) * u_z;
       }
-      if (exact) {
-        for (std::size_t c = c0; c < c1; ++c) {
-          const int i = C.i[c], j = C.j[c];
-          const double bz = dyn.z[j] - dyn.z[i];
-          const double u_z = bz / ((a[i] + a[j]) - C.delta[c]);
-          arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
-          arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
-        }
-      } else {
+      if (exact != static_cast<std::int64_t>(c1 - c0))
         for (std::size_t c = c0; c < c1; ++c) {
           const int i = C.i[c], j = C.j[c];
           const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
@@ -257,24 +256,14 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
           arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
           arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
         }
-      }
-      for (std::size_t c = c0; c < c1; ++c) {
-        if (C.delta[c] <= 0.0) continue;
-        const int i = C.i[c], j = C.j[c];
-        if (pk.fixed[i] && pk.fixed[j]) continue;
-        hold(pk.layer[i]);
-        zz_a -= arm_u_i[c - c0] * C.f_z[c];
-        zx_a -= arm_u_i[c - c0] * C.f_x[c];
-        hold(pk.layer[j]);
-        zz_a -= arm_u_j[c - c0] * C.f_z[c];
-        zx_a -= arm_u_j[c - c0] * C.f_x[c];
-      }
+      end_terms(c1 - c0, delta + c0, f_z + c0, f_x + c0, arm_u_i, arm_u_j, t_z + c0, t_x + c0, t_z + nc + c0,
+                t_x + nc + c0);
     }
-    for (const auto& [L, s_zz, s_zx] : {std::tuple{lb, zz_b, zx_b}, std::tuple{la, zz_a, zx_a}})
-      if (L >= 0) {
-        zz[L] = s_zz;
-        zx[L] = s_zx;
-      }
+    layer_chains<4>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
+                    [=](std::array<double, 2>& acc, std::int32_t e) {
+                      acc[0] -= t_z[e];
+                      acc[1] -= t_x[e];
+                    });
   }
   for (std::size_t L = 0; L < nl; ++L) {
     zz[L] /= volume;
@@ -287,12 +276,13 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
 }
 
 double coordination(const Dynamics& dyn) {
-  long contacts = 0, particles = 0;
-  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
-    if (dyn.packing().fixed[p]) continue;
-    ++particles;
-    contacts += dyn.touching_contacts_of(p);
-  }
+  // Each touching contact counts once for each of its particles that is owned and not fixed
+  // (the count of Dynamics::touching_contacts_of over those particles, in one walk).
+  const Dynamics::LayerOrder& o = dyn.layer_order();
+  const double* delta = dyn.contacts.delta.data();
+  const std::uint8_t* ends = o.counted_ends.data();
+  long contacts = 0, particles = o.free_particles;
+  for (std::size_t c = 0; c < o.counted_ends.size(); ++c) contacts += delta[c] > 0.0 ? ends[c] : 0;
   if (const SlabPlan* s = dyn.slab()) {  // whole numbers: exact in doubles and in any order
     std::vector<double> all;
     s->comm->allgather({static_cast<double>(contacts), static_cast<double>(particles)}, all);
