@@ -625,20 +625,14 @@ const Dynamics::LayerOrder& Dynamics::layer_order() const {
   const std::uint8_t* fixed = packing_.fixed.data();
   LayerOrder& o = order_;
   o.particles.build(nl, own_hi_ - own_lo_, [&](std::size_t k) { return layer[own_lo_ + k]; });
-  for (std::int32_t& p : o.particles.entries) p += static_cast<std::int32_t>(own_lo_);
+  o.particles.shift(static_cast<std::int32_t>(own_lo_));
   o.contacts.build(nl, nc - C.own_first, [&](std::size_t k) { return layer[C.i[C.own_first + k]]; });
-  for (std::int32_t& c : o.contacts.entries) c += static_cast<std::int32_t>(C.own_first);
-  {  // the ends in list order, i before j, numbered c (i) and nc + c (j)
-    std::vector<std::int32_t> layer_of(2 * nc);
-    for (std::size_t c = 0; c < nc; ++c) {
-      const bool both_fixed = fixed[C.i[c]] && fixed[C.j[c]];
-      layer_of[2 * c] = both_fixed ? -1 : layer[C.i[c]];
-      layer_of[2 * c + 1] = both_fixed ? -1 : layer[C.j[c]];
-    }
-    o.ends.build(nl, 2 * nc, [&](std::size_t k) { return layer_of[k]; });
-    for (std::int32_t& e : o.ends.entries)
-      e = e % 2 ? static_cast<std::int32_t>(nc) + e / 2 : e / 2;
-  }
+  o.contacts.shift(static_cast<std::int32_t>(C.own_first));
+  o.ends.build(nl, 2 * nc, [&](std::size_t e) {  // the ends in list order, i (2c) before j (2c + 1)
+    const std::size_t c = e / 2;
+    if (fixed[C.i[c]] && fixed[C.j[c]]) return -1;
+    return layer[e % 2 ? C.j[c] : C.i[c]];
+  });
   auto counted = [&](std::size_t p) { return p >= own_lo_ && p < own_hi_ && !fixed[p]; };
   o.counted_ends.resize(nc);
   for (std::size_t c = 0; c < nc; ++c)
@@ -650,40 +644,54 @@ const Dynamics::LayerOrder& Dynamics::layer_order() const {
   return order_;
 }
 
-void Dynamics::add_particle_energies(double* kinetic, double* verlet) const {
-  const double *m = mass.data(), *inertia_ = inertia.data(), *im = inv_mass.data(), *ii = inv_inertia.data();
-  const double *pvx = vx.data(), *pvy = vy.data(), *pvz = vz.data(), *pwx = wx.data(), *pwy = wy.data(),
-               *pwz = wz.data();
-  const double *pfx = fx.data(), *pfy = fy.data(), *pfz = fz.data(), *ptx = tx.data(), *pty = ty.data(),
-               *ptz = tz.data();
-  const std::uint8_t* on = mobile.data();
-  auto kin = [=](std::int32_t p) {
-    return 0.5 * m[p] * (pvx[p] * pvx[p] + pvy[p] * pvy[p] + pvz[p] * pvz[p]) +
-           0.5 * inertia_[p] * (pwx[p] * pwx[p] + pwy[p] * pwy[p] + pwz[p] * pwz[p]);
-  };
-  auto ver = [=](std::int32_t p) {
-    return (pfx[p] * pfx[p] + pfy[p] * pfy[p] + pfz[p] * pfz[p]) * im[p] +
-           (ptx[p] * ptx[p] + pty[p] * pty[p] + ptz[p] * ptz[p]) * ii[p];
-  };
-  // One walk, the two sums' running values in registers (kernel::LayerSum; particles come layer
-  // by layer): the terms cost more than the chains here, so layer_chains does not pay.
-  if (kinetic && verlet) {
-    kernel::LayerSum k(kinetic), v(verlet);
-    for (std::size_t p = own_lo_; p < own_hi_; ++p) {
-      if (!on[p]) continue;
-      const int L = packing_.layer[p];
-      k.at(L) += kin(static_cast<std::int32_t>(p));
-      v.at(L) += ver(static_cast<std::int32_t>(p));
-    }
-  } else if (kinetic) {
-    kernel::LayerSum sum(kinetic);
-    for (std::size_t p = own_lo_; p < own_hi_; ++p)
-      if (on[p]) sum.at(packing_.layer[p]) += kin(static_cast<std::int32_t>(p));
-  } else if (verlet) {
-    kernel::LayerSum sum(verlet);
-    for (std::size_t p = own_lo_; p < own_hi_; ++p)
-      if (on[p]) sum.at(packing_.layer[p]) += ver(static_cast<std::int32_t>(p));
+namespace {
+// Each particle's kinetic energy and |F|^2/m + |T|^2/I in [p0, p1), -0.0 for one that is not
+// integrated (adding -0.0 changes no sum: the walk's `continue`); a loop that vectorises.
+void particle_energy_terms(std::size_t p0, std::size_t p1, const double* __restrict m,
+                           const double* __restrict inertia, const double* __restrict vx, const double* __restrict vy,
+                           const double* __restrict vz, const double* __restrict wx, const double* __restrict wy,
+                           const double* __restrict wz, const std::uint8_t* __restrict on, double* __restrict kinetic) {
+  for (std::size_t p = p0; p < p1; ++p) {
+    const double e = 0.5 * m[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
+                     0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
+    kinetic[p] = on[p] ? e : -0.0;
   }
+}
+void particle_verlet_terms(std::size_t p0, std::size_t p1, const double* __restrict inv_mass,
+                           const double* __restrict inv_inertia, const double* __restrict fx,
+                           const double* __restrict fy, const double* __restrict fz, const double* __restrict tx,
+                           const double* __restrict ty, const double* __restrict tz, const std::uint8_t* __restrict on,
+                           double* __restrict verlet) {
+  for (std::size_t p = p0; p < p1; ++p) {
+    const double e = (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
+                     (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
+    verlet[p] = on[p] ? e : -0.0;
+  }
+}
+}  // namespace
+
+void Dynamics::add_particle_energies(double* kinetic, double* verlet) const {
+  // The terms first (vectorised), then the per-layer sums (layer_chains).
+  static thread_local std::vector<double> terms;
+  const std::size_t n = size();
+  terms.resize(2 * n);
+  double* t_kin = terms.data();
+  double* t_ver = t_kin + n;
+  if (kinetic)
+    particle_energy_terms(own_lo_, own_hi_, mass.data(), inertia.data(), vx.data(), vy.data(), vz.data(), wx.data(),
+                          wy.data(), wz.data(), mobile.data(), t_kin);
+  if (verlet)
+    particle_verlet_terms(own_lo_, own_hi_, inv_mass.data(), inv_inertia.data(), fx.data(), fy.data(), fz.data(),
+                          tx.data(), ty.data(), tz.data(), mobile.data(), t_ver);
+  const LayerLists& order = layer_order().particles;
+  if (kinetic && verlet)
+    layer_chains<4>(order, std::array{kinetic, verlet}, [=](std::array<double, 2>& acc, std::int32_t p) {
+      acc[0] += t_kin[p];
+      acc[1] += t_ver[p];
+    });
+  else if (kinetic || verlet)
+    layer_chains<8>(order, std::array{kinetic ? kinetic : verlet},
+                    [t = kinetic ? t_kin : t_ver](std::array<double, 1>& acc, std::int32_t p) { acc[0] += t[p]; });
 }
 
 void Dynamics::add_dissipated(double* s) const {

@@ -195,7 +195,7 @@ class Dynamics {
   struct LayerOrder {
     LayerLists particles;  // the owned particles by layer, in index order
     LayerLists contacts;   // the contacts [own_first, size()) by the layer of i, in list order
-    // The ends of every contact not between two fixed particles, c (particle i) and size() + c
+    // The ends of every contact not between two fixed particles, 2c (particle i) and 2c + 1
     // (particle j), by the layer of that particle, in list order, i before j (the layer stress).
     LayerLists ends;
     // Per contact: how many of its two particles are owned and not fixed (coordination).

@@ -614,7 +614,8 @@ class LawModel final : public ContactModel {
         law_.add_stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h));
     }
   }
-  // Eight layers' sums side by side (layer_chains); an open contact adds nothing (a select).
+  // Two layers' sums side by side (layer_chains: more streams cost more than they gain here,
+  // docs/design.md §2.8); an open contact adds nothing (a select).
   void add_stored_energy(double* per_layer, const ContactList& C, const LayerLists& by_layer,
                          const double* radius) const override {
     using History = typename Law::History;
@@ -623,7 +624,7 @@ class LawModel final : public ContactModel {
     for_columns<NH>([&](std::size_t q) { column[q] = C.history_column(q); });
     const double* delta = C.delta.data();
     const std::int32_t *pi = C.i.data(), *pj = C.j.data();
-    layer_chains<8>(by_layer, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
+    layer_chains<2>(by_layer, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
       std::array<double, NH> h;
       for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
       double e = acc[0];

@@ -164,17 +164,16 @@ Derived derive(const config::Case& c) {
 }
 
 namespace {
-// The layer stress's terms (a - delta/2) u_z f_z and f_x of n contacts' ends i and j; +0.0 for
-// an open contact (the restrict pointers let the loop vectorise).
-void end_terms(std::size_t n, const double* __restrict delta, const double* __restrict f_z,
-               const double* __restrict f_x, const double* __restrict arm_u_i, const double* __restrict arm_u_j,
-               double* __restrict z_i, double* __restrict x_i, double* __restrict z_j, double* __restrict x_j) {
+// Per contact, the lever arms times u_z of its ends, (a_i - delta/2) u_z at 2c and
+// (a_j - delta/2) u_z at 2c + 1; +0.0 for an open contact, whose force is +0.0 (the contact
+// pass's select), so its terms are zeros, and subtracting a zero changes no sum started at +0.0
+// (x - (+-0) = x for every x but -0, which such a sum never is). A loop that vectorises.
+void end_arms(std::size_t n, const double* __restrict delta, const double* __restrict arm_u_i,
+              const double* __restrict arm_u_j, double* __restrict arm_u) {
   for (std::size_t c = 0; c < n; ++c) {
     const bool open = delta[c] <= 0.0;
-    z_i[c] = open ? 0.0 : arm_u_i[c] * f_z[c];
-    x_i[c] = open ? 0.0 : arm_u_i[c] * f_x[c];
-    z_j[c] = open ? 0.0 : arm_u_j[c] * f_z[c];
-    x_j[c] = open ? 0.0 : arm_u_j[c] * f_x[c];
+    arm_u[2 * c] = open ? 0.0 : arm_u_i[c];
+    arm_u[2 * c + 1] = open ? 0.0 : arm_u_j[c];
   }
 }
 }  // namespace
@@ -217,17 +216,15 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
   } else {
     // The same sums, faster (a sample costs about as much as a time step otherwise). First, in
     // loops that vectorise, every contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z (a root and
-    // a division each) and the four terms they make with f_z and f_x (+0.0 for an open contact:
-    // subtracting it changes no sum). Then each layer's sums over the ends of its contacts in
-    // list order (Dynamics::LayerOrder::ends, i before j), several layers side by side
-    // (layer_chains): the same subtractions in the same order.
+    // a division each). Then each layer's sums over the ends of its contacts in list order
+    // (Dynamics::LayerOrder::ends, i before j), the terms arm u_z f_z, arm u_z f_x formed there,
+    // several layers side by side (layer_chains): the same products and subtractions in the same
+    // order.
     const std::size_t nc = C.size();
-    static thread_local std::vector<double> terms;  // f_z terms of the ends (i: c, j: nc + c), then f_x terms
-    terms.resize(4 * nc);
-    double* t_z = terms.data();
-    double* t_x = t_z + 2 * nc;
+    static thread_local std::vector<double> arms;  // end_arms' [2 c + end]
+    arms.resize(2 * nc);
     const double* a = dyn.radius.data();
-    const double *z = dyn.z.data(), *delta = C.delta.data(), *f_z = C.f_z.data(), *f_x = C.f_x.data();
+    const double *z = dyn.z.data(), *delta = C.delta.data();
     const std::int32_t *pi = C.i.data(), *pj = C.j.data();
     constexpr std::size_t kBlock = 256;
     double arm_u_i[kBlock], arm_u_j[kBlock];
@@ -256,13 +253,13 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
           arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
           arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
         }
-      end_terms(c1 - c0, delta + c0, f_z + c0, f_x + c0, arm_u_i, arm_u_j, t_z + c0, t_x + c0, t_z + nc + c0,
-                t_x + nc + c0);
+      end_arms(c1 - c0, delta + c0, arm_u_i, arm_u_j, arms.data() + 2 * c0);
     }
+    const double *arm_u = arms.data(), *f_z = C.f_z.data(), *f_x = C.f_x.data();
     layer_chains<4>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
                     [=](std::array<double, 2>& acc, std::int32_t e) {
-                      acc[0] -= t_z[e];
-                      acc[1] -= t_x[e];
+                      acc[0] -= arm_u[e] * f_z[e >> 1];
+                      acc[1] -= arm_u[e] * f_x[e >> 1];
                     });
   }
   for (std::size_t L = 0; L < nl; ++L) {
@@ -302,32 +299,34 @@ namespace {
 // (Dynamics::energies), or an integer count (coordination). Under a slab plan rank 0 gathers the
 // rows; the other ranks keep the global series only.
 void sample(const Dynamics& dyn, Traces& tr) {
-  const Packing& pk = dyn.packing();
   const std::size_t nl = tr.nlayers;
   tr.time.push_back(dyn.time);
-  std::vector<double> zz, zx;
+  static thread_local std::vector<double> zz, zx, uz, ux, vz, vx, count;  // no allocation per sample
   layer_stress(dyn, zz, zx);
-  std::vector<double> uz(nl, 0.0), ux(nl, 0.0), vz(nl, 0.0), vx(nl, 0.0), count(nl, 0.0);
-  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
-    const int L = pk.layer[p];
-    uz[L] += dyn.z[p] - dyn.z0[p];
-    ux[L] += dyn.x[p] - dyn.x0[p];
-    vz[L] += dyn.vz[p];
-    vx[L] += dyn.vx[p];
-    count[L] += 1.0;
-  }
+  for (auto* f : {&uz, &ux, &vz, &vx, &count}) f->assign(nl, 0.0);
+  // The layers' sums side by side (layer_chains); the count of a layer's particles is the
+  // length of its list (a sum of 1.0s: the same whole number).
+  const double *z = dyn.z.data(), *z0 = dyn.z0.data(), *x = dyn.x.data(), *x0 = dyn.x0.data(),
+               *v_z = dyn.vz.data(), *v_x = dyn.vx.data();
+  const LayerLists& particles = dyn.layer_order().particles;
+  layer_chains<2>(particles, std::array{uz.data(), ux.data(), vz.data(), vx.data()},
+                  [=](std::array<double, 4>& acc, std::int32_t p) {
+                    acc[0] += z[p] - z0[p];
+                    acc[1] += x[p] - x0[p];
+                    acc[2] += v_z[p];
+                    acc[3] += v_x[p];
+                  });
+  for (std::size_t L = 0; L < nl; ++L) count[L] = static_cast<double>(particles.first[L + 1] - particles.first[L]);
   const SlabPlan* slab = dyn.slab();
   const std::size_t L0 = slab ? slab->first_layer[slab->rank] : 0, L1 = slab ? slab->first_layer[slab->rank + 1] : nl;
-  std::vector<double> rows;  // [6][L1 - L0]: this rank's layers, field by field
-  rows.reserve(6 * (L1 - L0));
+  static thread_local std::vector<double> rows;  // [6][L1 - L0]: this rank's layers, field by field
+  rows.clear();
   for (const auto* f : {&zz, &zx}) rows.insert(rows.end(), f->begin() + L0, f->begin() + L1);
   for (const auto* f : {&uz, &ux, &vz, &vx})
     for (std::size_t L = L0; L < L1; ++L) rows.push_back((*f)[L] * (count[L] > 0.0 ? 1.0 / count[L] : 0.0));
-  std::vector<double> all;
-  if (slab)
-    slab->comm->gather(rows, all);
-  else
-    all = std::move(rows);
+  static thread_local std::vector<double> gathered;
+  if (slab) slab->comm->gather(rows, gathered);
+  const std::vector<double>& all = slab ? gathered : rows;
   if (!slab || slab->rank == 0)
     for (int r = 0; r < (slab ? slab->ranks : 1); ++r) {
       const std::size_t a = slab ? slab->first_layer[r] : 0, b = slab ? slab->first_layer[r + 1] : nl;
@@ -435,6 +434,16 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   }
   const double budget = e_start + std::abs(dyn.work_in);
 
+  {  // the series' final lengths (no copies as they grow)
+    const std::size_t samples = static_cast<std::size_t>(d.steps / d.sample_every) + 1;
+    if (!plan || plan->rank == 0)  // the rank that keeps the rows
+      for (auto* f : {&tr.stress_zz, &tr.stress_zx, &tr.displacement_z, &tr.displacement_x, &tr.velocity_z,
+                      &tr.velocity_x})
+        f->reserve(samples * tr.nlayers);
+    for (auto* f : {&tr.time, &tr.coordination, &tr.kinetic, &tr.potential, &tr.dissipated, &tr.work_in,
+                    &tr.verlet_correction})
+      f->reserve(samples);
+  }
   sample(dyn, tr);
   if (hook) hook(dyn, 0);
   const auto t0 = std::chrono::steady_clock::now();
