@@ -279,7 +279,12 @@ double coordination(const Dynamics& dyn) {
   const double* delta = dyn.contacts.delta.data();
   const std::uint8_t* ends = o.counted_ends.data();
   long contacts = 0, particles = o.free_particles;
-  for (std::size_t c = 0; c < o.counted_ends.size(); ++c) contacts += delta[c] > 0.0 ? ends[c] : 0;
+  const std::size_t nc = o.counted_ends.size();
+  for (std::size_t c0 = 0; c0 < nc; c0 += 1 << 20) {  // 32-bit sums (narrower vectors), exact within a block
+    std::int32_t block = 0;
+    for (std::size_t c = c0; c < std::min(nc, c0 + (1 << 20)); ++c) block += delta[c] > 0.0 ? ends[c] : 0;
+    contacts += block;
+  }
   if (const SlabPlan* s = dyn.slab()) {  // whole numbers: exact in doubles and in any order
     std::vector<double> all;
     s->comm->allgather({static_cast<double>(contacts), static_cast<double>(particles)}, all);
