@@ -176,6 +176,23 @@ void end_arms(std::size_t n, const double* __restrict delta, const double* __res
     arm_u[2 * c + 1] = open ? 0.0 : arm_u_j[c];
   }
 }
+
+// The same for contacts [c0, c1) from the stored overlaps, u_z = (z_j - z_i)/((a_i + a_j) - delta)
+// (see layer_stress); returns how many contacts are within the margin where that is exact.
+std::int64_t exact_end_arms(std::size_t c0, std::size_t c1, const std::int32_t* __restrict pi,
+                            const std::int32_t* __restrict pj, const double* __restrict a, const double* __restrict z,
+                            const double* __restrict delta, double* __restrict arm_u) {
+  std::int64_t exact = 0;
+  for (std::size_t c = c0; c < c1; ++c) {
+    const double reach = a[pi[c]] + a[pj[c]];
+    exact += ((delta[c] >= -0.5 * reach) & (delta[c] <= 0.25 * reach)) ? 1 : 0;
+    const double u_z = (z[pj[c]] - z[pi[c]]) / (reach - delta[c]);
+    const bool open = delta[c] <= 0.0;
+    arm_u[2 * c] = open ? 0.0 : (a[pi[c]] - 0.5 * delta[c]) * u_z;
+    arm_u[2 * c + 1] = open ? 0.0 : (a[pj[c]] - 0.5 * delta[c]) * u_z;
+  }
+  return exact;
+}
 }  // namespace
 
 void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<double>& zx,
@@ -235,15 +252,7 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
       // so (a_i + a_j) - delta gives the root's r bit for bit without x, y and the root. Checked
       // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the
       // block again with the root.
-      std::int64_t exact = 0;
-      for (std::size_t c = c0; c < c1; ++c) {
-        const double reach = a[pi[c]] + a[pj[c]];
-        exact += ((delta[c] >= -0.5 * reach) & (delta[c] <= 0.25 * reach)) ? 1 : 0;
-        const double u_z = (z[pj[c]] - z[pi[c]]) / (reach - delta[c]);
-        arm_u_i[c - c0] = (a[pi[c]] - 0.5 * delta[c]) * u_z;
-        arm_u_j[c - c0] = (a[pj[c]] - 0.5 * delta[c]) * u_z;
-      }
-      if (exact != static_cast<std::int64_t>(c1 - c0))
+      if (exact_end_arms(c0, c1, pi, pj, a, z, delta, arms.data()) != static_cast<std::int64_t>(c1 - c0)) {
         for (std::size_t c = c0; c < c1; ++c) {
           const int i = C.i[c], j = C.j[c];
           const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
@@ -253,7 +262,8 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
           arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
           arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
         }
-      end_arms(c1 - c0, delta + c0, arm_u_i, arm_u_j, arms.data() + 2 * c0);
+        end_arms(c1 - c0, delta + c0, arm_u_i, arm_u_j, arms.data() + 2 * c0);
+      }
     }
     const double *arm_u = arms.data(), *f_z = C.f_z.data(), *f_x = C.f_x.data();
     layer_chains<4>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
