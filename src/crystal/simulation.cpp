@@ -266,7 +266,7 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
       }
     }
     const double *arm_u = arms.data(), *f_z = C.f_z.data(), *f_x = C.f_x.data();
-    layer_chains<4>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
+    layer_chains<2>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
                     [=](std::array<double, 2>& acc, std::int32_t e) {
                       acc[0] -= arm_u[e] * f_z[e >> 1];
                       acc[1] -= arm_u[e] * f_x[e >> 1];
