@@ -20,6 +20,7 @@
 #include "contact/hertz_mindlin.hpp"
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
+#include "crystal/layer_sums.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/slab.hpp"
 
@@ -67,6 +68,10 @@ class ContactModel {
   // its particle i], in list order (radius: the particles' radii, for laws whose energy depends on them).
   virtual void add_stored_energy(double* per_layer, const ContactList& contacts, std::size_t first,
                                  const int* layer, const double* radius) const = 0;
+  // The same sums with the contacts [first, size()) given layer by layer, in list order
+  // (Dynamics::LayerOrder::contacts): several layers' sums at once (layer_chains), the same bits.
+  virtual void add_stored_energy(double* per_layer, const ContactList& contacts, const LayerLists& by_layer,
+                                 const double* radius) const = 0;
   // false: the law never dissipates (ContactList::dissipated stays zero, sums of it are skipped).
   virtual bool dissipates() const { return true; }
 };
@@ -199,6 +204,19 @@ class Dynamics {
   };
   Energies energies() const;
   int touching_contacts_of(std::size_t p) const;
+  // The orders of the per-layer sums (docs/design.md §2.8) as lists for layer_chains, made at
+  // the first call after each rebuild of the contact list.
+  struct LayerOrder {
+    LayerLists particles;  // the owned particles by layer, in index order
+    LayerLists contacts;   // the contacts [own_first, size()) by the layer of i, in list order
+    // The ends of every contact not between two fixed particles, 2c (particle i) and 2c + 1
+    // (particle j), by the layer of that particle, in list order, i before j (the layer stress).
+    LayerLists ends;
+    // Per contact: how many of its two particles are owned and not fixed (coordination).
+    std::vector<std::uint8_t> counted_ends;
+    long free_particles = 0;  // owned, not fixed
+  };
+  const LayerOrder& layer_order() const;
   double max_displacement_since_build() const;
 
  private:
@@ -212,9 +230,10 @@ class Dynamics {
   bool rows_fresh_ = false;    // gather_rows hold the state kick_drift left
   int sum_rows_ = 0;           // rows per particle the last contact pass filled in contact_sums (0: none)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
-  void add_kinetic(double* s) const;
-  void add_verlet(double* s) const;
-  void add_dissipated(double* s, const ContactList& list) const;
+  // Kinetic and/or Verlet (nullptr: not wanted), through layer_order().
+  void add_particle_energies(double* kinetic, double* verlet) const;
+  void add_dissipated(double* s) const;  // of `contacts`, through layer_order()
+  void add_dissipated(double* s, const ContactList& list) const;  // any list (the old one at a rebuild)
   // The totals of `k` per-layer arrays (each packing().layers long): under a slab plan every
   // rank first receives the other ranks' layers; then each array's layers are added in order.
   void layer_totals(std::vector<double>* arrays, std::size_t k, double* totals) const;
@@ -228,6 +247,9 @@ class Dynamics {
   double skin_ = 0.0;
   double far2_ = 0.0;  // a particle is more than skin/2 from its place at the build when d^2 > far2_
   std::vector<double> dissipated_before_;  // per layer, folded in at rebuilds
+  long list_builds_ = 0;                   // rebuilds of the contact list so far
+  mutable LayerOrder order_;               // layer_order() of the list build order_build_
+  mutable long order_build_ = -1;
   std::shared_ptr<const SlabPlan> slab_;
   std::size_t offset_ = 0, own_lo_ = 0, own_hi_ = 0;
   std::size_t halo_below_ = 0, halo_above_ = 0;  // particles sent to (and received from) each side

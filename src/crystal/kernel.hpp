@@ -630,6 +630,27 @@ class LawModel final : public ContactModel {
         law_.add_stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h));
     }
   }
+  // Two layers' sums side by side (layer_chains: more streams cost more than they gain here,
+  // docs/design.md §2.8); an open contact adds nothing (a select).
+  void add_stored_energy(double* per_layer, const ContactList& C, const LayerLists& by_layer,
+                         const double* radius) const override {
+    using History = typename Law::History;
+    constexpr std::size_t NH = contact::history_columns<History>;
+    std::array<const double*, NH> column;
+    for_columns<NH>([&](std::size_t q) { column[q] = C.history_column(q); });
+    const double* delta = C.delta.data();
+    const std::int32_t *pi = C.i.data(), *pj = C.j.data();
+    layer_chains<2>(by_layer, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
+      std::array<double, NH> h;
+      for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
+      double e = acc[0];
+      if constexpr (contact::StoredEnergyOfRadii<Law>)
+        law_.add_stored_energy(e, delta[c], contact::history_from<History>(h), radius[pi[c]], radius[pj[c]]);
+      else
+        law_.add_stored_energy(e, delta[c], contact::history_from<History>(h));
+      acc[0] = delta[c] <= 0.0 ? acc[0] : e;  // as `if (delta <= 0) continue` (NaN adds)
+    });
+  }
   const Law& law() const { return law_; }
 
  private:

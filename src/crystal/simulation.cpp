@@ -163,6 +163,38 @@ Derived derive(const config::Case& c) {
   return d;
 }
 
+namespace {
+// Per contact, the lever arms times u_z of its ends, (a_i - delta/2) u_z at 2c and
+// (a_j - delta/2) u_z at 2c + 1; +0.0 for an open contact, whose force is +0.0 (the contact
+// pass's select), so its terms are zeros, and subtracting a zero changes no sum started at +0.0
+// (x - (+-0) = x for every x but -0, which such a sum never is). A loop that vectorises.
+void end_arms(std::size_t n, const double* __restrict delta, const double* __restrict arm_u_i,
+              const double* __restrict arm_u_j, double* __restrict arm_u) {
+  for (std::size_t c = 0; c < n; ++c) {
+    const bool open = delta[c] <= 0.0;
+    arm_u[2 * c] = open ? 0.0 : arm_u_i[c];
+    arm_u[2 * c + 1] = open ? 0.0 : arm_u_j[c];
+  }
+}
+
+// The same for contacts [c0, c1) from the stored overlaps, u_z = (z_j - z_i)/((a_i + a_j) - delta)
+// (see layer_stress); returns how many contacts are within the margin where that is exact.
+std::int64_t exact_end_arms(std::size_t c0, std::size_t c1, const std::int32_t* __restrict pi,
+                            const std::int32_t* __restrict pj, const double* __restrict a, const double* __restrict z,
+                            const double* __restrict delta, double* __restrict arm_u) {
+  std::int64_t exact = 0;
+  for (std::size_t c = c0; c < c1; ++c) {
+    const double reach = a[pi[c]] + a[pj[c]];
+    exact += ((delta[c] >= -0.5 * reach) & (delta[c] <= 0.25 * reach)) ? 1 : 0;
+    const double u_z = (z[pj[c]] - z[pi[c]]) / (reach - delta[c]);
+    const bool open = delta[c] <= 0.0;
+    arm_u[2 * c] = open ? 0.0 : (a[pi[c]] - 0.5 * delta[c]) * u_z;
+    arm_u[2 * c + 1] = open ? 0.0 : (a[pj[c]] - 0.5 * delta[c]) * u_z;
+  }
+  return exact;
+}
+}  // namespace
+
 void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<double>& zx,
                   std::vector<double>* particle_stress) {
   const Packing& pk = dyn.packing();
@@ -199,55 +231,28 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
         }
     }
   } else {
-    // The same sums, faster (a sample costs about as much as a time step otherwise): per block,
-    // first every contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z in a loop that vectorises
-    // (a root and a division each), then the sums in contact order. The two layers last summed
-    // into stay in registers (the same additions in the same order, without a store and reload
-    // of the running sum between two contacts).
+    // The same sums, faster (a sample costs about as much as a time step otherwise). First, in
+    // loops that vectorise, every contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z (a root and
+    // a division each). Then each layer's sums over the ends of its contacts in list order
+    // (Dynamics::LayerOrder::ends, i before j), the terms arm u_z f_z, arm u_z f_x formed there,
+    // several layers side by side (layer_chains): the same products and subtractions in the same
+    // order.
+    const std::size_t nc = C.size();
+    static thread_local std::vector<double> arms;  // end_arms' [2 c + end]
+    arms.resize(2 * nc);
+    const double* a = dyn.radius.data();
+    const double *z = dyn.z.data(), *delta = C.delta.data();
+    const std::int32_t *pi = C.i.data(), *pj = C.j.data();
     constexpr std::size_t kBlock = 256;
     double arm_u_i[kBlock], arm_u_j[kBlock];
-    int la = -1, lb = -1;  // the layers held in (zz_a, zx_a) and (zz_b, zx_b); a: the last one used
-    double zz_a = 0.0, zx_a = 0.0, zz_b = 0.0, zx_b = 0.0;
-    auto hold = [&](int L) {
-      if (L == la) return;
-      if (L == lb) {
-        std::swap(la, lb);
-        std::swap(zz_a, zz_b);
-        std::swap(zx_a, zx_b);
-        return;
-      }
-      if (lb >= 0) {
-        zz[lb] = zz_b;
-        zx[lb] = zx_b;
-      }
-      lb = la;
-      zz_b = zz_a;
-      zx_b = zx_a;
-      la = L;
-      zz_a = zz[L];
-      zx_a = zx[L];
-    };
-    const double* a = dyn.radius.data();
-    for (std::size_t c0 = 0; c0 < C.size(); c0 += kBlock) {
-      const std::size_t c1 = std::min(C.size(), c0 + kBlock);
+    for (std::size_t c0 = 0; c0 < nc; c0 += kBlock) {
+      const std::size_t c1 = std::min(nc, c0 + kBlock);
       // The distance r = |r_j - r_i| from the overlap the contact pass stored at these positions,
       // delta = (a_i + a_j) - r: while r/2 <= a_i + a_j <= 2r that subtraction is exact (Sterbenz),
       // so (a_i + a_j) - delta gives the root's r bit for bit without x, y and the root. Checked
-      // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the root.
-      bool exact = true;
-      for (std::size_t c = c0; c < c1; ++c) {
-        const double reach = a[C.i[c]] + a[C.j[c]], delta = C.delta[c];
-        exact &= (delta >= -0.5 * reach) & (delta <= 0.25 * reach);
-      }
-      if (exact) {
-        for (std::size_t c = c0; c < c1; ++c) {
-          const int i = C.i[c], j = C.j[c];
-          const double bz = dyn.z[j] - dyn.z[i];
-          const double u_z = bz / ((a[i] + a[j]) - C.delta[c]);
-          arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
-          arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
-        }
-      } else {
+      // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the
+      // block again with the root.
+      if (exact_end_arms(c0, c1, pi, pj, a, z, delta, arms.data()) != static_cast<std::int64_t>(c1 - c0)) {
         for (std::size_t c = c0; c < c1; ++c) {
           const int i = C.i[c], j = C.j[c];
           const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
@@ -257,24 +262,15 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
           arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
           arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
         }
-      }
-      for (std::size_t c = c0; c < c1; ++c) {
-        if (C.delta[c] <= 0.0) continue;
-        const int i = C.i[c], j = C.j[c];
-        if (pk.fixed[i] && pk.fixed[j]) continue;
-        hold(pk.layer[i]);
-        zz_a -= arm_u_i[c - c0] * C.f_z[c];
-        zx_a -= arm_u_i[c - c0] * C.f_x[c];
-        hold(pk.layer[j]);
-        zz_a -= arm_u_j[c - c0] * C.f_z[c];
-        zx_a -= arm_u_j[c - c0] * C.f_x[c];
+        end_arms(c1 - c0, delta + c0, arm_u_i, arm_u_j, arms.data() + 2 * c0);
       }
     }
-    for (const auto& [L, s_zz, s_zx] : {std::tuple{lb, zz_b, zx_b}, std::tuple{la, zz_a, zx_a}})
-      if (L >= 0) {
-        zz[L] = s_zz;
-        zx[L] = s_zx;
-      }
+    const double *arm_u = arms.data(), *f_z = C.f_z.data(), *f_x = C.f_x.data();
+    layer_chains<2>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
+                    [=](std::array<double, 2>& acc, std::int32_t e) {
+                      acc[0] -= arm_u[e] * f_z[e >> 1];
+                      acc[1] -= arm_u[e] * f_x[e >> 1];
+                    });
   }
   for (std::size_t L = 0; L < nl; ++L) {
     zz[L] /= volume;
@@ -287,11 +283,17 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
 }
 
 double coordination(const Dynamics& dyn) {
-  long contacts = 0, particles = 0;
-  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
-    if (dyn.packing().fixed[p]) continue;
-    ++particles;
-    contacts += dyn.touching_contacts_of(p);
+  // Each touching contact counts once for each of its particles that is owned and not fixed
+  // (the count of Dynamics::touching_contacts_of over those particles, in one walk).
+  const Dynamics::LayerOrder& o = dyn.layer_order();
+  const double* delta = dyn.contacts.delta.data();
+  const std::uint8_t* ends = o.counted_ends.data();
+  long contacts = 0, particles = o.free_particles;
+  const std::size_t nc = o.counted_ends.size();
+  for (std::size_t c0 = 0; c0 < nc; c0 += 1 << 20) {  // 32-bit sums (narrower vectors), exact within a block
+    std::int32_t block = 0;
+    for (std::size_t c = c0; c < std::min(nc, c0 + (1 << 20)); ++c) block += delta[c] > 0.0 ? ends[c] : 0;
+    contacts += block;
   }
   if (const SlabPlan* s = dyn.slab()) {  // whole numbers: exact in doubles and in any order
     std::vector<double> all;
@@ -312,32 +314,34 @@ namespace {
 // (Dynamics::energies), or an integer count (coordination). Under a slab plan rank 0 gathers the
 // rows; the other ranks keep the global series only.
 void sample(const Dynamics& dyn, Traces& tr) {
-  const Packing& pk = dyn.packing();
   const std::size_t nl = tr.nlayers;
   tr.time.push_back(dyn.time);
-  std::vector<double> zz, zx;
+  static thread_local std::vector<double> zz, zx, uz, ux, vz, vx, count;  // no allocation per sample
   layer_stress(dyn, zz, zx);
-  std::vector<double> uz(nl, 0.0), ux(nl, 0.0), vz(nl, 0.0), vx(nl, 0.0), count(nl, 0.0);
-  for (std::size_t p = dyn.own_begin(); p < dyn.own_end(); ++p) {
-    const int L = pk.layer[p];
-    uz[L] += dyn.z[p] - dyn.z0[p];
-    ux[L] += dyn.x[p] - dyn.x0[p];
-    vz[L] += dyn.vz[p];
-    vx[L] += dyn.vx[p];
-    count[L] += 1.0;
-  }
+  for (auto* f : {&uz, &ux, &vz, &vx, &count}) f->assign(nl, 0.0);
+  // The layers' sums side by side (layer_chains); the count of a layer's particles is the
+  // length of its list (a sum of 1.0s: the same whole number).
+  const double *z = dyn.z.data(), *z0 = dyn.z0.data(), *x = dyn.x.data(), *x0 = dyn.x0.data(),
+               *v_z = dyn.vz.data(), *v_x = dyn.vx.data();
+  const LayerLists& particles = dyn.layer_order().particles;
+  layer_chains<2>(particles, std::array{uz.data(), ux.data(), vz.data(), vx.data()},
+                  [=](std::array<double, 4>& acc, std::int32_t p) {
+                    acc[0] += z[p] - z0[p];
+                    acc[1] += x[p] - x0[p];
+                    acc[2] += v_z[p];
+                    acc[3] += v_x[p];
+                  });
+  for (std::size_t L = 0; L < nl; ++L) count[L] = static_cast<double>(particles.first[L + 1] - particles.first[L]);
   const SlabPlan* slab = dyn.slab();
   const std::size_t L0 = slab ? slab->first_layer[slab->rank] : 0, L1 = slab ? slab->first_layer[slab->rank + 1] : nl;
-  std::vector<double> rows;  // [6][L1 - L0]: this rank's layers, field by field
-  rows.reserve(6 * (L1 - L0));
+  static thread_local std::vector<double> rows;  // [6][L1 - L0]: this rank's layers, field by field
+  rows.clear();
   for (const auto* f : {&zz, &zx}) rows.insert(rows.end(), f->begin() + L0, f->begin() + L1);
   for (const auto* f : {&uz, &ux, &vz, &vx})
     for (std::size_t L = L0; L < L1; ++L) rows.push_back((*f)[L] * (count[L] > 0.0 ? 1.0 / count[L] : 0.0));
-  std::vector<double> all;
-  if (slab)
-    slab->comm->gather(rows, all);
-  else
-    all = std::move(rows);
+  static thread_local std::vector<double> gathered;
+  if (slab) slab->comm->gather(rows, gathered);
+  const std::vector<double>& all = slab ? gathered : rows;
   if (!slab || slab->rank == 0)
     for (int r = 0; r < (slab ? slab->ranks : 1); ++r) {
       const std::size_t a = slab ? slab->first_layer[r] : 0, b = slab ? slab->first_layer[r + 1] : nl;
@@ -445,6 +449,16 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   }
   const double budget = e_start + std::abs(dyn.work_in);
 
+  {  // the series' final lengths (no copies as they grow)
+    const std::size_t samples = static_cast<std::size_t>(d.steps / d.sample_every) + 1;
+    if (!plan || plan->rank == 0)  // the rank that keeps the rows
+      for (auto* f : {&tr.stress_zz, &tr.stress_zx, &tr.displacement_z, &tr.displacement_x, &tr.velocity_z,
+                      &tr.velocity_x})
+        f->reserve(samples * tr.nlayers);
+    for (auto* f : {&tr.time, &tr.coordination, &tr.kinetic, &tr.potential, &tr.dissipated, &tr.work_in,
+                    &tr.verlet_correction})
+      f->reserve(samples);
+  }
   sample(dyn, tr);
   if (hook) hook(dyn, 0);
   const auto t0 = std::chrono::steady_clock::now();
