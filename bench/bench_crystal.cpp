@@ -52,7 +52,13 @@ std::size_t state_bytes(const crystal::Dynamics& d) {
   for (const auto* v : {&C.history, &C.delta, &C.f_x, &C.f_y, &C.f_z, &C.nf_x, &C.nf_y,
                         &C.nf_z, &C.dissipated})
     b += bytes(*v);
-  return b + 3 * d.size() * sizeof(double);  // positions at the last list build
+  // The observers' per-layer lists (built at the first sample after a list build) and their
+  // scratch: the layer stress's lever arms (16 bytes per contact, simulation.cpp) and the
+  // particle energy terms (16 bytes per particle, dynamics.cpp).
+  const crystal::Dynamics::LayerOrder& o = d.layer_order();
+  for (const auto* l : {&o.particles, &o.contacts, &o.ends}) b += bytes(l->first) + bytes(l->entries);
+  b += bytes(o.counted_ends) + 16 * C.size() + 16 * d.size();
+  return b + 3 * d.size() * sizeof(float);  // displacements at the last list build
 }
 
 double cpu_seconds() {  // all threads of the process

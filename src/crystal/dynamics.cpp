@@ -294,21 +294,11 @@ void Dynamics::rebuild() {
       fresh.f_z[c] = old.f_z[u];
     }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
   }
-  // Per-particle contact lists in contact order, for the deterministic gather: the contacts
-  // where the particle is j (a CSR list), then the range where it is i (the list is sorted by i).
-  fresh.j_first.assign(n + 1, 0);
+  // Per-particle contact lists in contact order, for the deterministic gather: the range where
+  // the particle is i (the list is sorted by i); the contacts where it is j: ContactList::j_lists.
   fresh.i_first.assign(n + 1, 0);
-  for (std::size_t c = 0; c < nc; ++c) {
-    ++fresh.j_first[fresh.j[c] + 1];
-    ++fresh.i_first[fresh.i[c] + 1];
-  }
-  std::partial_sum(fresh.j_first.begin(), fresh.j_first.end(), fresh.j_first.begin());
+  for (std::size_t c = 0; c < nc; ++c) ++fresh.i_first[fresh.i[c] + 1];
   std::partial_sum(fresh.i_first.begin(), fresh.i_first.end(), fresh.i_first.begin());
-  fresh.j_contacts.resize(nc);
-  {
-    std::vector<std::int32_t> fill(fresh.j_first.begin(), fresh.j_first.end() - 1);
-    for (std::size_t c = 0; c < nc; ++c) fresh.j_contacts[fill[fresh.j[c]]++] = static_cast<std::int32_t>(c);
-  }
   fresh.own_first = static_cast<std::size_t>(
       std::lower_bound(fresh.i.begin(), fresh.i.end(), static_cast<std::int32_t>(own_lo_)) - fresh.i.begin());
   contacts = std::move(fresh);
@@ -324,6 +314,17 @@ void Dynamics::rebuild() {
   ++list_builds_;
 }
 
+void ContactList::j_lists(std::size_t n) const {
+  if (j_first.size() == n + 1 && j_contacts.size() == size()) return;
+  const std::size_t nc = size();
+  j_first.assign(n + 1, 0);
+  for (std::size_t c = 0; c < nc; ++c) ++j_first[j[c] + 1];
+  std::partial_sum(j_first.begin(), j_first.end(), j_first.begin());
+  j_contacts.resize(nc);
+  std::vector<std::int32_t> fill(j_first.begin(), j_first.end() - 1);
+  for (std::size_t c = 0; c < nc; ++c) j_contacts[fill[j[c]]++] = static_cast<std::int32_t>(c);
+}
+
 // Sum of each particle's contact forces and torques in contact order; with Kick, the half
 // kick of velocity Verlet follows at once (the forces are then still in cache). The torque of
 // contact c on p is -arm n x f^t with arm = a_p (eq. (4)), or a_p - delta_c/2 with
@@ -335,6 +336,7 @@ void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
   constexpr bool fr = Torques;
+  C.j_lists(size());
   const std::int32_t* __restrict j_first = C.j_first.data();
   const std::int32_t* __restrict j_contacts = C.j_contacts.data();
   const std::int32_t* __restrict i_first = C.i_first.data();
@@ -901,6 +903,7 @@ Dynamics::Energies Dynamics::energies() const {
 int Dynamics::touching_contacts_of(std::size_t p) const {
   const ContactList& C = contacts;
   int k = 0;
+  C.j_lists(size());
   for (std::int32_t e = C.j_first[p]; e < C.j_first[p + 1]; ++e) k += C.delta[C.j_contacts[e]] > 0.0;
   for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) k += C.delta[c] > 0.0;
   return k;

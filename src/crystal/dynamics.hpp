@@ -42,8 +42,12 @@ struct ContactList {
   const double* history_column(std::size_t k) const { return history.data() + k * size(); }
   // Per particle p, its contacts in contact order: first those where p is j (i < j, so they come
   // before p's own), j_contacts[j_first[p] .. j_first[p + 1]), then those where p is i, the range
-  // i_first[p] .. i_first[p + 1] of the list (sorted by i).
-  std::vector<std::int32_t> j_first, j_contacts, i_first;
+  // i_first[p] .. i_first[p + 1] of the list (sorted by i). The j lists are built at their first
+  // use after a list build (j_lists()): a one-thread run, whose contact pass makes the sums, never
+  // needs them (28 bytes per particle).
+  std::vector<std::int32_t> i_first;
+  mutable std::vector<std::int32_t> j_first, j_contacts;
+  void j_lists(std::size_t particles) const;
   // Slab decomposition: the contacts [own_first, size()) have their particle i owned by this
   // rank (the list is sorted by i; before own_first, i is a halo particle below). Sums over
   // contacts take these only, so a contact between two ranks counts once. Serial: 0.
