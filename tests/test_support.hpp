@@ -34,4 +34,15 @@ inline int openmp_threads(int wanted) {
 #endif
 }
 
+// Asks OpenMP for `wanted` threads in every later region (whatever OMP_NUM_THREADS says) and
+// skips, loudly, when it cannot give them (no OpenMP, OMP_THREAD_LIMIT=1): never a vacuous pass.
+// `untested` says what the test would have checked.
+inline void require_openmp_threads(int wanted, const std::string& untested) {
+#ifdef _OPENMP
+  omp_set_num_threads(wanted);
+#endif
+  const int got = openmp_threads(wanted);
+  if (got < wanted) skip("OpenMP gives " + std::to_string(got) + " thread(s): " + untested + " untested");
+}
+
 }  // namespace test_support

@@ -662,31 +662,12 @@ bool Dynamics::kick_drift() {
         }
       }
       far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
-      if (rows) {  // the contact pass's rows of these four particles (kernel::fill_rows)
-        const V4 zero{0.0, 0.0, 0.0, 0.0};
-        V4 r0, r1, r2, r3;
-        auto put = [&](double* block, const double* cx, const double* cy, const double* cz, const V4& last)
-                       __attribute__((always_inline)) {
-          kernel::transpose4(load4(cx + p), load4(cy + p), load4(cz + p), last, r0, r1, r2, r3);
-          store4(block + 4 * p, r0), store4(block + 4 * p + 4, r1), store4(block + 4 * p + 8, r2),
-              store4(block + 4 * p + 12, r3);
-        };
-        put(rows, px, py, pz, load4(radius.data() + p));
-        put(rows + 4 * n, pvx, pvy, pvz, zero);
-        put(rows + 8 * n, pwx, pwy, pwz, zero);
-      }
+      if (rows) kernel::fill_rows(*this, rows, p, p + 4);  // the contact pass's rows of these four
     }
     far = range(p, p1);
     far |= far4[0] | far4[1] | far4[2] | far4[3];
     if (rows) {
-      for (; p < p1; ++p) {
-        double* r = rows + 4 * p;
-        r[0] = px[p], r[1] = py[p], r[2] = pz[p], r[3] = radius[p];
-        r = rows + 4 * n + 4 * p;
-        r[0] = pvx[p], r[1] = pvy[p], r[2] = pvz[p], r[3] = 0.0;
-        r = rows + 8 * n + 4 * p;
-        r[0] = pwx[p], r[1] = pwy[p], r[2] = pwz[p], r[3] = 0.0;
-      }
+      kernel::fill_rows(*this, rows, p, p1);
       rows_fresh_ = true;
     }
     return far != 0;

@@ -129,8 +129,9 @@ typedef double V4u __attribute__((vector_size(32), aligned(8), may_alias));  // 
 }
 #endif
 
-// rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0.
-inline void fill_rows(const Dynamics& d, double* rows) {
+// rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0. The rows of particles
+// [p0, p1), four at a time where it can (also the one-thread drift's, Dynamics::kick_drift).
+[[gnu::always_inline]] inline void fill_rows(const Dynamics& d, double* rows, std::int64_t p0, std::int64_t p1) {
   const std::int64_t n = static_cast<std::int64_t>(d.size());
   double* __restrict pos = rows;
   double* __restrict vel = rows + 4 * n;
@@ -138,29 +139,31 @@ inline void fill_rows(const Dynamics& d, double* rows) {
   const double *x = d.x.data(), *y = d.y.data(), *z = d.z.data(), *a = d.radius.data();
   const double *vx = d.vx.data(), *vy = d.vy.data(), *vz = d.vz.data();
   const double *wx = d.wx.data(), *wy = d.wy.data(), *wz = d.wz.data();
-  const std::int64_t n4 = n / 4;
-#pragma omp parallel for schedule(static) if (d.threaded())
-  for (std::int64_t b = 0; b <= n4; ++b) {
-    std::int64_t p = 4 * b;
+  std::int64_t p = p0;
 #ifdef GRANWAVE_GATHER_VECTORS
-    if (p + 4 <= n) {
-      const V4 zero{0.0, 0.0, 0.0, 0.0};
-      V4 r0, r1, r2, r3;
-      transpose4(load4(x + p), load4(y + p), load4(z + p), load4(a + p), r0, r1, r2, r3);
-      store4(pos + 4 * p, r0), store4(pos + 4 * p + 4, r1), store4(pos + 4 * p + 8, r2), store4(pos + 4 * p + 12, r3);
-      transpose4(load4(vx + p), load4(vy + p), load4(vz + p), zero, r0, r1, r2, r3);
-      store4(vel + 4 * p, r0), store4(vel + 4 * p + 4, r1), store4(vel + 4 * p + 8, r2), store4(vel + 4 * p + 12, r3);
-      transpose4(load4(wx + p), load4(wy + p), load4(wz + p), zero, r0, r1, r2, r3);
-      store4(rot + 4 * p, r0), store4(rot + 4 * p + 4, r1), store4(rot + 4 * p + 8, r2), store4(rot + 4 * p + 12, r3);
-      continue;
-    }
-#endif
-    for (; p < std::min(n, 4 * b + 4); ++p) {
-      pos[4 * p] = x[p], pos[4 * p + 1] = y[p], pos[4 * p + 2] = z[p], pos[4 * p + 3] = a[p];
-      vel[4 * p] = vx[p], vel[4 * p + 1] = vy[p], vel[4 * p + 2] = vz[p], vel[4 * p + 3] = 0.0;
-      rot[4 * p] = wx[p], rot[4 * p + 1] = wy[p], rot[4 * p + 2] = wz[p], rot[4 * p + 3] = 0.0;
-    }
+  for (; p + 4 <= p1; p += 4) {
+    const V4 zero{0.0, 0.0, 0.0, 0.0};
+    V4 r0, r1, r2, r3;
+    transpose4(load4(x + p), load4(y + p), load4(z + p), load4(a + p), r0, r1, r2, r3);
+    store4(pos + 4 * p, r0), store4(pos + 4 * p + 4, r1), store4(pos + 4 * p + 8, r2), store4(pos + 4 * p + 12, r3);
+    transpose4(load4(vx + p), load4(vy + p), load4(vz + p), zero, r0, r1, r2, r3);
+    store4(vel + 4 * p, r0), store4(vel + 4 * p + 4, r1), store4(vel + 4 * p + 8, r2), store4(vel + 4 * p + 12, r3);
+    transpose4(load4(wx + p), load4(wy + p), load4(wz + p), zero, r0, r1, r2, r3);
+    store4(rot + 4 * p, r0), store4(rot + 4 * p + 4, r1), store4(rot + 4 * p + 8, r2), store4(rot + 4 * p + 12, r3);
   }
+#endif
+  for (; p < p1; ++p) {
+    pos[4 * p] = x[p], pos[4 * p + 1] = y[p], pos[4 * p + 2] = z[p], pos[4 * p + 3] = a[p];
+    vel[4 * p] = vx[p], vel[4 * p + 1] = vy[p], vel[4 * p + 2] = vz[p], vel[4 * p + 3] = 0.0;
+    rot[4 * p] = wx[p], rot[4 * p + 1] = wy[p], rot[4 * p + 2] = wz[p], rot[4 * p + 3] = 0.0;
+  }
+}
+
+// Every particle's rows.
+inline void fill_rows(const Dynamics& d, double* rows) {
+  const std::int64_t n = static_cast<std::int64_t>(d.size());
+#pragma omp parallel for schedule(static) if (d.threaded())
+  for (std::int64_t b = 0; b <= n / 4; ++b) fill_rows(d, rows, 4 * b, std::min(n, 4 * b + 4));
 }
 
 // The columns of contacts [s0, s1) (at most kChunk) from the particle rows.

@@ -135,13 +135,8 @@ TEST_CASE("same forces after a shift across the periodic faces and after reorder
 }
 
 TEST_CASE("results do not depend on the number of threads", "[crystal][static]") {
-  // The threaded run must really use threads: ask for two (whatever OMP_NUM_THREADS says) and skip,
-  // loudly, when OpenMP cannot give them (no OpenMP, OMP_THREAD_LIMIT=1): never a vacuous pass.
-#ifdef _OPENMP
-  omp_set_num_threads(2);
-#endif
-  const int got = test_support::openmp_threads(2);
-  if (got < 2) test_support::skip("OpenMP gives " + std::to_string(got) + " thread(s): thread invariance untested");
+  // The threaded run must really use threads.
+  test_support::require_openmp_threads(2, "thread invariance");
   config::Case c = load("crystal_small");
   c.contact.kt = 1e5;
   c.contact.gamma_n = 0.1;
@@ -178,12 +173,8 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
   // per-particle rows (crystal/kernel.hpp's scatter); threaded, the particle pass sums the stored
   // per-contact values. Both add in the same order: every force, torque and position agrees to
   // the last bit, for both lever arms, a sliding law (deferred contacts) and Hertz-Mindlin.
-  // The threaded route needs OpenMP with two threads (skipped, loudly, without).
-#ifdef _OPENMP
-  omp_set_num_threads(2);
-#endif
-  const int got = test_support::openmp_threads(2);
-  if (got < 2) test_support::skip("OpenMP gives " + std::to_string(got) + " thread(s): the two-pass route untested");
+  // The threaded route needs OpenMP with two threads.
+  test_support::require_openmp_threads(2, "the two-pass route");
   config::Case c = load("crystal_small");
   c.contact.kt = 1e5;
   c.contact.gamma_n = 0.1;
