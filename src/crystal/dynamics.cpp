@@ -426,7 +426,7 @@ void Dynamics::particle_pass(double h) {
 // particle_pass, from sums made in the same order. The rows are zeroed for the next contact pass
 // (the halo's too: its sums are incomplete and never used).
 template <bool Kick, int Rows>
-void Dynamics::finish_pass(double h) {
+void Dynamics::finish_pass(double h, std::int64_t from) {
   const std::int64_t n = static_cast<std::int64_t>(size());
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
   double* __restrict rf = contact_sums.data();
@@ -448,7 +448,7 @@ void Dynamics::finish_pass(double h) {
   const double* __restrict im = inv_mass.data();
   const double* __restrict ii = inv_inertia.data();
   const std::uint8_t* __restrict on = mobile.data();
-  std::int64_t p = p0;
+  std::int64_t p = std::max(p0, from);
 #ifdef GRANWAVE_GATHER_VECTORS
   // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
   // the rows zeroed behind them.
@@ -535,6 +535,10 @@ void Dynamics::finish_pass(double h) {
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
   sum_rows_ = 0;
   model_->contact_pass(*this, inc, dashpots);
+  finish_forces(kick);
+}
+
+void Dynamics::finish_forces(bool kick) {
   const double h = kick ? 0.5 * dt_ : 0.0;
   switch (sum_rows_) {  // the contact pass made the sums (one thread)
     case 1: return kick ? finish_pass<true, 1>(h) : finish_pass<false, 1>(h);
@@ -564,7 +568,7 @@ void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
 // with AVX2 as well; the loop it replaces was scalar (GCC 12: not vectorized) and went through
 // an OpenMP call even on one thread: 7 % of crystal_kt10's time with the radius arm (perf).
 template <bool Torques, bool Threaded>
-bool Dynamics::kick_drift() {
+bool Dynamics::kick_drift(std::int64_t from) {
   using contact::select;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
@@ -638,7 +642,7 @@ bool Dynamics::kick_drift() {
     double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
                                                                                                 : nullptr;
     V4m far4{0, 0, 0, 0};
-    std::int64_t p = p0;
+    std::int64_t p = std::max(p0, from);
     for (; p + 4 <= p1; p += 4) {
       const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
       const V4 imv = load4(im + p);
@@ -682,6 +686,123 @@ bool Dynamics::kick_drift() {
     far = range(p0, p1);
   }
   return far != 0;
+}
+
+template <int Rows>
+bool Dynamics::finish_kick_drift() {
+  constexpr bool Torques = Rows >= 2;
+  const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  double* __restrict rf = contact_sums.data();
+  double* __restrict rn = rf + 4 * n;
+  double* __restrict rd = rf + 8 * n;
+  double* __restrict px = x.data();
+  double* __restrict py = y.data();
+  double* __restrict pz = z.data();
+  double* __restrict pvx = vx.data();
+  double* __restrict pvy = vy.data();
+  double* __restrict pvz = vz.data();
+  double* __restrict pwx = wx.data();
+  double* __restrict pwy = wy.data();
+  double* __restrict pwz = wz.data();
+  const double* __restrict a = radius.data();
+  const double* __restrict im = inv_mass.data();
+  const double* __restrict ii = inv_inertia.data();
+  const double* __restrict x0p = x0.data();
+  const double* __restrict y0p = y0.data();
+  const double* __restrict z0p = z0.data();
+  const float* __restrict xb = x_build_.data();
+  const float* __restrict yb = y_build_.data();
+  const float* __restrict zb = z_build_.data();
+  const std::uint8_t* __restrict on = mobile.data();
+  double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
+  using kernel::load4, kernel::store4, kernel::transpose4, kernel::V4;
+  typedef long long V4m __attribute__((vector_size(32)));
+  typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
+  const V4 zero{0.0, 0.0, 0.0, 0.0}, half{0.5, 0.5, 0.5, 0.5}, hv{h, h, h, h}, dtv{dt, dt, dt, dt},
+      far2v{far2, far2, far2, far2};
+  auto rows_of = [&](double* r, V4& cx, V4& cy, V4& cz) __attribute__((always_inline)) {
+    V4 unused;
+    transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
+    store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
+  };
+  V4m far4{0, 0, 0, 0};
+  std::int64_t p = 0;
+  for (; p + 4 <= n; p += 4) {  // as finish_pass<true, Rows>, then as kick_drift<Torques, false>
+    V4 sx, sy, sz;
+    rows_of(rf + 4 * p, sx, sy, sz);
+    V4 tqx = zero, tqy = zero, tqz = zero;
+    if constexpr (Rows >= 2) {
+      V4 nx, ny, nz;
+      rows_of(rn + 4 * p, nx, ny, nz);
+      const V4 na = -load4(a + p);
+      tqx = na * nx, tqy = na * ny, tqz = na * nz;
+      if constexpr (Rows == 3) {
+        V4 dx, dy, dz;
+        rows_of(rd + 4 * p, dx, dy, dz);
+        tqx = tqx + half * dx, tqy = tqy + half * dy, tqz = tqz + half * dz;
+      }
+    }
+    const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+    const V4 imv = load4(im + p);
+    auto drift = [&](double* v, double* r, const V4& f, const double* r0, const float* rb)
+                     __attribute__((always_inline)) -> V4 {
+      const V4 v0 = load4(v + p), x0 = load4(r + p);
+      const V4 vh = m ? v0 + hv * f * imv : v0;
+      const V4 v1 = m ? vh + hv * f * imv : vh;
+      const V4 x1 = m ? x0 + dtv * v1 : x0;
+      store4(v + p, v1);
+      store4(r + p, x1);
+      return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
+    };
+    const V4 dx = drift(pvx, px, sx, x0p, xb);
+    const V4 dy = drift(pvy, py, sy, y0p, yb);
+    const V4 dz = drift(pvz, pz, sz, z0p, zb);
+    if constexpr (Torques) {
+      const V4 iiv = load4(ii + p);
+      for (auto [w, t] : {std::pair{pwx, tqx}, std::pair{pwy, tqy}, std::pair{pwz, tqz}}) {
+        const V4 w0 = load4(w + p);
+        const V4 wh = m ? w0 + hv * t * iiv : w0;
+        store4(w + p, m ? wh + hv * t * iiv : wh);
+      }
+    }
+    far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+    if (rows) kernel::fill_rows(*this, rows, p, p + 4);
+  }
+  if (p < n) {  // the last few: the two passes as they are
+    finish_pass<true, Rows>(h, p);
+    far4[0] |= kick_drift<Torques, false>(p);
+  } else if (rows) {
+    rows_fresh_ = true;
+  }
+  return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+}
+
+void Dynamics::advance(long k) {
+  if (slab_ || threaded()) {
+    for (long s = 1; s <= k; ++s) step();
+    return;
+  }
+  const bool keep = store_contact_forces;
+  bool pending = false;  // the last contact pass's sums wait for their finish
+  for (long s = 1; s <= k; ++s) {
+    store_contact_forces = s == k && keep;
+    bool far = false;
+    switch (pending ? sum_rows_ : 0) {
+      case 1: far = finish_kick_drift<1>(); break;
+      case 2: far = finish_kick_drift<2>(); break;
+      case 3: far = finish_kick_drift<3>(); break;
+      default: far = friction_ ? kick_drift<true, false>() : kick_drift<false, false>(); break;
+    }
+    time += dt_;
+    ++steps;
+    if (far) rebuild();
+    sum_rows_ = 0;
+    model_->contact_pass(*this, dt_, true);
+    pending = s < k && sum_rows_ != 0;
+    if (!pending) finish_forces(true);
+  }
+  store_contact_forces = keep;
 }
 
 void Dynamics::step() {

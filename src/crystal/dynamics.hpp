@@ -183,6 +183,11 @@ class Dynamics {
   void compute_forces_of_state() { compute_forces(0.0, true); }
   // One velocity-Verlet step of translation and rotation.
   void step();
+  // k steps, the same as k calls of step(), bit for bit. On one thread without a slab, the
+  // second half kick of each step but the last and the first half kick and drift of the next
+  // are one pass over the particles (finish_kick_drift): forces and torques fx..tz are current
+  // only when it returns.
+  void advance(long k);
 
   // OpenMP is used from this many particles on (fork/join costs more than it saves on small
   // crystals, and much more on a loaded machine), and only when OpenMP may run more than one
@@ -225,12 +230,16 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
+  void finish_forces(bool kick);  // pass 2 after the contact pass (compute_forces' second half)
+  // The first half kick and drift of the owned particles from `from` on (-1: all)
   template <bool Torques, bool Threaded>
-  bool kick_drift();
+  bool kick_drift(std::int64_t from = -1);
   template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   template <bool Kick, int Rows>
-  void finish_pass(double h);  // pass 2 from contact_sums (one thread)
+  void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (one thread), from `from` on
+  template <int Rows>
+  bool finish_kick_drift();  // finish_pass<true, Rows>, then kick_drift, four particles at a time
   bool rows_fresh_ = false;    // gather_rows hold the state kick_drift left
   int sum_rows_ = 0;           // rows per particle the last contact pass filled in contact_sums (0: none)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].

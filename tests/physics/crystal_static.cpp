@@ -226,3 +226,67 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
     CHECK(std::count(flag, flag + one.contacts.size(), 1.0) > 0);
   }
 }
+
+TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with the next drift)", "[crystal][static]") {
+  // On one thread Dynamics::advance finishes each step's forces and kicks in the same pass as the
+  // next step's first half kick and drift, four particles at a time (the last few through the
+  // two passes as they are). Every state and force must equal k calls of step() to the last bit:
+  // all three row layouts of the sums (no torques; radius arm; contact-point arm), a sliding
+  // law, Hertz-Mindlin, and a crystal whose particle count is not a multiple of four.
+  config::Case c = load("crystal_small");
+  c.contact.kt = 1e5;
+  c.contact.gamma_n = 0.1;
+  c.contact.mu_static = 0.3;
+  c.contact.mu_dynamic = 0.2;
+  config::ContactParams frictionless = c.contact;
+  frictionless.kt = 0.0;
+  config::ContactParams radius = c.contact;
+  radius.lever_arm = config::LeverArm::radius;
+  config::ContactParams contact_point = c.contact;
+  contact_point.lever_arm = config::LeverArm::contact_point;
+  config::ContactParams hertz;
+  hertz.law = config::ContactLaw::hertz_mindlin;
+  hertz.youngs_modulus = 63e9;
+  hertz.poisson_ratio = 0.23;
+  hertz.damping_ratio = 0.1;
+  hertz.mu_static = 0.3;
+  hertz.mu_dynamic = 0.2;
+  const crystal::Packing whole = crystal::make_packing(c);
+  crystal::Packing short_of_three = whole;  // three top-layer (fixed) particles fewer: n % 4 = 1
+  for (auto* v : {&short_of_three.x, &short_of_three.y, &short_of_three.z, &short_of_three.radius,
+                  &short_of_three.mass, &short_of_three.inertia})
+    v->resize(v->size() - 3);
+  short_of_three.layer.resize(short_of_three.layer.size() - 3);
+  short_of_three.fixed.resize(short_of_three.fixed.size() - 3);
+  REQUIRE(whole.size() % 4 == 0);
+  REQUIRE(short_of_three.size() % 4 == 1);
+  REQUIRE(short_of_three.fixed.back() == 1);
+  for (const crystal::Packing* packing : {&whole, static_cast<const crystal::Packing*>(&short_of_three)}) {
+    const Disturbed base = disturb(*packing);
+    for (const config::ContactParams& cp : {frictionless, radius, contact_point, hertz}) {
+      const auto model = crystal::case_model(cp, c.crystal->density);
+      crystal::Dynamics stepped(base.p, model, 2e-7), advanced(base.p, model, 2e-7);
+      for (auto* d : {&stepped, &advanced}) {
+        d->parallel_min_particles = ~std::size_t{0};  // one thread: the fused route
+        for (std::size_t q = 0; q < base.p.size(); ++q) {
+          d->vx[q] = base.v[3 * q], d->vy[q] = base.v[3 * q + 1], d->vz[q] = base.v[3 * q + 2];
+          d->wx[q] = 300 * base.w[3 * q], d->wy[q] = 300 * base.w[3 * q + 1], d->wz[q] = 300 * base.w[3 * q + 2];
+        }
+      }
+      for (int s = 0; s < 60; ++s) stepped.step();
+      advanced.advance(1);
+      advanced.advance(59);
+      for (auto f : {&crystal::Dynamics::fx, &crystal::Dynamics::fy, &crystal::Dynamics::fz, &crystal::Dynamics::tx,
+                     &crystal::Dynamics::ty, &crystal::Dynamics::tz, &crystal::Dynamics::x, &crystal::Dynamics::y,
+                     &crystal::Dynamics::z, &crystal::Dynamics::vx, &crystal::Dynamics::vz, &crystal::Dynamics::wx,
+                     &crystal::Dynamics::wy})
+        CHECK(stepped.*f == advanced.*f);
+      CHECK(stepped.contacts.f_x == advanced.contacts.f_x);
+      CHECK(stepped.contacts.delta == advanced.contacts.delta);
+      CHECK(stepped.steps == advanced.steps);
+      CHECK(stepped.time == advanced.time);
+      CHECK(stepped.dissipated_energy() == advanced.dissipated_energy());
+      CHECK(stepped.kinetic_energy() > 0.0);
+    }
+  }
+}
