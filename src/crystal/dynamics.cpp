@@ -30,6 +30,68 @@ namespace granwave::crystal {
 
 namespace {
 
+#ifdef GRANWAVE_GATHER_VECTORS
+// Four particles at a time, for the one-thread particle passes (finish_pass, kick_drift,
+// finish_kick_drift): each helper does one step of the scalar code in four lanes, the same
+// operations in the same order.
+using kernel::load4, kernel::store4, kernel::V4;
+typedef long long V4m __attribute__((vector_size(32)));  // lane masks
+typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
+
+// The `mobile` flags of particles p..p+3 as lane masks.
+[[gnu::always_inline]] inline V4m mobile4(const std::uint8_t* on, std::int64_t p) {
+  return V4m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+}
+// Four rows of a per-particle sum (Dynamics::contact_sums) as x, y, z lanes; the rows are
+// zeroed for the next contact pass.
+[[gnu::always_inline]] inline void take_rows(double* r, V4& cx, V4& cy, V4& cz) {
+  const V4 zero{0.0, 0.0, 0.0, 0.0};
+  V4 unused;
+  kernel::transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
+  store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
+}
+// The torques of particles p..p+3 from their rows: -a (sum n x f^t), and with the contact-point
+// arm (Rows = 3) + 1/2 (sum delta n x f^t); zero without torques (Rows = 1).
+template <int Rows>
+[[gnu::always_inline]] inline void torques_of_rows(double* rn, double* rd, const double* a, std::int64_t p, V4& tx,
+                                                   V4& ty, V4& tz) {
+  tx = ty = tz = V4{0.0, 0.0, 0.0, 0.0};
+  if constexpr (Rows >= 2) {
+    V4 nx, ny, nz;
+    take_rows(rn + 4 * p, nx, ny, nz);
+    const V4 na = -load4(a + p);
+    tx = na * nx, ty = na * ny, tz = na * nz;
+    if constexpr (Rows == 3) {
+      const V4 half{0.5, 0.5, 0.5, 0.5};
+      V4 dx, dy, dz;
+      take_rows(rd + 4 * p, dx, dy, dz);
+      tx = tx + half * dx, ty = ty + half * dy, tz = tz + half * dz;
+    }
+  }
+}
+// `Kicks` half kicks of one velocity component of the mobile ones of particles p..p+3,
+// v += h f / m each (f / m: `inv` is 1/m or 1/I).
+template <int Kicks>
+[[gnu::always_inline]] inline V4 kicked4(const V4& v, const V4& f, const V4m& m, const V4& hv, const V4& inv) {
+  V4 out = v;
+  for (int k = 0; k < Kicks; ++k) out = m ? out + hv * f * inv : out;
+  return out;
+}
+// Kicks and drift of one coordinate of particles p..p+3 (x += dt v for the mobile ones); returns
+// the displacement since the list's build, (x - x0) - x_build.
+template <int Kicks>
+[[gnu::always_inline]] inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const float* rb,
+                                             const V4m& m, const V4& hv, const V4& dtv, const V4& inv_m,
+                                             std::int64_t p) {
+  const V4 v1 = kicked4<Kicks>(load4(v + p), f, m, hv, inv_m);
+  const V4 x0 = load4(r + p);
+  const V4 x1 = m ? x0 + dtv * v1 : x0;
+  store4(v + p, v1);
+  store4(r + p, x1);
+  return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
+}
+#endif
+
 template <contact::MindlinHistory H>
 std::shared_ptr<const ContactModel> hertz_model(const contact::HertzMindlinParams& p) {
   const bool damped = p.damping_ratio > 0.0 || p.clip_tension;
@@ -453,42 +515,22 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
   // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
   // the rows zeroed behind them.
   {
-    using kernel::load4, kernel::store4, kernel::transpose4, kernel::V4;
-    typedef long long V4m __attribute__((vector_size(32)));
-    const V4 zero{0.0, 0.0, 0.0, 0.0}, half{0.5, 0.5, 0.5, 0.5}, hv{h, h, h, h};
-    auto rows_of = [&](double* r, V4& cx, V4& cy, V4& cz) __attribute__((always_inline)) {
-      V4 unused;
-      transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
-      store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
-    };
+    const V4 hv{h, h, h, h};
     for (; p + 4 <= p1; p += 4) {
-      V4 sx, sy, sz;
-      rows_of(rf + 4 * p, sx, sy, sz);
+      V4 sx, sy, sz, tqx, tqy, tqz;
+      take_rows(rf + 4 * p, sx, sy, sz);
+      torques_of_rows<Rows>(rn, rd, a, p, tqx, tqy, tqz);
       store4(pfx + p, sx), store4(pfy + p, sy), store4(pfz + p, sz);
-      V4 tqx = zero, tqy = zero, tqz = zero;
-      if constexpr (Rows >= 2) {
-        V4 nx, ny, nz;
-        rows_of(rn + 4 * p, nx, ny, nz);
-        const V4 na = -load4(a + p);
-        tqx = na * nx, tqy = na * ny, tqz = na * nz;
-        if constexpr (Rows == 3) {
-          V4 dx, dy, dz;
-          rows_of(rd + 4 * p, dx, dy, dz);
-          tqx = tqx + half * dx, tqy = tqy + half * dy, tqz = tqz + half * dz;
-        }
-        store4(ptx + p, tqx), store4(pty + p, tqy), store4(ptz + p, tqz);
-      }
+      if constexpr (Rows >= 2) store4(ptx + p, tqx), store4(pty + p, tqy), store4(ptz + p, tqz);
       if constexpr (Kick) {
-        const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+        const V4m m = mobile4(on, p);
         const V4 imv = load4(im + p);
-        auto kick = [&](double* v, const V4& s, const V4& inv) __attribute__((always_inline)) {
-          const V4 old = load4(v);
-          store4(v, m ? old + hv * s * inv : old);
-        };
-        kick(pvx + p, sx, imv), kick(pvy + p, sy, imv), kick(pvz + p, sz, imv);
+        for (auto [v, f] : {std::pair{pvx, sx}, std::pair{pvy, sy}, std::pair{pvz, sz}})
+          store4(v + p, kicked4<1>(load4(v + p), f, m, hv, imv));
         if constexpr (Rows >= 2) {
           const V4 iiv = load4(ii + p);
-          kick(pwx + p, tqx, iiv), kick(pwy + p, tqy, iiv), kick(pwz + p, tqz, iiv);
+          for (auto [w, t] : {std::pair{pwx, tqx}, std::pair{pwy, tqy}, std::pair{pwz, tqz}})
+            store4(w + p, kicked4<1>(load4(w + p), t, m, hv, iiv));
         }
       }
     }
@@ -632,9 +674,6 @@ bool Dynamics::kick_drift(std::int64_t from) {
   // narrowest type it reads (the uint8 mobile flag: 32 particles per iteration, eight registers
   // per double, most of them spilled); here the flag becomes a lane mask. The same operations.
   if constexpr (!Threaded) {
-    using kernel::load4, kernel::store4, kernel::V4;
-    typedef long long V4m __attribute__((vector_size(32)));
-    typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
     const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
     // Serial, no slab (this rank holds every particle): write the gather rows too, so that the
     // contact pass need not copy the state into them again.
@@ -644,26 +683,15 @@ bool Dynamics::kick_drift(std::int64_t from) {
     V4m far4{0, 0, 0, 0};
     std::int64_t p = std::max(p0, from);
     for (; p + 4 <= p1; p += 4) {
-      const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+      const V4m m = mobile4(on, p);
       const V4 imv = load4(im + p);
-      auto drift = [&](double* v, double* r, const double* f, const double* r0, const float* rb)
-                       __attribute__((always_inline)) -> V4 {
-        const V4 v0 = load4(v + p), x0 = load4(r + p);
-        const V4 v1 = m ? v0 + hv * load4(f + p) * imv : v0;
-        const V4 x1 = m ? x0 + dtv * v1 : x0;
-        store4(v + p, v1);
-        store4(r + p, x1);
-        return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
-      };
-      const V4 dx = drift(pvx, px, pfx, x0p, xb);
-      const V4 dy = drift(pvy, py, pfy, y0p, yb);
-      const V4 dz = drift(pvz, pz, pfz, z0p, zb);
+      const V4 dx = kick_drift4<1>(pvx, px, load4(pfx + p), x0p, xb, m, hv, dtv, imv, p);
+      const V4 dy = kick_drift4<1>(pvy, py, load4(pfy + p), y0p, yb, m, hv, dtv, imv, p);
+      const V4 dz = kick_drift4<1>(pvz, pz, load4(pfz + p), z0p, zb, m, hv, dtv, imv, p);
       if constexpr (Torques) {
         const V4 iiv = load4(ii + p);
-        for (auto [w, t] : {std::pair{pwx, ptx}, std::pair{pwy, pty}, std::pair{pwz, ptz}}) {
-          const V4 w0 = load4(w + p);
-          store4(w + p, m ? w0 + hv * load4(t + p) * iiv : w0);
-        }
+        for (auto [w, t] : {std::pair{pwx, ptx}, std::pair{pwy, pty}, std::pair{pwz, ptz}})
+          store4(w + p, kicked4<1>(load4(w + p), load4(t + p), m, hv, iiv));
       }
       far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
       if (rows) kernel::fill_rows(*this, rows, p, p + 4);  // the contact pass's rows of these four
@@ -688,94 +716,50 @@ bool Dynamics::kick_drift(std::int64_t from) {
   return far != 0;
 }
 
+// Dynamics::advance's pass: finish_pass<true, Rows> (the second half kick of the step before)
+// and kick_drift<Torques, false> (this step's first half kick and drift) for four particles at a
+// time, F and the torques kept in registers (fx..tz are not stored: the step's last finish
+// writes them); the last n % 4 particles through the two passes as they are.
 template <int Rows>
 bool Dynamics::finish_kick_drift() {
+#ifdef GRANWAVE_GATHER_VECTORS
   constexpr bool Torques = Rows >= 2;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
   const std::int64_t n = static_cast<std::int64_t>(size());
-  double* __restrict rf = contact_sums.data();
-  double* __restrict rn = rf + 4 * n;
-  double* __restrict rd = rf + 8 * n;
-  double* __restrict px = x.data();
-  double* __restrict py = y.data();
-  double* __restrict pz = z.data();
-  double* __restrict pvx = vx.data();
-  double* __restrict pvy = vy.data();
-  double* __restrict pvz = vz.data();
-  double* __restrict pwx = wx.data();
-  double* __restrict pwy = wy.data();
-  double* __restrict pwz = wz.data();
-  const double* __restrict a = radius.data();
-  const double* __restrict im = inv_mass.data();
-  const double* __restrict ii = inv_inertia.data();
-  const double* __restrict x0p = x0.data();
-  const double* __restrict y0p = y0.data();
-  const double* __restrict z0p = z0.data();
-  const float* __restrict xb = x_build_.data();
-  const float* __restrict yb = y_build_.data();
-  const float* __restrict zb = z_build_.data();
-  const std::uint8_t* __restrict on = mobile.data();
+  double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t
   double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
-  using kernel::load4, kernel::store4, kernel::transpose4, kernel::V4;
-  typedef long long V4m __attribute__((vector_size(32)));
-  typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
-  const V4 zero{0.0, 0.0, 0.0, 0.0}, half{0.5, 0.5, 0.5, 0.5}, hv{h, h, h, h}, dtv{dt, dt, dt, dt},
-      far2v{far2, far2, far2, far2};
-  auto rows_of = [&](double* r, V4& cx, V4& cy, V4& cz) __attribute__((always_inline)) {
-    V4 unused;
-    transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
-    store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
-  };
+  const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
   V4m far4{0, 0, 0, 0};
   std::int64_t p = 0;
-  for (; p + 4 <= n; p += 4) {  // as finish_pass<true, Rows>, then as kick_drift<Torques, false>
-    V4 sx, sy, sz;
-    rows_of(rf + 4 * p, sx, sy, sz);
-    V4 tqx = zero, tqy = zero, tqz = zero;
-    if constexpr (Rows >= 2) {
-      V4 nx, ny, nz;
-      rows_of(rn + 4 * p, nx, ny, nz);
-      const V4 na = -load4(a + p);
-      tqx = na * nx, tqy = na * ny, tqz = na * nz;
-      if constexpr (Rows == 3) {
-        V4 dx, dy, dz;
-        rows_of(rd + 4 * p, dx, dy, dz);
-        tqx = tqx + half * dx, tqy = tqy + half * dy, tqz = tqz + half * dz;
-      }
-    }
-    const V4m m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
-    const V4 imv = load4(im + p);
-    auto drift = [&](double* v, double* r, const V4& f, const double* r0, const float* rb)
-                     __attribute__((always_inline)) -> V4 {
-      const V4 v0 = load4(v + p), x0 = load4(r + p);
-      const V4 vh = m ? v0 + hv * f * imv : v0;
-      const V4 v1 = m ? vh + hv * f * imv : vh;
-      const V4 x1 = m ? x0 + dtv * v1 : x0;
-      store4(v + p, v1);
-      store4(r + p, x1);
-      return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
-    };
-    const V4 dx = drift(pvx, px, sx, x0p, xb);
-    const V4 dy = drift(pvy, py, sy, y0p, yb);
-    const V4 dz = drift(pvz, pz, sz, z0p, zb);
+  for (; p + 4 <= n; p += 4) {
+    V4 sx, sy, sz, tqx, tqy, tqz;
+    take_rows(sums + 4 * p, sx, sy, sz);
+    torques_of_rows<Rows>(sums + 4 * n, sums + 8 * n, radius.data(), p, tqx, tqy, tqz);
+    const V4m m = mobile4(mobile.data(), p);
+    const V4 inv_m = load4(inv_mass.data() + p);
+    const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
+    const V4 dy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), y_build_.data(), m, hv, dtv, inv_m, p);
+    const V4 dz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), z_build_.data(), m, hv, dtv, inv_m, p);
     if constexpr (Torques) {
-      const V4 iiv = load4(ii + p);
-      for (auto [w, t] : {std::pair{pwx, tqx}, std::pair{pwy, tqy}, std::pair{pwz, tqz}}) {
-        const V4 w0 = load4(w + p);
-        const V4 wh = m ? w0 + hv * t * iiv : w0;
-        store4(w + p, m ? wh + hv * t * iiv : wh);
-      }
+      const V4 inv_i = load4(inv_inertia.data() + p);
+      for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
+        store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
     }
     far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
     if (rows) kernel::fill_rows(*this, rows, p, p + 4);
   }
-  if (p < n) {  // the last few: the two passes as they are
+  bool far = (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+  if (p < n) {
     finish_pass<true, Rows>(h, p);
-    far4[0] |= kick_drift<Torques, false>(p);
+    far |= kick_drift<Torques, false>(p);
   } else if (rows) {
     rows_fresh_ = true;
   }
-  return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+  return far;
+#else
+  finish_pass<true, Rows>(0.5 * dt_);
+  return kick_drift<Rows >= 2, false>();
+#endif
 }
 
 void Dynamics::advance(long k) {

@@ -80,6 +80,33 @@ crystal::Dynamics forces_of(const Disturbed& d, const config::ContactParams& cp)
   dyn.compute_forces();
   return dyn;
 }
+// crystal_small with sliding friction (kt = k, mu^s = 0.3 > mu^d = 0.2, a normal dashpot), and
+// the laws that route the particle sums differently: the linear law with the radius arm and
+// with the contact-point arm, and a damped Hertz-Mindlin law with stick-slip.
+struct RouteLaws {
+  config::Case c;
+  config::ContactParams radius, contact_point, hertz;
+};
+RouteLaws route_laws() {
+  RouteLaws r;
+  r.c = load("crystal_small");
+  r.c.contact.kt = 1e5;
+  r.c.contact.gamma_n = 0.1;
+  r.c.contact.mu_static = 0.3;
+  r.c.contact.mu_dynamic = 0.2;
+  r.radius = r.c.contact;
+  r.radius.lever_arm = config::LeverArm::radius;
+  r.contact_point = r.c.contact;
+  r.contact_point.lever_arm = config::LeverArm::contact_point;
+  r.hertz.law = config::ContactLaw::hertz_mindlin;
+  r.hertz.youngs_modulus = 63e9;
+  r.hertz.poisson_ratio = 0.23;
+  r.hertz.damping_ratio = 0.1;
+  r.hertz.mu_static = 0.3;
+  r.hertz.mu_dynamic = 0.2;
+  r.hertz.tangential_history = config::TangentialHistory::displacement_rescale;
+  return r;
+}
 }  // namespace
 
 TEST_CASE("same forces after a shift across the periodic faces and after reordering", "[crystal][static]") {
@@ -175,24 +202,8 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
   // the last bit, for both lever arms, a sliding law (deferred contacts) and Hertz-Mindlin.
   // The threaded route needs OpenMP with two threads.
   test_support::require_openmp_threads(2, "the two-pass route");
-  config::Case c = load("crystal_small");
-  c.contact.kt = 1e5;
-  c.contact.gamma_n = 0.1;
-  c.contact.mu_static = 0.3;
-  c.contact.mu_dynamic = 0.2;
+  const auto [c, radius, contact_point, hertz] = route_laws();
   const Disturbed base = disturb(crystal::make_packing(c));
-  config::ContactParams contact_point = c.contact;
-  contact_point.lever_arm = config::LeverArm::contact_point;
-  config::ContactParams radius = c.contact;
-  radius.lever_arm = config::LeverArm::radius;
-  config::ContactParams hertz;
-  hertz.law = config::ContactLaw::hertz_mindlin;
-  hertz.youngs_modulus = 63e9;
-  hertz.poisson_ratio = 0.23;
-  hertz.damping_ratio = 0.1;
-  hertz.mu_static = 0.3;
-  hertz.mu_dynamic = 0.2;
-  hertz.tangential_history = config::TangentialHistory::displacement_rescale;
   for (const config::ContactParams& cp : {radius, contact_point, hertz}) {
     const auto model = crystal::case_model(cp, c.crystal->density);
     crystal::Dynamics one(base.p, model, 2e-7), two(base.p, model, 2e-7);
@@ -233,24 +244,9 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   // two passes as they are). Every state and force must equal k calls of step() to the last bit:
   // all three row layouts of the sums (no torques; radius arm; contact-point arm), a sliding
   // law, Hertz-Mindlin, and a crystal whose particle count is not a multiple of four.
-  config::Case c = load("crystal_small");
-  c.contact.kt = 1e5;
-  c.contact.gamma_n = 0.1;
-  c.contact.mu_static = 0.3;
-  c.contact.mu_dynamic = 0.2;
+  const auto [c, radius, contact_point, hertz] = route_laws();
   config::ContactParams frictionless = c.contact;
   frictionless.kt = 0.0;
-  config::ContactParams radius = c.contact;
-  radius.lever_arm = config::LeverArm::radius;
-  config::ContactParams contact_point = c.contact;
-  contact_point.lever_arm = config::LeverArm::contact_point;
-  config::ContactParams hertz;
-  hertz.law = config::ContactLaw::hertz_mindlin;
-  hertz.youngs_modulus = 63e9;
-  hertz.poisson_ratio = 0.23;
-  hertz.damping_ratio = 0.1;
-  hertz.mu_static = 0.3;
-  hertz.mu_dynamic = 0.2;
   const crystal::Packing whole = crystal::make_packing(c);
   crystal::Packing short_of_three = whole;  // three top-layer (fixed) particles fewer: n % 4 = 1
   for (auto* v : {&short_of_three.x, &short_of_three.y, &short_of_three.z, &short_of_three.radius,
