@@ -196,12 +196,13 @@ inline void fill_rows(const Dynamics& d, double* rows) {
     store4(&g.col[G::reach][u], ai + aj);
     store4(&g.col[G::a_i][u], ai);
     store4(&g.col[G::a_j][u], aj);
-    V4 ux, uy, uz, unused;
-    transpose4(load4(vel + i0), load4(vel + i1), load4(vel + i2), load4(vel + i3), xi, yi, zi, unused);
-    transpose4(load4(vel + j0), load4(vel + j1), load4(vel + j2), load4(vel + j3), ux, uy, uz, unused);
-    store4(&g.col[G::dvx][u], xi - ux);
-    store4(&g.col[G::dvy][u], yi - uy);
-    store4(&g.col[G::dvz][u], zi - uz);
+    // v_i - v_j lane-wise on the rows, then one transpose (the same subtractions)
+    V4 unused;
+    transpose4(load4(vel + i0) - load4(vel + j0), load4(vel + i1) - load4(vel + j1),
+               load4(vel + i2) - load4(vel + j2), load4(vel + i3) - load4(vel + j3), xi, yi, zi, unused);
+    store4(&g.col[G::dvx][u], xi);
+    store4(&g.col[G::dvy][u], yi);
+    store4(&g.col[G::dvz][u], zi);
     transpose4(load4(rot + i0), load4(rot + i1), load4(rot + i2), load4(rot + i3), xi, yi, zi, unused);
     store4(&g.col[G::wix][u], xi);
     store4(&g.col[G::wiy][u], yi);
