@@ -180,7 +180,10 @@ struct HertzMindlinLaw {
         // LAMMPS mindlin_rescale: xi *= a/a_old when the contact radius shrank (a_old = 0: new contact, xi = 0).
         prev = prev * select(a < h.a, a / h.a, 1.0);
       }
-      const Vec3 rotated = project_spring(prev, c.n);  // eq. (2): into the tangent plane, |.| kept
+      // Eq. (2): into the tangent plane, |.| kept; the vector sweep takes the series' form and
+      // defers a contact that needs the root (tangential_spring.hpp).
+      const ProjectedSpring projected = project_spring_series(prev, c.n);
+      const Vec3 rotated = Exact ? project_spring(prev, c.n) : projected.xi;
       Vec3 f_test, xi;
       if constexpr (H == MindlinHistory::force) {
         f_test = rotated - (k_t * c.dt) * vt;  // incremental: df_t = -k_t(delta) v_t dt
@@ -198,7 +201,7 @@ struct HertzMindlinLaw {
         h.t_x = kept_stick.x(), h.t_y = kept_stick.y(), h.t_z = kept_stick.z();
         h.set_sliding(false);
         h.a = a;
-        return {f_n * c.n + f_test, c.n.cross(f_test), loss, sliding};
+        return {f_n * c.n + f_test, c.n.cross(f_test), loss, static_cast<bool>(sliding | projected.needs_root)};
       } else {
         const double magnitude = std::sqrt(magnitude2);
         // Eq. (8): f_t = f_C^d t while sliding (magnitude > limit >= f_dynamic >= 0, so t is defined).

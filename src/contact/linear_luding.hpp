@@ -85,20 +85,21 @@ struct LinearLudingLaw {
     const double arm_i = c.a_i - shift * c.delta, arm_j = c.a_j - shift * c.delta;
     const Vec3 vij = c.dv + arm_i * c.n.cross(c.w_i) + arm_j * c.n.cross(c.w_j);  // eq. (4)
     const Vec3 vt = tangential_velocity(vij, c.n);                                // eq. (3)
-    const Vec3 xi = advance_spring(tangential, h.xi(), c.n, vt, c.dt);           // eqs. (2), (6)
     Vec3 ft;
     double slip_loss = 0.0;
     bool deferred = false;
     if constexpr (Exact) {
+      const Vec3 xi = advance_spring(tangential, h.xi(), c.n, vt, c.dt);  // eqs. (2), (6)
       const TangentialResult res = tangential_force<Dashpots>(tangential, xi, vt, f_n, h.was_sliding());
       ft = res.force;
       slip_loss = res.slip_loss;
       h.set(res.spring, res.sliding);
     } else {
-      const TangentialTest test = tangential_test<Dashpots>(tangential, xi, vt, f_n, h.was_sliding());
+      const AdvancedSpring xi = advance_spring_series(tangential, h.xi(), c.n, vt, c.dt);  // eqs. (2), (6)
+      const TangentialTest test = tangential_test<Dashpots>(tangential, xi.xi, vt, f_n, h.was_sliding());
       ft = test.force;
-      deferred = test.sliding;
-      h.set(xi, false);
+      deferred = test.sliding | xi.needs_root;
+      h.set(xi.xi, false);
     }
     // Dissipated tangentially: the dashpot's power (without a spring, all of -f^t . v_t), plus
     // the slip removed from the spring by eq. (7).

@@ -43,12 +43,44 @@ struct TangentialSpringParams {
   bool active() const { return kt > 0.0 || gamma_t > 0.0; }
 };
 
-// Eq. (2): rotate the previous spring xi' into the current tangent plane, keeping |xi'|.
-inline Vec3 project_spring(const Vec3& xi_prev, const Vec3& n) {
+// Eq. (2): rotate the previous spring xi' into the current tangent plane, keeping |xi'|:
+// xi* |xi'|/|xi*|, xi* = xi' - n (n . xi'). With x = (n . xi')^2/|xi'|^2, |xi*|^2 = (1 - x)|xi'|^2
+// and the scale is (1 - x)^(-1/2). A contact's normal turns by a small angle theta per step and
+// the spring was tangent to the old normal, so x ~ theta^2 (~1e-18 in the seed's waves): below
+// kSeriesLimit = 2^-20 the series 1 + x/2 + 3x^2/8 is that root to within 3e-19 (the next term,
+// 5x^3/16), far inside half an ulp of 1, so the scale is the root's, rounded once, at the cost of
+// one division (the root form costs a division and a root, the dearest operations of the
+// vectorised contact pass). Larger x (a contact that turned by more than 1e-3 rad in one step)
+// takes the root: project_spring selects, the vectorised evaluations defer such a contact to it.
+inline constexpr double kSeriesLimit = 0x1p-20;
+
+struct ProjectedSpring {
+  Vec3 xi;          // the projected spring (the series' form; for needs_root, project_spring's)
+  bool needs_root;  // x >= kSeriesLimit: only the root's form is exact
+};
+
+// The series form, branch- and root-free (it vectorises); xi' = 0 gives 0.
+inline ProjectedSpring project_spring_series(const Vec3& xi_prev, const Vec3& n) {
+  const double c = n.dot(xi_prev);
+  const double p2 = xi_prev.squaredNorm();
+  const Vec3 xi_star = xi_prev - n * c;
+  const double x = (c * c) / select(p2 == 0.0, 1.0, p2);
+  const double scale = 1.0 + x * (0.5 + 0.375 * x);
+  return {xi_star * scale, !(x < kSeriesLimit)};
+}
+
+// The root form: |xi'|/|xi*| as one root of a ratio; xi* = 0 (xi' = 0 or along n) gives 0.
+inline Vec3 project_spring_root(const Vec3& xi_prev, const Vec3& n) {
   const Vec3 xi_star = xi_prev - n * n.dot(xi_prev);
   const double star2 = xi_star.squaredNorm();
-  const double scale = std::sqrt(xi_prev.squaredNorm() / star2);  // |xi'|/|xi*|, one root; unused if star2 = 0
+  const double scale = std::sqrt(xi_prev.squaredNorm() / star2);  // unused if star2 = 0
   return select(star2 == 0.0, Vec3::Zero(), xi_star * scale);
+}
+
+// Eq. (2), exact for any turn: the series below kSeriesLimit, the root above.
+inline Vec3 project_spring(const Vec3& xi_prev, const Vec3& n) {
+  const ProjectedSpring s = project_spring_series(xi_prev, n);
+  return select(s.needs_root, project_spring_root(xi_prev, n), s.xi);
 }
 
 // Eq. (4): relative velocity of the two surfaces at the contact, n = (r_i - r_j)/|r_i - r_j|.
@@ -65,6 +97,17 @@ inline Vec3 tangential_velocity(const Vec3& vij, const Vec3& n) { return vij - n
 inline Vec3 advance_spring(const TangentialSpringParams& p, const Vec3& xi_prev, const Vec3& n, const Vec3& vt,
                            double dt) {
   return select(p.kt == 0.0, Vec3::Zero(), project_spring(xi_prev, n) + vt * dt);
+}
+// The same for the vectorised evaluation: the series' projection, and whether the contact needs
+// the root (then advance_spring's value, in the exact sweep).
+struct AdvancedSpring {
+  Vec3 xi;
+  bool needs_root;
+};
+inline AdvancedSpring advance_spring_series(const TangentialSpringParams& p, const Vec3& xi_prev, const Vec3& n,
+                                            const Vec3& vt, double dt) {
+  const ProjectedSpring s = project_spring_series(xi_prev, n);
+  return {select(p.kt == 0.0, Vec3::Zero(), s.xi + vt * dt), s.needs_root};
 }
 
 struct TangentialResult {

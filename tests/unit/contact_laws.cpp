@@ -144,6 +144,17 @@ TEST_CASE("linear + Luding law: history, slip decision, stored and opening energ
   const auto slid = law.evaluate(c, big_exact);
   CHECK(big_exact.sliding == 1.0);
   CHECK(std::abs(slid.force.x()) == Approx(0.3 * f_n).epsilon(1e-14));
+  // A spring whose normal turned by more than 1e-3 rad in one step (eq. (2)'s series form is not
+  // exact there): the vectorised evaluation defers it, untouched; the exact one keeps |xi'|.
+  Contact turned = c;
+  turned.n = Vec3(0.01, 0.0, 1.0).normalized();  // x = sin^2(0.01) > 2^-20
+  turned.dv = Vec3();
+  contact::LinearLuding::History tilt{0.3e-6, 0.0, 0.0, 0.0}, tilt_exact = tilt;
+  CHECK(law.evaluate(turned, tilt, contact::Deferrable{}).deferred);
+  law.evaluate(turned, tilt_exact);
+  CHECK(tilt_exact.sliding == 0.0);
+  CHECK(tilt_exact.xi().norm() == Approx(0.3e-6).epsilon(1e-15));
+  CHECK(std::abs(tilt_exact.xi().dot(turned.n)) < 1e-15 * 0.3e-6);
   // Stored: (1/2) k delta^2 + (1/2) k_t |xi|^2; lost on opening: the spring's part.
   double e = 0.0;
   law.add_stored_energy(e, 2e-6, big_exact);

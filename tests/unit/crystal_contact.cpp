@@ -2,6 +2,7 @@
 // through the crystal dynamics, and the tangential spring of eqs. (2)-(8).
 #include <bit>
 #include <catch2/catch.hpp>
+#include <cstdint>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -112,6 +113,49 @@ TEST_CASE("tangential spring: projection keeps |xi| (eq. 2)", "[crystal][contact
   CHECK((contact::project_spring(t, Vec3(0, 0, 1)) - t).norm() < 1e-22);
   // Parallel to n: no tangential direction left, the spring vanishes.
   CHECK(contact::project_spring(Vec3(0, 0, 1e-7), Vec3(0, 0, 1)).norm() == 0.0);
+}
+
+TEST_CASE("tangential spring: the series form of eq. (2) is the root form, rounded once", "[crystal][contact]") {
+  // Springs tangent to n, normals turned by theta = 1e-10 .. 1e-3.5 rad (x ~ theta^2 < 2^-20):
+  // the series needs no root and agrees with the root form to rounding (both round a few
+  // times: 4 ulp of |xi|), and keeps |xi| to rounding as the root form does.
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // deterministic, platform-independent (splitmix64)
+    state += 0x9e3779b97f4a7c15ULL;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
+  };
+  auto unit = [&] { return Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalized(); };
+  double worst = 0.0, worst_norm = 0.0;
+  for (int t = 0; t < 20000; ++t) {
+    const Vec3 n0 = unit();
+    Vec3 xi = unit();
+    xi = (xi - n0 * n0.dot(xi)) * 1e-7;
+    const double theta = std::pow(10.0, -10.0 + 6.5 * uniform());
+    const Vec3 n = (n0 + unit() * theta).normalized();
+    const contact::ProjectedSpring s = contact::project_spring_series(xi, n);
+    REQUIRE_FALSE(s.needs_root);
+    worst = std::max(worst, (s.xi - contact::project_spring_root(xi, n)).norm() / xi.norm());
+    worst_norm = std::max(worst_norm, std::abs(s.xi.norm() / xi.norm() - 1.0));
+    const Vec3 p = contact::project_spring(xi, n);  // below the limit project_spring is the series
+    CHECK((p.x() == s.xi.x() && p.y() == s.xi.y() && p.z() == s.xi.z()));
+  }
+  INFO("largest |series - root| / |xi| " << worst << ", largest | |xi| change | " << worst_norm);
+  CHECK(worst <= 4 * 0x1p-52);
+  CHECK(worst_norm <= 4 * 0x1p-52);
+  // A turn of 0.1 rad (x = 1e-2 > 2^-20): the series is not exact there; project_spring takes the root.
+  const Vec3 xi(1e-7, 0.0, 0.0), n = Vec3(0.1, 0.0, 1.0).normalized();
+  const contact::ProjectedSpring big = contact::project_spring_series(xi, n);
+  CHECK(big.needs_root);
+  const Vec3 p = contact::project_spring(xi, n), root = contact::project_spring_root(xi, n);
+  CHECK((p.x() == root.x() && p.y() == root.y() && p.z() == root.z()));
+  CHECK(contact::project_spring(xi, n).norm() == Approx(1e-7).epsilon(1e-15));
+  // No spring: zero, from the series alone (no 0/0).
+  const contact::ProjectedSpring none = contact::project_spring_series(Vec3::Zero(), n);
+  CHECK_FALSE(none.needs_root);
+  CHECK(none.xi.norm() == 0.0);
 }
 
 TEST_CASE("tangential spring: sticking -kt xi, sliding at mu f_n, stick-slip switching", "[crystal][contact]") {
