@@ -327,7 +327,7 @@ void Dynamics::rebuild() {
     for (auto* v : {&pairs.image_x, &pairs.image_y}) v->resize(k);
   }
   ContactList& old = contacts;
-  add_dissipated(dissipated_before_.data(), old);  // per layer: no message
+  if (old.losses_booked) add_dissipated(dissipated_before_.data(), old);  // per layer: no message
   ContactList fresh;
   const std::size_t nc = pairs.size();
   fresh.i = std::move(pairs.i);
@@ -959,8 +959,9 @@ double Dynamics::potential_energy() const {
 
 double Dynamics::dissipated_energy() const {
   std::vector<double> s = dissipated_before_;
-  // A law that never dissipates leaves every entry +0.0: adding them would change nothing.
-  if (model_->dissipates()) add_dissipated(s.data());
+  // A law that never dissipates, or a list no pass has booked a loss in, holds +0.0 in every
+  // entry: adding them would change nothing.
+  if (model_->dissipates() && contacts.losses_booked) add_dissipated(s.data());
   double t = 0.0;
   layer_totals(&s, 1, &t);  // collective under a slab plan: every rank calls it
   return t;
@@ -980,7 +981,7 @@ Dynamics::Energies Dynamics::energies() const {
                               std::vector<double>(nl, 0.0)};
   add_particle_energies(s[0].data(), s[3].data());
   model_->add_stored_energy(s[1].data(), contacts, layer_order().contacts, radius.data());
-  add_dissipated(s[2].data());
+  if (model_->dissipates() && contacts.losses_booked) add_dissipated(s[2].data());  // else +0.0 each
   double t[4];
   layer_totals(s, 4, t);
   return {t[0], t[1], t[2], dt_ * dt_ / 8.0 * t[3]};

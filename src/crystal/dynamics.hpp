@@ -35,6 +35,9 @@ struct ContactList {
   std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
                                            // threaded runs of a law with torques only (else empty)
   std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
+  // false: every entry of `dissipated` is still the +0.0 of the list's build, so sums of them may be
+  // skipped (x + 0.0 = x). Set by a contact pass that may write one (kernel.hpp).
+  bool losses_booked = false;
   // The law's history (contact/law.hpp), column by column: history[k * size() + c].
   std::vector<double> history;
   std::size_t history_columns = 0;

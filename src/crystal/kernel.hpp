@@ -18,6 +18,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -332,6 +333,7 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
   double* cny = C.nf_y.data();
   double* cnz = C.nf_z.data();
   double* diss = C.dissipated.data();
+  if constexpr (Dissipative) C.losses_booked = true;  // both sweeps add to diss
   std::array<double*, NH> hist{};
   for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
   // One contact. In the vector sweep (Deferrable) a contact the law defers is left untouched
@@ -478,6 +480,11 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   double* cny = C.nf_y.data();
   double* cnz = C.nf_z.data();
   double* diss = C.dissipated.data();
+  // The vector sweep adds to diss unless the law's is lossless (contact::LosslessSweep); the exact
+  // sweep always does, and books it where it runs (below).
+  constexpr bool QuietSweep = Defers && Dissipative && contact::LosslessSweep<Law>;
+  if constexpr (Dissipative && !QuietSweep) C.losses_booked = true;
+  bool* losses_booked = &C.losses_booked;
   std::array<double*, NH> hist{};
   for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
   // One contact: g's entry u is contact c. In the vector sweep (Deferrable) a contact the law
@@ -554,9 +561,11 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
           deferred[c - s0] = one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
           any |= deferred[c - s0];
         }
-        if (any)
+        if (any) {
+          if constexpr (QuietSweep) std::atomic_ref<bool>(*losses_booked).store(true, std::memory_order_relaxed);
           for (std::int64_t c = s0; c < s1; ++c)
             if (deferred[c - s0]) one(c, c - s0, g, o, std::false_type{}, scatter_sweep);
+        }
       } else {
 #pragma GCC ivdep
         for (std::int64_t c = s0; c < s1; ++c) one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
