@@ -53,11 +53,12 @@ std::size_t state_bytes(const crystal::Dynamics& d) {
                         &C.nf_z, &C.dissipated})
     b += bytes(*v);
   // The observers' per-layer lists (built at the first sample after a list build) and their
-  // scratch: the layer stress's lever arms (16 bytes per contact, simulation.cpp) and the
-  // particle energy terms (16 bytes per particle, dynamics.cpp).
+  // scratch: the layer stress's lever arms (16 bytes per contact: Dynamics::end_arms, made by a
+  // one-thread contact pass, or simulation.cpp's scratch) and the particle energy terms (16 bytes
+  // per particle, dynamics.cpp).
   const crystal::Dynamics::LayerOrder& o = d.layer_order();
   for (const auto* l : {&o.particles, &o.contacts, &o.ends}) b += bytes(l->first) + bytes(l->entries);
-  b += bytes(o.counted_ends) + 16 * C.size() + 16 * d.size();
+  b += bytes(o.counted_ends) + (d.end_arms.empty() ? 16 * C.size() : bytes(d.end_arms)) + 16 * d.size();
   return b + 3 * d.size() * sizeof(float);  // displacements at the last list build
 }
 

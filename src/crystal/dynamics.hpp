@@ -133,6 +133,13 @@ class Dynamics {
   // stale (it sums straight into contact_sums; nf_x, nf_y, nf_z are then empty); set it
   // for the passes whose contact forces are read (the layer stress of a sample).
   bool store_contact_forces = true;
+  // The lever arms times u_z of every contact's ends, (a_i - delta/2) u_z at 2c and (a_j - delta/2)
+  // u_z at 2c + 1, +0.0 for an open contact (the layer stress's terms, crystal/simulation.cpp):
+  // written with the forces by a one-thread contact pass of a law with torques, while the
+  // contact's values are in L1 (then end_arms_stored), so the sample's layer stress needs no walk
+  // over the contacts of its own. 16 bytes per contact (the layer stress's scratch otherwise).
+  std::vector<double> end_arms;
+  bool end_arms_stored = false;
   // The contact pass announces that it fills `rows` rows per particle of contact_sums (all zero
   // on entry); returns them.
   double* begin_contact_sums(int rows) {

@@ -230,6 +230,29 @@ inline void fill_rows(const Dynamics& d, double* rows) {
   }
 }
 
+// The layer stress's lever arms times u_z of the chunk's contact ends (Dynamics::end_arms), from
+// its columns and overlaps: u_z = b_z/r with r = (a_i + a_j) - delta, which is the contact pass's
+// root bit for bit while -reach/2 <= delta <= reach/4 (Sterbenz: the subtraction that made delta
+// was exact, and so is this one); a chunk with a contact outside that margin takes the root.
+// The same operations as crystal/simulation.cpp's exact_end_arms, so the same bits.
+[[gnu::always_inline]] inline void end_arms_of_chunk(const Gathered& g, std::int64_t m, const double* __restrict delta,
+                                                     double* __restrict arm_u) {
+  using G = Gathered;
+  std::int32_t outside = 0;
+  for (std::int64_t u = 0; u < m; ++u) {
+    const double reach = g.col[G::reach][u];
+    outside |= (delta[u] < -0.5 * reach) | (delta[u] > 0.25 * reach);
+  }
+  for (std::int64_t u = 0; u < m; ++u) {
+    const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
+    const double r = outside ? std::sqrt(bx * bx + by * by + bz * bz) : g.col[G::reach][u] - delta[u];
+    const double u_z = bz / r;
+    const bool open = delta[u] <= 0.0;
+    arm_u[2 * u] = open ? 0.0 : (g.col[G::a_i][u] - 0.5 * delta[u]) * u_z;
+    arm_u[2 * u + 1] = open ? 0.0 : (g.col[G::a_j][u] - 0.5 * delta[u]) * u_z;
+  }
+}
+
 // ---- The scatter: contact sums straight into per-particle rows (one thread) ----
 // On one thread the contact pass adds each contact's f (laws with torques: and n x f^t, and
 // delta n x f^t for the contact-point arm) to per-particle rows of four doubles (K rows per
@@ -334,6 +357,7 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
   double* cnz = C.nf_z.data();
   double* diss = C.dissipated.data();
   if constexpr (Dissipative) C.losses_booked = true;  // both sweeps add to diss
+  d.end_arms_stored = false;
   std::array<double*, NH> hist{};
   for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
   // One contact. In the vector sweep (Deferrable) a contact the law defers is left untouched
@@ -468,6 +492,10 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
     sum_rows = d.begin_contact_sums(scatter_mode + 1);
   }
 #endif
+  // With the forces, the layer stress's end arms (one thread: where the forces are stored per chunk).
+  d.end_arms_stored = scatter_mode != 0 && keep_forces;
+  if (d.end_arms_stored) d.end_arms.resize(2 * C.size());
+  double* end_arms = d.end_arms.data();
   // Per-contact n x f^t: only the particle pass of the threaded route reads it (made here, not
   // at the list's build: 24 bytes per contact a one-thread run does not need).
   if (scatter_mode == 0)
@@ -585,12 +613,14 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
         else
           scatter<3>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3], o.col[4],
                      o.col[5], cdelta + s0);
-        if (keep_forces)
+        if (keep_forces) {
           for (std::int64_t u = 0; u < s1 - s0; ++u) {
             cfx[s0 + u] = o.col[0][u];
             cfy[s0 + u] = o.col[1][u];
             cfz[s0 + u] = o.col[2][u];
           }
+          end_arms_of_chunk(g, s1 - s0, cdelta + s0, end_arms + 2 * s0);
+        }
       }
 #endif
     }

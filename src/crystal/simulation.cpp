@@ -193,6 +193,42 @@ std::int64_t exact_end_arms(std::size_t c0, std::size_t c1, const std::int32_t* 
   }
   return exact;
 }
+
+// Every contact's end arms (end_arms' [2 c + end]): those the contact pass stored with the
+// forces (Dynamics::end_arms, one thread), else made here into `scratch`.
+const double* contact_end_arms(const Dynamics& dyn, std::vector<double>& scratch) {
+  if (dyn.end_arms_stored) return dyn.end_arms.data();
+  const Packing& pk = dyn.packing();
+  const ContactList& C = dyn.contacts;
+  const std::size_t nc = C.size();
+  scratch.resize(2 * nc);
+  const double* a = dyn.radius.data();
+  const double *z = dyn.z.data(), *delta = C.delta.data();
+  const std::int32_t *pi = C.i.data(), *pj = C.j.data();
+  constexpr std::size_t kBlock = 256;
+  double arm_u_i[kBlock], arm_u_j[kBlock];
+  for (std::size_t c0 = 0; c0 < nc; c0 += kBlock) {
+    const std::size_t c1 = std::min(nc, c0 + kBlock);
+    // The distance r = |r_j - r_i| from the overlap the contact pass stored at these positions,
+    // delta = (a_i + a_j) - r: while r/2 <= a_i + a_j <= 2r that subtraction is exact (Sterbenz),
+    // so (a_i + a_j) - delta gives the root's r bit for bit without x, y and the root. Checked
+    // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the
+    // block again with the root.
+    if (exact_end_arms(c0, c1, pi, pj, a, z, delta, scratch.data()) != static_cast<std::int64_t>(c1 - c0)) {
+      for (std::size_t c = c0; c < c1; ++c) {
+        const int i = C.i[c], j = C.j[c];
+        const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
+        const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
+        const double bz = dyn.z[j] - dyn.z[i];
+        const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
+        arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
+        arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
+      }
+      end_arms(c1 - c0, delta + c0, arm_u_i, arm_u_j, scratch.data() + 2 * c0);
+    }
+  }
+  return scratch.data();
+}
 }  // namespace
 
 void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<double>& zx,
@@ -231,41 +267,15 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
         }
     }
   } else {
-    // The same sums, faster (a sample costs about as much as a time step otherwise). First, in
-    // loops that vectorise, every contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z (a root and
-    // a division each). Then each layer's sums over the ends of its contacts in list order
-    // (Dynamics::LayerOrder::ends, i before j), the terms arm u_z f_z, arm u_z f_x formed there,
-    // several layers side by side (layer_chains): the same products and subtractions in the same
-    // order.
-    const std::size_t nc = C.size();
-    static thread_local std::vector<double> arms;  // end_arms' [2 c + end]
-    arms.resize(2 * nc);
-    const double* a = dyn.radius.data();
-    const double *z = dyn.z.data(), *delta = C.delta.data();
-    const std::int32_t *pi = C.i.data(), *pj = C.j.data();
-    constexpr std::size_t kBlock = 256;
-    double arm_u_i[kBlock], arm_u_j[kBlock];
-    for (std::size_t c0 = 0; c0 < nc; c0 += kBlock) {
-      const std::size_t c1 = std::min(nc, c0 + kBlock);
-      // The distance r = |r_j - r_i| from the overlap the contact pass stored at these positions,
-      // delta = (a_i + a_j) - r: while r/2 <= a_i + a_j <= 2r that subtraction is exact (Sterbenz),
-      // so (a_i + a_j) - delta gives the root's r bit for bit without x, y and the root. Checked
-      // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the
-      // block again with the root.
-      if (exact_end_arms(c0, c1, pi, pj, a, z, delta, arms.data()) != static_cast<std::int64_t>(c1 - c0)) {
-        for (std::size_t c = c0; c < c1; ++c) {
-          const int i = C.i[c], j = C.j[c];
-          const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
-          const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
-          const double bz = dyn.z[j] - dyn.z[i];
-          const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
-          arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
-          arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
-        }
-        end_arms(c1 - c0, delta + c0, arm_u_i, arm_u_j, arms.data() + 2 * c0);
-      }
-    }
-    const double *arm_u = arms.data(), *f_z = C.f_z.data(), *f_x = C.f_x.data();
+    // The same sums, faster (a sample costs about as much as a time step otherwise). First every
+    // contact's (a_i - delta/2) u_z, (a_j - delta/2) u_z: stored by the contact pass with the
+    // forces on one thread, else made here in loops that vectorise. Then each layer's sums over
+    // the ends of its contacts in list order (Dynamics::LayerOrder::ends, i before j), the terms
+    // arm u_z f_z, arm u_z f_x formed there, several layers side by side (layer_chains): the same
+    // products and subtractions in the same order.
+    static thread_local std::vector<double> arms;  // scratch of contact_end_arms
+    const double* arm_u = contact_end_arms(dyn, arms);
+    const double *f_z = C.f_z.data(), *f_x = C.f_x.data();
     layer_chains<2>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
                     [=](std::array<double, 2>& acc, std::int32_t e) {
                       acc[0] -= arm_u[e] * f_z[e >> 1];

@@ -124,6 +124,16 @@ TEST_CASE("the sample's per-layer sums equal the plain sums bit for bit", "[crys
     std::printf("%zu contacts, %ld open\n", dyn.contacts.size(), open);
     const long per_layer = std::count(p.layer.begin(), p.layer.end(), cut);
     CHECK(open >= 4 * per_layer);  // the cut: each particle below it has 4 neighbours above
+    // One thread: the contact pass stored the layer stress's end arms with the forces; the layer
+    // stress's own arms (its route on threads) give the same bits.
+    REQUIRE(dyn.end_arms_stored);
+    std::vector<double> zz, zx, zz_own, zx_own;
+    crystal::layer_stress(dyn, zz, zx);
+    dyn.end_arms_stored = false;
+    crystal::layer_stress(dyn, zz_own, zx_own);
+    dyn.end_arms_stored = true;
+    CHECK(zz == zz_own);
+    CHECK(zx == zx_own);
     check_observers(dyn);
   }
 }
