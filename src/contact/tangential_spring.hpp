@@ -46,7 +46,7 @@ struct TangentialSpringParams {
 // Eq. (2): rotate the previous spring xi' into the current tangent plane, keeping |xi'|:
 // xi* |xi'|/|xi*|, xi* = xi' - n (n . xi'). With x = (n . xi')^2/|xi'|^2, |xi*|^2 = (1 - x)|xi'|^2
 // and the scale is (1 - x)^(-1/2). A contact's normal turns by a small angle theta per step and
-// the spring was tangent to the old normal, so x ~ theta^2 (~1e-18 in the seed's waves): below
+// the spring was tangent to the old normal, so x ~ theta^2 (at most 2e-12 in the seed's waves): below
 // kSeriesLimit = 2^-20 the series 1 + x/2 + 3x^2/8 is that root to within 3e-19 (the next term,
 // 5x^3/16), far inside half an ulp of 1, so the scale is the root's, rounded once, at the cost of
 // one division (the root form costs a division and a root, the dearest operations of the
