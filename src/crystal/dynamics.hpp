@@ -140,6 +140,15 @@ class Dynamics {
   // over the contacts of its own. 16 bytes per contact (the layer stress's scratch otherwise).
   std::vector<double> end_arms;
   bool end_arms_stored = false;
+  // One end's entry of end_arms: (a - delta/2) u_z, +0.0 for an open contact (delta <= 0), whose
+  // force is +0.0, so its terms subtract zeros (x - (+-0) = x for every sum not -0). Both routes
+  // (the contact pass's and the layer stress's own) form it here, so they give the same bits.
+  static double end_arm(double a, double delta, double u_z) { return delta <= 0.0 ? 0.0 : (a - 0.5 * delta) * u_z; }
+  // Whether (a_i + a_j) - delta is the root's distance r bit for bit: delta = reach - r was an
+  // exact subtraction while r/2 <= reach <= 2r (Sterbenz), checked with a margin.
+  static bool distance_from_overlap_exact(double delta, double reach) {
+    return (delta >= -0.5 * reach) & (delta <= 0.25 * reach);
+  }
   // The contact pass announces that it fills `rows` rows per particle of contact_sums (all zero
   // on entry); returns them.
   double* begin_contact_sums(int rows) {

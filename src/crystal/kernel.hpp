@@ -241,17 +241,13 @@ inline void fill_rows(const Dynamics& d, double* rows) {
                                                      double* __restrict arm_u) {
   using G = Gathered;
   std::int32_t outside = 0;
-  for (std::int64_t u = 0; u < m; ++u) {
-    const double reach = g.col[G::reach][u];
-    outside |= (delta[u] < -0.5 * reach) | (delta[u] > 0.25 * reach);
-  }
+  for (std::int64_t u = 0; u < m; ++u) outside |= !Dynamics::distance_from_overlap_exact(delta[u], g.col[G::reach][u]);
   for (std::int64_t u = 0; u < m; ++u) {
     const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
     const double r = outside ? std::sqrt(bx * bx + by * by + bz * bz) : g.col[G::reach][u] - delta[u];
     const double u_z = bz / r;
-    const bool open = delta[u] <= 0.0;
-    arm_u[2 * u] = open ? 0.0 : (g.col[G::a_i][u] - 0.5 * delta[u]) * u_z;
-    arm_u[2 * u + 1] = open ? 0.0 : (g.col[G::a_j][u] - 0.5 * delta[u]) * u_z;
+    arm_u[2 * u] = Dynamics::end_arm(g.col[G::a_i][u], delta[u], u_z);
+    arm_u[2 * u + 1] = Dynamics::end_arm(g.col[G::a_j][u], delta[u], u_z);
   }
 }
 

@@ -164,32 +164,19 @@ Derived derive(const config::Case& c) {
 }
 
 namespace {
-// Per contact, the lever arms times u_z of its ends, (a_i - delta/2) u_z at 2c and
-// (a_j - delta/2) u_z at 2c + 1; +0.0 for an open contact, whose force is +0.0 (the contact
-// pass's select), so its terms are zeros, and subtracting a zero changes no sum started at +0.0
-// (x - (+-0) = x for every x but -0, which such a sum never is). A loop that vectorises.
-void end_arms(std::size_t n, const double* __restrict delta, const double* __restrict arm_u_i,
-              const double* __restrict arm_u_j, double* __restrict arm_u) {
-  for (std::size_t c = 0; c < n; ++c) {
-    const bool open = delta[c] <= 0.0;
-    arm_u[2 * c] = open ? 0.0 : arm_u_i[c];
-    arm_u[2 * c + 1] = open ? 0.0 : arm_u_j[c];
-  }
-}
-
-// The same for contacts [c0, c1) from the stored overlaps, u_z = (z_j - z_i)/((a_i + a_j) - delta)
-// (see layer_stress); returns how many contacts are within the margin where that is exact.
+// Per contact c of [c0, c1), the lever arms times u_z of its ends (Dynamics::end_arm) at 2c and
+// 2c + 1, from the stored overlaps, u_z = (z_j - z_i)/((a_i + a_j) - delta) (see layer_stress);
+// returns how many contacts are within the margin where that is exact. A loop that vectorises.
 std::int64_t exact_end_arms(std::size_t c0, std::size_t c1, const std::int32_t* __restrict pi,
                             const std::int32_t* __restrict pj, const double* __restrict a, const double* __restrict z,
                             const double* __restrict delta, double* __restrict arm_u) {
   std::int64_t exact = 0;
   for (std::size_t c = c0; c < c1; ++c) {
     const double reach = a[pi[c]] + a[pj[c]];
-    exact += ((delta[c] >= -0.5 * reach) & (delta[c] <= 0.25 * reach)) ? 1 : 0;
+    exact += Dynamics::distance_from_overlap_exact(delta[c], reach) ? 1 : 0;
     const double u_z = (z[pj[c]] - z[pi[c]]) / (reach - delta[c]);
-    const bool open = delta[c] <= 0.0;
-    arm_u[2 * c] = open ? 0.0 : (a[pi[c]] - 0.5 * delta[c]) * u_z;
-    arm_u[2 * c + 1] = open ? 0.0 : (a[pj[c]] - 0.5 * delta[c]) * u_z;
+    arm_u[2 * c] = Dynamics::end_arm(a[pi[c]], delta[c], u_z);
+    arm_u[2 * c + 1] = Dynamics::end_arm(a[pj[c]], delta[c], u_z);
   }
   return exact;
 }
@@ -206,7 +193,6 @@ const double* contact_end_arms(const Dynamics& dyn, std::vector<double>& scratch
   const double *z = dyn.z.data(), *delta = C.delta.data();
   const std::int32_t *pi = C.i.data(), *pj = C.j.data();
   constexpr std::size_t kBlock = 256;
-  double arm_u_i[kBlock], arm_u_j[kBlock];
   for (std::size_t c0 = 0; c0 < nc; c0 += kBlock) {
     const std::size_t c1 = std::min(nc, c0 + kBlock);
     // The distance r = |r_j - r_i| from the overlap the contact pass stored at these positions,
@@ -221,10 +207,9 @@ const double* contact_end_arms(const Dynamics& dyn, std::vector<double>& scratch
         const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
         const double bz = dyn.z[j] - dyn.z[i];
         const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
-        arm_u_i[c - c0] = (a[i] - 0.5 * C.delta[c]) * u_z;
-        arm_u_j[c - c0] = (a[j] - 0.5 * C.delta[c]) * u_z;
+        scratch[2 * c] = Dynamics::end_arm(a[i], delta[c], u_z);
+        scratch[2 * c + 1] = Dynamics::end_arm(a[j], delta[c], u_z);
       }
-      end_arms(c1 - c0, delta + c0, arm_u_i, arm_u_j, scratch.data() + 2 * c0);
     }
   }
   return scratch.data();
