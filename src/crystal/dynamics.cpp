@@ -959,9 +959,9 @@ double Dynamics::potential_energy() const {
 
 double Dynamics::dissipated_energy() const {
   std::vector<double> s = dissipated_before_;
-  // A law that never dissipates, or a list no pass has booked a loss in, holds +0.0 in every
-  // entry: adding them would change nothing.
-  if (model_->dissipates() && contacts.losses_booked) add_dissipated(s.data());
+  // A list no pass has booked a loss in (always, for a law that never dissipates) holds +0.0 in
+  // every entry: adding them would change nothing.
+  if (contacts.losses_booked) add_dissipated(s.data());
   double t = 0.0;
   layer_totals(&s, 1, &t);  // collective under a slab plan: every rank calls it
   return t;
@@ -981,7 +981,7 @@ Dynamics::Energies Dynamics::energies() const {
                               std::vector<double>(nl, 0.0)};
   add_particle_energies(s[0].data(), s[3].data());
   model_->add_stored_energy(s[1].data(), contacts, layer_order().contacts, radius.data());
-  if (model_->dissipates() && contacts.losses_booked) add_dissipated(s[2].data());  // else +0.0 each
+  if (contacts.losses_booked) add_dissipated(s[2].data());  // else +0.0 each
   double t[4];
   layer_totals(s, 4, t);
   return {t[0], t[1], t[2], dt_ * dt_ / 8.0 * t[3]};
