@@ -115,3 +115,11 @@ add_test(NAME "cli: run --json of a Hertz-Mindlin crystal gives the lattice P sp
 /usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/hm_lattice.json')); \
 v, w = d['speed_theory'], d['speed_theory_lattice']; assert abs(w / v - 1) < 1e-3, (v, w)\"")
 set_tests_properties("cli: run --json of a Hertz-Mindlin crystal gives the lattice P speed of the linearised law" PROPERTIES LABELS "cli")
+# Issue #25: a damaged trace on which the HDF5 library throws while looking a dataset up (it aborted
+# granwave before: H5::Exception is no std::exception). Exit 2, naming the file and the dataset.
+add_test(NAME "cli: analyze of a damaged trace exits 2 naming the file and the dataset"
+  COMMAND sh -c "gzip -dc ${CMAKE_SOURCE_DIR}/tests/data/damaged/trace_lookup_throws.h5.gz > ${CLI_TMP}/damaged_lookup.h5 && \
+${GW} analyze ${CLI_TMP}/damaged_lookup.h5 --json > /dev/null 2> ${CLI_TMP}/damaged_lookup.err; rc=$?; \
+test $rc -eq 2 || { cat ${CLI_TMP}/damaged_lookup.err; echo \"exit code $rc, expected 2\"; exit 1; }; \
+grep -q -- 'damaged_lookup.h5: damaged file: cannot look up .*/time' ${CLI_TMP}/damaged_lookup.err || { cat ${CLI_TMP}/damaged_lookup.err; exit 1; }")
+set_tests_properties("cli: analyze of a damaged trace exits 2 naming the file and the dataset" PROPERTIES LABELS "cli;unit")

@@ -8,6 +8,7 @@
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
+#include "io/h5.hpp"
 #include "sweep/distributed.hpp"
 
 namespace {
@@ -74,6 +75,15 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::exception& e) {
     err << "granwave " << verb << ": internal error: " << e.what() << "\n";
+    return 1;
+  } catch (...) {
+    // io/ turns the HDF5 library's failures into InputError or RunError; one that still escapes
+    // comes from a file the library could not read: bad input, not a crash.
+    if (const std::string why = io::hdf5_exception_message(); !why.empty()) {
+      err << "granwave " << verb << ": error: HDF5: " << why << "\n";
+      return 2;
+    }
+    err << "granwave " << verb << ": internal error: unknown exception\n";
     return 1;
   }
 }

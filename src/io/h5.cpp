@@ -70,6 +70,14 @@ void write_attr(hid_t file, const std::string& object, const std::string& name, 
   if (err < 0) throw RunError("internal: cannot write HDF5 attribute '" + name + "' on '" + object + "'");
 }
 
+bool exists(H5::H5File& file, const std::string& tmp_path, const std::string& object) {
+  try {
+    return file.nameExists(object);
+  } catch (const H5::Exception& e) {
+    throw RunError("cannot look up '" + object + "' in '" + tmp_path + "': " + e.getDetailMsg());
+  }
+}
+
 }  // namespace
 
 struct H5Writer::Impl {
@@ -97,38 +105,57 @@ H5Writer::~H5Writer() {
   }
 }
 
-void H5Writer::write(const std::string& path, const std::vector<double>& data, std::vector<std::size_t> dims) {
+namespace {
+// Every HDF5 failure while writing (a full disk, a file-size limit) is a failed run naming the file
+// and the object: no H5::Exception leaves io/.
+template <class F>
+void writing(const std::string& tmp_path, const std::string& object, F&& f) {
+  try {
+    f();
+  } catch (const H5::Exception& e) {
+    throw RunError("cannot write '" + object + "' to '" + tmp_path + "': " + e.getDetailMsg());
+  }
+}
+
+template <class T>
+void write_numeric(H5::H5File& file, const std::string& path, const std::vector<T>& data, std::vector<std::size_t> dims,
+                   const H5::PredType& type) {
   auto shape = shape_of(std::move(dims), data.size());
-  ensure_groups(*impl_->file, path, true);
+  ensure_groups(file, path, true);
   H5::DataSpace space(static_cast<int>(shape.size()), shape.data());
-  H5::DataSet ds = impl_->file->createDataSet(path, H5::PredType::NATIVE_DOUBLE, space);
-  if (!data.empty()) ds.write(data.data(), H5::PredType::NATIVE_DOUBLE);
+  H5::DataSet ds = file.createDataSet(path, type, space);
+  if (!data.empty()) ds.write(data.data(), type);
+}
+}  // namespace
+
+void H5Writer::write(const std::string& path, const std::vector<double>& data, std::vector<std::size_t> dims) {
+  writing(impl_->tmp_path, path, [&] { write_numeric(*impl_->file, path, data, std::move(dims), H5::PredType::NATIVE_DOUBLE); });
 }
 
 void H5Writer::write(const std::string& path, const std::vector<std::int64_t>& data, std::vector<std::size_t> dims) {
-  auto shape = shape_of(std::move(dims), data.size());
-  ensure_groups(*impl_->file, path, true);
-  H5::DataSpace space(static_cast<int>(shape.size()), shape.data());
-  H5::DataSet ds = impl_->file->createDataSet(path, H5::PredType::NATIVE_INT64, space);
-  if (!data.empty()) ds.write(data.data(), H5::PredType::NATIVE_INT64);
+  writing(impl_->tmp_path, path, [&] { write_numeric(*impl_->file, path, data, std::move(dims), H5::PredType::NATIVE_INT64); });
 }
 
 void H5Writer::write(const std::string& path, const std::vector<std::string>& data) {
-  ensure_groups(*impl_->file, path, true);
-  hsize_t n = data.size();
-  H5::DataSpace space(1, &n);
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-  type.setCset(H5T_CSET_UTF8);
-  H5::DataSet ds = impl_->file->createDataSet(path, type, space);
-  std::vector<const char*> ptrs;
-  for (const auto& s : data) ptrs.push_back(s.c_str());
-  if (!data.empty()) ds.write(ptrs.data(), type);
+  writing(impl_->tmp_path, path, [&] {
+    ensure_groups(*impl_->file, path, true);
+    hsize_t n = data.size();
+    H5::DataSpace space(1, &n);
+    H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
+    type.setCset(H5T_CSET_UTF8);
+    H5::DataSet ds = impl_->file->createDataSet(path, type, space);
+    std::vector<const char*> ptrs;
+    for (const auto& s : data) ptrs.push_back(s.c_str());
+    if (!data.empty()) ds.write(ptrs.data(), type);
+  });
 }
 
-void H5Writer::group(const std::string& path) { ensure_groups(*impl_->file, path, false); }
+void H5Writer::group(const std::string& path) {
+  writing(impl_->tmp_path, path, [&] { ensure_groups(*impl_->file, path, false); });
+}
 
 void H5Writer::attr(const std::string& object, const std::string& name, const std::string& value) {
-  if (object != "/" && !impl_->file->nameExists(object)) group(object);
+  if (object != "/" && !exists(*impl_->file, impl_->tmp_path, object)) group(object);
   H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
   type.setCset(H5T_CSET_UTF8);
   const char* p = value.c_str();
@@ -136,12 +163,12 @@ void H5Writer::attr(const std::string& object, const std::string& name, const st
 }
 
 void H5Writer::attr(const std::string& object, const std::string& name, double value) {
-  if (object != "/" && !impl_->file->nameExists(object)) group(object);
+  if (object != "/" && !exists(*impl_->file, impl_->tmp_path, object)) group(object);
   write_attr(impl_->file->getId(), object, name, H5T_NATIVE_DOUBLE, &value);
 }
 
 void H5Writer::attr(const std::string& object, const std::string& name, std::int64_t value) {
-  if (object != "/" && !impl_->file->nameExists(object)) group(object);
+  if (object != "/" && !exists(*impl_->file, impl_->tmp_path, object)) group(object);
   write_attr(impl_->file->getId(), object, name, H5T_NATIVE_INT64, &value);
 }
 
@@ -177,11 +204,16 @@ H5Reader::H5Reader(const std::string& path) : impl_(std::make_unique<Impl>()), p
 H5Reader::~H5Reader() = default;
 
 bool H5Reader::has(const std::string& path) const {
-  // nameExists fails on a missing intermediate group; check each prefix.
+  // nameExists fails on a missing intermediate group; check each prefix. On a damaged file the
+  // library throws instead of answering: that is bad input, named, never an H5::Exception let out.
   std::string cur;
-  for (const auto& p : split_path(path)) {
-    cur += "/" + p;
-    if (!impl_->file->nameExists(cur)) return false;
+  try {
+    for (const auto& p : split_path(path)) {
+      cur += "/" + p;
+      if (!impl_->file->nameExists(cur)) return false;
+    }
+  } catch (const H5::Exception& e) {
+    throw InputError(path_ + ": damaged file: cannot look up '" + cur + "' (" + e.getDetailMsg() + ")");
   }
   return true;
 }
@@ -295,6 +327,16 @@ double H5Reader::attr_double(const std::string& object, const std::string& name)
   H5Aclose(a);
   if (err < 0) throw InputError(path_ + ": cannot read attribute '" + name + "' of '" + object + "' as a number");
   return v;
+}
+
+std::string hdf5_exception_message() {
+  try {
+    throw;
+  } catch (const H5::Exception& e) {
+    return e.getFuncName() + ": " + e.getDetailMsg();
+  } catch (...) {
+    return {};
+  }
 }
 
 std::string utc_now_iso8601() {

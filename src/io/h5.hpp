@@ -60,4 +60,8 @@ class H5Reader {
 void write_provenance(H5Writer& w, const std::string& code = "granwave");
 std::string utc_now_iso8601();
 
+// Inside a catch (...) block: the HDF5 library's message if the exception in flight is one of its
+// own (H5::Exception is no std::exception), else "". Lets main() name a stray one without H5Cpp.h.
+std::string hdf5_exception_message();
+
 }  // namespace granwave::io
