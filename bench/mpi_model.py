@@ -7,7 +7,7 @@ granwave's slab decomposition along z against LAMMPS' 3-D domain decomposition o
 
 The interconnect is stated, not measured: --latency (alpha, s per message, MPI small-message
 latency of an InfiniBand-class network) and --bandwidth (B, bytes/s per link and direction).
-Everything else comes from measurements on this machine (README "MPI", bench_crystal,
+Everything else comes from measurements on this machine (docs/benchmarks.md, bench_crystal,
 bench/side_by_side.py, bench/mpi_crystal.py) and from the code (message sizes):
 
 granwave, slab of nl/R layers per rank, h = 1 halo layer (docs/design.md §2.8), per step:
@@ -35,7 +35,7 @@ import math
 D = 1.0  # lengths in diameters
 RHO = math.sqrt(2.0)  # FCC particles per d^3 (d' = d (1 - 1e-3) taken as d)
 
-# Measured on this machine, one thread (README "Benchmarks" and "MPI"; bench_crystal passes alone):
+# Measured on this machine, one thread (docs/benchmarks.md; bench_crystal passes alone):
 # ns per particle-step by particles per rank (small: cache-resident, large: 320 000 particles),
 # ns per contact evaluation.
 GRANWAVE = {False: dict(t_small=37.0, t_large=56.6, t_c=3.4), True: dict(t_small=97.0, t_large=149.0, t_c=11.5)}
@@ -43,7 +43,7 @@ GRANWAVE = {False: dict(t_small=37.0, t_large=56.6, t_c=3.4), True: dict(t_small
 # (97 + 26 + 31 + 12 + 13) us / 3200 (bench_crystal "sample:", with friction).
 T_SAMPLE = 56.0
 # LAMMPS 29 Sep 2021, gran/hooke (frictionless) and gran/hooke/history (kt = k), one process:
-# CPU time per particle-step of the whole run (bench/side_by_side.py, README "Benchmarks").
+# CPU time per particle-step of the whole run (bench/side_by_side.py, docs/benchmarks.md).
 LAMMPS = {False: 252.0, True: 392.0}
 # cells = [nx, ny, layers] as in a case file: nx ny particles per layer, layers l0 = d/sqrt(2) apart.
 SHAPES = [("column 50 x 50 x 4000", 50 * 50, 4000), ("block 224 x 224 x 200", 224 * 224, 200)]
