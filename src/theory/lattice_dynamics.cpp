@@ -27,13 +27,14 @@ void check_cell(const LatticeCell& cell) {
   if (cell.bonds.empty()) throw InputError("lattice dynamics: the particle has no contacts");
   for (const auto& b : cell.bonds)
     if (!(b.branch.norm() > 0.0) || !std::isfinite(b.kn) || !std::isfinite(b.kt) || !std::isfinite(b.f0) ||
-        !std::isfinite(b.arm))
+        !std::isfinite(b.arm) || !std::isfinite(b.k_roll) || !std::isfinite(b.k_twist))
       throw InputError("lattice dynamics: a contact has a zero branch vector or a non-finite constant");
 }
 
-// The four 3x3 blocks of one bond, each to be multiplied by its Bloch factor.
+// The 3x3 blocks of one bond, each to be multiplied by its Bloch factor.
 struct BondBlocks {
   Eigen::Matrix3d K, N, P;  // K = kn n n + (kt - f0/l) P, N = [n]_x, P = I - n n
+  Eigen::Matrix3d Q;        // k_roll P + k_twist n n: the angular springs on the relative turn
   double kt_arm = 0.0, kt_arm2 = 0.0;
 };
 BondBlocks blocks(const LatticeBond& b) {
@@ -43,6 +44,7 @@ BondBlocks blocks(const LatticeBond& b) {
   r.P = Eigen::Matrix3d::Identity() - n * n.transpose();
   r.K = b.kn * n * n.transpose() + (b.kt - b.f0 / l) * r.P;
   r.N = cross_matrix(n);
+  r.Q = b.k_roll * r.P + b.k_twist * n * n.transpose();
   r.kt_arm = b.kt * b.arm;
   r.kt_arm2 = b.kt * b.arm * b.arm;
   return r;
@@ -114,7 +116,7 @@ Matrix6cd force_constants(const LatticeCell& cell, const Vec3& k) {
     Phi.block<3, 3>(0, 0) += B.K.cast<cd>() * (1.0 - ph);
     Phi.block<3, 3>(0, 3) += B.N.cast<cd>() * (B.kt_arm * (1.0 + ph));
     Phi.block<3, 3>(3, 0) += B.N.cast<cd>() * (-B.kt_arm * (1.0 - ph));
-    Phi.block<3, 3>(3, 3) += B.P.cast<cd>() * (B.kt_arm2 * (1.0 + ph));
+    Phi.block<3, 3>(3, 3) += B.P.cast<cd>() * (B.kt_arm2 * (1.0 + ph)) + B.Q.cast<cd>() * (1.0 - ph);
   }
   return Phi;
 }
@@ -130,7 +132,7 @@ Matrix6cd dynamical_matrix_derivative(const LatticeCell& cell, const Vec3& k, co
     dPhi.block<3, 3>(0, 0) += B.K.cast<cd>() * (-dph);
     dPhi.block<3, 3>(0, 3) += B.N.cast<cd>() * (B.kt_arm * dph);
     dPhi.block<3, 3>(3, 0) += B.N.cast<cd>() * (B.kt_arm * dph);
-    dPhi.block<3, 3>(3, 3) += B.P.cast<cd>() * (B.kt_arm2 * dph);
+    dPhi.block<3, 3>(3, 3) += B.P.cast<cd>() * (B.kt_arm2 * dph) - B.Q.cast<cd>() * dph;
   }
   return mass_weighted(cell, dPhi);
 }
@@ -298,6 +300,7 @@ LatticeDispersion lattice_dispersion(const LatticeCell& cell, const Vec3& h_in, 
       flat_zero = flat_zero && std::abs(m.omega2) <= zero;
     }
     d.zero[b] = flat_zero && !d.acoustic[b];
+    d.rotational_acoustic[b] = !flat_zero && !d.acoustic[b] && std::abs(br[mid].omega2) <= zero;
     if (flat_zero) {
       for (auto& m : br) m.group_velocity = 0.0;  // free rotations (no tangential spring)
     } else if (d.acoustic[b]) {
@@ -398,10 +401,10 @@ std::optional<LatticeCell> lattice_cell(const ContactNetwork& net, SlabSelection
     const double delta = net.particles[c.i].radius + net.particles[c.j].radius - l;
     if (inside(c.i))
       bonds[c.i].push_back({c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force,
-                            net.particles[c.i].radius - opt.arm_shift * delta});
+                            net.particles[c.i].radius - opt.arm_shift * delta, opt.k_roll, opt.k_twist});
     if (inside(c.j))
       bonds[c.j].push_back({-c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force,
-                            net.particles[c.j].radius - opt.arm_shift * delta});
+                            net.particles[c.j].radius - opt.arm_shift * delta, opt.k_roll, opt.k_twist});
   }
   // Reference: the first particle of the middle layer.
   const int mid_layer = (lo + hi) / 2;

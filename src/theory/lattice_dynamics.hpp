@@ -12,18 +12,23 @@
 //   tangential:  xi  = P du + arm n x (theta_i + theta_j)     (eq. (4) integrated by eq. (6))
 //                f_t = -kt xi on i, -f_t on j                  (eq. (5))
 //   torque:      t_i = t_j = -arm n x f_t                      (contact/tangential_spring.hpp)
+//   rolling and torsion resistance (Luding's full model), linearised as angular springs on the
+//   relative turn: t_i = -t_j = -(kr P + ko n n^T)(theta_i - theta_j), kr, ko in N m/rad (a law
+//   whose springs act on a displacement r (omega_i - omega_j) x n has kr = k_roll r^2)
 // Bloch waves u_j = u e^{i k.b_c}, theta_j = theta e^{i k.b_c} give M omega^2 x = Phi(k) x with
 // x = (u_x, u_y, u_z, theta_x, theta_y, theta_z), M = diag(m, m, m, I, I, I) and
 //   Phi_uu = sum_c K_c (1 - e^{i k.b_c}),                 K_c = kn n n^T + (kt - f0/|b|) P
 //   Phi_ut = sum_c kt arm [n]_x (1 + e^{i k.b_c})
 //   Phi_tu = -sum_c kt arm [n]_x (1 - e^{i k.b_c})
-//   Phi_tt = sum_c kt arm^2 P (1 + e^{i k.b_c})
+//   Phi_tt = sum_c kt arm^2 P (1 + e^{i k.b_c}) + (kr P + ko n n^T) (1 - e^{i k.b_c})
 // Hermitian when the bond set is centrosymmetric (every b with -b and the same constants), as in
 // any Bravais lattice; D = M^{-1/2} Phi M^{-1/2} is the dynamical matrix, omega^2 its eigenvalues.
 //
 // Long waves (k = s h, s -> 0): with S = (1/2) sum_c K_c (b_c.h)^2, G = sum_c kt arm (b_c.h) [n_c]_x
 // and R = Phi_tt(0) = 2 sum_c kt arm^2 P_c, the rotations follow the strain (theta = -i s R^+ G u)
 // and m omega^2 = s^2 eig(S + G R^+ G); G R^+ G = -G^T R^+ G <= 0: rotations can only soften.
+// Rolling and torsion springs vanish from Phi_tt at k = 0 (a uniform turn is no relative turn), so
+// they leave R and the long-wave speeds alone and act on the short waves (O(s^4) in omega^2).
 // S/m alone is eq. (10)'s Christoffel tensor over rho (no rotations, prestress aside).
 //
 // Pure: no packing or trace types here; lattice_cell() reads the contact network of
@@ -48,6 +53,8 @@ struct LatticeBond {
   double kt = 0.0;             // N/m
   double f0 = 0.0;             // static normal force, > 0 repulsive (N)
   double arm = 0.0;            // lever arm of f_t for both particles (m)
+  double k_roll = 0.0;         // rolling resistance on the relative turn across n (N m/rad)
+  double k_twist = 0.0;        // torsion resistance on the relative turn about n (N m/rad)
 };
 
 struct LatticeCell {
@@ -114,8 +121,13 @@ struct LatticeDispersion {
   std::array<int, 6> dominant{};  // dominant degree of freedom of each branch at the smallest k > 0
   std::array<bool, 6> acoustic{}; // omega(k = 0) = 0 with translation content > 1/2 there
   std::array<bool, 6> zero{};     // omega = 0 at every k: a free rotation (no tangential spring)
-  // "acoustic", "optical" or "free rotation"
-  const char* kind(int b) const { return acoustic[b] ? "acoustic" : zero[b] ? "free rotation" : "optical"; }
+  // omega(k = 0) = 0 with rotation content > 1/2, not zero everywhere: rotations held by rolling or
+  // torsion springs alone (no tangential spring), which resist a relative turn only
+  std::array<bool, 6> rotational_acoustic{};
+  // "acoustic", "rotational acoustic", "optical" or "free rotation"
+  const char* kind(int b) const {
+    return acoustic[b] ? "acoustic" : rotational_acoustic[b] ? "rotational acoustic" : zero[b] ? "free rotation" : "optical";
+  }
   double max_hermitian_defect = 0.0;
   double min_omega2 = 0.0;        // over all k and branches (< 0: unstable)
 };
@@ -149,6 +161,8 @@ struct LatticeCellOptions {
   // Lever arm arm = a - arm_shift * delta: 0 = the radius (seed 002 eq. (4)), 1/2 = the contact
   // point in the middle of the overlap (YADE, LIGGGHTS).
   double arm_shift = 0.0;
+  // Rolling and torsion resistance of every contact as angular springs (N m/rad; LatticeBond).
+  double k_roll = 0.0, k_twist = 0.0;
   // Bonds, masses, radii and forces of every particle of the slab must match the reference
   // particle's to this relative tolerance (a Bravais lattice); otherwise there is no cell.
   double tolerance = 1e-9;

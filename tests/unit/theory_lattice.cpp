@@ -15,6 +15,11 @@
 // rotations (theta_y = -i B/C u_x) take back 2 kt of eq. (10)'s 3 kt, so V_s = V_s(0) sqrt(1 + kt/k)
 // (prestress aside), not eq. (10)'s sqrt(1 + 3 kt/k) and not the frictionless V_s(0).
 // Rotations at k = 0: omega^2 = 16 kt arm^2 / I (three-fold) = 40 kt/m for arm = a.
+// Rolling and torsion springs kr, ko (N m/rad) on the relative turn add to the rotational diagonal
+// only through the 8 bonds out of the layer (n_z^2 = 1/2, n_x^2 = n_y^2 = 1/4), times (1 - cos q):
+//   torsion: I omega^2 = kt arm^2 (12 + 4 cos q) + 4 (kr + ko) (1 - cos q)
+//   S:       C = kt arm^2 (10 + 6 cos q) + (6 kr + 2 ko) (1 - cos q)
+// so at k = 0 nothing changes (long-wave speeds, rotational frequencies); the zone edge moves most.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -38,12 +43,16 @@ struct Params {
   double kt = 0.0;
   double f0 = 0.0;
   double arm_shift = 0.0;
+  double kr = 0.0;  // rolling resistance, N m/rad
+  double ko = 0.0;  // torsion resistance, N m/rad
 };
 
 LatticeCell fcc_cell(const Params& p) {
   const auto net = fcc_network(4, 4, 8, dp, m, k, p.kt, p.f0);
   LatticeCellOptions opt;
   opt.arm_shift = p.arm_shift;
+  opt.k_roll = p.kr;
+  opt.k_twist = p.ko;
   std::string why;
   const auto cell = lattice_cell(net, {}, opt, &why);
   INFO(why);
@@ -63,8 +72,9 @@ Closed closed_forms(const Params& p, double q) {
   const double arm = arm_of(p), I = inertia_of(p), kt = p.kt, g = p.f0 / dp, c = std::cos(q), s = std::sin(q);
   Closed r;
   r.P = 4 * (k + kt - g) * (1 - c) / m;
-  r.torsion = kt * arm * arm * (12 + 4 * c) / I;
-  const double A = (2 * k + 6 * (kt - g)) * (1 - c) / m, C = kt * arm * arm * (10 + 6 * c) / I;
+  r.torsion = (kt * arm * arm * (12 + 4 * c) + 4 * (p.kr + p.ko) * (1 - c)) / I;
+  const double A = (2 * k + 6 * (kt - g)) * (1 - c) / m;
+  const double C = (kt * arm * arm * (10 + 6 * c) + (6 * p.kr + 2 * p.ko) * (1 - c)) / I;
   const double B2 = 32 * kt * kt * arm * arm * s * s / (m * I);
   const double mean = 0.5 * (A + C), half = std::sqrt(0.25 * (A - C) * (A - C) + B2);
   r.S_low = mean - half;
@@ -338,4 +348,117 @@ TEST_CASE("compare_ridge: finds a synthetic ridge on the branch, ignores lines o
   CHECK(rp.columns > 20);
   CHECK(rp.within_one_bin == 0);
   CHECK_THROWS(compare_ridge(std::vector<double>(3), k_axis, w_axis, d, opt, -1));
+}
+
+// ---- rolling and torsion resistance (Luding's full contact model), as angular springs ----
+namespace {
+// kt a^2 = 0.1 N m for kt = k: the angular scale of the tangential spring.
+const double kta2 = k * a * a;
+const std::vector<Params> kRollingCases = {
+    {1.0 * k, 0.0, 0.0, 0.05 * kta2, 0.0},         {1.0 * k, 0.0, 0.0, 0.0, 0.5 * kta2},
+    {1.0 * k, k * delta, 0.5, 2.0 * kta2, 1.0 * kta2}, {0.2 * k, k * delta, 0.0, 0.5 * kta2, 0.2 * kta2},
+    {0.0, 0.0, 0.0, 1.0 * kta2, 0.3 * kta2}};
+}  // namespace
+
+TEST_CASE("rolling and torsion: all six branches along z equal the closed forms", "[theory][lattice]") {
+  for (const auto& p : kRollingCases) {
+    const LatticeCell cell = fcc_cell(p);
+    for (int i = 0; i <= 40; ++i) {
+      const double q = std::numbers::pi * i / 40.0;
+      const auto modes = lattice_modes(cell, ez, q / l0);
+      const Closed c = closed_forms(p, q);
+      std::vector<double> expect = {c.P, c.torsion, c.S_low, c.S_low, c.S_high, c.S_high};
+      std::sort(expect.begin(), expect.end());
+      const double scale = std::max({c.P, c.torsion, c.S_high});
+      INFO("kt/k = " << p.kt / k << ", kr = " << p.kr << ", ko = " << p.ko << ", q = " << q);
+      for (int b = 0; b < 6; ++b) CHECK_THAT(modes[b].omega2, WithinAbs(expect[b], 1e-12 * scale));
+      const Matrix6cd D = dynamical_matrix(cell, (q / l0) * ez);
+      CHECK(hermitian_defect(D) < 1e-14);
+      CHECK(hermitian_defect(dynamical_matrix(cell, Vec3(0.3, -0.7, 0.5) * (q / l0)) ) < 1e-14);
+    }
+  }
+}
+
+TEST_CASE("rolling and torsion: long waves unchanged, the zone edge moved by the closed form", "[theory][lattice]") {
+  for (const auto& p : kRollingCases) {
+    if (p.kt == 0.0) continue;
+    Params bare = p;
+    bare.kr = bare.ko = 0.0;
+    const LatticeCell cell = fcc_cell(p), cell0 = fcc_cell(bare);
+    const auto lw0 = lattice_long_wave(cell0, ez);
+    // The S branch at small k: the springs stiffen its rotations by O(q^2), which changes omega^2
+    // by O(q^4): the relative change grows as q^2 (x4 for twice the q) and vanishes at k = 0, so
+    // the long-wave speeds are those without them. The P branch has no rotation and no change.
+    auto relative_change = [&](double q, int dof) {
+      const auto with = lattice_modes(cell, ez, q / l0), without = lattice_modes(cell0, ez, q / l0);
+      for (int b = 0; b < 6; ++b)
+        if (with[b].dominant() == dof) {
+          for (int c = 0; c < 6; ++c)
+            if (without[c].dominant() == dof) return (with[b].omega2 - without[c].omega2) / without[c].omega2;
+        }
+      FAIL("no mode dominated by " << kLatticeDof[dof]);
+      return 0.0;
+    };
+    const double r1 = relative_change(0.01, 0), r2 = relative_change(0.02, 0);
+    INFO("relative change of the S branch's omega^2: " << r1 << " at q = 0.01, " << r2 << " at q = 0.02");
+    CHECK(r1 > 0.0);
+    CHECK(r1 < 1e-4);
+    CHECK_THAT(r2 / r1, WithinRel(4.0, 1e-2));
+    CHECK(std::abs(relative_change(0.01, 2)) < 1e-12);  // eigensolver round-off only
+    // k = 0: the rotational frequencies are the tangential spring's alone.
+    const auto m0 = lattice_modes(cell, ez, 0.0), b0 = lattice_modes(cell0, ez, 0.0);
+    for (int b = 0; b < 6; ++b) CHECK_THAT(m0[b].omega2, WithinAbs(b0[b].omega2, 1e-12 * b0[5].omega2));
+    // Zone edge (q = pi): the torsion branch rises by 8 (kr + ko)/I, the S optical diagonal by
+    // (12 kr + 4 ko)/I.
+    const double I = inertia_of(p), arm = arm_of(p);
+    const auto edge = lattice_modes(cell, ez, std::numbers::pi / l0);
+    const double torsion = (8 * p.kt * arm * arm + 8 * (p.kr + p.ko)) / I;
+    bool found = false;
+    for (const auto& md : edge) found = found || (md.content[5] > 0.99 && std::abs(md.omega2 - torsion) < 1e-12 * torsion);
+    CHECK(found);
+  }
+}
+
+TEST_CASE("rolling and torsion: group velocities (Hellmann-Feynman) equal the slope of the closed forms", "[theory][lattice]") {
+  const Params p{1.0 * k, k * delta, 0.5, 2.0 * kta2, 1.0 * kta2};
+  const LatticeCell cell = fcc_cell(p);
+  for (double q : {0.3, 1.0, 2.0, 2.9}) {
+    const double h = 1e-6;
+    const Closed c = closed_forms(p, q), cp = closed_forms(p, q + h), cm = closed_forms(p, q - h);
+    auto slope = [&](double Closed::*f) { return (std::sqrt(cp.*f) - std::sqrt(cm.*f)) / (2 * h) * l0; };
+    for (const auto& md : lattice_modes(cell, ez, q / l0)) {
+      double expect = 0.0;
+      if (std::abs(md.omega2 - c.P) < 1e-9 * c.P) expect = slope(&Closed::P);
+      else if (std::abs(md.omega2 - c.torsion) < 1e-9 * c.torsion) expect = slope(&Closed::torsion);
+      else if (std::abs(md.omega2 - c.S_low) < 1e-9 * c.S_low) expect = slope(&Closed::S_low);
+      else if (std::abs(md.omega2 - c.S_high) < 1e-9 * c.S_high) expect = slope(&Closed::S_high);
+      else FAIL("mode omega^2 = " << md.omega2 << " matches no closed form");
+      CHECK_THAT(md.group_velocity, WithinAbs(expect, 1e-5 * 300.0));
+    }
+  }
+}
+
+TEST_CASE("rolling and torsion without a tangential spring: rotational acoustic branches", "[theory][lattice]") {
+  // kt = 0: the turns are held by the rolling and torsion springs alone, which resist a relative turn:
+  // I omega^2 = (6 kr + 2 ko)(1 - cos q) for theta_x, theta_y and 4 (kr + ko)(1 - cos q) for theta_z,
+  // so omega -> 0 at k = 0 with a finite slope.
+  const Params p{0.0, 0.0, 0.0, 1.0 * kta2, 0.3 * kta2};
+  const auto d = lattice_dispersion(fcc_cell(p), ez, l0, 41);
+  const double I = inertia_of(p);
+  int rotational = 0;
+  for (int b = 0; b < 6; ++b) {
+    CHECK_FALSE(d.zero[b]);
+    if (!d.rotational_acoustic[b]) continue;
+    ++rotational;
+    CHECK(std::string(d.kind(b)) == "rotational acoustic");
+    const double w = d.dominant[b] == 5 ? 4 * (p.kr + p.ko) : 6 * p.kr + 2 * p.ko;
+    for (std::size_t i = 0; i < d.k.size(); ++i)
+      CHECK_THAT(d.branches[b][i].omega2, WithinAbs(w * (1 - std::cos(d.k[i] * l0)) / I, 1e-12 * 8 * w / I));
+  }
+  CHECK(rotational == 3);
+  // Without them, the same lattice has three free rotations.
+  const auto d0 = lattice_dispersion(fcc_cell({}), ez, l0, 41);
+  int free_rotations = 0;
+  for (int b = 0; b < 6; ++b) free_rotations += d0.zero[b] ? 1 : 0;
+  CHECK(free_rotations == 3);
 }
