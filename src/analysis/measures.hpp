@@ -65,8 +65,9 @@ std::optional<PeriodReading> parse_period_reading(std::string_view s);  // nullo
 // k = (2/l0) arccos(V/V(k->0)) (the group speed of omega_0 sin(k l0/2) set equal to V):
 //   displacement_peak: the five-layer local speed of the first peak of the layer displacement (u_z
 //                      for P, u_x for S), i.e. of the instant the particle velocity's first pulse
-//                      ends (the default: it gives the seed's 8.3, 9.2, 10.1 l0 and its 208 m/s at
-//                      z/l0 = 20, docs/design.md §2.4);
+//                      ends (the default: 8.21, 9.27, 10.10 l0 at z/l0 = 10, 15, 20 against the
+//                      seed's 8.3, 9.2, 10.1, and 207.7 m/s at z/l0 = 20 against its 208,
+//                      docs/design.md §2.4);
 //   first_peak:        that of the measured signal's first peak (the stress; the local speed of
 //                      lambda = V T and of Fig. 4; granwave's reading before).
 // Both apply first_peak above and the same local-speed formula; only the signal differs.

@@ -66,8 +66,9 @@ for the trace it writes: the same code, the same numbers.
                    the local speed V_k of k = (2/l0) arccos(V_k/V(k->0)), seed 002 sec. 3.4's
                    second table lambda = 2 pi/k (the group speed of omega_0 sin(k l0/2) set equal
                    to the local speed): displacement_peak (default: the five-layer local speed of
-                   the first peak of the layer displacement, u_z for P, u_x for S; it gives the
-                   seed's 8.3, 9.2, 10.1 l0 at z/l0 = 10, 15, 20 and its 208 m/s at z/l0 = 20) or
+                   the first peak of the layer displacement, u_z for P, u_x for S; on the seed's
+                   crystal 8.2, 9.3, 10.1 l0 at z/l0 = 10, 15, 20 against its 8.3, 9.2, 10.1,
+                   and 207.7 m/s at z/l0 = 20 against its 208) or
                    first_peak (that of the measured signal's first peak, the local speed of
                    lambda = V T: 10.7, 12.5, 13.9 l0 there). Without the flag, the trace's case
                    decides ([analysis] wavenumber_speed), else displacement_peak. A trace without
