@@ -801,10 +801,10 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
            << " (V = " << fmt("%.1f", L.local_speed.value) << ") | " << (seeded ? fmt("%g", seed_lambda_k[q]) : "—") << " | "
            << (q == 0 ? "the seed's k = (2/l0) arccos(V/V(k->0)) sets the group speed V(k->0) cos(k l0/2) equal to the "
                         "local speed. V of the first peaks of the layer displacement (the end of the particle velocity's "
-                        "first pulse) gives the seed's rows near the source and its 208 m/s at z/l0 = 20; the stress's "
-                        "first peak (Fig. 4's V and that of lambda = V T) runs ~5 m/s faster there. Far from the source "
-                        "k(V) is ill-conditioned: dlambda/dV is ~1.5 l0 per m/s at z/l0 = 80 (seed: \"too large error "
-                        "margin to be useful\")"
+                        "first pulse) gives the seed's rows near the source within 0.1 l0 and its 208 m/s at z/l0 = 20; the "
+                        "stress's first peak (the V of fig4.png and of lambda = V T) runs ~5 m/s faster there. Far from the source "
+                        "k(V) is ill-conditioned: 1 m/s of V moves lambda by 1.8 l0 at z/l0 = 80 and 3.3 l0 at 150 (seed: "
+                        "\"too large error margin to be useful\")"
                       : "as at z/l0 = " + fmt("%g", lambda_z[0]))
            << " |\n";
       }
