@@ -147,6 +147,16 @@ std::optional<PeriodReading> parse_period_reading(std::string_view s) {
   return std::nullopt;
 }
 
+const char* to_string(WavenumberSpeed r) {
+  return r == WavenumberSpeed::first_peak ? "first_peak" : "displacement_peak";
+}
+
+std::optional<WavenumberSpeed> parse_wavenumber_speed(std::string_view s) {
+  if (s == "displacement_peak") return WavenumberSpeed::displacement_peak;
+  if (s == "first_peak") return WavenumberSpeed::first_peak;
+  return std::nullopt;
+}
+
 Peak leading_pulse_max(std::span<const double> t, std::span<const double> y, const Peak& peak) {
   if (!peak.found) return {};
   std::size_t end_index = y.size();

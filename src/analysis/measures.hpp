@@ -61,6 +61,20 @@ enum class PeriodReading { oscillation, pulse };
 const char* to_string(PeriodReading r);
 std::optional<PeriodReading> parse_period_reading(std::string_view s);  // nullopt if neither name
 
+// Which local speed V(z) seed 002 sec. 3.4 puts into its second wavelength table, lambda = 2 pi/k with
+// k = (2/l0) arccos(V/V(k->0)) (the group speed of omega_0 sin(k l0/2) set equal to V):
+//   displacement_peak: the five-layer local speed of the first peak of the layer displacement (u_z
+//                      for P, u_x for S), i.e. of the instant the particle velocity's first pulse
+//                      ends (the default: 8.21, 9.27, 10.10 l0 at z/l0 = 10, 15, 20 against the
+//                      seed's 8.3, 9.2, 10.1, and 207.7 m/s at z/l0 = 20 against its 208,
+//                      docs/design.md §2.4);
+//   first_peak:        that of the measured signal's first peak (the stress; the local speed of
+//                      lambda = V T and of Fig. 4; granwave's reading before).
+// Both apply first_peak above and the same local-speed formula; only the signal differs.
+enum class WavenumberSpeed { displacement_peak, first_peak };
+const char* to_string(WavenumberSpeed r);
+std::optional<WavenumberSpeed> parse_wavenumber_speed(std::string_view s);  // nullopt if neither name
+
 // Largest sample between the 1 % arrival and the end of the first oscillation (the leading
 // pulse, which may have several humps), parabola-refined like first_peak.
 Peak leading_pulse_max(std::span<const double> t, std::span<const double> y, const Peak& peak);

@@ -222,6 +222,7 @@ TraceFile read_trace(const std::string& path) {
         c.mode = cs.excitation.mode == config::Excitation::Mode::S ? 'S' : 'P';
         c.mode_source = "case_toml";
         if (!cs.analysis.period.empty()) c.period = parse_period_reading(cs.analysis.period);
+        if (!cs.analysis.wavenumber_speed.empty()) c.wavenumber_speed = parse_wavenumber_speed(cs.analysis.wavenumber_speed);
         known = true;
       } catch (const std::exception&) {
       }
@@ -297,6 +298,13 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   } else if (tr.period) {
     a.period_reading = *tr.period;
     a.period_source = "case_toml";
+  }
+  if (opt.wavenumber_speed) {
+    a.wavenumber_speed = *opt.wavenumber_speed;
+    a.wavenumber_speed_source = "option";
+  } else if (tr.wavenumber_speed) {
+    a.wavenumber_speed = *tr.wavenumber_speed;
+    a.wavenumber_speed_source = "case_toml";
   }
   const std::size_t nl = tr.nlayers;
   std::size_t nt = tr.nt;
@@ -410,6 +418,38 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
     for (std::size_t i = 0; i < a.layers.size(); ++i) a.layers[i].local_speed = v[i];
   }
 
+  // First peaks of the layer displacement, for k's local speed (measures.hpp WavenumberSpeed): the
+  // same measures on u - u(0), made positive by the sign of its largest excursion at the reference
+  // layer, with their own causal filter (they trail the stress peaks by half a pulse), and the same
+  // five-layer local speed.
+  std::vector<Measured> v_displacement(a.layers.size());
+  {
+    const std::vector<double>& uf = S ? tr.displacement_x : tr.displacement_z;
+    if (!uf.empty()) {
+      const auto y_ref = column(uf, ref);
+      std::size_t im = 0;
+      for (std::size_t i = 0; i < nt; ++i)
+        if (std::abs(y_ref[i]) > std::abs(y_ref[im])) im = i;
+      const double sign = y_ref[im] < 0.0 ? -1.0 : 1.0;
+      std::vector<Signal> us;
+      for (int p : above) {
+        auto y = column(uf, p);
+        for (auto& v : y) v *= sign;
+        us.push_back(measure_with_errors(t, y));
+      }
+      keep_causal_arrivals(us);
+      std::vector<double> tu(us.size(), kNaN);
+      for (std::size_t q = 0; q < us.size(); ++q) {
+        a.layers[q].displacement_peak_time = us[q].peak_time;
+        if (us[q].arrived) tu[q] = us[q].peak_time.value;
+      }
+      v_displacement = local_speeds(tu, tr.l0);
+    }
+    if (a.wavenumber_speed == WavenumberSpeed::first_peak) a.wavenumber_speed_field = a.measure_field;
+    else if (!uf.empty()) a.wavenumber_speed_field = S ? "layer_displacement_x" : "layer_displacement_z";
+    else a.wavenumber_speed_field = std::string("none (the trace has no ") + (S ? "layer_displacement_x)" : "layer_displacement_z)");
+  }
+
   // Dispersion (sec. 3.4) on the layer velocity by default, from the innermost driven layer
   // (z = 0) to the last free one. Not the stress (issue 5: it weights the poorly excited short
   // waves), and not the displacement of a held step: behind the front u stays at the step height
@@ -469,18 +509,21 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
     }
   }
 
-  // Wavelength estimates (sec. 3.4): lambda = V T and k(z) = (2/l0) arccos(V(z)/V(k->0)).
+  // Wavelength estimates (sec. 3.4): lambda = V T and k(z) = (2/l0) arccos(V_k(z)/V(k->0)).
   const double vk0 = a.dispersion.v_k0, vk0e = a.dispersion.v_k0_error;
-  for (auto& L : a.layers) {
+  for (std::size_t i = 0; i < a.layers.size(); ++i) {
+    auto& L = a.layers[i];
     const Measured& V = L.local_speed;
     const Measured& T = a.period_reading == PeriodReading::pulse ? L.duration : L.period;
     if (std::isfinite(V.value) && std::isfinite(T.value))
       L.lambda_vt = {V.value * T.value, std::hypot(V.error * T.value, V.value * T.error)};
-    const double k = wavenumber_from_speed(V.value, vk0, tr.l0);
+    L.k_speed = a.wavenumber_speed == WavenumberSpeed::first_peak ? V : v_displacement[i];
+    const Measured& Vk = L.k_speed;
+    const double k = wavenumber_from_speed(Vk.value, vk0, tr.l0);
     if (std::isfinite(k)) {
-      const double root = std::sqrt(vk0 * vk0 - V.value * V.value);
-      const double dk_dv = (2.0 / tr.l0) / root, dk_dvk0 = (2.0 / tr.l0) * V.value / (vk0 * root);
-      L.k_from_speed = {k, std::hypot(dk_dv * V.error, dk_dvk0 * vk0e)};
+      const double root = std::sqrt(vk0 * vk0 - Vk.value * Vk.value);
+      const double dk_dv = (2.0 / tr.l0) / root, dk_dvk0 = (2.0 / tr.l0) * Vk.value / (vk0 * root);
+      L.k_from_speed = {k, std::hypot(dk_dv * Vk.error, dk_dvk0 * vk0e)};
     }
   }
   return a;
@@ -621,14 +664,18 @@ std::string to_text(const TraceFile& f, const CrystalAnalysis& a, bool table) {
             a.period_reading == PeriodReading::pulse ? "the leading pulse, 1 % arrival to the next 1 % crossing"
                                                      : "the full first oscillation, 1 % arrival to the third 1 % crossing",
             to_string(a.period_reading), a.period_source == "case_toml" ? "from the case" : a.period_source.c_str());
+  o += sfmt("wavenumber k = (2/l0) arccos(V_k/V(k->0)): V_k = the local speed of the first peaks of %s "
+            "(wavenumber_speed = \"%s\", %s)\n",
+            a.wavenumber_speed_field.c_str(), to_string(a.wavenumber_speed),
+            a.wavenumber_speed_source == "case_toml" ? "from the case" : a.wavenumber_speed_source.c_str());
   if (!table) return o;
-  o += sfmt("%6s %12s %12s %12s %12s %12s %10s %9s %9s %9s\n", "z/l0", "t_peak(s)", "peak", "t_half(s)", "T_pulse(s)",
-            "T_osc(s)", "V(m/s)", "VT/l0", "Losc/l0", "2pi/kl0");
+  o += sfmt("%6s %12s %12s %12s %12s %12s %10s %9s %9s %10s %9s\n", "z/l0", "t_peak(s)", "peak", "t_half(s)",
+            "T_pulse(s)", "T_osc(s)", "V(m/s)", "VT/l0", "Losc/l0", "V_k(m/s)", "2pi/kl0");
   for (const auto& L : a.layers) {
     const double lk = std::isfinite(L.k_from_speed.value) ? 2 * M_PI / L.k_from_speed.value / a.l0 : NAN;
-    o += sfmt("%6.0f %12.6g %12.6g %12.6g %12.6g %12.6g %10.4g %9.3g %9.3g %9.3g\n", L.z_over_l0, L.peak_time.value,
-              L.peak_value.value, L.half_peak_time.value, L.duration.value, L.period.value, L.local_speed.value,
-              L.lambda_vt.value / a.l0, L.oscillation_length.value / a.l0, lk);
+    o += sfmt("%6.0f %12.6g %12.6g %12.6g %12.6g %12.6g %10.4g %9.3g %9.3g %10.4g %9.3g\n", L.z_over_l0,
+              L.peak_time.value, L.peak_value.value, L.half_peak_time.value, L.duration.value, L.period.value,
+              L.local_speed.value, L.lambda_vt.value / a.l0, L.oscillation_length.value / a.l0, L.k_speed.value, lk);
   }
   return o;
 }
@@ -715,6 +762,9 @@ std::string to_json(const TraceFile& f, const CrystalAnalysis& a) {
   o << "  \"measure_field\": " << str(a.measure_field) << ",\n  \"polarity\": " << num(a.polarity) << ",\n";
   o << "  \"period_reading\": " << str(to_string(a.period_reading)) << ",\n  \"period_reading_source\": "
     << str(a.period_source) << ",\n";
+  o << "  \"wavenumber_speed_reading\": " << str(to_string(a.wavenumber_speed))
+    << ",\n  \"wavenumber_speed_reading_source\": " << str(a.wavenumber_speed_source)
+    << ",\n  \"wavenumber_speed_field\": " << str(a.wavenumber_speed_field) << ",\n";
   o << "  \"l0\": " << qty(a.l0, "m") << ",\n  \"output_interval\": " << qty(a.dt, "s") << ",\n";
   o << "  \"last_free_layer_z_over_l0\": " << a.last_free << ",\n";
   o << "  \"fit_range\": {\"z_over_l0\": [" << a.v_first_peak.lo << ", " << a.v_first_peak.hi << "], \"requested\": ["
@@ -750,7 +800,7 @@ std::string to_json(const TraceFile& f, const CrystalAnalysis& a) {
         << ", \"oscillation_length_over_l0\": "
         << qty(Measured{L.oscillation_length.value / a.l0, L.oscillation_length.error / a.l0}, "1")
         << ", \"lambda_vt_over_l0\": " << qty(Measured{L.lambda_vt.value / a.l0, L.lambda_vt.error / a.l0}, "1")
-        << ", \"lambda_k_over_l0\": " << qty(lk, "1") << "}";
+        << ", \"k_speed\": " << qty(L.k_speed, "m/s") << ", \"lambda_k_over_l0\": " << qty(lk, "1") << "}";
       first = false;
     }
   }
@@ -774,6 +824,8 @@ std::string to_json(const TraceFile& f, const CrystalAnalysis& a) {
   o << "    \"leading_max\": " << column_json(Ls, [](const LayerMeasures& L) { return L.leading_max; }, su, true) << ",\n";
   o << "    \"local_speed\": " << column_json(Ls, [](const LayerMeasures& L) { return L.local_speed; }, "m/s", true) << ",\n";
   o << "    \"lambda_vt\": " << column_json(Ls, [](const LayerMeasures& L) { return L.lambda_vt; }, "m", true) << ",\n";
+  o << "    \"displacement_peak_time\": " << column_json(Ls, [](const LayerMeasures& L) { return L.displacement_peak_time; }, "s", true) << ",\n";
+  o << "    \"k_speed\": " << column_json(Ls, [](const LayerMeasures& L) { return L.k_speed; }, "m/s", true) << ",\n";
   o << "    \"k_from_speed\": " << column_json(Ls, [](const LayerMeasures& L) { return L.k_from_speed; }, "1/m", true) << "\n";
   o << "  }\n}\n";
   return o.str();

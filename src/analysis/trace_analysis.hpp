@@ -11,6 +11,10 @@
 // identical to the weighted least-squares slope of t against z with layer weights (1, 2, 3, 2, 1).
 // V = 1/slowness. Its error is the scatter of the four delays times sqrt(sum w^2) = sqrt(10)/6.
 // Delays are averaged, not speeds, because the peak times carry the noise.
+//
+// Wavenumber from the local speed (seed 002 sec. 3.4's second wavelength table): k = (2/l0)
+// arccos(V/V(k->0)), V the five-layer local speed of the first peak of the layer displacement by
+// default (measures.hpp WavenumberSpeed; `[analysis] wavenumber_speed`, `analyze --wavenumber-speed`).
 #pragma once
 #include <cstddef>
 #include <limits>
@@ -45,6 +49,8 @@ struct CrystalTrace {
   std::vector<double> coordination;
   // The case's `[analysis] period` (data/SCHEMA.md §1), when its text is in the trace and sets it.
   std::optional<PeriodReading> period;
+  // The case's `[analysis] wavenumber_speed`, likewise.
+  std::optional<WavenumberSpeed> wavenumber_speed;
 };
 
 struct ChainTrace {
@@ -85,7 +91,11 @@ struct LayerMeasures {
   // peak (measures.hpp first_oscillation_length, level 1 % of this layer's first peak): the
   // wavelength read in space, against which lambda = V T is read in time.
   Measured oscillation_length;
-  Measured k_from_speed;     // (2/l0) arccos(V/V(k->0)) (1/m)
+  // s: first peak (measures.hpp) of the layer displacement minus its t = 0 value, sign-normalised
+  // like the measured signal, on the front as `arrived` (its own causal filter).
+  Measured displacement_peak_time;
+  Measured k_speed;          // m/s, the local speed V put into k: by CrystalAnalysis::wavenumber_speed
+  Measured k_from_speed;     // (2/l0) arccos(V/V(k->0)) (1/m), V = k_speed
 };
 
 struct SpeedFit {
@@ -104,6 +114,8 @@ struct CrystalAnalysisOptions {
   double t_max = -1.0;        // analyse t <= t_max only (< 0: the whole trace)
   // T of lambda = V T (measures.hpp); unset: the trace's case ([analysis] period), else oscillation.
   std::optional<PeriodReading> period;
+  // V of k(V) (measures.hpp); unset: the trace's case ([analysis] wavenumber_speed), else displacement_peak.
+  std::optional<WavenumberSpeed> wavenumber_speed;
   DispersionOptions dispersion;
 };
 
@@ -112,6 +124,11 @@ struct CrystalAnalysis {
   std::string mode_source, measure_field, dispersion_field;
   PeriodReading period_reading = PeriodReading::oscillation;
   std::string period_source = "default";  // "option" | "case_toml" | "default"
+  WavenumberSpeed wavenumber_speed = WavenumberSpeed::displacement_peak;
+  std::string wavenumber_speed_source = "default";  // "option" | "case_toml" | "default"
+  // The signal whose first peaks give k_speed ("layer_displacement_z", ...); says so when the trace
+  // lacks it (then k is NaN: no other signal stands in for it).
+  std::string wavenumber_speed_field;
   double polarity = 1.0;     // the measured signal is polarity * (sigma - sigma(0))
   double l0 = 0.0, dt = 0.0; // output interval (s)
   std::vector<LayerMeasures> layers;  // every layer above the source (z > 0) up to the last free one

@@ -1,4 +1,5 @@
-// granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--t-max T] [--period R]: the one ruler for
+// granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--t-max T] [--period R] [--wavenumber-speed V]:
+// the one ruler for
 // the trace files of granwave, YADE and LIGGGHTS (src/analysis/trace_analysis.hpp).
 #include <iostream>
 #include <string>
@@ -11,7 +12,7 @@ namespace granwave::cli {
 namespace {
 
 constexpr const char* kHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--t-max T]
-                        [--period oscillation|pulse]
+                        [--period oscillation|pulse] [--wavenumber-speed displacement_peak|first_peak]
 
 Measures a trace file of any code (granwave, yade, liggghts; data/SCHEMA.md §3) with the one set
 of measures of docs/design.md §2.4.
@@ -22,7 +23,7 @@ Crystal traces (seed 002):
   pulse (1 % arrival to the next 1 % crossing), period of the first oscillation (1 % arrival to the
   third 1 % crossing: the pulse and the trough after it), leading-pulse maximum, local speed,
   lambda = V T (T: --period), the first oscillation's length in the snapshot at the layer's first
-  peak (the wavelength in space), k(z) = (2/l0) arccos(V/V(k->0));
+  peak (the wavelength in space), k(z) = (2/l0) arccos(V_k/V(k->0)) (V_k: --wavenumber-speed);
   speeds: least-squares z against arrival time (first peak, half peak, 1 %) with standard errors
   over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20)), shortened, with a note, where
   the first peak has not arrived before the end of the trace. A layer has arrived when its first
@@ -61,20 +62,33 @@ for the trace it writes: the same code, the same numbers.
                    The full oscillation is the wavelength: V T equals the length of the first
                    oscillation in a snapshot of the crystal (docs/design.md §2.4) and reproduces the
                    seed's 8, 9, 10, 16, 19 l0 at z/l0 = 10, 15, 20, 80, 150
+  --wavenumber-speed V
+                   the local speed V_k of k = (2/l0) arccos(V_k/V(k->0)), seed 002 sec. 3.4's
+                   second table lambda = 2 pi/k (the group speed of omega_0 sin(k l0/2) set equal
+                   to the local speed): displacement_peak (default: the five-layer local speed of
+                   the first peak of the layer displacement, u_z for P, u_x for S; on the seed's
+                   crystal 8.2, 9.3, 10.1 l0 at z/l0 = 10, 15, 20 against its 8.3, 9.2, 10.1,
+                   and 207.7 m/s at z/l0 = 20 against its 208) or
+                   first_peak (that of the measured signal's first peak, the local speed of
+                   lambda = V T: 10.7, 12.5, 13.9 l0 there). Without the flag, the trace's case
+                   decides ([analysis] wavenumber_speed), else displacement_peak. A trace without
+                   the displacement has no k in the default reading
   --json           one JSON object (schema "granwave-analyze/1"): every number as
                    {"value", "error", "unit"} (error null where none applies). Top-level keys:
                    schema, file, code, code_version, case_name, time_convention, model,
                    crystal: mode, mode_source, measure_field, polarity, l0, output_interval,
-                     last_free_layer_z_over_l0, fit_range {z_over_l0, requested, shortened, note},
+                     wavenumber_speed_reading, wavenumber_speed_reading_source,
+                     wavenumber_speed_field, last_free_layer_z_over_l0, fit_range {z_over_l0, requested, shortened, note},
                      v_first_peak, v_half_peak, v_one_percent (m/s, + z_over_l0 range, n),
                      omega_0 (1/s), v_k0 (m/s), dispersion {field, nt, nz, domega, dk, n_fit,
                      fit_rms, k, omega_max}, local_speed {method, delay_samples},
                      wavelength_at [{z_over_l0, local_speed, duration, period,
-                     oscillation_length_over_l0, lambda_vt_over_l0, lambda_k_over_l0}] at
+                     oscillation_length_over_l0, lambda_vt_over_l0, k_speed, lambda_k_over_l0}] at
                      z/l0 = 10, 15, 20, 80, 150,
                      layers {layer, z_over_l0, arrived, peak_time, peak_value, half_peak_time,
                      one_percent_time, duration, period, oscillation_length (no errors),
-                     leading_max, local_speed, lambda_vt, k_from_speed: each {unit, values,
+                     leading_max, local_speed, lambda_vt, displacement_peak_time, k_speed,
+                     k_from_speed: each {unit, values,
                      errors}}
                    chain: fit_range {contacts, shortened, note}, v_first_peak, v_half_peak (m/s),
                      v_first_peak_contacts, v_half_peak_contacts (contacts/s),
@@ -101,7 +115,7 @@ int cmd_analyze(const Args& args) {
     std::cout << kHelp;
     return 0;
   }
-  const auto pos = positionals(args, {"--layers", "--field", "--t-max", "--period"});
+  const auto pos = positionals(args, {"--layers", "--field", "--t-max", "--period", "--wavenumber-speed"});
   if (pos.size() != 1) throw InputError("analyze: expected one trace file (granwave analyze --help)");
   const bool json = has_flag(args, "--json");
   int lo = -1, hi = -1;
@@ -111,6 +125,8 @@ int cmd_analyze(const Args& args) {
   if (file.model == "chain") {
     if (!option_value(args, "", "--period").empty())
       throw InputError(pos[0] + ": --period is for crystal traces (the wavelength of seed 002 sec. 3.4)");
+    if (!option_value(args, "", "--wavenumber-speed").empty())
+      throw InputError(pos[0] + ": --wavenumber-speed is for crystal traces (the wavelength of seed 002 sec. 3.4)");
     const auto a = analysis::analyze_chain(file.chain, {lo, hi});
     if (json) {
       std::cout << analysis::to_json(file, a);
@@ -134,6 +150,10 @@ int cmd_analyze(const Args& args) {
   if (const auto p = option_value(args, "", "--period"); !p.empty()) {
     opt.period = analysis::parse_period_reading(p);
     if (!opt.period) throw InputError("--period " + p + ": must be oscillation or pulse");
+  }
+  if (const auto v = option_value(args, "", "--wavenumber-speed"); !v.empty()) {
+    opt.wavenumber_speed = analysis::parse_wavenumber_speed(v);
+    if (!opt.wavenumber_speed) throw InputError("--wavenumber-speed " + v + ": must be displacement_peak or first_peak");
   }
   const auto a = analysis::analyze_crystal(file.crystal, opt);
   if (json) {

@@ -143,6 +143,10 @@ struct AnalysisKeys {
   // T of seed 002 sec. 3.4's lambda = V T: "oscillation" (the full first oscillation) or "pulse"
   // (the leading pulse); empty: the analysis' default (oscillation).
   std::string period;
+  // The local speed of seed 002 sec. 3.4's k = (2/l0) arccos(V/V(k->0)): "displacement_peak" (the
+  // layer displacement's first peak) or "first_peak" (the measured signal's); empty: the analysis'
+  // default (displacement_peak).
+  std::string wavenumber_speed;
 };
 
 struct Case {

@@ -407,10 +407,16 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
   }
   // [analysis]: how `granwave run` and `granwave analyze` measure this case's traces (any code's).
   if (const toml::table* an = r.table(root, "", "analysis", false)) {
-    r.allow_only(*an, "analysis", {"period"});
+    r.allow_only(*an, "analysis", {"period", "wavenumber_speed"});
     if (an->contains("period")) {
       if (c.model != Model::crystal) r.fail("analysis.period", "is for crystal cases", an->get("period"));
       c.analysis.period = r.choice(*an, "analysis", "period", {"oscillation", "pulse"});
+    }
+    if (an->contains("wavenumber_speed")) {
+      if (c.model != Model::crystal)
+        r.fail("analysis.wavenumber_speed", "is for crystal cases", an->get("wavenumber_speed"));
+      c.analysis.wavenumber_speed =
+          r.choice(*an, "analysis", "wavenumber_speed", {"displacement_peak", "first_peak"});
     }
   }
   return c;

@@ -592,13 +592,16 @@ void write_captured(io::H5Writer& w, const std::string& g, const Captured& c) {
   w.write(g + "/time", c.time);
   w.write(g + "/z_over_l0", c.zl);
   w.write(g + "/sigma_over_sigma0", c.sigma, {c.time.size(), c.zl.size()});
-  std::vector<double> z, vloc, vloc_e, lam_vt, lam_k, lam_pulse, len_osc;
+  std::vector<double> z, vloc, vloc_e, lam_vt, lam_k, lam_k_first, v_k, lam_pulse, len_osc;
   for (const auto& L : c.a.layers) {
     z.push_back(L.z_over_l0);
     vloc.push_back(L.local_speed.value);
     vloc_e.push_back(L.local_speed.error);
     lam_vt.push_back(L.lambda_vt.value / c.a.l0);
     lam_k.push_back(2.0 * std::numbers::pi / L.k_from_speed.value / c.a.l0);
+    v_k.push_back(L.k_speed.value);
+    lam_k_first.push_back(2.0 * std::numbers::pi /
+                          analysis::wavenumber_from_speed(L.local_speed.value, c.a.dispersion.v_k0, c.a.l0) / c.a.l0);
     lam_pulse.push_back(L.local_speed.value * L.duration.value / c.a.l0);
     len_osc.push_back(L.oscillation_length.value / c.a.l0);
   }
@@ -607,9 +610,12 @@ void write_captured(io::H5Writer& w, const std::string& g, const Captured& c) {
   w.write(g + "/layers/local_speed_error", vloc_e);
   w.write(g + "/layers/lambda_vt_over_l0", lam_vt);
   w.write(g + "/layers/lambda_k_over_l0", lam_k);
+  w.write(g + "/layers/k_speed", v_k);
+  w.write(g + "/layers/lambda_k_first_peak_over_l0", lam_k_first);
   w.write(g + "/layers/lambda_vt_pulse_over_l0", lam_pulse);
   w.write(g + "/layers/oscillation_length_over_l0", len_osc);
   w.attr(g, "period_reading", std::string(analysis::to_string(c.a.period_reading)));
+  w.attr(g, "wavenumber_speed", std::string(analysis::to_string(c.a.wavenumber_speed)));
   const auto& d = c.a.dispersion;
   if (!d.spectrum.empty()) {
     w.write(g + "/dispersion/spectrum", d.spectrum, {d.omega_axis.size(), d.k_axis.size()});
@@ -785,8 +791,22 @@ int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, i
                         "`period = \"pulse\"`) is about 3/4 of it"
                       : "as at z/l0 = " + fmt("%g", lambda_z[0]))
            << " |\n";
-        md << "| lambda/l0 = 2 pi/k(V) at z/l0 = " << lambda_z[q] << " | " << fmt("%.1f", 2 * std::numbers::pi / L.k_from_speed.value / f4.a.l0)
-           << " | " << (seeded ? fmt("%g", seed_lambda_k[q]) : "—") << " | from the local speed and the fitted V(k->0); far from the source it is ill-conditioned (seed sec. 3.4) |\n";
+        // The seed's second table: k = (2/l0) arccos(V/V(k->0)), V by the analysis' wavenumber_speed
+        // (default: the layer displacement's first peaks); beside it the stress's first peaks.
+        const double two_pi = 2 * std::numbers::pi, vk0 = f4.a.dispersion.v_k0;
+        const double k = L.k_from_speed.value, k_first = analysis::wavenumber_from_speed(L.local_speed.value, vk0, f4.a.l0);
+        md << "| lambda/l0 = 2 pi/k(V) at z/l0 = " << lambda_z[q] << " (V: " << analysis::to_string(f4.a.wavenumber_speed)
+           << ") | " << pm(two_pi / k / f4.a.l0, two_pi * L.k_from_speed.error / (k * k) / f4.a.l0, "%.1f") << " (V = "
+           << fmt("%.1f", L.k_speed.value) << "); from the stress's first peak: " << fmt("%.1f", two_pi / k_first / f4.a.l0)
+           << " (V = " << fmt("%.1f", L.local_speed.value) << ") | " << (seeded ? fmt("%g", seed_lambda_k[q]) : "—") << " | "
+           << (q == 0 ? "the seed's k = (2/l0) arccos(V/V(k->0)) sets the group speed V(k->0) cos(k l0/2) equal to the "
+                        "local speed. V of the first peaks of the layer displacement (the end of the particle velocity's "
+                        "first pulse) gives the seed's rows near the source within 0.1 l0 and its 208 m/s at z/l0 = 20; the "
+                        "stress's first peak (the V of fig4.png and of lambda = V T) runs ~5 m/s faster there. Far from the source "
+                        "k(V) is ill-conditioned: 1 m/s of V moves lambda by 1.8 l0 at z/l0 = 80 and 3.3 l0 at 150 (seed: "
+                        "\"too large error margin to be useful\")"
+                      : "as at z/l0 = " + fmt("%g", lambda_z[0]))
+           << " |\n";
       }
   for (std::size_t k = 0; k < damp.positions.size(); ++k) {
     // The pulse duration T (1 % arrival to the next 1 % crossing, undamped run) at the same place:

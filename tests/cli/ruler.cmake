@@ -29,3 +29,11 @@ add_test(NAME "cli: [analysis] period and analyze --period choose T of lambda = 
           ${CMAKE_BINARY_DIR}/cli-tests/period)
 set_tests_properties("cli: [analysis] period and analyze --period choose T of lambda = V T; run prints the lattice S speed"
                      PROPERTIES LABELS "cli")
+# k's local speed (issue #31): [analysis] wavenumber_speed and analyze --wavenumber-speed
+# (tests/cli/wavenumber_speed_reading.py).
+add_test(NAME "cli: [analysis] wavenumber_speed and analyze --wavenumber-speed choose V of k = (2/l0) arccos(V/V(k->0))"
+  COMMAND ${GW_SYSTEM_PYTHON3} ${CMAKE_SOURCE_DIR}/tests/cli/wavenumber_speed_reading.py $<TARGET_FILE:granwave>
+          ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_small_k_first_peak.toml ${CMAKE_SOURCE_DIR}/data/cases/oriented20.toml
+          ${CMAKE_BINARY_DIR}/cli-tests/wavenumber_speed)
+set_tests_properties("cli: [analysis] wavenumber_speed and analyze --wavenumber-speed choose V of k = (2/l0) arccos(V/V(k->0))"
+                     PROPERTIES LABELS "cli")

@@ -75,6 +75,9 @@ TEST_CASE("figures crystal --quick writes every figure and the summary, with num
   // f0/d' = k delta/d' = 1e-3 k/(1 - 1e-3): 0.707 at kt = k.
   CHECK(s.str().find("(T: oscillation)") != std::string::npos);
   CHECK(s.str().find("the first oscillation in a snapshot") != std::string::npos);
+  // The second table (issue #31): 2 pi/k from the displacement's first peaks, the stress's beside it.
+  CHECK(s.str().find("2 pi/k(V) at z/l0 = 10 (V: displacement_peak)") != std::string::npos);
+  CHECK(s.str().find("from the stress's first peak: ") != std::string::npos);
   CHECK(s.str().find("kt trend, P: first peak of v_z") != std::string::npos);
   std::snprintf(buf, sizeof buf, "(closed form %.3f)", std::sqrt((1.0 - 1e-3 / 0.999) / (2.0 - 1e-3 / 0.999)));
   CHECK(s.str().find(buf) != std::string::npos);

@@ -204,6 +204,55 @@ TEST_CASE("wavenumber from speed inverts the group speed of the sine branch", "[
   CHECK(std::isnan(wavenumber_from_speed(vk0 * 1.01, vk0, l0)));
 }
 
+TEST_CASE("k's local speed: the displacement's first peaks by default, the stress's on request", "[analysis]") {
+  // The stress pulse at V = 200 m/s, the displacement pulse behind it at Vu = 190 m/s (as the end of
+  // the velocity pulse trails the stress peak on the crystal): k_speed follows the chosen signal,
+  // within the local-speed bound of the first test, and k is the group-speed inversion of it.
+  const double sigma = 10e-6, Vu = 190.0;
+  auto tr = pulse_trace(200, 1200, sigma);
+  for (std::size_t n = 0; n < tr.nt; ++n)
+    for (std::size_t p = 0; p < tr.nlayers; ++p) {
+      const double tau = n * h - t0 - 5e-6 - tr.layer_z[p] / Vu;
+      tr.displacement_z[n * tr.nlayers + p] = 1e-9 * std::exp(-tau * tau / (2 * sigma * sigma));
+    }
+  const double eps_p = h * h * h / (8 * sigma * sigma);
+  auto check = [&](const CrystalAnalysis& a, double v) {
+    int n = 0;
+    for (const auto& L : a.layers) {
+      if (L.z_over_l0 < 5 || L.z_over_l0 > 140) continue;
+      ++n;
+      CHECK(std::abs(L.displacement_peak_time.value - (t0 + 5e-6 + L.z / Vu)) <= eps_p);
+      CHECK(std::abs(L.k_speed.value - v) <= v * 2 * eps_p * v / l0);
+      const double k = wavenumber_from_speed(L.k_speed.value, a.dispersion.v_k0, l0);
+      if (std::isfinite(k)) CHECK(L.k_from_speed.value == k);
+      else CHECK(std::isnan(L.k_from_speed.value));
+    }
+    CHECK(n == 136);
+  };
+  const auto a = analyze_crystal(tr);
+  CHECK(a.wavenumber_speed == WavenumberSpeed::displacement_peak);
+  CHECK(a.wavenumber_speed_source == "default");
+  CHECK(a.wavenumber_speed_field == "layer_displacement_z");
+  check(a, Vu);
+  CrystalAnalysisOptions o;
+  o.wavenumber_speed = WavenumberSpeed::first_peak;
+  const auto b = analyze_crystal(tr, o);
+  CHECK(b.wavenumber_speed_source == "option");
+  CHECK(b.wavenumber_speed_field == "layer_stress_zz");
+  check(b, V);
+  // The case's key is next to the option: the option wins, the case beats the default.
+  tr.wavenumber_speed = WavenumberSpeed::first_peak;
+  CHECK(analyze_crystal(tr).wavenumber_speed_source == "case_toml");
+  o.wavenumber_speed = WavenumberSpeed::displacement_peak;
+  CHECK(analyze_crystal(tr, o).wavenumber_speed == WavenumberSpeed::displacement_peak);
+  // Without a displacement no other signal stands in: no k, and the analysis says why.
+  tr.wavenumber_speed.reset();
+  tr.displacement_z.clear();
+  const auto c = analyze_crystal(tr);
+  CHECK(c.wavenumber_speed_field == "none (the trace has no layer_displacement_z)");
+  for (const auto& L : c.layers) CHECK(std::isnan(L.k_from_speed.value));
+}
+
 TEST_CASE("trace file round trip: any code's file, mode from the data, S polarity", "[analysis]") {
   // A YADE-labelled S-wave trace whose shear stress pulse is negative and without case text.
   const int layers = 60;

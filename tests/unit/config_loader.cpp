@@ -129,6 +129,18 @@ TEST_CASE("[analysis] period: the wavelength's reading of T, crystal only, one o
   require_refused(chain_case() + "[analysis]\nperiod = \"pulse\"\n", {"analysis.period", "crystal cases"});
 }
 
+TEST_CASE("[analysis] wavenumber_speed: k's local speed, crystal only, one of two names", "[config]") {
+  CHECK(parse_case(kCrystal, "c.toml").analysis.wavenumber_speed.empty());  // the analysis' default
+  CHECK(parse_case(kCrystal + "[analysis]\nwavenumber_speed = \"first_peak\"\n", "c.toml").analysis.wavenumber_speed ==
+        "first_peak");
+  CHECK(parse_case(kCrystal + "[analysis]\nwavenumber_speed = \"displacement_peak\"\n", "c.toml")
+            .analysis.wavenumber_speed == "displacement_peak");
+  require_refused(kCrystal + "[analysis]\nwavenumber_speed = \"half_peak\"\n",
+                  {"analysis.wavenumber_speed", "\"displacement_peak\"", "\"first_peak\""});
+  require_refused(chain_case() + "[analysis]\nwavenumber_speed = \"first_peak\"\n",
+                  {"analysis.wavenumber_speed", "crystal cases"});
+}
+
 TEST_CASE("bad case files are refused with the key and the allowed range", "[config]") {
   SECTION("not TOML") { require_refused("[case\nname=", {"not valid TOML"}); }
   SECTION("unknown top-level key") { require_refused(chain_case() + "[extra]\nx = 1\n", {"'extra'", "unknown key"}); }

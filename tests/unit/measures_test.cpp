@@ -124,6 +124,11 @@ TEST_CASE("period is 0 when the signal does not come back up within the window, 
   CHECK_FALSE(parse_period_reading("Pulse"));
   CHECK(std::string(to_string(PeriodReading::pulse)) == "pulse");
   CHECK(std::string(to_string(PeriodReading::oscillation)) == "oscillation");
+  CHECK(parse_wavenumber_speed("displacement_peak") == WavenumberSpeed::displacement_peak);
+  CHECK(parse_wavenumber_speed("first_peak") == WavenumberSpeed::first_peak);
+  CHECK_FALSE(parse_wavenumber_speed("half_peak"));
+  CHECK(std::string(to_string(WavenumberSpeed::displacement_peak)) == "displacement_peak");
+  CHECK(std::string(to_string(WavenumberSpeed::first_peak)) == "first_peak");
 }
 
 TEST_CASE("length of the first oscillation of a snapshot sin(kappa (z_f - z)) is its wavelength", "[measures]") {
