@@ -11,12 +11,12 @@ add_test(NAME "files: run, build and sweep on a full disk exit 1 and lose nothin
   COMMAND ${FILES_PY} ${CMAKE_SOURCE_DIR}/tests/files/full_disk.py ${GW} ${FILES_TMP}/full_disk)
 set_tests_properties("files: run, build and sweep on a full disk exit 1 and lose nothing" PROPERTIES LABELS "cli;unit")
 
-# The fuzzer: 3000 inputs on the Release build (~40 s on 2 cores); under the sanitizers 600 inputs
+# The fuzzer: 2000 inputs on the Release build; under the sanitizers 400 inputs
 # with a longer bound (each run is ~5x slower). The regression inputs below are kept from it.
 if(GRANWAVE_SANITIZE)
-  set(FUZZ_ARGS --inputs 600 --timeout 60)
+  set(FUZZ_ARGS --inputs 400 --timeout 60)
 else()
-  set(FUZZ_ARGS --inputs 3000 --timeout 10)
+  set(FUZZ_ARGS --inputs 2000 --timeout 10)
 endif()
 add_test(NAME "files: seeded mutation fuzzer over traces, systems, studies and TOML"
   COMMAND ${FILES_PY} ${CMAKE_SOURCE_DIR}/tests/files/fuzz_files.py ${GW} ${FILES_TMP}/fuzz ${FUZZ_ARGS})
@@ -30,3 +30,18 @@ if(GRANWAVE_LIBFUZZER)
   target_link_options(readers_fuzzer PRIVATE -fsanitize=fuzzer)
   target_link_libraries(readers_fuzzer PRIVATE granwave_sweep granwave_chain granwave_crystal granwave_base)
 endif()
+
+# Regression inputs of the issue's experiment (1000 mutated crystal40 traces, seed 20261126, in the
+# format before #25: no checksums, variable-length strings), their untouched datasets zeroed so that
+# they gzip to 5 kB: one claimed a dataset extent of 3e18 values (std::vector max_size: exit 1), one
+# crashed the HDF5 library in its global heap (SIGSEGV under H5Aread of a root attribute).
+function(granwave_damaged_trace name words)
+  add_test(NAME "files: analyze of damaged trace ${name} exits 2 naming the file"
+    COMMAND sh -c "gzip -dc ${CMAKE_SOURCE_DIR}/tests/data/damaged/${name}.h5.gz > ${CLI_TMP}/${name}.h5 && \
+${GW} analyze ${CLI_TMP}/${name}.h5 --json > /dev/null 2> ${CLI_TMP}/${name}.err; rc=$?; \
+test $rc -eq 2 || { cat ${CLI_TMP}/${name}.err; echo \"exit code $rc, expected 2\"; exit 1; }; \
+grep -Eq -- '${name}.h5.*${words}' ${CLI_TMP}/${name}.err || { cat ${CLI_TMP}/${name}.err; exit 1; }")
+  set_tests_properties("files: analyze of damaged trace ${name} exits 2 naming the file" PROPERTIES LABELS "cli;unit")
+endfunction()
+granwave_damaged_trace(trace_huge_extent "claims .* values")
+granwave_damaged_trace(trace_vlen_heap_crash "(damaged|checksum mismatch)")

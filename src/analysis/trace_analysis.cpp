@@ -232,11 +232,12 @@ TraceFile read_trace(const std::string& path) {
       for (double z : c.layer_z) below += z < -0.5 * c.l0;
       c.fixed_layers = below + 1;
     }
-    // Driven layers at each end, free ones (at least 2) between: their indices must be layers.
-    if (c.fixed_layers < 1 || 2 * static_cast<std::size_t>(c.fixed_layers) + 2 > c.nlayers)
+    // Driven layers at each end; the measured ones, from the innermost driven layer at the source
+    // to the last free one (at least 2), must be layers.
+    if (c.fixed_layers < 1 || 2 * static_cast<std::size_t>(c.fixed_layers) + 1 > c.nlayers)
       throw InputError(path + ": " + std::to_string(c.fixed_layers) + " fixed layers at each end of " +
                        std::to_string(c.nlayers) + " layers (/system attribute fixed_layers, or layer_z below 0) "
-                       "leave fewer than 2 free layers to measure");
+                       "leave fewer than 2 layers to measure");
     // Excitation mode: from the case text every trace carries; else from which field moved.
     const std::string toml = root_attr(r, "case_toml");
     bool known = false;

@@ -428,7 +428,8 @@ namespace {
                          const std::string& what) {
   const auto f = library_failure();
   if (f.checksum)
-    throw InputError("checksum mismatch in " + kind + " '" + object + "' of file '" + file + "': the file is damaged");
+    throw InputError("checksum mismatch in " + kind + " '" + object + "' of file '" + file + "': the file is damaged (" +
+                     f.why + ")");
   throw InputError(file + ": " + what + " (" + f.why + ")");
 }
 }  // namespace
@@ -447,6 +448,12 @@ bool H5Reader::has(const std::string& path) const {
 }
 
 namespace {
+std::string fmt_count(double n) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", n);
+  return buf;
+}
+
 // Values a dataspace holds; refuses a dataspace the file could not hold or memory could not take.
 std::size_t checked_count(hid_t space, std::size_t element_size, double stored_ratio, const H5Reader& r,
                           double file_size, double memory, const std::string& object,
@@ -461,8 +468,7 @@ std::size_t checked_count(hid_t space, std::size_t element_size, double stored_r
   const double bytes = n * static_cast<double>(element_size);
   // The file holds the values (compressed at most ~1000:1, deflate's limit) and memory must hold them.
   if (bytes > file_size * stored_ratio + 4096.0 || bytes > memory)
-    throw InputError(r.path() + ": '" + object + "' claims " + std::to_string(static_cast<long double>(n)) +
-                     " values (" + bytes_text(bytes) + ") in a file of " + bytes_text(file_size) +
+    throw InputError(r.path() + ": '" + object + "' claims " + fmt_count(n) + " values (" + bytes_text(bytes) + ") in a file of " + bytes_text(file_size) +
                      (bytes > memory ? " with " + bytes_text(memory) + " of memory" : std::string()) +
                      ": the file is damaged");
   if (dims) dims->assign(d.begin(), d.end());

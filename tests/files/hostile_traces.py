@@ -110,7 +110,7 @@ CRYSTAL = [
     ("a time that does not increase", time_not_increasing, ["/time", "not strictly increasing", "sample 10"]),
     ("layer counts that disagree", layer_counts_disagree, ["layer_stress_zx", "shape"]),
     ("sample counts that disagree", sample_counts_disagree, ["layer_stress_zz", "shape"]),
-    ("a million fixed layers", fixed_layers_huge, ["fixed_layers", "free layers"]),
+    ("a million fixed layers", fixed_layers_huge, ["fixed_layers", "layers to measure"]),
     ("NaN fixed layers", fixed_layers_nan, ["fixed_layers", "nan"]),
     ("an infinite l0", l0_infinite, ["l0", "inf"]),
     ("a scalar attribute of 1000 values", attr_of_many_values, ["l0", "one value"]),
