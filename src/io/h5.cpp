@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -178,8 +179,10 @@ H5::DSetCreatPropList checksummed(const std::vector<hsize_t>& shape, std::size_t
     double bytes = static_cast<double>(element_size);
     for (auto c : chunk) bytes *= static_cast<double>(c);
     if (bytes <= kChunkBytes) break;
+    // k equal chunks along dimension i, so that the last one is not mostly empty (file size).
     const double others = bytes / static_cast<double>(chunk[i]);
-    chunk[i] = std::max<hsize_t>(1, static_cast<hsize_t>(kChunkBytes / others));
+    const double k = std::ceil(static_cast<double>(chunk[i]) / std::max(1.0, std::floor(kChunkBytes / others)));
+    chunk[i] = std::max<hsize_t>(1, static_cast<hsize_t>(std::ceil(static_cast<double>(chunk[i]) / k)));
     if (chunk[i] > 1) break;
   }
   dcpl.setChunk(static_cast<int>(chunk.size()), chunk.data());
