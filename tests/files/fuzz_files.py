@@ -130,7 +130,16 @@ def mutate_toml(data: bytes, rng: random.Random) -> bytes:
     return b"\n".join(lines)
 
 
-def job(kind: str, i: int, data: bytes, gw: str, work: str, seeds: dict, timeout: float):
+def job(kind: str, i: int, base: bytes, seed: int, gw: str, work: str, seeds: dict, timeout: float):
+    """Mutate and run one input (its own generator, seeded by the run's seed and i, so that the
+    inputs do not wait in memory); returns (kind, i, verdict, detail, data if it failed)."""
+    rng = random.Random("%d:%d" % (seed, i))
+    data = mutate_toml(base, rng) if kind.endswith("toml") else mutate_binary(base, rng)
+    kind_, i_, verdict, detail = one(kind, i, data, gw, work, seeds, timeout)
+    return kind_, i_, verdict, detail, data if verdict == "FAIL" else None
+
+
+def one(kind: str, i: int, data: bytes, gw: str, work: str, seeds: dict, timeout: float):
     """Run one input; returns (kind, i, verdict, detail). verdict: ok0 | ok2 | FAIL."""
     d = os.path.join(work, "w%d" % i)
     os.makedirs(d, exist_ok=True)
@@ -205,27 +214,23 @@ def main(argv) -> int:
         src = {"system": seeds["system"], "case_toml": seeds["case_toml"]}.get(k, seeds.get(k))
         raw[k] = open(src, "rb").read()
     raw_alt = {"system": open(seeds["chain_system"], "rb").read(), "case_toml": open(seeds["chain_case_toml"], "rb").read()}
-    inputs = []
-    for i, k in enumerate(plan):
-        base = raw_alt[k] if k in raw_alt and i % 2 else raw[k]
-        data = mutate_toml(base, rng) if k.endswith("toml") else mutate_binary(base, rng)
-        inputs.append((k, i, data))
     counts = collections.Counter()
     fails = []
     with cf.ThreadPoolExecutor(a.jobs) as ex:
-        futs = {ex.submit(job, k, i, data, gw, work, seeds, a.timeout): (k, i, data) for k, i, data in inputs}
+        futs = [ex.submit(job, k, i, raw_alt[k] if k in raw_alt and i % 2 else raw[k], a.seed, gw, work, seeds,
+                          a.timeout) for i, k in enumerate(plan)]
         for f in cf.as_completed(futs):
-            k, i, verdict, detail = f.result()
+            k, i, verdict, detail, data = f.result()
             counts[(k, verdict)] += 1
             if verdict == "FAIL":
-                fails.append((k, i, detail, futs[f][2]))
+                fails.append((k, i, detail, data))
     os.makedirs(os.path.join(work, "failures"), exist_ok=True)
     for k, i, detail, data in fails:
         name = os.path.join(work, "failures", "%s_%d%s.gz" % (k, i, ".toml" if k.endswith("toml") else ".h5"))
         with gzip.open(name, "wb") as g:
             g.write(data)
         print("FAIL %s #%d (%s): %s" % (k, i, name, detail))
-    print("fuzz_files: %d inputs (seed %d) in %.1f s on %d jobs" % (len(inputs), a.seed, time.time() - t0, a.jobs))
+    print("fuzz_files: %d inputs (seed %d) in %.1f s on %d jobs" % (len(plan), a.seed, time.time() - t0, a.jobs))
     for k in kinds:
         print("  %-13s exit 0: %5d   exit 2: %5d   failed: %d" % (k, counts[(k, "ok0")], counts[(k, "ok2")], counts[(k, "FAIL")]))
     if not fails:
