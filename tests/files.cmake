@@ -28,7 +28,7 @@ if(GRANWAVE_LIBFUZZER)
   add_executable(readers_fuzzer ${CMAKE_SOURCE_DIR}/tests/fuzz/readers_fuzzer.cpp)
   target_compile_options(readers_fuzzer PRIVATE -fsanitize=fuzzer)
   target_link_options(readers_fuzzer PRIVATE -fsanitize=fuzzer)
-  target_link_libraries(readers_fuzzer PRIVATE granwave_sweep granwave_chain granwave_crystal granwave_base)
+  target_link_libraries(readers_fuzzer PRIVATE granwave_base)
 endif()
 
 # Regression inputs of the issue's experiment (1000 mutated crystal40 traces, seed 20261126, in the
