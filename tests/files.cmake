@@ -31,10 +31,10 @@ if(GRANWAVE_LIBFUZZER)
   target_link_libraries(readers_fuzzer PRIVATE granwave_base)
 endif()
 
-# Regression inputs of the issue's experiment (1000 mutated crystal40 traces, seed 20261126, in the
+# Regression inputs (the first two from the issue's experiment (1000 mutated crystal40 traces, seed 20261126, in the
 # format before #25: no checksums, variable-length strings), their untouched datasets zeroed so that
 # they gzip to 5 kB: one claimed a dataset extent of 3e18 values (std::vector max_size: exit 1), one
-# crashed the HDF5 library in its global heap (SIGSEGV under H5Aread of a root attribute).
+# crashed the HDF5 library in its global heap (SIGSEGV under H5Aread of a root attribute)).
 function(granwave_damaged_trace name words)
   add_test(NAME "files: analyze of damaged trace ${name} exits 2 naming the file"
     COMMAND sh -c "gzip -dc ${CMAKE_SOURCE_DIR}/tests/data/damaged/${name}.h5.gz > ${CLI_TMP}/${name}.h5 && \
@@ -45,3 +45,6 @@ grep -Eq -- '${name}.h5.*${words}' ${CLI_TMP}/${name}.err || { cat ${CLI_TMP}/${
 endfunction()
 granwave_damaged_trace(trace_huge_extent "claims .* values")
 granwave_damaged_trace(trace_vlen_heap_crash "(damaged|checksum mismatch)")
+# From the 10 000 traces of the issue's "done when" (fuzz_files.py --seed 1, an h5py-format trace):
+# a damaged version-1 object header on which H5Aexists_by_name crashed (SIGSEGV in a memcpy).
+granwave_damaged_trace(trace_attr_header_crash "damaged file: the HDF5 library crashed reading ./system/@")

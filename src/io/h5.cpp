@@ -296,9 +296,11 @@ struct Hid {
 // HDF5 1.10 trusts a heap object's index and size (H5HG_read): a damaged heap can crash the
 // library. So, before the first variable-length read, every global heap collection in the file is
 // walked the way the library walks it and the file refused unless each one is consistent. A
-// damaged reference to a sound collection is not caught that way: the read itself runs under a
-// crash guard, the last line of defence, which prints a message prepared beforehand naming the
-// file and the object and ends the process with exit code 2 (docs/design.md §2.3).
+// damaged reference to a sound collection is not caught that way, nor damaged metadata in the
+// formats without checksums (object headers before 1.8, v1 B-trees): every library call of the
+// reader runs under a crash guard, the last line of defence, which prints a message prepared
+// beforehand naming the file and the object and ends the process with exit code 2
+// (docs/design.md §2.3).
 
 std::uint64_t le(const unsigned char* p, int n) {
   std::uint64_t v = 0;
@@ -363,39 +365,52 @@ std::string check_global_heaps(const std::string& path) {
   return problem;
 }
 
-// Signal-safe state of the crash guard: one guarded read at a time (HDF5 is serialised anyway).
-std::mutex g_guard_mutex;
+// Signal-safe state of the crash guard: one thread in the reader at a time (HDF5 serialises its
+// calls anyway); guards nest (has_attr calls has), the innermost names the object.
+std::recursive_mutex g_guard_mutex;
+int g_guard_depth = 0;
 char g_guard_message[1024];
 std::size_t g_guard_length = 0;
+constexpr int kGuardSignals = 3;
+constexpr int kGuardSignal[kGuardSignals] = {SIGSEGV, SIGBUS, SIGABRT};
+struct sigaction g_guard_old[kGuardSignals];
 extern "C" void on_library_crash(int) {
   if (g_guard_length) [[maybe_unused]] auto w = ::write(2, g_guard_message, g_guard_length);
   ::_exit(2);
 }
 
+// Around the HDF5 library's calls of the reader: a crash inside them (a file whose format has no
+// checksums, damaged) prints a message prepared beforehand and exits 2 (docs/design.md §2.3).
 class CrashGuard {
  public:
-  CrashGuard(const std::string& file, const std::string& object) : lock_(g_guard_mutex) {
-    const std::string m = "granwave: error: " + file + ": damaged file: the HDF5 library crashed reading the "
-                          "variable-length string '" + object + "' (its global heap has no checksum); refused\n";
+  CrashGuard(const std::string& file, const std::string& object, const char* why = nullptr) : lock_(g_guard_mutex) {
+    saved_length_ = g_guard_length;
+    std::memcpy(saved_, g_guard_message, saved_length_);
+    const std::string m = "granwave: error: " + file + ": damaged file: the HDF5 library crashed reading '" + object +
+                          "' (" + (why ? why : "a file format without checksums: its metadata cannot be verified") +
+                          "); refused\n";
     g_guard_length = std::min(m.size(), sizeof g_guard_message);
     std::memcpy(g_guard_message, m.data(), g_guard_length);
-    struct sigaction sa {};
-    sa.sa_handler = on_library_crash;
-    sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < kSignals; ++i) sigaction(kSignal[i], &sa, &old_[i]);
+    if (g_guard_depth++ == 0) {
+      struct sigaction sa {};
+      sa.sa_handler = on_library_crash;
+      sigemptyset(&sa.sa_mask);
+      for (int i = 0; i < kGuardSignals; ++i) sigaction(kGuardSignal[i], &sa, &g_guard_old[i]);
+    }
   }
   ~CrashGuard() {
-    for (int i = 0; i < kSignals; ++i) sigaction(kSignal[i], &old_[i], nullptr);
-    g_guard_length = 0;
+    if (--g_guard_depth == 0)
+      for (int i = 0; i < kGuardSignals; ++i) sigaction(kGuardSignal[i], &g_guard_old[i], nullptr);
+    g_guard_length = saved_length_;
+    std::memcpy(g_guard_message, saved_, saved_length_);
   }
   CrashGuard(const CrashGuard&) = delete;
   CrashGuard& operator=(const CrashGuard&) = delete;
 
  private:
-  static constexpr int kSignals = 3;
-  static constexpr int kSignal[kSignals] = {SIGSEGV, SIGBUS, SIGABRT};
-  std::lock_guard<std::mutex> lock_;
-  struct sigaction old_[kSignals];
+  std::lock_guard<std::recursive_mutex> lock_;
+  char saved_[sizeof g_guard_message];
+  std::size_t saved_length_ = 0;
 };
 
 }  // namespace
@@ -416,7 +431,10 @@ H5Reader::H5Reader(const std::string& path) : impl_(std::make_unique<Impl>()), p
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": no such file");
   impl_->file_size = static_cast<double>(std::filesystem::file_size(path, ec));
   impl_->memory = memory_limit(ResourceLimits{});
-  impl_->file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  {
+    CrashGuard guard(path, "its superblock");
+    impl_->file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  }
   if (impl_->file < 0) {
     const auto f = library_failure();
     if (f.checksum) throw InputError("checksum mismatch in the superblock of file '" + path + "': the file is damaged");
@@ -440,6 +458,7 @@ namespace {
 bool H5Reader::has(const std::string& path) const {
   // H5Lexists fails on a missing intermediate group: check each prefix. On a damaged file the
   // library fails instead of answering: bad input, named.
+  CrashGuard guard(path_, path);
   std::string cur;
   for (const auto& p : split_path(path)) {
     cur += "/" + p;
@@ -514,10 +533,12 @@ std::vector<T> read_numeric(const H5Reader& r, hid_t file, double file_size, dou
 }  // namespace
 
 std::vector<double> H5Reader::read_double(const std::string& path, std::vector<std::size_t>* dims) const {
+  CrashGuard guard(path_, path);
   return read_numeric<double>(*this, impl_->file, impl_->file_size, impl_->memory, path, H5T_NATIVE_DOUBLE, dims);
 }
 
 std::vector<std::int64_t> H5Reader::read_int(const std::string& path, std::vector<std::size_t>* dims) const {
+  CrashGuard guard(path_, path);
   return read_numeric<std::int64_t>(*this, impl_->file, impl_->file_size, impl_->memory, path, H5T_NATIVE_INT64, dims);
 }
 
@@ -529,6 +550,7 @@ void H5Reader::check_heaps() const {
 }
 
 std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
+  CrashGuard guard(path_, path);
   Hid ds(H5Dopen2(impl_->file, path.c_str(), H5P_DEFAULT), H5Dclose);
   if (!ds) refuse(path_, "dataset", path, "cannot open dataset '" + path + "'");
   Hid ftype(H5Dget_type(ds.id), H5Tclose);
@@ -547,7 +569,7 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
     std::vector<char*> ptrs(n, nullptr);
     herr_t err = 0;
     {
-      CrashGuard guard(path_, path);
+      CrashGuard guard(path_, path, "a variable-length string: the global heap has no checksum");
       if (n) err = H5Dread(ds.id, type.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data());
     }
     if (err < 0) refuse(path_, "dataset", path, "cannot read strings '" + path + "'");
@@ -574,6 +596,7 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
 
 bool H5Reader::has_attr(const std::string& object, const std::string& name) const {
   if (object != "/" && !has(object)) return false;
+  CrashGuard guard(path_, object + (object == "/" ? "" : "/") + "@" + name);
   const htri_t e = H5Aexists_by_name(impl_->file, object.c_str(), name.c_str(), H5P_DEFAULT);
   if (e < 0) refuse(path_, "object", object, "damaged file: cannot look up attribute '" + name + "' of '" + object + "'");
   return e > 0;
@@ -599,6 +622,7 @@ struct ScalarAttr {
 }  // namespace
 
 std::string H5Reader::attr_string(const std::string& object, const std::string& name) const {
+  CrashGuard guard(path_, object + (object == "/" ? "" : "/") + "@" + name);
   ScalarAttr a(*this, impl_->file, object, name);
   if (H5Tget_class(a.type.id) != H5T_STRING)
     throw InputError(path_ + ": attribute '" + name + "' of '" + object + "' is not text");
@@ -612,7 +636,8 @@ std::string H5Reader::attr_string(const std::string& object, const std::string& 
     H5Tset_size(mtype.id, H5T_VARIABLE);
     H5Tset_cset(mtype.id, cset);
     {
-      CrashGuard guard(path_, object + (object == "/" ? "" : "/") + "@" + name);
+      CrashGuard guard(path_, object + (object == "/" ? "" : "/") + "@" + name,
+                       "a variable-length string: the global heap has no checksum");
       err = H5Aread(a.attr.id, mtype.id, &p);
     }
     if (err >= 0 && p) {
@@ -637,6 +662,7 @@ std::string H5Reader::attr_string(const std::string& object, const std::string& 
 }
 
 double H5Reader::attr_double(const std::string& object, const std::string& name) const {
+  CrashGuard guard(path_, object + (object == "/" ? "" : "/") + "@" + name);
   ScalarAttr a(*this, impl_->file, object, name);
   const H5T_class_t cls = H5Tget_class(a.type.id);
   if (cls != H5T_INTEGER && cls != H5T_FLOAT)

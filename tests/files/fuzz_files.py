@@ -177,6 +177,8 @@ def one(kind: str, i: int, data: bytes, gw: str, work: str, seeds: dict, timeout
         except subprocess.TimeoutExpired:
             return kind, i, "FAIL", "no answer within %g s" % timeout
         err = r.stderr.decode(errors="replace")
+        if "Sanitizer" in err or "runtime error:" in err:  # a sanitizer's report fails whatever the exit code
+            return kind, i, "FAIL", "sanitizer report (exit %d): %s" % (r.returncode, err.strip()[-600:])
         if r.returncode == 0:
             return kind, i, "ok0", ""
         if r.returncode == 2 and "error" in err and "internal error" not in err:
