@@ -21,7 +21,8 @@ endif()
 add_test(NAME "files: seeded mutation fuzzer over traces, systems, studies and TOML"
   COMMAND ${FILES_PY} ${CMAKE_SOURCE_DIR}/tests/files/fuzz_files.py ${GW} ${FILES_TMP}/fuzz ${FUZZ_ARGS})
 set_tests_properties("files: seeded mutation fuzzer over traces, systems, studies and TOML" PROPERTIES
-  LABELS "cli;unit;fuzz" TIMEOUT 600)
+  LABELS "cli;unit;fuzz" TIMEOUT 600
+  ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_SOURCE_DIR}/tests/files/lsan_hdf5.supp:print_suppressions=0")
 
 # libFuzzer (clang): -DGRANWAVE_LIBFUZZER=ON builds readers_fuzzer; scripts/test-all.sh runs it for 60 s.
 if(GRANWAVE_LIBFUZZER)
