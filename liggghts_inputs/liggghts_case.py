@@ -406,7 +406,11 @@ def main(argv) -> int:
         import tempfile
         facts = render(case, system, tempfile.mkdtemp(prefix="liggghts_render_"))
         t = time.time()
-        convert(work, case, text, a.system, a.out, facts, "LIGGGHTS (converted from kept dumps)")
+        try:
+            convert(work, case, text, a.system, a.out, facts, "LIGGGHTS (converted from kept dumps)")
+        except (ValueError, KeyError, OSError) as e:   # a malformed dump (xclib.dumps.DumpError) among them
+            print("liggghts_case: the dumps could not be converted: %s" % e, file=sys.stderr)
+            return 1
         print("XC_SUMMARY " + json.dumps(dict(code="liggghts", case=case["case"]["name"], convert_s=time.time() - t,
                                               trace=a.out)))
         return 0
@@ -434,7 +438,11 @@ def main(argv) -> int:
         return 1
     # the solver's own time: LIGGGHTS' "Loop time" of the main run
     loops = [float(ln.split()[3]) for ln in log.splitlines() if ln.startswith("Loop time of")]
-    convert(work, case, text, a.system, a.out, facts, liggghts_version(log))
+    try:
+        convert(work, case, text, a.system, a.out, facts, liggghts_version(log))
+    except (ValueError, KeyError, OSError) as e:   # a malformed dump (xclib.dumps.DumpError) among them
+        print("liggghts_case: the dumps could not be converted: %s" % e, file=sys.stderr)
+        return 1
     if not a.keep_dumps:   # the trace file holds what they carried (paper crystals: 2.4 GB of text)
         for name in ("dump.atoms", "dump.pairs"):
             try:

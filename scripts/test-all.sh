@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # README command 2 (and .ci/run): install, build, and run every test:
 #   1. ctest on the Release build (labels unit, physics, regression, cli, slow, mpi),
-#   2. the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer,
+#   2. the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer (with the files
+#      fuzzer, tests/files.cmake), then libFuzzer on the readers for 60 s (issue #25),
 #   3. pytest for the cross-code harness (real YADE, LIGGGHTS and LAMMPS runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +18,18 @@ cmake --build build-sanitize -j"$jobs" --target granwave $unit_targets
 echo "==> unit tests under sanitizers"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize -L unit --output-on-failure -j"$jobs"
+
+echo "==> libFuzzer over the TOML and HDF5 readers (clang, ASan + UBSan) in build-fuzz/, 60 s"
+# Issue #25: seeds are the repository's cases and studies and fresh trace, system and study files
+# (tests/fuzz/seed_corpus.sh); the first byte of an input picks the reader.
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+  -DGRANWAVE_SANITIZE=ON -DGRANWAVE_LIBFUZZER=ON -DGRANWAVE_OPENMP=OFF -DGRANWAVE_MPI=OFF -DGRANWAVE_BENCH=OFF \
+  -DGRANWAVE_NATIVE=OFF > build-fuzz.configure.log 2>&1 || { cat build-fuzz.configure.log; exit 1; }
+cmake --build build-fuzz -j"$jobs" --target readers_fuzzer
+bash tests/fuzz/seed_corpus.sh build/granwave build-fuzz/corpus
+ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  build-fuzz/readers_fuzzer -max_total_time=60 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  -artifact_prefix=build-fuzz/ build-fuzz/corpus
 
 echo "==> pytest: the cross-code harness, including real YADE and LIGGGHTS runs"
 PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q tests/crosscheck

@@ -10,33 +10,74 @@ Only numpy: imported by the LIGGGHTS and LAMMPS drivers under /usr/bin/python3.
 from __future__ import annotations
 
 import itertools
+import os
+import warnings
 
 import numpy as np
 
 
+class DumpError(ValueError):
+    """A malformed dump (a copy cut short, a full disk, a damaged file): names the file, the line and
+    what was expected. The drivers report it as a failed conversion, never a traceback."""
+
+
 def frames(path: str):
     """Yield (timestep, column names, rows [n, ncol]) for each frame of a text dump (custom or
-    local), streaming the file frame by frame; each body is parsed by numpy's C parser."""
+    local), streaming the file frame by frame; each body is parsed by numpy's C parser. A malformed
+    frame raises DumpError; a row count the rest of the file could not hold is refused before
+    anything is read (every line ends the file or holds at least one character and its newline)."""
+    size = os.path.getsize(path)
     with open(path, "rb") as f:
+        lineno = 0
+
+        def line_of(what):
+            nonlocal lineno
+            ln = f.readline()
+            lineno += 1
+            if not ln:
+                raise DumpError("%s: ends at line %d where %s was expected (a copy cut short?)" % (path, lineno, what))
+            return ln
+
+        def integer(what):
+            ln = line_of(what)
+            try:
+                return int(ln)
+            except ValueError:
+                raise DumpError("%s: line %d: expected %s, found %r" % (path, lineno, what, ln[:60])) from None
+
         while True:
             line = f.readline()
+            lineno += 1
             if not line:
                 return
             if not line.startswith(b"ITEM: TIMESTEP"):
                 continue
-            step = int(f.readline())
-            f.readline()                               # ITEM: NUMBER OF ATOMS | ENTRIES
-            n = int(f.readline())
-            line = f.readline()
+            step = integer("the time step")
+            line_of("ITEM: NUMBER OF ATOMS | ENTRIES")
+            n = integer("the number of rows")
+            if n < 0 or n > (size - f.tell()) // 2 + 1:
+                raise DumpError("%s: line %d: step %d claims %d rows, more than the rest of the file holds"
+                                % (path, lineno, step, n))
+            line = line_of("ITEM: ATOMS | ENTRIES")
             while not (line.startswith(b"ITEM: ATOMS") or line.startswith(b"ITEM: ENTRIES")):
-                line = f.readline()
-                if not line:
-                    raise ValueError("%s: truncated frame at step %d" % (path, step))
-            cols = line.decode().split()[2:]
+                line = line_of("ITEM: ATOMS | ENTRIES of step %d" % step)
+            try:
+                cols = line.decode().split()[2:]
+            except UnicodeDecodeError:
+                raise DumpError("%s: line %d: column names are not text" % (path, lineno)) from None
+            if n and not cols:
+                raise DumpError("%s: line %d: step %d has %d rows but no columns" % (path, lineno, step, n))
             body = b"".join(itertools.islice(f, n))
-            vals = np.fromstring(body.decode(), sep=" ") if n else np.zeros(0)   # C parser; size checked
-            if vals.size != n * len(cols):
-                raise ValueError("%s: step %d has %d values, expected %d x %d" % (path, step, vals.size, n, len(cols)))
+            lineno += n
+            try:
+                with warnings.catch_warnings():   # numpy warns, then stops, at the first token that is no number
+                    warnings.simplefilter("ignore")
+                    vals = np.fromstring(body.decode(), sep=" ") if n else np.zeros(0)   # C parser; size checked
+            except (UnicodeDecodeError, ValueError):
+                vals = None
+            if vals is None or vals.size != n * len(cols):
+                raise DumpError("%s: step %d (before line %d) has %s values, expected %d x %d numbers"
+                                % (path, step, lineno, "unreadable" if vals is None else vals.size, n, len(cols)))
             yield step, cols, vals.reshape(n, len(cols))
 
 
@@ -49,9 +90,9 @@ def lockstep(atoms_path: str, pairs_path: str):
         try:
             pstep, _, prow = next(pa)
         except StopIteration:
-            raise ValueError("%s ends before step %d of %s" % (pairs_path, step, atoms_path)) from None
+            raise DumpError("%s ends before step %d of %s" % (pairs_path, step, atoms_path)) from None
         if pstep != step:
-            raise ValueError("%s: step %d where %s has step %d" % (pairs_path, pstep, atoms_path, step))
+            raise DumpError("%s: step %d where %s has step %d" % (pairs_path, pstep, atoms_path, step))
         yield step, cols, rows, prow
 
 

@@ -10,7 +10,7 @@ import math
 import h5py
 import numpy as np
 
-from .traces import SCHEMA_VERSION
+from .traces import SCHEMA_VERSION, set_attr
 
 
 def _estar(e1, n1, e2, n2):
@@ -66,11 +66,11 @@ def build_chain(case: dict, path: str) -> None:
     pos[:, 0] = x
     vel = np.zeros((n, 3))
     vel[0, 0] = float(ch["striker"]["velocity"])
-    with h5py.File(path, "w") as f:
-        f.attrs["model"] = "chain"
+    with h5py.File(path, "w", libver=("v110", "latest")) as f:
+        set_attr(f.attrs, "model", "chain")
         f.attrs["schema_version"] = SCHEMA_VERSION
-        f.attrs["case_name"] = case["case"]["name"]
-        f.attrs["wall"] = wall
+        set_attr(f.attrs, "case_name", case["case"]["name"])
+        set_attr(f.attrs, "wall", wall)
         if wall != "free":
             ew, nw = float(mats[wall]["youngs_modulus"]), float(mats[wall]["poisson_ratio"])
             f.attrs["wall_youngs_modulus"] = ew
@@ -80,7 +80,7 @@ def build_chain(case: dict, path: str) -> None:
         nup = sum(s for s, c in zip(spins, counts) if c)
         ncnt = sum(counts)
         f.attrs["magnetisation"] = abs(2 * nup - ncnt) / ncnt if ncnt else 0.0
-        f.create_dataset("material_names", data=np.array(names, dtype=h5py.string_dtype()))
+        f.create_dataset("material_names", data=np.array([s.encode() for s in names]))
         f.create_dataset("material_index", data=np.array([names.index(s) for s in seq], dtype=np.int64))
         f["mass"], f["radius"], f["inertia"] = m, r, 0.4 * m * r ** 2
         f["youngs_modulus"], f["poisson_ratio"] = e, nu
@@ -118,15 +118,15 @@ def build_crystal(case: dict, path: str) -> None:
     m = np.full(n, rho * 4.0 / 3.0 * math.pi * a ** 3)
     r = np.full(n, a)
     fixed = ((lay < nf) | (lay >= nl - nf)).astype(np.int64)
-    with h5py.File(path, "w") as f:
-        f.attrs["model"] = "crystal"
+    with h5py.File(path, "w", libver=("v110", "latest")) as f:
+        set_attr(f.attrs, "model", "crystal")
         f.attrs["schema_version"] = SCHEMA_VERSION
-        f.attrs["case_name"] = case["case"]["name"]
+        set_attr(f.attrs, "case_name", case["case"]["name"])
         for k, v in dict(box_x=nx * dp, box_y=ny * dp, d=d, d_prime=dp, l0=l0, delta=ov * d).items():
             f.attrs[k] = v
         f.attrs["fixed_layers"] = nf
         f.attrs["relaxed"] = 0
-        f.create_dataset("material_names", data=np.array(["grain"], dtype=h5py.string_dtype()))
+        f.create_dataset("material_names", data=np.array([b"grain"]))
         f["material_index"] = np.zeros(n, dtype=np.int64)
         f["mass"], f["radius"], f["inertia"] = m, r, 0.4 * m * r ** 2
         f["fixed"] = fixed

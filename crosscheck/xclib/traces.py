@@ -223,34 +223,60 @@ def git_describe() -> str:
         return "unknown"
 
 
+# Files written here carry checksums like granwave's (data/SCHEMA.md §1, "Checksums"): the 1.10
+# file format (checksummed metadata), non-empty numeric and text datasets chunked with Fletcher-32,
+# text attributes fixed-length (inside the checksummed object header, not the unchecked global heap).
+LIBVER = ("v110", "latest")
+
+
+def set_attr(attrs, key, value) -> None:
+    """A text attribute as fixed-length UTF-8; anything else as h5py stores it."""
+    if isinstance(value, str):
+        b = value.encode()
+        attrs.create(key, np.frombuffer(b or b"\0", dtype="S%d" % max(len(b), 1))[0],
+                     dtype=h5py.string_dtype("utf-8", max(len(b), 1)))
+    else:
+        attrs[key] = value
+
+
+def create_dataset(group, name, data) -> None:
+    """A dataset with the Fletcher-32 checksum (chunked) unless it is empty or of variable-length text."""
+    a = np.asarray(data)
+    if a.dtype.kind == "U":
+        a = np.char.encode(a, "utf-8")
+    if a.size and a.ndim and a.dtype.kind in "fiubS":
+        group.create_dataset(name, data=a, chunks=True, fletcher32=True)
+    else:
+        group.create_dataset(name, data=a)
+
+
 def write_trace(path: str, *, code: str, code_version: str, case_text: str, case_name: str, system_path: str,
                 time_convention: str, time: np.ndarray, datasets: dict, extra_attrs: dict | None = None) -> None:
     """Write a trace file (SCHEMA.md §3) to PATH.tmp, then rename. `datasets` maps absolute paths
     ("/chain/contact_force") to arrays. /system is copied verbatim from the system file."""
     tmp = path + ".tmp"
-    with h5py.File(tmp, "w") as f:
+    with h5py.File(tmp, "w", libver=LIBVER) as f:
         a = f.attrs
-        a["schema_version"] = SCHEMA_VERSION
-        a["code"] = code
-        a["code_version"] = code_version
-        a["case_name"] = case_name
-        a["case_toml"] = case_text
-        a["created_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
-        a["git_describe"] = git_describe()
-        a["time_convention"] = time_convention
-        a["units"] = "SI"
-        for k, v in (extra_attrs or {}).items():
-            a[k] = v
+        attrs = dict(schema_version=SCHEMA_VERSION, code=code, code_version=code_version, case_name=case_name,
+                     case_toml=case_text,
+                     created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
+                     git_describe=git_describe(), time_convention=time_convention, units="SI")
+        attrs.update(extra_attrs or {})
+        for k, v in attrs.items():
+            set_attr(a, k, v)
         with h5py.File(system_path, "r") as s:
             src = s["/system"] if "system" in s and isinstance(s["system"], h5py.Group) else s
             g = f.create_group("system")
             for k, v in src.attrs.items():
-                g.attrs[k] = v
+                set_attr(g.attrs, k, v.decode() if isinstance(v, bytes) else v)
             for k in src:
-                s.copy(src[k], g, name=k)
-        f.create_dataset("time", data=np.asarray(time, float))
+                if isinstance(src[k], h5py.Dataset) and src[k].dtype.kind != "O":
+                    create_dataset(g, k, src[k][()])
+                else:   # variable-length text, groups: as they are
+                    s.copy(src[k], g, name=k)
+        create_dataset(f, "time", np.asarray(time, float))
         for p, v in datasets.items():
-            f.create_dataset(p, data=np.asarray(v))
+            create_dataset(f, p, v)
     os.replace(tmp, path)
 
 

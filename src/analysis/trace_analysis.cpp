@@ -15,6 +15,16 @@ namespace {
 
 // ---------- reading ----------
 
+// A trace from elsewhere may hold NaN or infinities (a run that blew up, a damaged copy): refused,
+// naming the dataset, the sample and the column, rather than measured.
+void require_finite(const io::H5Reader& r, const std::string& path, const std::vector<double>& v, std::size_t ncols) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]))
+      throw InputError(r.path() + ": " + path + " holds " + std::to_string(v[i]) + " at sample " +
+                       std::to_string(ncols ? i / ncols : i) + (ncols > 1 ? ", column " + std::to_string(i % ncols) : "") +
+                       ": only finite values can be measured");
+}
+
 std::vector<double> read_matrix(const io::H5Reader& r, const std::string& path, std::size_t nt, std::size_t ncols) {
   if (!r.has(path)) return {};
   std::vector<std::size_t> dims;
@@ -22,6 +32,7 @@ std::vector<double> read_matrix(const io::H5Reader& r, const std::string& path, 
   if (dims.size() != 2 || dims[0] != nt || dims[1] != ncols)
     throw InputError(r.path() + ": " + path + " must have shape [nt, n] = [" + std::to_string(nt) + ", " +
                      std::to_string(ncols) + "]");
+  require_finite(r, path, v, ncols);
   return v;
 }
 
@@ -186,8 +197,10 @@ TraceFile read_trace(const std::string& path) {
   const auto time = r.read_double("/time");
   const std::size_t nt = time.size();
   if (nt < 3) throw InputError(path + ": /time has fewer than 3 samples");
+  require_finite(r, "/time", time, 1);
   for (std::size_t i = 1; i < nt; ++i)
-    if (!(time[i] > time[i - 1])) throw InputError(path + ": /time is not strictly increasing");
+    if (!(time[i] > time[i - 1]))
+      throw InputError(path + ": /time is not strictly increasing (sample " + std::to_string(i) + ")");
 
   if (r.has("/crystal/layer_z")) {
     f.model = "crystal";
@@ -197,6 +210,7 @@ TraceFile read_trace(const std::string& path) {
     c.layer_z = r.read_double("/crystal/layer_z");
     c.nlayers = c.layer_z.size();
     if (c.nlayers < 4) throw InputError(path + ": /crystal/layer_z has fewer than 4 layers");
+    require_finite(r, "/crystal/layer_z", c.layer_z, 1);
     c.stress_zz = read_matrix(r, "/crystal/layer_stress_zz", nt, c.nlayers);
     c.stress_zx = read_matrix(r, "/crystal/layer_stress_zx", nt, c.nlayers);
     c.displacement_z = read_matrix(r, "/crystal/layer_displacement_z", nt, c.nlayers);
@@ -205,14 +219,25 @@ TraceFile read_trace(const std::string& path) {
     c.velocity_x = read_matrix(r, "/crystal/layer_velocity_x", nt, c.nlayers);
     if (r.has("/crystal/coordination")) c.coordination = r.read_double("/crystal/coordination");
     c.l0 = r.has_attr("/system", "l0") ? r.attr_double("/system", "l0") : median_spacing(c.layer_z);
-    if (!(c.l0 > 0.0)) throw InputError(path + ": cannot determine the layer spacing l0");
+    if (!(c.l0 > 0.0 && std::isfinite(c.l0)))
+      throw InputError(path + ": the layer spacing l0 = " + std::to_string(c.l0) +
+                       " (/system attribute l0, or the median spacing of /crystal/layer_z) is not a positive number");
     if (r.has_attr("/system", "fixed_layers")) {
-      c.fixed_layers = static_cast<int>(std::lround(r.attr_double("/system", "fixed_layers")));
+      const double fl = r.attr_double("/system", "fixed_layers");
+      if (!(std::abs(fl) < 1e9))
+        throw InputError(path + ": /system attribute fixed_layers = " + std::to_string(fl) + " is not a layer count");
+      c.fixed_layers = static_cast<int>(std::lround(fl));
     } else {  // layer_z = 0 is the innermost driven layer: the ones below it are driven too
       int below = 0;
       for (double z : c.layer_z) below += z < -0.5 * c.l0;
       c.fixed_layers = below + 1;
     }
+    // Driven layers at each end; the measured ones, from the innermost driven layer at the source
+    // to the last free one (at least 2), must be layers.
+    if (c.fixed_layers < 1 || 2 * static_cast<std::size_t>(c.fixed_layers) + 1 > c.nlayers)
+      throw InputError(path + ": " + std::to_string(c.fixed_layers) + " fixed layers at each end of " +
+                       std::to_string(c.nlayers) + " layers (/system attribute fixed_layers, or layer_z below 0) "
+                       "leave fewer than 2 layers to measure");
     // Excitation mode: from the case text every trace carries; else from which field moved.
     const std::string toml = root_attr(r, "case_toml");
     bool known = false;
@@ -245,7 +270,10 @@ TraceFile read_trace(const std::string& path) {
     c.nt = nt;
     std::vector<std::size_t> dims;
     c.contact_force = r.read_double("/chain/contact_force", &dims);
-    if (dims.size() != 2 || dims[0] != nt) throw InputError(path + ": /chain/contact_force must be [nt, ncontacts]");
+    if (dims.size() != 2 || dims[0] != nt || dims[1] == 0)
+      throw InputError(path + ": /chain/contact_force must be [nt, ncontacts] with nt = " + std::to_string(nt) +
+                       " (the samples of /time) and ncontacts > 0");
+    require_finite(r, "/chain/contact_force", c.contact_force, dims[1]);
     c.ncontacts = dims[1];
     c.contact_position.assign(c.ncontacts, kNaN);
     if (r.has("/system/position")) {
@@ -253,7 +281,7 @@ TraceFile read_trace(const std::string& path) {
       const auto pos = r.read_double("/system/position", &pd);
       std::vector<double> rad;
       if (r.has("/system/radius")) rad = r.read_double("/system/radius");
-      const std::size_t nb = pd.empty() ? 0 : pd[0];
+      const std::size_t nb = pd.size() == 2 && pd[1] == 3 ? pd[0] : 0;  // [n, 3], else not used
       // Contact j touches bead j on its far side: x_j + a_j (the wall contact too).
       for (std::size_t j = 0; j < c.ncontacts && j < nb; ++j)
         c.contact_position[j] = pos[j * 3] + (rad.size() == nb ? rad[j] : 0.0);

@@ -84,6 +84,27 @@ ChainSystem read_system(const io::H5Reader& r, const std::string& group) {
   s.counts_for_m = to_int(r.read_int(join(g, "counts_for_m")));
   s.flippable = r.has(join(g, "flippable")) ? to_int(r.read_int(join(g, "flippable"))) : std::vector<int>(s.spin.size(), 0);
   if (r.has(join(g, "cell_materials"))) s.cell_materials = to_int(r.read_int(join(g, "cell_materials")));
+  // A file from elsewhere (or damaged) is checked before any of its numbers is used as an index.
+  const auto refuse = [&](const std::string& what) { throw InputError(r.path() + ": " + g + ": " + what); };
+  if (n == 0) refuse("no beads");
+  for (const auto* v : {&s.radius, &s.youngs_modulus, &s.poisson_ratio})
+    if (v->size() != n) refuse("mass, radius, youngs_modulus and poisson_ratio must have one value per bead");
+  if (s.material.size() != n || s.cell.size() != n) refuse("material_index and cell must have one value per bead");
+  if (s.counts_for_m.size() != s.spin.size() || s.flippable.size() != s.spin.size())
+    refuse("spin, flippable and counts_for_m must have one value per cell");
+  for (std::size_t b = 0; b < n; ++b) {
+    if (s.material[b] < 0 || static_cast<std::size_t>(s.material[b]) >= s.material_names.size())
+      refuse("material_index of bead " + std::to_string(b) + " is not an index of material_names");
+    if (s.cell[b] < -1 || s.cell[b] >= static_cast<int>(s.spin.size()))
+      refuse("cell of bead " + std::to_string(b) + " is neither -1 nor a cell index");
+    if (!(std::isfinite(s.mass[b]) && s.mass[b] > 0 && std::isfinite(s.radius[b]) && s.radius[b] > 0 &&
+          std::isfinite(s.youngs_modulus[b]) && s.youngs_modulus[b] > 0 && std::isfinite(s.poisson_ratio[b]) &&
+          std::isfinite(s.position[b]) && std::isfinite(s.velocity[b])))
+      refuse("bead " + std::to_string(b) + " has a mass, radius, modulus, position or velocity that is not a finite "
+             "(positive) number");
+  }
+  for (int m : s.cell_materials)
+    if (m < 0 || static_cast<std::size_t>(m) >= s.material_names.size()) refuse("cell_materials holds a bad material index");
   s.cell_first_bead.assign(s.spin.size(), -1);
   for (std::size_t b = n; b-- > 0;)
     if (s.cell[b] >= 0) s.cell_first_bead[s.cell[b]] = static_cast<int>(b);
@@ -113,6 +134,11 @@ ChainSystem read_system(const io::H5Reader& r, const std::string& group) {
   }
   if (s.hertz_constant.size() != n - 1 + (s.has_wall ? 1 : 0) || s.initial_overlap.size() != s.hertz_constant.size())
     throw InputError(r.path() + ": hertz_constant/initial_overlap do not match the beads and the wall");
+  for (std::size_t k = 0; k < s.hertz_constant.size(); ++k)
+    if (!(std::isfinite(s.hertz_constant[k]) && s.hertz_constant[k] >= 0 && std::isfinite(s.initial_overlap[k])))
+      refuse("contact " + std::to_string(k) + " has a hertz_constant or initial_overlap that is not a finite number");
+  for (double x : {s.wall_youngs_modulus, s.wall_poisson_ratio, s.wall_position, s.precompression})
+    if (s.has_wall && !std::isfinite(x)) refuse("a wall attribute is not a finite number");
   return s;
 }
 

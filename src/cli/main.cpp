@@ -1,5 +1,6 @@
 // granwave: one verb per file in src/cli/. Exit codes (docs/design.md §2.3): 0 success,
 // 2 bad input, 1 a failed run or check.
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -72,6 +73,11 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const RunError& e) {
     err << "granwave " << verb << ": run failed: " << e.what() << "\n";
+    if (io::abandoned_files()) {  // a full disk: the HDF5 library's clean-up at exit would crash (io/h5.hpp)
+      std::cout.flush();
+      std::cerr.flush();
+      std::_Exit(1);
+    }
     return 1;
   } catch (const std::exception& e) {
     err << "granwave " << verb << ": internal error: " << e.what() << "\n";

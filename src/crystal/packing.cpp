@@ -161,19 +161,45 @@ Packing read_system(const std::string& path) {
     p.fixed.push_back(fixed[q] != 0);
     p.layer.push_back(static_cast<int>(layer[q]));
   }
-  p.box_x = r.attr_double(g, "box_x");
-  p.box_y = r.attr_double(g, "box_y");
-  p.d = r.attr_double(g, "d");
-  p.d_prime = r.attr_double(g, "d_prime");
-  p.l0 = r.attr_double(g, "l0");
-  p.delta = r.attr_double(g, "delta");
-  p.fixed_layers = static_cast<int>(r.attr_double(g, "fixed_layers"));
-  p.nx = static_cast<int>(r.attr_double(g, "cells_x"));
-  p.ny = static_cast<int>(r.attr_double(g, "cells_y"));
-  p.layers = static_cast<int>(r.attr_double(g, "layers"));
-  p.relaxed = r.attr_double(g, "relaxed") != 0.0;
-  p.relax_steps = static_cast<long>(r.attr_double(g, "relax_steps"));
-  p.relax_ratio = r.attr_double(g, "relax_ratio");
+  // A file from elsewhere (or damaged) is checked before its numbers size a grid or index a layer.
+  const auto refuse = [&](const std::string& what) { throw InputError(path + ": " + g + ": " + what); };
+  const auto number = [&](const char* name, bool positive) {
+    const double v = r.attr_double(g, name);
+    if (!std::isfinite(v) || (positive && !(v > 0)))
+      refuse(std::string("attribute '") + name + "' must be a finite" + (positive ? " positive" : "") + " number");
+    return v;
+  };
+  const auto count = [&](const char* name, double lo, double hi) {
+    const double v = r.attr_double(g, name);
+    if (!(v >= lo && v <= hi && v == std::floor(v)))
+      refuse(std::string("attribute '") + name + "' must be a whole number in [" + std::to_string(static_cast<long>(lo)) +
+             ", " + std::to_string(static_cast<long>(hi)) + "]");
+    return v;
+  };
+  p.box_x = number("box_x", true);
+  p.box_y = number("box_y", true);
+  p.d = number("d", true);
+  p.d_prime = number("d_prime", true);
+  p.l0 = number("l0", true);
+  p.delta = number("delta", false);
+  p.nx = static_cast<int>(count("cells_x", 1, static_cast<double>(n)));
+  p.ny = static_cast<int>(count("cells_y", 1, static_cast<double>(n)));
+  p.layers = static_cast<int>(count("layers", 1, static_cast<double>(n)));
+  p.fixed_layers = static_cast<int>(count("fixed_layers", 0, p.layers));
+  p.relaxed = count("relaxed", 0, 1) != 0.0;
+  p.relax_steps = static_cast<long>(count("relax_steps", 0, 1e15));
+  p.relax_ratio = number("relax_ratio", false);
+  if (static_cast<double>(n) != static_cast<double>(p.nx) * p.ny * p.layers)
+    refuse("holds " + std::to_string(n) + " particles, not cells_x * cells_y * layers");
+  const double zmax = 2.0 * (p.layers + 2) * p.l0 + 10.0 * p.d;  // far beyond any packing: bounds the grid
+  for (std::size_t q = 0; q < n; ++q) {
+    if (p.layer[q] < 0 || p.layer[q] >= p.layers) refuse("layer of particle " + std::to_string(q) + " is not a layer index");
+    if (!(std::isfinite(p.mass[q]) && p.mass[q] > 0 && std::isfinite(p.inertia[q]) && p.inertia[q] > 0 &&
+          p.radius[q] > 0 && p.radius[q] <= p.d))
+      refuse("particle " + std::to_string(q) + " has a mass, inertia or radius out of range (radius in (0, d])");
+    if (!(std::abs(p.x[q]) <= 2 * p.box_x && std::abs(p.y[q]) <= 2 * p.box_y && std::abs(p.z[q]) <= zmax))
+      refuse("particle " + std::to_string(q) + " lies outside the box (or its position is not finite)");
+  }
   return p;
 }
 

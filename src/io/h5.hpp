@@ -1,6 +1,10 @@
 // A thin HDF5 layer (the only header the rest of granwave needs; H5Cpp stays in h5.cpp).
 // Files are written to NAME.tmp and renamed on commit(): a crash never leaves a half file
-// under the final name (HDF5 files are not crash-safe in place).
+// under the final name (HDF5 files are not crash-safe in place). Written files carry checksums
+// (data/SCHEMA.md §1, "Checksums"): metadata in the 1.10 file format, numeric and string datasets
+// chunked with Fletcher-32, strings fixed-length. The reader refuses, with InputError naming the
+// file and the object, anything the library cannot read, a checksum that does not match, and a
+// size the file or the memory could not hold.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -51,6 +55,7 @@ class H5Reader {
   const std::string& path() const { return path_; }
 
  private:
+  void check_heaps() const;  // before the first variable-length string: the global heap is sound
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string path_;
@@ -59,6 +64,11 @@ class H5Reader {
 // Root attributes every granwave file carries: code, version, git describe, UTC time.
 void write_provenance(H5Writer& w, const std::string& code = "granwave");
 std::string utc_now_iso8601();
+
+// Files given up after the library failed to close them (a full disk: H5Fclose fails half way and
+// leaves the file half released). The HDF5 library's clean-up at exit would close them again and
+// crash: main() ends the process with _Exit instead when this is not 0.
+int abandoned_files();
 
 // Inside a catch (...) block: the HDF5 library's message if the exception in flight is one of its
 // own (H5::Exception is no std::exception), else "". Lets main() name a stray one without H5Cpp.h.

@@ -346,6 +346,7 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
     io::H5Reader r(out_path);
     if (r.has_attr("/", "fingerprint") && r.attr_string("/", "fingerprint") == ro.fingerprint) done = read_members(r, "/members");
     if (done.size() != members.size()) done.clear();
+    require_members_in_order(done, names.size(), out_path);
   }
   if (!done.empty()) st.total = st.resumed = done.size();
   const auto results = !done.empty() ? done : run_members(

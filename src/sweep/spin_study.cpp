@@ -423,6 +423,7 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
       if (r.has_attr("/", "fingerprint") && r.attr_string("/", "fingerprint") == fp) {
         results = read_members(r, "/members");
         reused = results.size() == members.size();
+        if (reused) require_members_in_order(results, ro.value_names.size(), o.output);
         stats.total = stats.resumed = results.size();
       }
     }

@@ -80,6 +80,14 @@ std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string&
   const std::size_t nv = dims.size() == 2 ? dims[1] : 0;
   if (offset.size() != n + 1 || label.size() != n || work.size() != n || values.size() != n * nv)
     throw InputError(r.path() + ": " + group + ": inconsistent member datasets");
+  // Offsets and indices come from a file (perhaps damaged): checked before they index anything.
+  if (offset[0] != 0 || offset[n] != static_cast<std::int64_t>(profile.size()))
+    throw InputError(r.path() + ": " + group + "/profile_offset must run from 0 to the length of " + group + "/profile");
+  for (std::size_t k = 0; k < n; ++k) {
+    if (offset[k + 1] < offset[k])
+      throw InputError(r.path() + ": " + group + "/profile_offset decreases at member " + std::to_string(k));
+    if (index[k] < 0) throw InputError(r.path() + ": " + group + "/index holds a negative member index");
+  }
   std::vector<MemberResult> out(n);
   for (std::size_t k = 0; k < n; ++k) {
     out[k].index = index[k];
@@ -89,6 +97,15 @@ std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string&
     out[k].work = work[k];
   }
   return out;
+}
+
+void require_members_in_order(const std::vector<MemberResult>& results, std::size_t nvalues, const std::string& path) {
+  for (std::size_t k = 0; k < results.size(); ++k)
+    if (results[k].index != static_cast<std::int64_t>(k) || results[k].values.size() != nvalues)
+      throw InputError(path + ": /members: member " + std::to_string(k) + " has index " +
+                       std::to_string(results[k].index) + " and " + std::to_string(results[k].values.size()) +
+                       " values, expected index " + std::to_string(k) + " and " + std::to_string(nvalues) +
+                       " values: the study file is damaged (remove it to run the study again)");
 }
 
 // ---- batch files ----
@@ -149,7 +166,9 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
   MemberTeam team;  // one rank unless started by mpirun (distributed.hpp): then rank 0 reads the batches
   on_root([&] {
     for (auto& m : read_parts(opt.parts_dir, opt.fingerprint)) {
-      if (m.index < 0 || static_cast<std::size_t>(m.index) >= n || done[m.index]) continue;
+      if (m.index < 0 || static_cast<std::size_t>(m.index) >= n || done[m.index] ||
+          (!opt.value_names.empty() && m.values.size() != opt.value_names.size()))
+        continue;  // not a member of this study as it stands: computed again
       done[m.index] = 1;
       ++resumed;
       results[m.index] = std::move(m);

@@ -68,6 +68,8 @@ std::vector<MemberResult> read_parts(const std::string& parts_dir, const std::st
 void write_members(io::H5Writer& w, const std::string& group, const std::vector<MemberResult>& results,
                    const std::vector<std::string>& value_names);
 std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string& group);
+// A finished study file read back: member k at position k with `nvalues` values, else InputError.
+void require_members_in_order(const std::vector<MemberResult>& results, std::size_t nvalues, const std::string& path);
 
 // A finished study: commit `w` (the study file, written as NAME.tmp, renamed to NAME), then remove
 // parts_dir, whose batches the file now holds; resuming needs them only until the rename.

@@ -63,6 +63,11 @@ def test_write_read_trace_roundtrip(tmp_path, cases_dir):
     with h5py.File(out) as f, h5py.File(sp) as g:
         assert np.array_equal(f["system/mass"][()], g["mass"][()])
         assert f["system"].attrs["wall"] == g.attrs["wall"]
+        # Issue #25: checksummed like granwave's files (data/SCHEMA.md, "HDF5 files"): Fletcher-32 on
+        # the datasets, fixed-length text attributes, the 1.10 format's checksummed metadata.
+        assert f["time"].fletcher32 and f["chain/contact_force"].fletcher32 and f["system/mass"].fletcher32
+        assert h5py.check_string_dtype(f.attrs.get_id("case_toml").dtype).length is not None
+        assert f.id.get_create_plist().get_version()[0] >= 2   # superblock v2+: checksummed
 
 
 def test_chain_fixture_hertz_constant(tmp_path, cases_dir):

@@ -1,0 +1,51 @@
+# Files from elsewhere never crash granwave (issue #25): hostile data in valid traces, a full disk,
+# and a seeded mutation fuzzer over trace, system, study and TOML files. Python (h5py) drives them.
+set(FILES_PY /usr/bin/python3)
+set(FILES_TMP ${CMAKE_BINARY_DIR}/files-tests)
+
+add_test(NAME "files: hostile data inside valid traces exits 2 naming the dataset"
+  COMMAND ${FILES_PY} ${CMAKE_SOURCE_DIR}/tests/files/hostile_traces.py ${GW} ${FILES_TMP}/hostile)
+set_tests_properties("files: hostile data inside valid traces exits 2 naming the dataset" PROPERTIES LABELS "cli;unit")
+
+add_test(NAME "files: run, build and sweep on a full disk exit 1 and lose nothing"
+  COMMAND ${FILES_PY} ${CMAKE_SOURCE_DIR}/tests/files/full_disk.py ${GW} ${FILES_TMP}/full_disk)
+set_tests_properties("files: run, build and sweep on a full disk exit 1 and lose nothing" PROPERTIES LABELS "cli;unit")
+
+# The fuzzer: 3000 inputs on the Release build (27 s on 2 idle cores); under the sanitizers 400 inputs (21 s)
+# with a longer bound (each run is ~5x slower). The regression inputs below are kept from it.
+if(GRANWAVE_SANITIZE)
+  set(FUZZ_ARGS --inputs 400 --timeout 60)
+else()
+  set(FUZZ_ARGS --inputs 3000 --timeout 10)
+endif()
+add_test(NAME "files: seeded mutation fuzzer over traces, systems, studies and TOML"
+  COMMAND ${FILES_PY} ${CMAKE_SOURCE_DIR}/tests/files/fuzz_files.py ${GW} ${FILES_TMP}/fuzz ${FUZZ_ARGS})
+set_tests_properties("files: seeded mutation fuzzer over traces, systems, studies and TOML" PROPERTIES
+  LABELS "cli;unit;fuzz" TIMEOUT 600
+  ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_SOURCE_DIR}/tests/files/lsan_hdf5.supp:print_suppressions=0")
+
+# libFuzzer (clang): -DGRANWAVE_LIBFUZZER=ON builds readers_fuzzer; scripts/test-all.sh runs it for 60 s.
+if(GRANWAVE_LIBFUZZER)
+  add_executable(readers_fuzzer ${CMAKE_SOURCE_DIR}/tests/fuzz/readers_fuzzer.cpp)
+  target_compile_options(readers_fuzzer PRIVATE -fsanitize=fuzzer)
+  target_link_options(readers_fuzzer PRIVATE -fsanitize=fuzzer)
+  target_link_libraries(readers_fuzzer PRIVATE granwave_base)
+endif()
+
+# Regression inputs (the first two from the issue's experiment (1000 mutated crystal40 traces, seed 20261126, in the
+# format before #25: no checksums, variable-length strings), their untouched datasets zeroed so that
+# they gzip to 5 kB: one claimed a dataset extent of 3e18 values (std::vector max_size: exit 1), one
+# crashed the HDF5 library in its global heap (SIGSEGV under H5Aread of a root attribute)).
+function(granwave_damaged_trace name words)
+  add_test(NAME "files: analyze of damaged trace ${name} exits 2 naming the file"
+    COMMAND sh -c "gzip -dc ${CMAKE_SOURCE_DIR}/tests/data/damaged/${name}.h5.gz > ${CLI_TMP}/${name}.h5 && \
+${GW} analyze ${CLI_TMP}/${name}.h5 --json > /dev/null 2> ${CLI_TMP}/${name}.err; rc=$?; \
+test $rc -eq 2 || { cat ${CLI_TMP}/${name}.err; echo \"exit code $rc, expected 2\"; exit 1; }; \
+grep -Eq -- '${name}.h5.*${words}' ${CLI_TMP}/${name}.err || { cat ${CLI_TMP}/${name}.err; exit 1; }")
+  set_tests_properties("files: analyze of damaged trace ${name} exits 2 naming the file" PROPERTIES LABELS "cli;unit")
+endfunction()
+granwave_damaged_trace(trace_huge_extent "claims .* values")
+granwave_damaged_trace(trace_vlen_heap_crash "(damaged|checksum mismatch)")
+# From the 10 000 traces of the issue's "done when" (fuzz_files.py --seed 1, an h5py-format trace):
+# a damaged version-1 object header on which H5Aexists_by_name crashed (SIGSEGV in a memcpy).
+granwave_damaged_trace(trace_attr_header_crash "damaged file: the HDF5 library crashed reading ./system/@")
