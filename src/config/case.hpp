@@ -74,7 +74,7 @@ enum class ContactLaw : unsigned char {
   linear,
   hertz_mindlin,
 #ifdef GRANWAVE_TEST_LAW
-  linear_dashpot_test,
+  test_linear_dashpot,  // tests/laws/test_linear_dashpot.hpp
 #endif
 };
 // What a Hertz-Mindlin contact keeps as its tangential history (contact/hertz_mindlin.hpp):
