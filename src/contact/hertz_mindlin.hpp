@@ -191,11 +191,10 @@ struct HertzMindlinLaw {
         xi = rotated + vt * c.dt;  // eq. (6)
         f_test = -k_t * xi;        // eq. (5) with k_t(delta)
       }
-      const double magnitude2 = f_test.squaredNorm();
-      const CoulombDecision coulomb =
-          coulomb_decision(p.mu_static, p.mu_dynamic, p.coulomb_on_magnitude, f_n, magnitude2, h.was_sliding());
+      const CoulombLimit coulomb = coulomb_limit(p.mu_static, p.mu_dynamic, p.coulomb_on_magnitude, f_n, h.was_sliding());
       const double f_dynamic = coulomb.f_dynamic;
-      const bool sliding = coulomb.sliding;
+      const double magnitude2 = f_test.squaredNorm();
+      const bool sliding = coulomb.slides(magnitude2);
       const Vec3 kept_stick = H == MindlinHistory::force ? f_test : xi;
       if constexpr (!Exact) {  // sticking: f_t = f_test; a sliding contact is evaluated again exactly
         h.t_x = kept_stick.x(), h.t_y = kept_stick.y(), h.t_z = kept_stick.z();
