@@ -12,3 +12,10 @@ MIXED_ARM = "radius_velocity_contact_point_torque"
 
 class Unsupported(ValueError):
     """A case a code cannot run with the same law (the drivers exit 2, said on stderr)."""
+
+
+def liggghts_properties(*rows) -> str:
+    """LIGGGHTS' material properties, one `fix mK all property/global NAME STYLE VALUES` line per row
+    (K, NAME, STYLE, VALUES); STYLE `peratomtype` takes one value per type, `peratomtypepair 3` one
+    per pair of the decks' three types (1 free, 2 fixed, 3 source)."""
+    return "".join("fix             m%d all property/global %s %s %s\n" % row for row in rows)

@@ -193,6 +193,17 @@ def yade_attrs(c: dict) -> dict:
     return out
 
 
+def _properties(e, nu, restitution, mu, numbers) -> str:
+    """model hertz's material: E and nu per type, restitution and mu per type pair (fix numbers given)."""
+    from xclib.codefacts import liggghts_properties
+    three = lambda x: " ".join([_g(x)] * 3)  # noqa: E731
+    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
+    return liggghts_properties(
+        (numbers[0], "youngsModulus", "peratomtype", three(e)), (numbers[1], "poissonsRatio", "peratomtype", three(nu)),
+        (numbers[2], "coefficientRestitution", "peratomtypepair 3", nine(restitution)),
+        (numbers[3], "coefficientFriction", "peratomtypepair 3", nine(mu)))
+
+
 def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
     """`gran model hertz tangential history` with the material of the case (MAPPING.md, "Hertz-Mindlin"):
     LIGGGHTS' hertz is F_n = (4/3) E* sqrt(R*) delta^3/2 and k_t = 8 G* sqrt(R* delta) with E*, G* mixed
@@ -203,19 +214,12 @@ def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
     Returns the lines and whether the pair keeps a shear history."""
     p = params(c)
     friction = p["tangential"] == "mindlin"
-    three = lambda x: " ".join([_g(x)] * 3)  # noqa: E731
-    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
     lines = ("# Hertz-Mindlin (granwave law = \"hertz_mindlin\"); one material for the three types (1 free, 2 fixed "
              "top, 3 fixed source); E > 1e9 Pa needs hard_particles\n"
-             "hard_particles  yes\n"
-             "fix             m1 all property/global youngsModulus peratomtype %s\n"
-             "fix             m2 all property/global poissonsRatio peratomtype %s\n"
-             "fix             m3 all property/global coefficientRestitution peratomtypepair 3 %s\n"
-             "fix             m4 all property/global coefficientFriction peratomtypepair 3 %s\n"
+             "hard_particles  yes\n" +
+             _properties(p["E"], p["nu"], liggghts_restitution(p["zeta"]), p["mu"] if friction else 0.0, (1, 2, 3, 4)) +
              "pair_style      gran model hertz tangential %s tangential_damping off limitForce %s\n"
-             "pair_coeff      * *\n" % (three(p["E"]), three(p["nu"]), nine(liggghts_restitution(p["zeta"])),
-                                         nine(p["mu"] if friction else 0.0), "history" if friction else "no_history",
-                                         limit_force))
+             "pair_coeff      * *\n" % ("history" if friction else "no_history", limit_force))
     return lines, c["tangential"] == "mindlin"
 
 
@@ -300,14 +304,8 @@ def bench_lammps(v: dict) -> dict:
 def bench_liggghts(v: dict) -> dict:
     """model hertz: k_n = (4/3) E* sqrt(R* delta), k_t = 8 G* sqrt(R* delta) from youngsModulus and
     poissonsRatio; coefficientRestitution 1: ln e = 0, no damping."""
-    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
-    three = lambda x: " ".join([_g(x)] * 3)  # noqa: E731
-    properties = "\n".join([
-        "hard_particles  yes  # E = 63 GPa: LIGGGHTS refuses E > 1e9 Pa in SI units without it",
-        "fix             m1 all property/global youngsModulus peratomtype " + three(v["youngs"]),
-        "fix             m2 all property/global poissonsRatio peratomtype " + three(v["poisson"]),
-        "fix             m3 all property/global coefficientRestitution peratomtypepair 3 " + nine(1.0),
-        "fix             m5 all property/global coefficientFriction peratomtypepair 3 " + nine(v["mu"])])
+    properties = ("hard_particles  yes  # E = 63 GPa: LIGGGHTS refuses E > 1e9 Pa in SI units without it\n" +
+                  _properties(v["youngs"], v["poisson"], 1.0, v["mu"], (1, 2, 3, 5))).rstrip("\n")
     return dict(properties=properties, pair_style="gran model hertz tangential history",
                 variant="(hertz, tangential history)")
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import sys
 
-from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, Unsupported
+from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties
 
 NAME = "linear"
 CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
@@ -63,19 +63,20 @@ def yade_attrs(c: dict) -> dict:
 
 
 # ------------------------------------------------------------------------------------------ LIGGGHTS
+def _properties(kn, kt, gamma_n, gamma_t, mu) -> str:
+    """hooke/stiffness' per-type-pair k_n, k_t, absolute dashpots and mu."""
+    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
+    rows = zip(range(1, 6), ("kn", "kt", "gamman_abs", "gammat_abs", "coefficientFriction"), ["peratomtypepair 3"] * 5,
+               map(nine, (kn, kt, gamma_n, gamma_t, mu)))
+    return liggghts_properties(*rows)
+
+
 def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
     """The contact lines of the crystal deck and whether the pair keeps a shear history."""
-    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
     lines = ("# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed, 3 source: "
-             "one material)\n"
-             "fix             m1 all property/global kn peratomtypepair 3 %s\n"
-             "fix             m2 all property/global kt peratomtypepair 3 %s\n"
-             "fix             m3 all property/global gamman_abs peratomtypepair 3 %s\n"
-             "fix             m4 all property/global gammat_abs peratomtypepair 3 %s\n"
-             "fix             m5 all property/global coefficientFriction peratomtypepair 3 %s\n"
+             "one material)\n" + _properties(c["kn"], c["kt"], c["gamma_n"], c["gamma_t"], c["mu_static"]) +
              "pair_style      gran model hooke/stiffness tangential history absolute_damping on limitForce %s\n"
-             "pair_coeff      * *\n" % (nine(c["kn"]), nine(c["kt"]), nine(c["gamma_n"]), nine(c["gamma_t"]),
-                                         nine(c["mu_static"]), limit_force))
+             "pair_coeff      * *\n" % limit_force)
     return lines, c["kt"] > 0
 
 
@@ -142,14 +143,8 @@ def bench_lammps(v: dict) -> dict:
 
 def bench_liggghts(v: dict) -> dict:
     """properties, pair_style and the variant's name of the benchmark's LIGGGHTS deck (no dashpots)."""
-    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
     friction = float(v["kt"]) > 0
-    properties = "\n".join([
-        "fix             m1 all property/global kn peratomtypepair 3 " + nine(v["kn"]),
-        "fix             m2 all property/global kt peratomtypepair 3 " + nine(v["kt"]),
-        "fix             m3 all property/global gamman_abs peratomtypepair 3 " + nine(0.0),
-        "fix             m4 all property/global gammat_abs peratomtypepair 3 " + nine(0.0),
-        "fix             m5 all property/global coefficientFriction peratomtypepair 3 " + nine(v["mu"])])
+    properties = _properties(v["kn"], v["kt"], 0.0, 0.0, v["mu"]).rstrip("\n")
     tang = "history" if friction else "no_history"
     return dict(properties=properties,
                 pair_style="gran model hooke/stiffness tangential %s absolute_damping on limitForce off" % tang,

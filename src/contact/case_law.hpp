@@ -85,13 +85,4 @@ decltype(auto) with_flags(const F& f, bool first, Flags... rest) {
   return with_flags<Fixed..., false>(f, rest...);
 }
 
-// The lever arm as `granwave check` describes it.
-inline const char* lever_arm_text(LeverArm arm) {
-  switch (arm) {
-    case LeverArm::radius: return "a (seed 002 eq. (4))";
-    case LeverArm::contact_point: return "a - delta/2 (contact point, as YADE and LIGGGHTS)";
-  }
-  return "";
-}
-
 }  // namespace granwave::contact

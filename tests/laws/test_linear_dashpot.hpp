@@ -11,6 +11,7 @@
 #include "contact/case_law.hpp"
 #include "contact/hooke.hpp"
 #include "contact/law.hpp"
+#include "contact/linear_luding_case.hpp"
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 
@@ -55,12 +56,10 @@ struct TestLinearDashpotCase {
   static constexpr std::array<const char*, 3> keys{"kn", "gamma_n", "gamma_t"};
   static constexpr const char* refusal_note = " (this case's law is \"test_linear_dashpot\")";
 
+  // The linear law's keys and checks: kt is not this law's (a case giving it is refused first), so it stays 0.
   template <class Reader, class Table>
   static void read(const Reader& r, const Table& t, config::ContactParams& p) {
-    auto nonneg = [](double v) { return v >= 0; };
-    p.kn = *r.number_in(t, "contact", "kn", true, [](double v) { return v > 0; }, "> 0 (N/m)");
-    p.gamma_n = r.number_in(t, "contact", "gamma_n", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-    p.gamma_t = r.number_in(t, "contact", "gamma_t", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
+    LinearLudingCase::read(r, t, p);
   }
   template <class Reader, class Table>
   static void check_case(const Reader&, const Table&, const config::Case&) {}
@@ -76,11 +75,11 @@ struct TestLinearDashpotCase {
   static LinearisedContact at(const config::ContactParams& p, double, double, double, double delta) {
     return {p.kn * delta, p.kn, 0.0, p.gamma_n, p.gamma_t};
   }
-  static Relaxation relaxation(const config::ContactParams& p, double, double, double m_min, double) {
-    Relaxation r;
+  // The spring alone, as the linear law relaxes (its Hooke form), named as this law.
+  static Relaxation relaxation(const config::ContactParams& p, double density, double a_max, double m_min,
+                               double overlap_max) {
+    Relaxation r = LinearLudingCase::relaxation(p, density, a_max, m_min, overlap_max);
     r.params.law = law;
-    r.params.kn = p.kn;
-    r.t_c = contact_time({p.kn, 0.0, false}, 0.5 * m_min);
     return r;
   }
   template <class Make>
@@ -94,10 +93,11 @@ struct TestLinearDashpotCase {
     return {"contact.kn", "contact.gamma_n", "contact.kn, contact.gamma_n, contact.gamma_t, crystal.polydispersity",
             "contact.kn, crystal.overlap, crystal.radius", "contact.kn"};
   }
-  static ScaleCheck scale(const config::ContactParams& p, const config::CrystalCase&, double m) {
-    return {"k/m", p.kn / m, "contact.kn, crystal.radius, crystal.density"};
+  // The spring's: the linear law's first guard and (no) stability note.
+  static ScaleCheck scale(const config::ContactParams& p, const config::CrystalCase& k, double m) {
+    return LinearLudingCase::scale(p, k, m);
   }
-  static std::string stability_note(double) { return ""; }
+  static std::string stability_note(double delta_max) { return LinearLudingCase::stability_note(delta_max); }
   static std::string check_line(const config::ContactParams& p, const LinearisedContact&) {
     std::ostringstream o;
     o << "  contact law test_linear_dashpot: k = " << p.kn << " N/m, gamma_n = " << p.gamma_n
