@@ -101,6 +101,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(REPO, "crosscheck"))
+from xclib import laws as L  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
 DECKS = os.path.join(HERE, "decks")
@@ -232,21 +233,11 @@ def _g(x: float) -> str:
     return repr(float(x))
 
 
-def is_hertz(case: dict) -> bool:
-    return case.get("contact", {}).get("law", "linear") == "hertz_mindlin"
-
-
 def _check_renderable(case: dict, system: dict) -> None:
     """The decks render the benchmark's crystals; anything else is refused, not approximated."""
     c = T.contact_params(case)
     ex = T.excitation(case)
-    bad = []
-    if is_hertz(case):
-        if c.get("damping_ratio", 0.0) != 0:
-            bad.append("damping_ratio must be 0 (each code's Hertz damping has its own constant)")
-        if c.get("tangential", "mindlin") != "mindlin" or c.get("tangential_history", "displacement") != "displacement":
-            bad.append('tangential = "mindlin" with tangential_history = "displacement" only (LAMMPS mindlin, '
-                       "LIGGGHTS tangential history)")
+    bad = list(L.law_of(c).bench_refusals(c))   # what the law's decks cannot render (xclib.laws)
     if case["case"]["model"] != "crystal":
         bad.append("model = %r (crystal only)" % case["case"]["model"])
     if c["gamma_n"] != 0 or c["gamma_t"] != 0:
@@ -294,9 +285,9 @@ def deck_values(case: dict, system: dict) -> dict:
     nsteps, every = T.sampling(case, dt)
     r = float(np.min(system["radius"]))
     z0 = float(np.min(np.asarray(system["position"], float)[lay["layer"] == 0, 2]))
-    hertz = is_hertz(case)
-    friction = c["kt"] > 0 or hertz
-    return dict(case_name=case["case"]["name"], dt=_g(dt), nsteps=nsteps, every=every, hertz=hertz,
+    law = L.law_of(c)
+    friction = law.tangential(c)
+    return dict(case_name=case["case"]["name"], dt=_g(dt), nsteps=nsteps, every=every, law=law,
                 youngs=c.get("youngs_modulus", 0.0), poisson=c.get("poisson_ratio", 0.0),
                 skin=_g(SKIN_OVER_RADIUS * r), neigh_every=NEIGH_EVERY, l0=_g(lay["l0"]),
                 origin=_g(z0 - 0.5 * lay["l0"]), friction=friction, kn=c["kn"], kt=c["kt"], mu=c["mu_static"],
@@ -306,20 +297,7 @@ def deck_values(case: dict, system: dict) -> dict:
 
 def render_lammps(case: dict, system: dict, workdir: str) -> dict:
     v = deck_values(case, system)
-    v["pair_coeff"] = ""
-    if v["hertz"]:
-        # pair granular: F_n = (4/3) E* a delta with E* mixed from E, nu (hertz/material; eta_n0 = 0: no
-        # damping), Mindlin's k_t = 8 G* a from the same E, nu (NULL), no tangential damping, mu
-        v["pair_style"] = "granular"
-        v["pair_coeff"] = "hertz/material %s 0.0 %s tangential mindlin NULL 0.0 %s" % (
-            _g(v["youngs"]), _g(v["poisson"]), _g(v["mu"]))
-        v["variant"] = "(granular hertz/material + tangential mindlin, fix nve/sphere)"
-    elif v["friction"]:
-        v["pair_style"] = "gran/hooke/history %s %s 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["kt"]), _g(v["mu"]))
-        v["variant"] = "(gran/hooke/history, fix nve/sphere)"
-    else:
-        v["pair_style"] = "gran/hooke %s 0.0 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["mu"]))
-        v["variant"] = "(gran/hooke without history, fix nve)"
+    v.update(v["law"].bench_lammps(v))   # pair_style, pair_coeff, variant: the law's LAMMPS mapping
     v["format"] = '" %.10g"'   # a leading space separates the columns
     with open(os.path.join(DECKS, "lammps_crystal.in.tmpl")) as f:
         deck = string.Template(f.read()).substitute(v)
@@ -331,32 +309,9 @@ def render_lammps(case: dict, system: dict, workdir: str) -> dict:
 
 def render_liggghts(case: dict, system: dict, workdir: str) -> dict:
     v = deck_values(case, system)
-    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
-    three = lambda x: " ".join([_g(x)] * 3)  # noqa: E731
-    v.update(kn9=nine(v["kn"]), kt9=nine(v["kt"]), zero9=nine(0.0), mu9=nine(v["mu"]),
-             tangential="history" if v["friction"] else "no_history",
-             # LIGGGHTS 3.8 refuses shear history with newton on (pair_gran.cpp: "requires newton pair off")
-             newton="off" if v["friction"] else "on",
-             variant="(hooke/stiffness, tangential %s)" % ("history" if v["friction"] else "no_history"))
-    if v["hertz"]:
-        # model hertz: k_n = (4/3) E* sqrt(R* delta), k_t = 8 G* sqrt(R* delta) from youngsModulus and
-        # poissonsRatio; coefficientRestitution 1: ln e = 0, no damping
-        v["properties"] = "\n".join([
-            "hard_particles  yes  # E = 63 GPa: LIGGGHTS refuses E > 1e9 Pa in SI units without it",
-            "fix             m1 all property/global youngsModulus peratomtype " + three(v["youngs"]),
-            "fix             m2 all property/global poissonsRatio peratomtype " + three(v["poisson"]),
-            "fix             m3 all property/global coefficientRestitution peratomtypepair 3 " + nine(1.0),
-            "fix             m5 all property/global coefficientFriction peratomtypepair 3 " + nine(v["mu"])])
-        v["pair_style"] = "gran model hertz tangential history"
-        v["variant"] = "(hertz, tangential history)"
-    else:
-        v["properties"] = "\n".join([
-            "fix             m1 all property/global kn peratomtypepair 3 " + v["kn9"],
-            "fix             m2 all property/global kt peratomtypepair 3 " + v["kt9"],
-            "fix             m3 all property/global gamman_abs peratomtypepair 3 " + v["zero9"],
-            "fix             m4 all property/global gammat_abs peratomtypepair 3 " + v["zero9"],
-            "fix             m5 all property/global coefficientFriction peratomtypepair 3 " + v["mu9"]])
-        v["pair_style"] = "gran model hooke/stiffness tangential %s absolute_damping on limitForce off" % v["tangential"]
+    # LIGGGHTS 3.8 refuses shear history with newton on (pair_gran.cpp: "requires newton pair off")
+    v.update(newton="off" if v["friction"] else "on")
+    v.update(v["law"].bench_liggghts(v))   # properties, pair_style, variant: the law's LIGGGHTS mapping
     with open(os.path.join(DECKS, "liggghts_crystal.in.tmpl")) as f:
         deck = string.Template(f.read()).substitute(v)
     write_data_file(os.path.join(workdir, "data.system"), system, v["lay"])

@@ -37,7 +37,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 from xclib import dumps as D  # noqa: E402
-from xclib import hertz_mindlin as HM  # noqa: E402
+from xclib import laws as L  # noqa: E402
+from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, MIXED_ARM, Unsupported  # noqa: E402,F401
 from xclib import traces as T  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LAMMPS velocity Verlet, dumps after a whole step; positions, velocities "
@@ -45,25 +46,14 @@ TIME_CONVENTION = ("synchronous: LAMMPS velocity Verlet, dumps after a whole ste
                    "contact forces is put back to the step's half-step velocity v(t) - f(t)/m dt/2 (the "
                    "force that acted, as granwave and YADE record)")
 
-# Contact-law conventions of the two pair styles the crystal deck uses, measured with two-sphere decks
-# (liggghts_inputs/MAPPING.md, LAMMPS section):
-#   gran/hooke/history (friction): tangential arm = the radius a_i, in the surface velocity
-#     (wr = (a_i w_i + a_j w_j)/r, crossed with the centre vector) and in the torque (-a_i n x f_t):
-#     seed 002 eq. (4), granwave's lever_arm = "radius"; the normal force may pull (no clip);
-#     Coulomb limit xmu |f_n| with the dashpot included ("magnitude"); history zeroed when the
-#     contact opens.
-#   granular hooke + linear_nohistory 0 0 (frictionless): absolute dashpot (`damping velocity`),
-#     `limit_damping` clips a pulling dashpot ("clip"); the tangential force is zero.
-FRICTION_STYLE_CONVENTIONS = dict(lever_arm="radius", normal_tension="allow", coulomb_normal="magnitude")
+# Contact-law conventions of the pair styles the crystal deck uses, measured with two-sphere decks
+# (liggghts_inputs/MAPPING.md, LAMMPS section): xclib.codefacts (
+# FRICTION_STYLE_CONVENTIONS of gran/hooke/history and gran/hertz/history, MIXED_ARM of pair granular).
 
 # The chain's wall: "plane" = fix wall/gran with the pair's own Hertz constant (exact), or
 # "sphere:R" = a fixed sphere of radius R (m) just touching the wall plane (R* error r/R), as the YADE
 # driver does. XC_LAMMPS_WALL selects it (used to measure what the sphere costs: MAPPING.md).
 WALL = os.environ.get("XC_LAMMPS_WALL", "plane")
-
-
-class Unsupported(ValueError):
-    """A case LAMMPS cannot run with the same law (exit 2, said on stderr)."""
 
 
 def _template(name: str) -> string.Template:
@@ -196,80 +186,10 @@ def render_chain(case: dict, system: dict, workdir: str, facts: dict) -> str:
 
 
 # ---------------------------------------------------------------------------------------- crystal
-# pair granular's arm of the tangential force: the radius in the surface velocity, the contact point in
-# the torque (two spheres, MAPPING.md); no granwave option runs it, so the harness reports the pair.
-MIXED_ARM = "radius_velocity_contact_point_torque"
-
-
-def hertz_mindlin_style(c: dict) -> dict:
-    """Hertz-Mindlin (case law = "hertz_mindlin"; MAPPING.md, "Hertz-Mindlin", every map measured by
-    crosscheck/probe_hertz_mindlin.py):
-      frictionless: pair granular hertz/material E e nu, tangential linear_nohistory 0 0, damping velocity 0
-        (undamped) or tsuji with e such that alpha(e) = sqrt(6) zeta (damped), limit_damping for "clip";
-      friction, undamped, "displacement": gran/hertz/history Kn = 4/3 E*, Kt = 8 G*: F_n = Kn sqrt(R* delta)
-        delta, k_t = Kt sqrt(R* delta), f_t = -k_t(delta) xi, lever arm a (as gran/hooke/history);
-      friction otherwise: pair granular with tangential mindlin / mindlin_rescale / mindlin/force (k_t from
-        the material, no tangential dashpot), whose arm is MIXED_ARM."""
-    p = HM.params(c)
-    clip = c["normal_tension"] == "clip" and p["zeta"] > 0.0
-    if p["zeta"] > 0.0:
-        try:
-            HM.lammps_tsuji_restitution(p["zeta"])
-        except ValueError as e:   # tsuji's alpha(e) spans (3e-4, 1.2728]: zeta in (1.2e-4, 0.5196]
-            raise Unsupported(str(e)) from None
-    base = dict(contact_law="hertz_mindlin", normal_tension=c["normal_tension"], lever_arm=c.get("lever_arm", "radius"),
-                coulomb_normal=c.get("coulomb_normal", "compressive"), tangential_history=p["history"])
-    if p["tangential"] != "mindlin":
-        line = HM.lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip, tangential=False)
-        return dict(lines=line.rstrip("\n"), conventions=base, tangential=False, clip=clip, style="granular hertz/material",
-                    comment="granular hertz/material, %s, no tangential force" % (
-                        "tsuji damping" + (", limit_damping" if clip else "") if p["zeta"] > 0 else "undamped"))
-    if p["zeta"] == 0.0 and p["history"] == "displacement":
-        kn, kt = 4.0 / 3.0 * HM.e_star(p["E"], p["nu"]), 8.0 * HM.g_star(p["E"], p["nu"])
-        line = "pair_style      gran/hertz/history %s %s 0.0 0.0 %s 0\npair_coeff      * *" % (_g(kn), _g(kt), _g(p["mu"]))
-        conv = dict(base, lever_arm="radius", normal_tension="allow", coulomb_normal="magnitude")
-        return dict(lines=line, conventions=conv, tangential=True, clip=False, style="gran/hertz/history",
-                    comment="gran/hertz/history: Hertz-Mindlin with Kn = 4/3 E*, Kt = 8 G*, tangential displacement, "
-                            "lever arm a (seed 002 eq. 4)")
-    line = HM.lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip)
-    # Coulomb limit: pair granular takes mu |F_n| with the dashpot included (not measured separately
-    # here: with "clip" F_n >= 0 and both rules agree; the cases use "clip" with a dashpot)
-    conv = dict(base, lever_arm=MIXED_ARM, normal_tension="clip" if clip else "allow", coulomb_normal="magnitude")
-    return dict(lines=line.rstrip("\n"), conventions=conv, tangential=True, clip=clip, style="granular hertz/material",
-                comment="granular hertz/material + tangential %s (arm: a in the velocity, a - delta/2 in the torque)"
-                        % HM.LAMMPS_TANGENTIAL[p["history"]])
-
-
 def crystal_style(c: dict, mass: np.ndarray) -> dict:
-    """The pair style lines and the conventions it runs (MAPPING.md, LAMMPS section)."""
-    if c.get("law", "linear") == "hertz_mindlin":
-        return hertz_mindlin_style(c)
-    kn, kt, gn, gt = float(c["kn"]), float(c["kt"]), float(c["gamma_n"]), float(c["gamma_t"])
-    if gt > 0.0:
-        raise Unsupported("gamma_t > 0: the dumped tangential dashpot sees v(t) and w(t) instead of the step's "
-                          "half-step velocities, which the writer cannot put back (no case uses gamma_t)")
-    if kt > 0.0:
-        # gran/hooke/history: gamma_n per unit effective mass (damp = meff gamman v_n), one global value
-        if gn > 0.0 and not np.all(mass == mass[0]):
-            raise Unsupported("kt > 0 with gamma_n > 0 on unequal masses: gran/hooke/history scales the dashpot "
-                              "by each pair's effective mass (one gamman for all pairs), and pair granular's arm "
-                              "mixes radius (velocity) and contact point (torque), which no granwave option runs")
-        meff = float(mass[0]) * float(mass[0]) / (float(mass[0]) + float(mass[0]))
-        line = "pair_style      gran/hooke/history %s %s %s 0.0 %s 0\npair_coeff      * *" % (
-            _g(kn), _g(kt), _g(gn / meff), _g(c["mu_static"]))
-        conv = dict(FRICTION_STYLE_CONVENTIONS)
-        comment = ("gran/hooke/history: linear spring, dashpot per unit effective mass (gamma_n / m_eff), tangential "
-                   "spring with Coulomb limit mu |f_n|, lever arm a (seed 002 eq. 4)")
-        return dict(lines=line, conventions=conv, tangential=True, clip=False, comment=comment,
-                    style="gran/hooke/history")
-    clip = c["normal_tension"] == "clip" and gn > 0.0
-    line = ("pair_style      granular\npair_coeff      * * hooke %s %s tangential linear_nohistory 0 0 damping velocity%s"
-            % (_g(kn), _g(gn), " limit_damping" if clip else ""))
-    conv = dict(lever_arm=c.get("lever_arm", "radius"), normal_tension=c["normal_tension"],
-                coulomb_normal=c.get("coulomb_normal", "compressive"))
-    comment = ("granular hooke, absolute dashpot (damping velocity)%s, no tangential force"
-               % (", limit_damping (no pulling dashpot)" if clip else ""))
-    return dict(lines=line, conventions=conv, tangential=False, clip=clip, comment=comment, style="granular hooke")
+    """The pair style lines and the conventions it runs (MAPPING.md, LAMMPS section): the law's
+    mapping module's (xclib.linear, xclib.hertz_mindlin)."""
+    return L.law_of(c).lammps_style(c, mass)
 
 
 def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
@@ -286,9 +206,10 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
     sty = crystal_style(c, m)
     for key, used in sty["conventions"].items():
         asked = c.get(key)
-        matters = {"lever_arm": T.has_tangential(c), "normal_tension": T.has_dashpot(c),
-                   "coulomb_normal": T.has_tangential(c) and T.has_dashpot(c) and c["normal_tension"] == "allow",
-                   "tangential_history": T.has_tangential(c), "contact_law": False}[key]
+        law = L.law_of(c)
+        matters = {"lever_arm": law.tangential(c), "normal_tension": law.dashpot(c),
+                   "coulomb_normal": law.tangential(c) and law.dashpot(c) and c["normal_tension"] == "allow",
+                   "tangential_history": law.tangential(c), "contact_law": False}[key]
         if matters and asked != used:
             sys.stderr.write("lammps_case: the case asks for %s = \"%s\"; LAMMPS %s runs \"%s\", and the trace says so "
                              "(%s)\n" % (key, asked, sty["style"], used,
@@ -416,12 +337,9 @@ def convert_crystal(workdir, case, system, facts):
     mass = np.asarray(system["mass"], float)
     r = np.asarray(system["radius"], float)
     cp = T.contact_params(case)
-    gamma_n, kn = float(cp["gamma_n"]), float(cp["kn"])
     clip = facts["clip"]
-    hertz = None
-    if cp["law"] == "hertz_mindlin":     # per-contact elastic force and dashpot; gamma_n: the damping ratio (a flag)
-        hmp = HM.params(cp)
-        gamma_n, kn, hertz = hmp["zeta"], 0.0, (HM.e_star(hmp["E"], hmp["nu"]), hmp["zeta"])
+    dl = L.law_of(cp).lammps_dump(cp)    # the law's dashpot correction (Hertz-Mindlin: per contact)
+    gamma_n, kn, hertz = dl["gamma_n"], dl["kn"], dl["hertz"]
     mobile = ~fixed
     if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
         mobile = mobile | T.source_mask(fixed, layer, lay["fixed_layers"], "velocity")

@@ -28,7 +28,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 from xclib import dumps as D  # noqa: E402
-from xclib import hertz_mindlin as HM  # noqa: E402
+from xclib import laws as L  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LIGGGHTS velocity Verlet, dumps after a whole step; positions, "
@@ -149,22 +149,7 @@ def render(case: dict, system: dict, workdir: str) -> dict:
         exclude = "exclude type 2 2" if vdrive else "exclude type 2 2 exclude type 2 3 exclude type 3 3"
         free_types = "1 3" if vdrive else "1"
         limit_force = "on" if c["normal_tension"] == "clip" else "off"
-        if c["law"] == "hertz_mindlin":
-            contact_lines = hertz_mindlin_lines(c, limit_force)
-            with_history = c["tangential"] == "mindlin"
-        else:
-            contact_lines = (
-                "# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed, 3 source: "
-                "one material)\n"
-                "fix             m1 all property/global kn peratomtypepair 3 %s\n"
-                "fix             m2 all property/global kt peratomtypepair 3 %s\n"
-                "fix             m3 all property/global gamman_abs peratomtypepair 3 %s\n"
-                "fix             m4 all property/global gammat_abs peratomtypepair 3 %s\n"
-                "fix             m5 all property/global coefficientFriction peratomtypepair 3 %s\n"
-                "pair_style      gran model hooke/stiffness tangential history absolute_damping on limitForce %s\n"
-                "pair_coeff      * *\n" % (nine(c["kn"]), nine(c["kt"]), nine(c["gamma_n"]), nine(c["gamma_t"]),
-                                            nine(c["mu_static"]), limit_force))
-            with_history = c["kt"] > 0
+        contact_lines, with_history = L.law_of(c).liggghts_lines(c, limit_force)  # xclib.linear / hertz_mindlin
         ncol = 9 if with_history else 6   # id1 id2 flag f(3) [shear history(3)]
         if with_history:
             # A contact that opens loses its spring (seed 002 sec. 2.1: a contact starts with xi = 0; granwave,
@@ -186,30 +171,6 @@ def render(case: dict, system: dict, workdir: str) -> dict:
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
     return facts
-
-
-def hertz_mindlin_lines(c: dict, limit_force: str) -> str:
-    """`gran model hertz tangential history` with the material of the case (MAPPING.md, "Hertz-Mindlin"):
-    LIGGGHTS' hertz is F_n = (4/3) E* sqrt(R*) delta^3/2 and k_t = 8 G* sqrt(R* delta) with E*, G* mixed
-    from youngsModulus, poissonsRatio as granwave's (two spheres, 1e-16), keeps the tangential
-    displacement (f_t = -k_t(delta) xi), and damps with coefficientRestitution mapped from damping_ratio
-    (HM.liggghts_restitution: identical restitution to LAMMPS' tsuji map, 4e-16). No tangential dashpot
-    (`tangential_damping off`). tangential = "none": coefficientFriction 0 and `tangential no_history`."""
-    p = HM.params(c)
-    friction = p["tangential"] == "mindlin"
-    three = lambda x: " ".join([_g(x)] * 3)  # noqa: E731
-    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
-    return ("# Hertz-Mindlin (granwave law = \"hertz_mindlin\"); one material for the three types (1 free, 2 fixed "
-            "top, 3 fixed source); E > 1e9 Pa needs hard_particles\n"
-            "hard_particles  yes\n"
-            "fix             m1 all property/global youngsModulus peratomtype %s\n"
-            "fix             m2 all property/global poissonsRatio peratomtype %s\n"
-            "fix             m3 all property/global coefficientRestitution peratomtypepair 3 %s\n"
-            "fix             m4 all property/global coefficientFriction peratomtypepair 3 %s\n"
-            "pair_style      gran model hertz tangential %s tangential_damping off limitForce %s\n"
-            "pair_coeff      * *\n" % (three(p["E"]), three(p["nu"]), nine(HM.liggghts_restitution(p["zeta"])),
-                                        nine(p["mu"] if friction else 0.0), "history" if friction else "no_history",
-                                        limit_force))
 
 
 # ------------------------------------------------------------------------------------ dump reading
@@ -314,16 +275,10 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         x0 = np.asarray(system["position"], float)
         mass = np.asarray(system["mass"], float)
         cp = T.contact_params(case)
-        gamma_n, gamma_t, kt = float(cp["gamma_n"]), float(cp["gamma_t"]), float(cp["kt"])
-        kn, clip = float(cp["kn"]), cp["normal_tension"] == "clip"
-        hertz = None
-        if cp["law"] == "hertz_mindlin":
-            # per-contact k_n(delta), k_t(delta), gamma_n(delta): gamma_n is the damping ratio (a flag here)
-            hmp = HM.params(cp)
-            gamma_n, gamma_t, kn = hmp["zeta"], 0.0, 0.0
-            hertz = (HM.e_star(hmp["E"], hmp["nu"]), hmp["zeta"])
-            g_star = HM.g_star(hmp["E"], hmp["nu"])
-            kt = lambda i1, i2, p: HM.k_t_rows(g_star, p, r, i1, i2, lay["box_x"], lay["box_y"])  # noqa: E731
+        clip = cp["normal_tension"] == "clip"
+        # the law's parameters of the dashpot correction (Hertz-Mindlin: per contact; xclib.laws)
+        dl = L.law_of(cp).liggghts_dump(cp, r, lay)
+        gamma_n, gamma_t, kt, kn, hertz = dl["gamma_n"], dl["gamma_t"], dl["kt"], dl["kn"], dl["hertz"]
         mobile = ~fixed
         if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
             mobile = mobile | T.source_mask(fixed, layer, lay["fixed_layers"], "velocity")
@@ -364,12 +319,11 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         extra["lever_arm"] = T.lever_arm_used(cp, "LIGGGHTS")
         extra["normal_tension"] = cp["normal_tension"]          # limitForce off / on: both available
         extra["coulomb_normal"] = T.coulomb_normal_used(cp, "LIGGGHTS")
-        extra["contact_law"] = cp["law"]
+        extra["contact_law"] = L.law_of(cp).NAME
         if "contact_distance_factor" in extra["deck"]:
             # measured (probe_linear.py): with the factor a contact that opens loses its spring, as in LAMMPS
             extra["history_on_contact_loss"] = "zeroed"
-        if cp["law"] == "hertz_mindlin":
-            extra["tangential_history"] = HM.history_used(cp, HM.LIGGGHTS_TANGENTIAL_HISTORY, "LIGGGHTS")
+        extra.update(L.law_of(cp).liggghts_attrs(cp))
     T.write_trace(out, code="liggghts", code_version=version, case_text=case_text, case_name=case["case"]["name"],
                   system_path=system_path, time_convention=TIME_CONVENTION, time=times, datasets=data,
                   extra_attrs=extra)

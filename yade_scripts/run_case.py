@@ -35,15 +35,14 @@ sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 
 import numpy as np  # noqa: E402
 
-from xclib import hertz_mindlin as HM  # noqa: E402
+from xclib import laws as L  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
 from yade import O, utils  # noqa: E402
+import yade.wrapper  # noqa: E402  (the crystal's contact classes: xclib.linear, xclib.hertz_mindlin)
 from yade.wrapper import (  # noqa: E402
     ForceResetter, InsertionSortCollider, Bo1_Sphere_Aabb, InteractionLoop, Ig2_Sphere_Sphere_ScGeom,
-    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, Ip2_FrictMat_FrictMat_FrictPhys,
-    Law2_ScGeom_FrictPhys_CundallStrack, Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
-    NewtonIntegrator, PyRunner, FrictMat, ViscElMat)
+    Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, NewtonIntegrator, PyRunner, FrictMat)
 from yade.minieigenHP import Vector3  # noqa: E402
 
 # YADE 2023.02a's Mindlin gives box/wall bodies R* = R/2 (wrong): the wall is a fixed sphere this big
@@ -316,48 +315,14 @@ def run_crystal(case, system, dt, nsteps, every):
         fail("YADE keeps one interaction per particle pair: a periodic layer needs >= 3 particles in x "
              "and y (this case has %d x %d), otherwise a particle touches two images of the same neighbour"
              % (int(cells[0]), int(cells[1])))
-    hm = c["law"] == "hertz_mindlin"
-    hmp = HM.params(c) if hm else None
-    damped = (hmp["zeta"] > 0) if hm else (c["gamma_n"] > 0 or c["gamma_t"] > 0)
-    has_shear = (hmp["tangential"] == "mindlin") if hm else (c["kt"] > 0 or c["gamma_t"] > 0)
+    law = L.law_of(c)   # the law's mapping onto YADE (xclib.linear, xclib.hertz_mindlin)
+    has_shear = law.tangential(c)
     if c["mu_static"] != c["mu_dynamic"] and has_shear:
         sys.stderr.write("run_case.py: YADE has one friction coefficient; using mu_static=%g (mu_dynamic=%g "
                          "ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
     phi = math.atan(c["mu_static"])
-    if hm:
-        # Hertz-Mindlin (liggghts_inputs/MAPPING.md, "Hertz-Mindlin"; crosscheck/probe_hertz_mindlin.py):
-        # MindlinPhys has kn = 2 E* sqrt(R* delta), ks = 8 G* sqrt(R* delta) (E*, G* mixed as granwave's,
-        # read back below), an incremental tangential force ("force" history), and a normal dashpot
-        # c_n = 2 betan sqrt(m* kn) that never pulls ("clip"): betan = damping_ratio exactly (two spheres:
-        # the restitution equals LIGGGHTS' and LAMMPS' to 4e-15). betas defaults to betan: set to 0 (no
-        # tangential dashpot). tangential = "none": frictionAngle = 0 (the shear force is capped to 0).
-        if damped and c["normal_tension"] != "clip":
-            sys.stderr.write("run_case.py: the case asks for normal_tension = \"%s\"; YADE's Mindlin dashpot never "
-                             "pulls, and its trace says normal_tension = \"clip\"\n" % c["normal_tension"])
-        mat = O.materials.append(FrictMat(young=hmp["E"], poisson=hmp["nu"], frictionAngle=phi if has_shear else 0.0,
-                                          density=1000.0))
-        ip2 = (Ip2_FrictMat_FrictMat_MindlinPhys(betan=hmp["zeta"], betas=0.0) if damped
-               else Ip2_FrictMat_FrictMat_MindlinPhys())
-        law = Law2_ScGeom_MindlinPhys_Mindlin()
-    elif damped:
-        # Law2_ScGeom_ViscElPhys_Basic always clips (computeForceTorqueViscEl: normalForce = 0 when
-        # kn delta + cn v_n < 0, "prevent appearing of attraction forces"; checked on 2023.02a with two
-        # spheres: Fn = 10 N, Fv = -30 N gave normalForce = 0). Its Coulomb limit is then
-        # tan(phi) |normalForce| = 0 and the elastic shear force is scaled to zero with it (the history
-        # is lost). So "clip" is exactly what ViscEl does; "allow" (the seed's law, LIGGGHTS
-        # limitForce off) it cannot do: a documented difference, visible only where a dashpot pulls
-        # (contacts opening fast, e.g. the prestressed velocity drive).
-        if c["normal_tension"] != "clip":
-            sys.stderr.write("run_case.py: the case asks for normal_tension = \"%s\"; YADE's ViscEl law clips the "
-                             "pulling dashpot (no attraction), and its trace says normal_tension = \"clip\"\n"
-                             % c["normal_tension"])
-        # ViscEl contacts get k1 k2/(k1+k2): the material values are twice the contact values.
-        mat = O.materials.append(ViscElMat(kn=2 * c["kn"], ks=2 * c["kt"], cn=2 * c["gamma_n"], cs=2 * c["gamma_t"],
-                                           frictionAngle=phi, density=1000.0))
-        ip2, law = Ip2_ViscElMat_ViscElMat_ViscElPhys(), Law2_ScGeom_ViscElPhys_Basic()
-    else:
-        mat = O.materials.append(FrictMat(young=1e9, poisson=0.3, frictionAngle=phi, density=1000.0))
-        ip2, law = Ip2_FrictMat_FrictMat_FrictPhys(kn=c["kn"], ks=c["kt"]), Law2_ScGeom_FrictPhys_CundallStrack()
+    mat, ip2, law2 = law.yade_interaction(c, yade.wrapper, phi)
+    mat = O.materials.append(mat)
     zoff = 2 * float(np.max(r))
     lz = float(np.ptp(pos[:, 2])) + 4 * zoff + 10 * float(np.max(r))
     O.periodic = True
@@ -399,7 +364,7 @@ def run_crystal(case, system, dt, nsteps, every):
     # delta) = 1/(1 - 1e-3) here, which makes CundallStrack's effective kt 1e-3 stiffer (measured: P speed
     # 2.6e-4 faster than LIGGGHTS with kt = k). ViscEl computes its own contact-point velocity (no alpha).
     O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
-                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False)], [ip2], [law]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False)], [ip2], [law2]),
                  newton, runner]
     # contacts are made in the undisplaced packing (tangential springs start from zero there) ...
     newton.dead = True
@@ -415,45 +380,7 @@ def run_crystal(case, system, dt, nsteps, every):
     # Invisible on perfect (monodisperse) crystals, where the undisplaced packing has zero net forces.
     O.forces.f(ids[0], True)
     nreal = sum(1 for it in O.interactions if it.isReal)
-    if hm:
-        es, gs = HM.e_star(hmp["E"], hmp["nu"]), HM.g_star(hmp["E"], hmp["nu"])
-        index = {b: k for k, b in enumerate(ids)}
-        checked = False
-        for it in O.interactions:
-            if not it.isReal:
-                continue
-            ph, ka, kb = it.phys, index[it.id1], index[it.id2]
-            if not checked:
-                root = math.sqrt(r[ka] * r[kb] / (r[ka] + r[kb]) * it.geom.penetrationDepth)
-                for name, want in (("kn", 2 * es * root), ("ks", 8 * gs * root), ("betan", hmp["zeta"]),
-                                   ("betas", 0.0)):
-                    got = getattr(ph, name)
-                    if abs(got - want) > 1e-9 * max(abs(want), 1e-30):
-                        fail("MindlinPhys %s = %r, expected %r" % (name, got, want), 1)
-                checked = True
-            # Law2_ScGeom_MindlinPhys_Mindlin takes m* = the dynamic body's mass at a contact with a
-            # non-dynamic one (granwave, LIGGGHTS, LAMMPS: m_i m_j/(m_i + m_j), fixed particles' masses
-            # included): its c_n = 2 betan sqrt(m_dyn k_n) there is sqrt(2) too large for equal masses
-            # (measured: 3.1e-2 of the peak on xc_crystal_small_hm_damped). betan of those contacts is
-            # scaled by sqrt(m* / m_dyn). Contacts made later would get betan itself (checked at the end).
-            if damped and dyn_fixed[ka] != dyn_fixed[kb]:
-                kd, kf = (kb, ka) if dyn_fixed[ka] else (ka, kb)
-                ph.betan = hmp["zeta"] * math.sqrt(m[kf] / (m[kf] + m[kd]))
-    elif damped:
-        for it in O.interactions:
-            if it.isReal:
-                ph = it.phys
-                for name, want in (("kn", c["kn"]), ("cn", c["gamma_n"]), ("ks", c["kt"]), ("cs", c["gamma_t"])):
-                    got = getattr(ph, name)
-                    if abs(got - want) > 1e-9 * max(abs(want), 1e-30):
-                        fail("ViscEl contact %s = %g, expected %g (stiffness halving)" % (name, got, want), 1)
-                break
-    else:
-        for it in O.interactions:
-            if it.isReal:
-                if abs(it.phys.kn - c["kn"]) > 1e-9 * c["kn"] or abs(it.phys.ks - c["kt"]) > 1e-9 * max(c["kt"], 1):
-                    fail("FrictPhys kn/ks = %g/%g, expected %g/%g" % (it.phys.kn, it.phys.ks, c["kn"], c["kt"]), 1)
-                break
+    law.yade_check(c, O, ids, r, m, dyn_fixed, fail)   # the interactions YADE made, as the law maps them
     # ... then the source (the bottom fixed layers; for a velocity drive the innermost one) makes its
     # step, and the leapfrog starts.
     src = [k for k in range(n) if source[k]]
@@ -470,7 +397,7 @@ def run_crystal(case, system, dt, nsteps, every):
         for k in src:
             v0[k, axis] = float(ex["amplitude"])
             O.bodies[ids[k]].state.vel = Vector3(*v0[k])   # F(0) below sees v(0), as LIGGGHTS' setup
-    first_verlet_step(ids, m, v0, dyn_fixed, dt, newton, runner, sampler, 1e-300 if hm else 0.0)
+    first_verlet_step(ids, m, v0, dyn_fixed, dt, newton, runner, sampler, law.YADE_F0_DT)
     runner.iterPeriod = every           # fire only on sampled steps (Python per step is costly)
     runner.iterLast = O.iter - 1        # = the step of the t = 0 sample: first fire at physical step `every`
     runner.nDone = max(1, runner.nDone)  # a PeriodicEngine that never ran re-bases iterLast on its first call
@@ -481,9 +408,7 @@ def run_crystal(case, system, dt, nsteps, every):
     wall = _time.time() - t
     sys.stderr.write("run_case.py: crystal sampling %.1f ms per sample, contact set read %d times\n"
                      % (1e3 * sampler.cost / max(len(sampler.times), 1), contacts.rereads))
-    if hm and damped and contacts.rereads > 1:
-        sys.stderr.write("run_case.py: the contact set changed during the run: a new contact between a fixed and a "
-                         "free particle has YADE's m* = m_free in its dashpot (betan not rescaled)\n")
+    law.yade_after_run(c, contacts.rereads)
     rows = sampler.rows
     keys = ("layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
             "layer_velocity_z", "layer_velocity_x")
@@ -514,9 +439,7 @@ def main(argv):
     else:
         times, data, wall, n, nreal, cost = run_crystal(case, system, dt, nsteps, every)
         summary["contacts"] = nreal
-        law = ("crystal: Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin"
-               if T.contact_params(case)["law"] == "hertz_mindlin" else
-               "crystal: CundallStrack (FrictPhys) undamped / ViscEl (material k,c = 2x contact) damped")
+        law = L.law_of(T.contact_params(case)).YADE_ENGINES
     start = ("leapfrog started from v(-dt/2) = v(0) - F(0)/m dt/2 (F(0) evaluated with NewtonIntegrator dead)"
              if model == "chain" else "F(0) with v(0) (NewtonIntegrator dead), first half kick and drift by the "
              "script, t = 0 sampled from that state")
@@ -526,15 +449,11 @@ def main(argv):
     extra = {"yade_engines": law, "dt": dt}
     if model != "chain":
         cp = T.contact_params(case)
-        extra["contact_law"] = cp["law"]
+        extra["contact_law"] = L.law_of(cp).NAME
         extra["lever_arm"] = T.lever_arm_used(cp, "YADE")
         extra["coulomb_normal"] = T.coulomb_normal_used(cp, "YADE")
-        # the law's tension convention (see run_crystal): ViscEl and Mindlin (damped) clip; without a
-        # dashpot the normal force cannot pull, so both conventions are the same law
-        if cp["gamma_n"] > 0 or cp["gamma_t"] > 0 or (cp["law"] == "hertz_mindlin" and float(cp["damping_ratio"]) > 0):
-            extra["normal_tension"] = "clip"
-        if cp["law"] == "hertz_mindlin":
-            extra["tangential_history"] = HM.history_used(cp, HM.YADE_TANGENTIAL_HISTORY, "YADE")
+        # the law's tension convention and history as YADE runs them (see run_crystal)
+        extra.update(L.law_of(cp).yade_attrs(cp))
     T.write_trace(out_path, code="yade", code_version=yade_version(), case_text=text,
                   case_name=case["case"]["name"], system_path=system_path, time_convention=conv,
                   time=times, datasets=data, extra_attrs=extra)

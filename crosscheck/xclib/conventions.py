@@ -8,12 +8,19 @@ Defaults of a trace without the attribute: the case's value (traces.contact_para
 """
 from __future__ import annotations
 
+from . import laws as L
 from . import sweepmath as M
 from . import traces as T
 
 TWIN_SEP = "~"
 
-tangential, dashpot = T.has_tangential, T.has_dashpot
+
+def tangential(c: dict) -> bool:
+    return L.law_of(c).tangential(c)
+
+
+def dashpot(c: dict) -> bool:
+    return L.law_of(c).dashpot(c)
 
 
 # (attribute, when it matters for the case's contact parameters, why the codes differ)
@@ -35,7 +42,7 @@ CONVENTIONS = (
      "granwave's default Coulomb limit is mu max(f_n, 0); LIGGGHTS, YADE and LAMMPS take mu |f_n|: they differ "
      "where a dashpot makes f_n pull. granwave runs either: [contact] coulomb_normal."),
     ("tangential_history",
-     lambda c: c.get("law", "linear") == "hertz_mindlin" and tangential(c),
+     lambda c: L.law_of(c).CHOOSES_TANGENTIAL_HISTORY and tangential(c),
      "Hertz-Mindlin's tangential spring k_t(delta) = 8 G* sqrt(R* delta) changes with the overlap: LIGGGHTS and "
      "LAMMPS' mindlin keep the displacement (f_t = -k_t(delta) xi, \"displacement\"), YADE's Mindlin law and "
      "LAMMPS' mindlin/force the force (incremental, \"force\"), LAMMPS' mindlin_rescale scales xi by "

@@ -13,6 +13,7 @@
 
 #include "cli/verbs.hpp"
 #include "config/case.hpp"
+#include "config/contact_laws.hpp"
 #include "core/error.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
@@ -148,7 +149,7 @@ LatticePart lattice_part(const config::Case& c, const theory::ContactNetwork& ne
   // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
   // bonds are the reference particle's either way; the tolerance only decides whether all agree.
   opt.tolerance = 1e-6;
-  opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
   std::string why;
   const auto cell = theory::lattice_cell(net, slab, opt, &why);
   if (!cell) {
@@ -234,7 +235,8 @@ int cmd_theory(const Args& args) {
   // The contact as eq. (10) sees it: the linear law's keys, or Hertz-Mindlin linearised at each
   // contact's overlap (delta_0 for a regular packing: k_n = 2 E* sqrt(R* delta_0), k_t = 8 G*
   // sqrt(R* delta_0)); the prestress f0 is each contact's own static force (k delta, or Hertz's).
-  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
+  const config::ContactLawInfo& law = config::law_of(c.contact);
+  const bool hertz = law.hertz_normal;  // Hertz's normal force: its two-body impact (theory/hertz.hpp)
   const crystal::ContactAt k0 = crystal::contact_at(c, pk.delta);
   const theory::ContactNetwork net = crystal::contact_network(c, pk);
 
@@ -270,11 +272,9 @@ int cmd_theory(const Args& args) {
     o << "  \"gamma_n\": " << quantity(k0.gamma_n, "kg/s") << ",\n";
     o << "  \"f0\": " << quantity(k0.f_n, "N") << ",\n";
     o << "  \"delta_0\": " << quantity(pk.delta, "m") << ",\n";
+    if (law.linearisation_note) o << "  \"linearisation\": \"" << law.linearisation_note << "\",\n";
     if (hertz)
-      o << "  \"linearisation\": \"Hertz-Mindlin at the static overlap delta_0: k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* "
-           "sqrt(R* delta_0), gamma_n = 2 damping_ratio sqrt(m* k_n), f0 = (4/3) E* sqrt(R*) delta_0^(3/2); V_pz, V_sz "
-           "are eq. (10)'s no-rotation values, V_pz_lattice, V_sz_lattice include rotations\",\n"
-        << "  \"hertz_impact\": {\"velocity\": " << quantity(impact.velocity, "m/s")
+      o << "  \"hertz_impact\": {\"velocity\": " << quantity(impact.velocity, "m/s")
         << ", \"t_c\": " << quantity(impact.contact_time, "s") << ", \"max_overlap\": " << quantity(impact.max_overlap, "m")
         << ", \"peak_force\": " << quantity(impact.peak_force, "N") << ", \"A\": " << quantity(impact.hertz_constant, "N/m^1.5")
         << ", \"restitution\": " << quantity(damped.restitution, "1") << ", \"t_c_damped\": "
@@ -320,7 +320,7 @@ int cmd_theory(const Args& args) {
         << ", \"mass\": " << quantity(L.cell.mass, "kg") << ", \"inertia\": " << quantity(L.cell.inertia, "kg m^2")
         << ", \"contacts\": " << L.cell.bonds.size() << ", \"lever_arm\": " << quantity(L.arm, "m")
         << ", \"lever_arm_convention\": \""
-        << (c.contact.lever_arm == config::LeverArm::contact_point ? "contact_point" : "radius") << "\""
+        << contact::lever_arm_name(c.contact.lever_arm) << "\""
         << ", \"f0\": " << quantity(L.f0, "N") << ", \"l0\": " << quantity(L.l0, "m")
         << ",\n    \"V_pz_unstressed\": " << quantity(L.lw_unstressed.speed_along(ez), "m/s")
         << ", \"V_sz_unstressed\": " << quantity(L.lw_unstressed.speed_along(ex), "m/s")
@@ -363,16 +363,17 @@ int cmd_theory(const Args& args) {
               r.ratio_zxzx_yxyx, r.ratio_zzzz_zxzx);
   std::printf("symmetry: major %.2e, minor %.2e (kt term: major only)\n", r.major_asymmetry, r.minor_asymmetry);
   std::printf("V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (frictionless: %.4f, %.4f)%s\n", r.V_pz, r.V_sz, r.V_sy,
-              r.V_pz_frictionless, r.V_sz_frictionless, hertz ? " (no rotations; linearised at each contact's overlap)" : "");
+              r.V_pz_frictionless, r.V_sz_frictionless,
+              law.stiffness_of_overlap ? " (no rotations; linearised at each contact's overlap)" : "");
   std::printf("lattice: omega_0 = %.1f 1/s (P), %.1f 1/s (S); v_k0 = omega_0 l0/2 = %.4f, %.4f m/s\n", r.omega0_p,
               r.omega0_s, r.V_k0_p, r.V_k0_s);
   std::printf("         with the static contact forces' geometric stiffness: %.1f, %.1f 1/s\n", r.omega0_p_prestressed,
               r.omega0_s_prestressed);
   std::printf("contact (sec. 2.1%s, m_ij = m/2 = %.6g kg, %s): t_c = %.6g s, restitution = %.6f, eta_0 = %.6g 1/s\n",
-              hertz ? ", linearised" : "", 0.5 * m, clip ? "clip" : "allow", tc.t_c, tc.restitution, tc.eta0);
+              law.stiffness_of_overlap ? ", linearised" : "", 0.5 * m, clip ? "clip" : "allow", tc.t_c, tc.restitution, tc.eta0);
   if (L.available) {
     std::printf("lattice dynamics along z (rotations, I = 2/5 m a^2, lever arm %.6g m (%s), prestress f0 = %.4g N):\n",
-                L.arm, c.contact.lever_arm == config::LeverArm::contact_point ? "contact point" : "radius", L.f0);
+                L.arm, c.contact.lever_arm == contact::LeverArm::contact_point ? "contact point" : "radius", L.f0);
     std::printf("  long waves: V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (without prestress %.4f, %.4f;\n"
                 "  rotations held, eq. (10)'s kind: %.4f, %.4f)\n",
                 L.lw.speed_along(ez), L.lw.speed_along(ex), L.lw.speed_along(ey), L.lw_unstressed.speed_along(ez),

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "contact/lever_arm.hpp"
+
 namespace granwave::config {
 
 enum class Model { chain, crystal };
@@ -57,17 +59,24 @@ struct ChainCase {
 
 // ---- crystal (seed 002) ----
 enum class NormalTension { allow, clip };
-// Lever arm of the tangential force: seed 002 eq. (4) takes the radius a_i (the default);
-// YADE (ScGeom) and LIGGGHTS put the contact point in the middle of the overlap, a_i - delta/2,
-// in the surface velocity and in the torque alike.
-enum class LeverArm { radius, contact_point };
+// Lever arm of the tangential force (contact/lever_arm.hpp): radius (seed 002 eq. (4)) or contact_point.
+using LeverArm = contact::LeverArm;
 // The normal force in the Coulomb limits f_C = mu f^n when a dashpot makes it pull (f^n < 0,
 // normal_tension = allow): compressive, mu max(f^n, 0) (no friction under tension, the default);
 // magnitude, mu |f^n| (LIGGGHTS' tangential history model). The same law whenever f^n >= 0.
 enum class CoulombNormal { compressive, magnitude };
 // The crystal's contact law: the linear spring-dashpot with Luding's tangential spring (seed 002
-// sec. 2.1, the default), or Hertz normal + Mindlin tangential (contact/hertz_mindlin.hpp).
-enum class ContactLaw { linear, hertz_mindlin };
+// sec. 2.1, the default), or Hertz normal + Mindlin tangential (contact/hertz_mindlin.hpp). Each
+// enumerator has one description (contact/case_laws.hpp), and only that registry reads the enum:
+// code elsewhere asks the law (config/contact_laws.hpp). GRANWAVE_TEST_LAW (tests only) adds the
+// test law of tests/laws/, registered through the same path.
+enum class ContactLaw : unsigned char {
+  linear,
+  hertz_mindlin,
+#ifdef GRANWAVE_TEST_LAW
+  test_linear_dashpot,  // tests/laws/test_linear_dashpot.hpp
+#endif
+};
 // What a Hertz-Mindlin contact keeps as its tangential history (contact/hertz_mindlin.hpp):
 // displacement: f_t = -k_t(delta) xi (LAMMPS mindlin, LIGGGHTS tangential history);
 // displacement_rescale: the same, xi scaled by a_new/a_old when the contact radius a shrinks

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "config/case.hpp"
+#include "config/contact_law_keys.hpp"
 #include "config/toml_reader.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -220,39 +221,10 @@ CrystalCase read_crystal(const TomlReader& r, const toml::table& t) {
 }
 
 ContactParams read_contact(const TomlReader& r, const toml::table& t) {
-  r.allow_only(t, "contact", {"law", "kn", "gamma_n", "kt", "gamma_t", "mu_static", "mu_dynamic", "normal_tension", "lever_arm",
-                                 "coulomb_normal", "youngs_modulus", "poisson_ratio", "damping_ratio", "tangential",
-                                 "tangential_history"});
+  r.allow_only(t, "contact", contact_keys({"mu_static", "mu_dynamic", "normal_tension", "lever_arm", "coulomb_normal"}));
   ContactParams p;
   auto nonneg = [](double v) { return v >= 0; };
-  p.law = r.choice(t, "contact", "law", {"linear", "hertz_mindlin"}, "linear") == "hertz_mindlin" ? ContactLaw::hertz_mindlin
-                                                                                                  : ContactLaw::linear;
-  if (p.law == ContactLaw::linear) {
-    for (const char* k : {"youngs_modulus", "poisson_ratio", "damping_ratio", "tangential", "tangential_history"})
-      if (t.contains(k))
-        r.fail(std::string("contact.") + k, "belongs to contact.law = \"hertz_mindlin\" (this case's law is \"linear\")",
-               t.get(k));
-    p.kn = *r.number_in(t, "contact", "kn", true, [](double v) { return v > 0; }, "> 0 (N/m)");
-    p.gamma_n = r.number_in(t, "contact", "gamma_n", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-    p.kt = r.number_in(t, "contact", "kt", false, nonneg, ">= 0 (N/m)").value_or(0.0);
-    p.gamma_t = r.number_in(t, "contact", "gamma_t", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-  } else {
-    for (const char* k : {"kn", "kt", "gamma_n", "gamma_t"})
-      if (t.contains(k))
-        r.fail(std::string("contact.") + k,
-               "belongs to contact.law = \"linear\"; the Hertz-Mindlin stiffnesses come from youngs_modulus and "
-               "poisson_ratio (k_n = 2 E* sqrt(R* delta), k_t = 8 G* sqrt(R* delta)), its damping from damping_ratio",
-               t.get(k));
-    p.youngs_modulus = *r.number_in(t, "contact", "youngs_modulus", true, [](double v) { return v > 0 && std::isfinite(v); }, "> 0 (Pa)");
-    p.poisson_ratio = *r.number_in(t, "contact", "poisson_ratio", true, [](double v) { return v > -1.0 && v < 0.5; }, "in (-1, 0.5)");
-    p.damping_ratio = r.number_in(t, "contact", "damping_ratio", false, [](double v) { return v >= 0 && v < 1; },
-                                  "in [0, 1) (gamma_n = 2 damping_ratio sqrt(m* k_n(delta)); 1 overdamps)").value_or(0.0);
-    p.mindlin = r.choice(t, "contact", "tangential", {"mindlin", "none"}, "mindlin") == "mindlin";
-    const std::string h = r.choice(t, "contact", "tangential_history", {"displacement", "displacement_rescale", "force"}, "displacement");
-    p.tangential_history = h == "force" ? TangentialHistory::force
-                           : h == "displacement_rescale" ? TangentialHistory::displacement_rescale
-                                                         : TangentialHistory::displacement;
-  }
+  read_contact_law(r, t, p);  // the law's name and its own keys (config/contact_laws.cpp)
   p.mu_static = r.number_in(t, "contact", "mu_static", false, nonneg, ">= 0").value_or(0.5);
   p.mu_dynamic = r.number_in(t, "contact", "mu_dynamic", false, nonneg, ">= 0").value_or(p.mu_static);
   if (p.mu_dynamic > p.mu_static) {
@@ -327,12 +299,7 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
     }
     c.crystal = read_crystal(r, *r.table(root, "", "crystal", true));
     c.contact = read_contact(r, *r.table(root, "", "contact", true));
-    if (c.contact.law == ContactLaw::hertz_mindlin) {
-      // The linearised speeds, the time step and the theory are taken at the static overlap.
-      if (!(c.crystal->overlap > 0.0))
-        r.fail("crystal.overlap", "must be > 0 with contact.law = \"hertz_mindlin\" (a confined crystal: the Hertz "
-               "stiffness vanishes at zero overlap)", root.get("crystal"));
-    }
+    check_contact_law(r, root, c);  // what the law needs of the rest of the case
     if (const toml::table* e = r.table(root, "", "excitation", false)) c.excitation = read_excitation(r, *e);
     // The velocity drive frees the innermost bottom fixed layer; the layers below it stay as the
     // wall that holds the prestress (freed, they would be pushed out by it).

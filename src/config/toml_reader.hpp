@@ -12,6 +12,7 @@
 #include <initializer_list>
 #include <optional>
 #include <sstream>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -48,6 +49,9 @@ class TomlReader {
 
   // Only these keys may appear in `table` (whose dotted name is `path`).
   void allow_only(const toml::table& table, const std::string& path, std::initializer_list<std::string_view> keys) const {
+    allow_only(table, path, std::span<const std::string_view>(keys.begin(), keys.size()));
+  }
+  void allow_only(const toml::table& table, const std::string& path, std::span<const std::string_view> keys) const {
     for (auto&& [k, v] : table) {
       if (std::find(keys.begin(), keys.end(), k.str()) == keys.end()) {
         fail(join(path, std::string(k.str())), "unknown key (allowed here: " + list(keys, "") + ")", &v);
@@ -147,6 +151,10 @@ class TomlReader {
   // One of `options`; `fallback` if the key is absent.
   std::string choice(const toml::table& t, const std::string& path, const std::string& key, std::initializer_list<std::string_view> options,
                      std::string fallback) const {
+    return choice(t, path, key, std::span<const std::string_view>(options.begin(), options.size()), std::move(fallback));
+  }
+  std::string choice(const toml::table& t, const std::string& path, const std::string& key,
+                     std::span<const std::string_view> options, std::string fallback) const {
     auto s = string(t, path, key, false);
     if (!s) return fallback;
     if (std::find(options.begin(), options.end(), *s) == options.end()) {
@@ -217,6 +225,9 @@ class TomlReader {
   }
 
   static std::string list(std::initializer_list<std::string_view> items, const char* quote) {
+    return list(std::span<const std::string_view>(items.begin(), items.size()), quote);
+  }
+  static std::string list(std::span<const std::string_view> items, const char* quote) {
     std::string s;
     for (auto i : items) s += (s.empty() ? "" : ", ") + (quote + std::string(i) + quote);
     return s;

@@ -55,7 +55,7 @@ struct HertzMindlinParams {
   double mu_static = 0.5, mu_dynamic = 0.5;
   bool clip_tension = false;          // the dashpot may not pull
   bool coulomb_on_magnitude = false;  // mu |f_n| instead of mu max(f_n, 0)
-  bool contact_point_arm = false;     // lever arm a - delta/2 instead of a
+  LeverArm lever_arm = LeverArm::radius;  // a, or a - delta/2 (contact_point)
 
   // E* = E/(2(1 - nu^2)) of two like spheres (1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2).
   double e_star() const { return youngs_modulus / (2.0 * (1.0 - poisson_ratio * poisson_ratio)); }
@@ -138,7 +138,7 @@ struct HertzMindlinLaw {
     g8 = 8.0 * p.g_star();
     mass_factor = p.density * 4.0 / 3.0 * std::numbers::pi;
     beta2 = 2.0 * p.damping_ratio;
-    shift = p.contact_point_arm ? 0.5 : 0.0;
+    shift = arm_shift(p.lever_arm);
   }
 
   // Any contact: sticking or sliding (eqs. (5), (7), (8)).
@@ -191,11 +191,10 @@ struct HertzMindlinLaw {
         xi = rotated + vt * c.dt;  // eq. (6)
         f_test = -k_t * xi;        // eq. (5) with k_t(delta)
       }
-      const double f_pos = select(p.coulomb_on_magnitude, std::abs(f_n), select(f_n < 0.0, 0.0, f_n));
-      const double f_dynamic = p.mu_dynamic * f_pos;
-      const double limit = select(h.was_sliding(), f_dynamic, p.mu_static * f_pos);
+      const CoulombLimit coulomb = coulomb_limit(p.mu_static, p.mu_dynamic, p.coulomb_on_magnitude, f_n, h.was_sliding());
+      const double f_dynamic = coulomb.f_dynamic;
       const double magnitude2 = f_test.squaredNorm();
-      const bool sliding = magnitude2 > limit * limit;
+      const bool sliding = coulomb.slides(magnitude2);
       const Vec3 kept_stick = H == MindlinHistory::force ? f_test : xi;
       if constexpr (!Exact) {  // sticking: f_t = f_test; a sliding contact is evaluated again exactly
         h.t_x = kept_stick.x(), h.t_y = kept_stick.y(), h.t_z = kept_stick.z();
@@ -233,7 +232,7 @@ struct HertzMindlinLaw {
     e += 0.4 * ((4.0 / 3.0) * e_star * a * delta) * delta;  // (2/5) A delta^(5/2) = (2/5) f_n delta
     if constexpr (H != MindlinHistory::none) e += tangential_energy(h, g8 * a);
   }
-  double arm_shift() const { return shift; }
+  LeverArm lever_arm() const { return p.lever_arm; }
   bool dissipates() const { return Damped || H != MindlinHistory::none; }
   HertzMindlinLaw<false, H, Hysteresis> without_rates() const { return HertzMindlinLaw<false, H, Hysteresis>(p); }
 

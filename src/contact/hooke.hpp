@@ -33,7 +33,7 @@ struct HookeLaw {
   }
   double opening_loss(const History&) const { return 0.0; }
   void add_stored_energy(double& e, double delta, const History&) const { e += normal_energy(normal, delta); }
-  double arm_shift() const { return 0.0; }
+  LeverArm lever_arm() const { return LeverArm::radius; }  // no tangential force: never used
   bool dissipates() const { return Dashpot && (normal.gamma_n > 0.0 || normal.clip_tension); }
   HookeLaw<false> without_rates() const { return HookeLaw<false>(normal); }
 };

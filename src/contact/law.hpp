@@ -15,7 +15,8 @@
 //                                     energy lost when the contact opens with this history
 //   void add_stored_energy(double& e, double delta, const History&) const;
 //                                     adds the contact's elastic energy to e, term by term
-//   double arm_shift() const;         lever arm of f^t: a_p - arm_shift() delta (0 or 1/2)
+//   LeverArm lever_arm() const;       lever arm of f^t: a_p - arm_shift(lever_arm()) delta
+//                                     (contact/lever_arm.hpp: radius or contact_point)
 //   bool dissipates() const;          false when loss is always zero (the kernel then skips it)
 //   <Law> without_rates() const;      the same law for a jump of positions (no dashpots)
 //
@@ -46,6 +47,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "contact/lever_arm.hpp"
 #include "contact/vec3.hpp"
 
 namespace granwave::contact {

@@ -27,7 +27,8 @@ template <bool Dashpots, bool Hysteresis = true>
 struct LinearLudingLaw {
   LinearSpringDashpotParams normal;
   TangentialSpringParams tangential;
-  double shift = 0.0;  // lever arm of f^t: a - shift delta; 0 (eq. (4), "radius") or 1/2 ("contact_point")
+  LeverArm arm = LeverArm::radius;  // lever arm of f^t: a - shift delta
+  double shift = 0.0;                // arm_shift(arm): 0 (eq. (4), "radius") or 1/2 ("contact_point")
 
   struct Spring {
     double xi_x = 0.0, xi_y = 0.0, xi_z = 0.0;  // tangential spring xi' (m), eqs. (6)/(7)
@@ -46,8 +47,8 @@ struct LinearLudingLaw {
   static constexpr bool torques = true;
   static constexpr bool lossless_sweep = !Dashpots;  // a sticking contact without dashpots dissipates nothing
 
-  LinearLudingLaw(const LinearSpringDashpotParams& n, const TangentialSpringParams& t, bool contact_point_arm)
-      : normal(n), tangential(t), shift(contact_point_arm ? 0.5 : 0.0) {
+  LinearLudingLaw(const LinearSpringDashpotParams& n, const TangentialSpringParams& t, LeverArm lever_arm)
+      : normal(n), tangential(t), arm(lever_arm), shift(arm_shift(lever_arm)) {
     normal.validate();
     tangential.validate();
     if (!Dashpots) normal.gamma_n = tangential.gamma_t = 0.0;
@@ -69,10 +70,10 @@ struct LinearLudingLaw {
     e += normal_energy(normal, delta);
     e += 0.5 * tangential.kt * (h.xi_x * h.xi_x + h.xi_y * h.xi_y + h.xi_z * h.xi_z);
   }
-  double arm_shift() const { return shift; }
+  LeverArm lever_arm() const { return arm; }
   bool dissipates() const { return true; }  // slip
   // A jump of positions: no dashpots (the springs see no velocity either).
-  LinearLudingLaw<false, Hysteresis> without_rates() const { return {normal, tangential, shift != 0.0}; }
+  LinearLudingLaw<false, Hysteresis> without_rates() const { return {normal, tangential, arm}; }
 
  private:
   template <bool Exact>

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "analysis/trace_analysis.hpp"
+#include "config/contact_laws.hpp"
 #include "core/error.hpp"
 #include "crystal/guards.hpp"
 #include "crystal/packing.hpp"
@@ -61,7 +62,7 @@ double lattice_speed(const config::Case& c, const Packing& pk, bool shear) {
   // The network of the case's law, linearised at each contact's static overlap (any law).
   const theory::ContactNetwork net = contact_network(c, pk);
   theory::LatticeCellOptions opt;
-  opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
   const auto cell = theory::lattice_cell(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, opt);
   if (!cell) return std::numeric_limits<double>::quiet_NaN();
   return theory::lattice_long_wave(*cell, theory::Vec3::UnitZ())
@@ -82,32 +83,18 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
   out << "  d = " << p.d << " m, d' = d(1 - overlap) = " << p.d_prime << " m, l0 = d'/sqrt(2) = " << p.l0
       << " m, delta = " << p.delta << " m, box " << p.box_x << " x " << p.box_y << " m\n";
   out << "  mass m = " << d.mass << " kg, m_ij = " << d.m_ij << " kg\n";
-  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
-  out << (hertz ? "  contact linearised at delta_0" : "  contact") << ": omega = sqrt(k/m_ij - eta_0^2) = " << d.omega << " 1/s, t_c = pi/omega = " << d.t_c
+  const config::ContactLawInfo& law = config::law_of(c.contact);
+  out << (law.stiffness_of_overlap ? "  contact linearised at delta_0" : "  contact") << ": omega = sqrt(k/m_ij - eta_0^2) = " << d.omega << " 1/s, t_c = pi/omega = " << d.t_c
       << " s, restitution exp(-eta_0 t_c) = " << d.restitution
       << (c.contact.normal_tension == config::NormalTension::clip ? " (\"allow\" value; \"clip\" ends earlier)" : "")
       << "\n";
   out << "  dt = " << d.dt << " s = t_c/" << d.t_c / d.dt << "; stability limit (conservative) " << d.dt_stable
       << " s; " << d.steps << " steps, a sample every " << d.sample_every << " steps\n";
-  if (hertz)
-    out << "  contact law hertz_mindlin (tangential history " << tangential_history_name(c.contact)
-        << "), linearised at delta_0: k_n = 2 E* sqrt(R* delta_0) = " << d.kn << " N/m, k_t = 8 G* sqrt(R* delta_0) = "
-        << d.kt << " N/m, f0 = " << d.f0 << " N, gamma_n = " << d.gamma_n << " kg/s\n";
-  out << (hertz ? "  prestress sigma_0 = 2 sqrt(2) f0 / d'^2 = " : "  prestress sigma_0 = 2 sqrt(2) k delta / d'^2 = ")
-      << d.sigma_0 << " Pa\n";
+  out << law.check_line(c.contact, {d.f0, d.kn, d.kt, d.gamma_n, 0.0});  // at delta_0
+  out << "  prestress sigma_0 = " << law.prestress_formula << " = " << d.sigma_0 << " Pa\n";
   out << "  predicted speeds along z (eq. 10, branch d'): V_p = " << d.v_p << " m/s"
       << (d.kt > 0.0 ? " (affine, sqrt(1 + kt/k))" : "") << ", V_s = " << d.v_s << " m/s (frictionless)\n";
-  if (hertz && c.contact.mindlin)
-    out << "  tangential: Mindlin, mu_s = " << c.contact.mu_static << ", mu_d = " << c.contact.mu_dynamic << ", lever arm "
-        << (c.contact.lever_arm == config::LeverArm::contact_point ? "a - delta/2 (contact point, as YADE and LIGGGHTS)"
-                                                                   : "a (seed 002 eq. (4))")
-        << "\n";
-  if (c.contact.kt > 0.0 || c.contact.gamma_t > 0.0)
-    out << "  tangential: kt = " << c.contact.kt << " N/m, mu_s = " << c.contact.mu_static
-        << ", mu_d = " << c.contact.mu_dynamic << ", lever arm "
-        << (c.contact.lever_arm == config::LeverArm::contact_point ? "a - delta/2 (contact point, as YADE and LIGGGHTS)"
-                                                                   : "a (seed 002 eq. (4))")
-        << "\n";
+  out << law.tangential_line(c.contact);
   if (k.polydispersity > 0.0)
     out << "  polydisperse: radii a +- " << k.polydispersity * p.delta << " m (seed " << k.seed
         << "); relaxed until E_kin/E_pot < " << k.relax_tolerance << "\n";

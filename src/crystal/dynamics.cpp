@@ -19,9 +19,6 @@
 #include <string>
 #include <type_traits>
 
-#include "contact/hertz_mindlin.hpp"
-#include "contact/hooke.hpp"
-#include "contact/linear_luding.hpp"
 #include "core/error.hpp"
 #include "crystal/kernel.hpp"
 #include "crystal/neighbors.hpp"
@@ -92,22 +89,6 @@ template <int Kicks>
 }
 #endif
 
-template <contact::MindlinHistory H>
-std::shared_ptr<const ContactModel> hertz_model(const contact::HertzMindlinParams& p) {
-  const bool damped = p.damping_ratio > 0.0 || p.clip_tension;
-  if constexpr (H == contact::MindlinHistory::none) {
-    if (damped) return model_of(contact::HertzMindlinLaw<true, H>(p));
-    return model_of(contact::HertzMindlinLaw<false, H>(p));
-  } else {
-    // mu^s = mu^d: the same law without the stick/slip flag (bit for bit: it selects between equal limits).
-    const bool hysteresis = p.mu_static != p.mu_dynamic;
-    if (damped && hysteresis) return model_of(contact::HertzMindlinLaw<true, H, true>(p));
-    if (damped) return model_of(contact::HertzMindlinLaw<true, H, false>(p));
-    if (hysteresis) return model_of(contact::HertzMindlinLaw<false, H, true>(p));
-    return model_of(contact::HertzMindlinLaw<false, H, false>(p));
-  }
-}
-
 }  // namespace
 
 int Dynamics::threads_available() {
@@ -123,50 +104,6 @@ double packing_density(const Packing& p) {
   return p.mass[0] / (4.0 / 3.0 * std::numbers::pi * p.radius[0] * p.radius[0] * p.radius[0]);
 }
 
-contact::HertzMindlinParams hertz_mindlin_params(const config::ContactParams& cp, double density) {
-  contact::HertzMindlinParams p;
-  p.youngs_modulus = cp.youngs_modulus;
-  p.poisson_ratio = cp.poisson_ratio;
-  p.density = density;
-  p.damping_ratio = cp.damping_ratio;
-  p.mu_static = cp.mu_static;
-  p.mu_dynamic = cp.mu_dynamic;
-  p.clip_tension = cp.normal_tension == config::NormalTension::clip;
-  p.coulomb_on_magnitude = cp.coulomb_normal == config::CoulombNormal::magnitude;
-  p.contact_point_arm = cp.lever_arm == config::LeverArm::contact_point;
-  p.validate();
-  return p;
-}
-
-std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp, double density) {
-  if (cp.law == config::ContactLaw::hertz_mindlin) {
-    const contact::HertzMindlinParams p = hertz_mindlin_params(cp, density);
-    if (!cp.mindlin) return hertz_model<contact::MindlinHistory::none>(p);
-    switch (cp.tangential_history) {
-      case config::TangentialHistory::displacement: return hertz_model<contact::MindlinHistory::displacement>(p);
-      case config::TangentialHistory::displacement_rescale:
-        return hertz_model<contact::MindlinHistory::displacement_rescale>(p);
-      case config::TangentialHistory::force: return hertz_model<contact::MindlinHistory::force>(p);
-    }
-  }
-  const contact::LinearSpringDashpotParams normal{cp.kn, cp.gamma_n, cp.normal_tension == config::NormalTension::clip};
-  const contact::TangentialSpringParams tangential{cp.kt, cp.gamma_t, cp.mu_static, cp.mu_dynamic,
-                                                   cp.coulomb_normal == config::CoulombNormal::magnitude};
-  normal.validate();
-  tangential.validate();
-  const bool contact_point = cp.lever_arm == config::LeverArm::contact_point;
-  const bool dashpots = normal.gamma_n > 0.0 || tangential.gamma_t > 0.0;
-  const bool hysteresis = tangential.mu_static != tangential.mu_dynamic;
-  if (tangential.active()) {
-    if (dashpots && hysteresis) return model_of(contact::LinearLudingLaw<true, true>(normal, tangential, contact_point));
-    if (dashpots) return model_of(contact::LinearLudingLaw<true, false>(normal, tangential, contact_point));
-    if (hysteresis) return model_of(contact::LinearLudingLaw<false, true>(normal, tangential, contact_point));
-    return model_of(contact::LinearLudingLaw<false, false>(normal, tangential, contact_point));
-  }
-  if (normal.gamma_n > 0.0) return model_of(contact::HookeLaw<true>(normal));
-  return model_of(contact::HookeLaw<false>(normal));
-}
-
 double list_skin(const Packing& packing) {
   // Skin: 5 % of a diameter keeps next-nearest FCC neighbours (sqrt(2) d away) out of the
   // list while small-amplitude waves never trigger a rebuild.
@@ -180,8 +117,8 @@ Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, doub
 
 Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt, const SlabPlan* slab)
     : model_(std::move(model)), dt_(dt) {
-  friction_ = model_->torques();
-  arm_shift_ = model_->arm_shift();
+  torques_ = model_->torques();
+  lever_arm_ = model_->lever_arm();
   if (!(dt > 0.0)) throw InputError("integrator.dt must be > 0");
   // The particles held: all, or this rank's slab and halo (a contiguous range).
   const std::size_t lo = slab ? slab->held_lo : 0, hi = slab ? slab->held_hi : packing.size();
@@ -266,7 +203,7 @@ double Dynamics::max_displacement_since_build() const {
 
 void Dynamics::exchange_halo() {
   if (!slab_) return;
-  const std::size_t nf = friction_ ? 9 : 6;  // an angular velocity only for a law with torques
+  const std::size_t nf = torques_ ? 9 : 6;  // an angular velocity only for a law with torques
   std::array<std::vector<double>*, 9> f{&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz};
   auto pack = [&](std::vector<double>& buf, std::size_t first, std::size_t count) {
     buf.resize(nf * count);
@@ -596,12 +533,11 @@ void Dynamics::finish_forces(bool kick) {
       kick ? particle_pass<true, Torques, ContactPointArm, false>(h)
            : particle_pass<false, Torques, ContactPointArm, false>(h);
   };
-  if (!friction_)
-    pass.template operator()<false, false>();
-  else if (arm_shift_ != 0.0)
-    pass.template operator()<true, true>();
-  else
-    pass.template operator()<true, false>();
+  if (!torques_) return pass.template operator()<false, false>();
+  switch (lever_arm_) {
+    case contact::LeverArm::radius: return pass.template operator()<true, false>();
+    case contact::LeverArm::contact_point: return pass.template operator()<true, true>();
+  }
 }
 
 // The first half kick and drift of the owned mobile particles (translation; sphere orientation
@@ -776,7 +712,7 @@ void Dynamics::advance(long k) {
       case 1: far = finish_kick_drift<1>(); break;
       case 2: far = finish_kick_drift<2>(); break;
       case 3: far = finish_kick_drift<3>(); break;
-      default: far = friction_ ? kick_drift<true, false>() : kick_drift<false, false>(); break;
+      default: far = torques_ ? kick_drift<true, false>() : kick_drift<false, false>(); break;
     }
     time += dt_;
     ++steps;
@@ -793,7 +729,7 @@ void Dynamics::step() {
   // First half kick and drift, with the rebuild test. The halo is not integrated here: its
   // owner does it, and exchange_halo copies it.
   const bool threads = threaded();
-  bool far = friction_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
+  bool far = torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
                        : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
   time += dt_;
   ++steps;
@@ -998,11 +934,8 @@ int Dynamics::touching_contacts_of(std::size_t p) const {
 
 // ---- relaxation ----
 
-namespace {
-
-// FIRE with the frictionless, undamped form of a law whose stiffest contact has time t_c.
-RelaxResult fire(Packing& packing, std::shared_ptr<const ContactModel> model, double t_c, double tolerance,
-                 long max_steps) {
+RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> model, double t_c, double tolerance,
+                       long max_steps) {
   // FIRE parameters of Bitzek et al., PRL 97, 170201 (2006).
   const double dt_max = 0.1 * t_c, f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
   const int n_min = 5, n_quiet = 50;
@@ -1055,37 +988,6 @@ RelaxResult fire(Packing& packing, std::shared_ptr<const ContactModel> model, do
   }
   throw RunError("relaxation did not reach E_kin/E_pot < " + std::to_string(tolerance) + " within " +
                  std::to_string(max_steps) + " steps");
-}
-
-}  // namespace
-
-RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps) {
-  config::ContactParams cp;
-  cp.kn = kn;
-  cp.kt = 0.0;
-  cp.gamma_n = 0.0;
-  const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
-  const double t_c = contact::contact_time({kn, 0.0, false}, 0.5 * m_min);
-  return fire(packing, case_model(cp, packing_density(packing)), t_c, tolerance, max_steps);
-}
-
-RelaxResult relax(Packing& packing, const config::ContactParams& contact, double density, double tolerance,
-                  long max_steps) {
-  if (contact.law == config::ContactLaw::linear) return relax(packing, contact.kn, tolerance, max_steps);
-  // Hertz (frictionless, undamped): the time step from the stiffest contact the packing starts
-  // with, k_n at the largest initial overlap between the two largest radii (R*, the overlap and
-  // k_n grow with them) and the smallest mass.
-  config::ContactParams cp = contact;
-  cp.mindlin = false;
-  cp.damping_ratio = 0.0;
-  cp.normal_tension = config::NormalTension::allow;
-  const double a_max = *std::max_element(packing.radius.begin(), packing.radius.end());
-  const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
-  const double overlap_max = 2.0 * a_max - packing.d_prime;
-  const contact::HertzMindlinStiffness s =
-      contact::hertz_mindlin_at(hertz_mindlin_params(cp, density), 0.5 * a_max, 0.5 * m_min, overlap_max);
-  const double t_c = std::numbers::pi * std::sqrt(0.5 * m_min / s.k_n);
-  return fire(packing, case_model(cp, density), t_c, tolerance, max_steps);
 }
 
 }  // namespace granwave::crystal

@@ -17,9 +17,7 @@
 #include <vector>
 
 #include "config/case.hpp"
-#include "contact/hertz_mindlin.hpp"
-#include "contact/linear_spring_dashpot.hpp"
-#include "contact/tangential_spring.hpp"
+#include "contact/lever_arm.hpp"
 #include "crystal/layer_sums.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/slab.hpp"
@@ -67,7 +65,7 @@ class ContactModel {
   virtual ~ContactModel() = default;
   virtual std::size_t history_columns() const = 0;
   virtual bool torques() const = 0;      // tangential forces: torques and rotation
-  virtual double arm_shift() const = 0;  // lever arm of f^t: a_p - arm_shift delta
+  virtual contact::LeverArm lever_arm() const = 0;  // of f^t: a_p - arm_shift(lever_arm()) delta
   // Pass 1 at the current state; springs advance by `increment_time`; rates = false for a jump
   // of positions (no dashpots).
   virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
@@ -83,12 +81,11 @@ class ContactModel {
   virtual bool dissipates() const { return true; }
 };
 
-// The law of a case: law = "linear": contact::LinearLuding with friction (k_t > 0 or gamma_t > 0),
-// else the frictionless contact::HookeLaw; law = "hertz_mindlin": contact::HertzMindlinLaw (its
-// damping's m* from `density`, kg/m^3). Throws InputError for invalid parameters.
+// The law of a case, as its description makes it (contact/case_laws.hpp; crystal/law_models.cpp):
+// law = "linear": contact::LinearLuding with friction (k_t > 0 or gamma_t > 0), else the
+// frictionless contact::HookeLaw; law = "hertz_mindlin": contact::HertzMindlinLaw (its damping's
+// m* from `density`, kg/m^3). Throws InputError for invalid parameters.
 std::shared_ptr<const ContactModel> case_model(const config::ContactParams& contact, double density = 0.0);
-// The Hertz-Mindlin parameters of a case's [contact] (validated).
-contact::HertzMindlinParams hertz_mindlin_params(const config::ContactParams& contact, double density);
 // rho of the packing's particles, m/((4/3) pi a^3) of the first one (0 for an empty packing).
 double packing_density(const Packing& packing);
 
@@ -179,9 +176,10 @@ class Dynamics {
   double dt() const { return dt_; }
   void set_dt(double dt) { dt_ = dt; }
   const ContactModel& model() const { return *model_; }
-  bool friction() const { return friction_; }
-  // Lever arm of f^t (config::LeverArm): arm_i = a_i - contact_point_shift() * delta, 0 or 1/2.
-  double contact_point_shift() const { return arm_shift_; }
+  // The law has tangential forces: torques, rotation (angular velocities in the halo and the rows).
+  bool torques() const { return torques_; }
+  // Lever arm of f^t (contact/lever_arm.hpp): arm_i = a_i - arm_shift(lever_arm()) delta.
+  contact::LeverArm lever_arm() const { return lever_arm_; }
 
   // Start (or stop) integrating particle p (velocity drive makes the source mobile).
   void set_mobile(std::size_t p, bool on);
@@ -273,8 +271,8 @@ class Dynamics {
 
   Packing packing_;
   std::shared_ptr<const ContactModel> model_;
-  bool friction_ = false;
-  double arm_shift_ = 0.0;  // 0: arm a_i (eq. (4)); 1/2: arm a_i - delta/2 (contact point)
+  bool torques_ = false;
+  contact::LeverArm lever_arm_ = contact::LeverArm::radius;
   double dt_ = 0.0;
   double skin_ = 0.0;
   double far2_ = 0.0;  // a particle is more than skin/2 from its place at the build when d^2 > far2_
@@ -299,9 +297,12 @@ struct RelaxResult {
   long steps = 0;
   double ratio = 0.0;
 };
-RelaxResult relax(Packing& packing, double kn, double tolerance, long max_steps = 2000000);
-// The same with the case's law, frictionless and undamped (Hertz: k_n at the largest initial overlap).
+// With the case's law, frictionless and undamped (its description's relaxation: Hertz, the time step
+// from k_n at the largest initial overlap).
 RelaxResult relax(Packing& packing, const config::ContactParams& contact, double density, double tolerance,
                   long max_steps = 2000000);
+// FIRE with `model` (frictionless and undamped), whose stiffest contact has the contact time t_c.
+RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> model, double t_c, double tolerance,
+                       long max_steps = 2000000);
 
 }  // namespace granwave::crystal

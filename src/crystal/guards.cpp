@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "config/contact_laws.hpp"
 #include "core/error.hpp"
 #include "crystal/simulation.hpp"
 
@@ -38,11 +39,8 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits) {
   {  // what derive() divides by, so that its refusals name the right keys
     const double m = k.density * 4.0 / 3.0 * std::numbers::pi * k.radius * k.radius * k.radius;
     a.require_finite("the particle mass m = density 4/3 pi a^3", m, "crystal.radius, crystal.density");
-    if (c.contact.law == config::ContactLaw::linear)
-      a.require_finite("k/m", c.contact.kn / m, "contact.kn, crystal.radius, crystal.density");
-    else  // k_n/m at the static overlap, up to a factor of order one: E a sqrt(overlap)/m
-      a.require_finite("E a sqrt(overlap)/m", c.contact.youngs_modulus * k.radius * std::sqrt(k.overlap) / m,
-                       "contact.youngs_modulus, crystal.radius, crystal.density, crystal.overlap");
+    const contact::ScaleCheck scale = config::law_of(c.contact).scale(c.contact, k, m);  // the law's stiffness/m
+    a.require_finite(scale.what, scale.value, scale.keys);
     const double a_min = k.radius - k.polydispersity * k.overlap * 2.0 * k.radius;
     a.require_finite("the smallest radius a - polydispersity delta", a_min, "crystal.polydispersity, crystal.overlap");
     if (!a.refusals.empty()) return a;
@@ -57,24 +55,21 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits) {
   const std::string keys_dt = c.integrator.dt ? "integrator.dt" : "integrator.dt_over_tc";
 
   const std::string material = "crystal.radius, crystal.density";
-  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
-  const std::string kn_keys = hertz ? "contact.youngs_modulus, contact.poisson_ratio, crystal.overlap" : "contact.kn";
-  const std::string damping_keys = hertz ? "contact.damping_ratio" : "contact.gamma_n";
+  const config::ContactLawInfo& law = config::law_of(c.contact);
+  const contact::GuardKeys keys = law.guard_keys();
   a.require_finite("the particle mass m", d.mass, material);
-  a.require_finite("the contact frequency omega", d.omega, kn_keys + ", " + damping_keys + ", " + material);
-  a.require_finite("the contact time t_c", d.t_c, kn_keys + ", " + damping_keys + ", " + material);
-  a.require_finite("the stability limit of velocity Verlet", d.dt_stable,
-                   hertz ? kn_keys + ", " + damping_keys + ", excitation.amplitude, " + material
-                         : "contact.kn, contact.kt, contact.gamma_n, contact.gamma_t, crystal.polydispersity, " + material);
+  a.require_finite("the contact frequency omega", d.omega, keys.stiffness + ", " + keys.damping + ", " + material);
+  a.require_finite("the contact time t_c", d.t_c, keys.stiffness + ", " + keys.damping + ", " + material);
+  a.require_finite("the stability limit of velocity Verlet", d.dt_stable, keys.stability + ", " + material);
   a.require_finite("integrator.dt (resolved)", d.dt, keys_dt);
-  a.require_finite("the prestress sigma_0", d.sigma_0, hertz ? kn_keys + ", crystal.radius" : "contact.kn, crystal.overlap, crystal.radius", false);
-  a.require_finite("the P-wave speed V_p (eq. 10)", d.v_p, hertz ? kn_keys + ", " + material : "contact.kn, contact.kt, " + material);
+  a.require_finite("the prestress sigma_0", d.sigma_0, keys.prestress, false);
+  a.require_finite("the P-wave speed V_p (eq. 10)", d.v_p, keys.wave_speed + ", " + material);
   if (!a.refusals.empty()) return a;
 
   if (d.dt > d.dt_stable)
     a.refusals.push_back("integrator.dt = " + fmt("%.4g", d.dt) + " s is above the stability limit " + fmt("%.4g", d.dt_stable) +
                          " s of velocity Verlet for this crystal (2/omega_max, omega_max^2 <= 2 z (k + 3.5 k_t)/m_min, z = 12" +
-                         (hertz ? "; Hertz: k_n, k_t at the largest overlap " + fmt("%.4g", d.delta_max) + " m" : std::string()) +
+                         law.stability_note(d.delta_max) +
                          "); change " + keys_dt);
   if (d.dt > d.t_c / 50.0 * (1.0 + 1e-12))  // dt_over_tc = 0.02 gives t_c/50 up to a rounding
     a.warnings.push_back("dt = " + fmt("%.4g", d.dt) + " s exceeds t_c/50 = " + fmt("%.4g", d.t_c / 50.0) +

@@ -453,6 +453,15 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
 }
 
 
+// The one-thread scatter's mode for a lever arm: 1 (the rows f | n x f^t), 2 (and delta n x f^t).
+constexpr int scatter_mode_of(contact::LeverArm arm) {
+  switch (arm) {
+    case contact::LeverArm::radius: return 1;
+    case contact::LeverArm::contact_point: return 2;
+  }
+  return 2;  // not reached (-Werror=switch: every arm has its case)
+}
+
 // The contact pass of a law with torques, from gathered columns (above).
 template <class Law, bool Dissipative>
 void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
@@ -486,7 +495,7 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   const bool keep_forces = d.store_contact_forces;
 #ifdef GRANWAVE_GATHER_VECTORS
   if (!d.threaded()) {
-    scatter_mode = law.arm_shift() != 0.0 ? 2 : 1;
+    scatter_mode = scatter_mode_of(law.lever_arm());
     sum_rows = d.begin_contact_sums(scatter_mode + 1);
   }
 #endif
@@ -647,7 +656,7 @@ class LawModel final : public ContactModel {
   explicit LawModel(const Law& law) : law_(law) {}
   std::size_t history_columns() const override { return contact::history_columns<typename Law::History>; }
   bool torques() const override { return Law::torques; }
-  double arm_shift() const override { return law_.arm_shift(); }
+  contact::LeverArm lever_arm() const override { return law_.lever_arm(); }
   bool dissipates() const override { return law_.dissipates(); }
   void contact_pass(Dynamics& d, double inc, bool rates) const override {
     if (rates)

@@ -9,6 +9,9 @@
 #include <sstream>
 #include <tuple>
 
+#include "config/contact_laws.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "contact/tangential_spring.hpp"
 #include "core/error.hpp"
 #include "io/h5.hpp"
 
@@ -19,28 +22,11 @@ ContactAt contact_at(const config::Case& c, double delta) {
 }
 
 ContactAt contact_between(const config::Case& c, double a_i, double a_j, double delta) {
-  ContactAt k;
-  if (c.contact.law == config::ContactLaw::linear) {
-    k.f_n = c.contact.kn * delta;
-    k.kn = c.contact.kn;
-    k.kt = c.contact.kt;
-    k.gamma_n = c.contact.gamma_n;
-    return k;
-  }
-  const double m_i = c.crystal->density * 4.0 / 3.0 * std::numbers::pi * a_i * a_i * a_i;
-  const double m_j = c.crystal->density * 4.0 / 3.0 * std::numbers::pi * a_j * a_j * a_j;
-  const contact::HertzMindlinParams p = hertz_mindlin_params(c.contact, c.crystal->density);
-  const contact::HertzMindlinStiffness s =
-      contact::hertz_mindlin_at(p, a_i * a_j / (a_i + a_j), m_i * m_j / (m_i + m_j), delta);
-  k.f_n = s.f_n;
-  k.kn = s.k_n;
-  k.kt = c.contact.mindlin ? s.k_t : 0.0;
-  k.gamma_n = s.gamma_n;
-  return k;
+  return config::law_of(c.contact).at(c.contact, c.crystal->density, a_i, a_j, delta);
 }
 
 theory::ContactNetwork contact_network(const config::Case& c, const Packing& pk) {
-  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
+  const bool own_stiffness = config::law_of(c.contact).stiffness_of_overlap;
   const ContactAt k0 = contact_at(c, pk.delta);
   theory::ContactNetwork net;
   net.box_x = pk.box_x;
@@ -52,7 +38,7 @@ theory::ContactNetwork contact_network(const config::Case& c, const Packing& pk)
   for (const auto& q : list_contacts(pk, true)) {
     theory::NetworkContact nc{q.i, q.j, theory::Vec3(q.bx, q.by, q.bz),
                               static_normal_force(c, pk.radius[q.i], pk.radius[q.j], q.overlap)};
-    if (hertz) {
+    if (own_stiffness) {  // each contact linearised at its own overlap
       const ContactAt kc = contact_between(c, pk.radius[q.i], pk.radius[q.j], q.overlap);
       nc.k = kc.kn;
       nc.kt = kc.kt;
@@ -63,48 +49,26 @@ theory::ContactNetwork contact_network(const config::Case& c, const Packing& pk)
 }
 
 double static_normal_force(const config::Case& c, double a_i, double a_j, double delta) {
-  if (c.contact.law == config::ContactLaw::linear) return c.contact.kn * delta;
-  const contact::HertzMindlinParams p = hertz_mindlin_params(c.contact, c.crystal->density);
-  return contact::hertz_mindlin_at(p, a_i * a_j / (a_i + a_j), 1.0, delta).f_n;
+  return contact_between(c, a_i, a_j, delta).f_n;
 }
 
-std::string contact_law_name(const config::ContactParams& cp) {
-  return cp.law == config::ContactLaw::hertz_mindlin ? "hertz_mindlin" : "linear";
-}
-std::string tangential_history_name(const config::ContactParams& cp) {
-  if (cp.law == config::ContactLaw::linear) return "displacement";
-  if (!cp.mindlin) return "none";
-  switch (cp.tangential_history) {
-    case config::TangentialHistory::displacement_rescale: return "displacement_rescale";
-    case config::TangentialHistory::force: return "force";
-    default: return "displacement";
-  }
-}
+std::string contact_law_name(const config::ContactParams& cp) { return config::law_of(cp).name; }
+std::string tangential_history_name(const config::ContactParams& cp) { return config::law_of(cp).history_name(cp); }
 
 Derived derive(const config::Case& c) {
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
   const config::CrystalCase& k = *c.crystal;
-  const bool hertz = c.contact.law == config::ContactLaw::hertz_mindlin;
   Derived d;
   const double a = k.radius;
   const double delta = 2.0 * a * k.overlap;
-  if (hertz) {
-    (void)hertz_mindlin_params(c.contact, k.density);  // validates
-    const ContactAt k0 = contact_at(c, delta);
-    d.kn = k0.kn;
-    d.kt = k0.kt;
-    d.gamma_n = k0.gamma_n;
-    d.f0 = k0.f_n;
-  } else {
-    d.kn = c.contact.kn;
-    d.kt = c.contact.kt;
-    d.gamma_n = c.contact.gamma_n;
-    d.f0 = c.contact.kn * delta;
-  }
-  // Linear law: the contact itself; Hertz: the contact linearised at the static overlap.
+  // The law linearised at the static overlap (the linear law: its keys).
+  const ContactAt k0 = contact_at(c, delta);
+  d.kn = k0.kn;
+  d.kt = k0.kt;
+  d.gamma_n = k0.gamma_n;
+  d.f0 = k0.f_n;
   const contact::LinearSpringDashpotParams normal{d.kn, d.gamma_n, c.contact.normal_tension == config::NormalTension::clip};
-  const contact::TangentialSpringParams tangential{d.kt, hertz ? 0.0 : c.contact.gamma_t, c.contact.mu_static,
-                                                   c.contact.mu_dynamic,
+  const contact::TangentialSpringParams tangential{d.kt, k0.gamma_t, c.contact.mu_static, c.contact.mu_dynamic,
                                                    c.contact.coulomb_normal == config::CoulombNormal::magnitude};
   normal.validate();
   tangential.validate();
@@ -142,17 +106,15 @@ Derived derive(const config::Case& c) {
   const double z = 12.0;
   // (polydisperse: the largest radii, whose overlaps start up to 2 polydispersity delta larger)
   const double a_max = a + k.polydispersity * delta;
-  const ContactAt stiffest = hertz ? contact_between(c, a_max, a_max, d.delta_max + 2.0 * k.polydispersity * delta)
-                                   : ContactAt{0.0, d.kn, d.kt, d.gamma_n};
-  const double gamma_t = hertz ? 0.0 : c.contact.gamma_t;
+  const ContactAt stiffest = contact_between(c, a_max, a_max, d.delta_max + 2.0 * k.polydispersity * delta);
+  const double gamma_t = stiffest.gamma_t;
   const double omega_max = std::sqrt(2.0 * z * (stiffest.kn + 3.5 * stiffest.kt) / m_min);
   const double eta_max = z * (stiffest.gamma_n + gamma_t) / (2.0 * m_min);
   const double zeta = eta_max / omega_max;
   d.dt_stable = 2.0 / omega_max * (std::sqrt(1.0 + zeta * zeta) - zeta);
   const double d_prime = 2.0 * a - delta;
   // Isotropic prestress 2 sqrt(2) f0 / d'^2 (f0 = k delta: linear).
-  d.sigma_0 = hertz ? 2.0 * std::numbers::sqrt2 * d.f0 / (d_prime * d_prime)
-                    : 2.0 * std::numbers::sqrt2 * c.contact.kn * delta / (d_prime * d_prime);
+  d.sigma_0 = 2.0 * std::numbers::sqrt2 * d.f0 / (d_prime * d_prime);
   // Eq. (10) for the FCC network with branch d' (sum n_z^4 = 2, sum n_z^2 n_x^2 = 1 per
   // particle, volume d'^3/sqrt(2) per particle): V_pz = d' sqrt(k/m) sqrt(1 + k_t/k) (affine),
   // V_sz = d' sqrt(k/(2m)) (frictionless; rotations make the k_t term unreliable for S).
@@ -536,7 +498,7 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, co
   w.attr("/", "case_toml", c.toml_text);
   w.attr("/", "time_convention", std::string("synchronous"));
   // The contact-law conventions the crosscheck compares (data/SCHEMA.md §3).
-  w.attr("/", "lever_arm", std::string(c.contact.lever_arm == config::LeverArm::contact_point ? "contact_point" : "radius"));
+  w.attr("/", "lever_arm", std::string(contact::lever_arm_name(c.contact.lever_arm)));
   w.attr("/", "normal_tension", std::string(c.contact.normal_tension == config::NormalTension::clip ? "clip" : "allow"));
   w.attr("/", "coulomb_normal",
          std::string(c.contact.coulomb_normal == config::CoulombNormal::magnitude ? "magnitude" : "compressive"));

@@ -8,6 +8,7 @@
 
 #include "analysis/trace_analysis.hpp"
 #include "config/case.hpp"
+#include "contact/case_law.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/packing.hpp"
 #include "theory/crystal_theory.hpp"
@@ -37,9 +38,7 @@ Derived derive(const config::Case& c);
 
 // The case's contact between two particles of the mean radius at overlap delta: normal force,
 // tangent stiffnesses, normal damping (linear law: kn delta, kn, kt, gamma_n at any delta).
-struct ContactAt {
-  double f_n = 0.0, kn = 0.0, kt = 0.0, gamma_n = 0.0;
-};
+using ContactAt = contact::LinearisedContact;  // f_n, kn, kt, gamma_n, gamma_t
 ContactAt contact_at(const config::Case& c, double delta);
 // The same for a contact of radii a_i, a_j (Hertz: R* = a_i a_j/(a_i + a_j), m* of the two masses).
 ContactAt contact_between(const config::Case& c, double a_i, double a_j, double delta);

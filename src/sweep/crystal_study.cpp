@@ -192,7 +192,7 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
   // bonds are the reference particle's either way; the tolerance only decides whether all agree.
   lopt.tolerance = 1e-6;
-  lopt.arm_shift = out.c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+  lopt.arm_shift = contact::arm_shift(out.c.contact.lever_arm);
   if (const auto cell = theory::lattice_cell(net, {fl, out.packing.layers - 1 - fl}, lopt)) {
     const auto lw = theory::lattice_long_wave(*cell, theory::Vec3::UnitZ());
     v[cv_theory_v_lattice] = lw.speed_along(S ? theory::Vec3::UnitX() : theory::Vec3::UnitZ());
@@ -506,7 +506,7 @@ Captured capture(const CrystalMemberRun& r, const std::vector<double>& positions
   // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
   // bonds are the reference particle's either way; the tolerance only decides whether all agree.
   lopt.tolerance = 1e-6;
-  lopt.arm_shift = r.c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+  lopt.arm_shift = contact::arm_shift(r.c.contact.lever_arm);
   const int fl = r.packing.fixed_layers;
   c.t_window = tr.time.empty() ? 0.0 : tr.time.back();
   if (const auto cell = theory::lattice_cell(net, {fl, r.packing.layers - 1 - fl}, lopt)) {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "config/contact_laws.hpp"
 #include "config/toml_reader.hpp"
 #include "core/error.hpp"
 #include "sweep/crystal_study.hpp"
@@ -58,10 +59,12 @@ CrystalStudy parse_crystal_study(const std::string& text, const std::string& ori
            : vary == "kt_over_k" ? CrystalVary::kt_over_k
            : vary == "overlap"   ? CrystalVary::overlap
                                  : CrystalVary::polydispersity;
-  const bool hertz = s.base.contact.law == config::ContactLaw::hertz_mindlin;
-  if (hertz && (s.vary == CrystalVary::gamma_n || s.vary == CrystalVary::kt_over_k))
-    r.fail("study.vary", "\"" + vary + "\" varies a key of the linear law; the base case's law is \"hertz_mindlin\"",
-           st->get("vary"));
+  // gamma_n and kt_over_k vary a key (gamma_n, kt) that the base case's law must have.
+  const config::ContactLawInfo& law = config::law_of(s.base.contact);
+  const char* varied_key = s.vary == CrystalVary::gamma_n ? "gamma_n" : s.vary == CrystalVary::kt_over_k ? "kt" : nullptr;
+  if (varied_key && !law.has_key(varied_key))
+    r.fail("study.vary", "\"" + vary + "\" varies a key of the " + config::contact_law_owners(varied_key) +
+           " law; the base case's law is \"" + law.name + "\"", st->get("vary"));
   s.values = r.numbers(*st, "study", "values");
   if (s.values.empty()) r.fail("study.values", "missing (the parameter values)");
   for (double v : s.values)

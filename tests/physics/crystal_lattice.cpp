@@ -38,7 +38,7 @@ Lattice lattice_theory(const config::Case& c, const crystal::Packing& pk) {
   const theory::ContactNetwork net = crystal::contact_network(c, pk);
   const theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
   theory::LatticeCellOptions opt;
-  opt.arm_shift = c.contact.lever_arm == config::LeverArm::contact_point ? 0.5 : 0.0;
+  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
   std::string why;
   const auto cell = theory::lattice_cell(net, slab, opt, &why);
   INFO(why);

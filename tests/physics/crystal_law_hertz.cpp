@@ -35,7 +35,7 @@ struct HertzLaw {
   void add_stored_energy(double& e, double delta, const History&) const {
     e += 0.4 * A * delta * delta * std::sqrt(delta);  // (2/5) A delta^(5/2), touching contacts only
   }
-  double arm_shift() const { return 0.0; }
+  contact::LeverArm lever_arm() const { return contact::LeverArm::radius; }
   bool dissipates() const { return false; }
   HertzLaw without_rates() const { return *this; }
 };
@@ -71,7 +71,7 @@ TEST_CASE("a Hertz law defined in a test runs through the crystal kernel: two-bo
   const theory::HertzImpact hz = theory::hertz_impact(A, pk.mass[0], pk.mass[1], 2 * v);
   const double dt = hz.contact_time / 20000;
   crystal::Dynamics dyn(pk, crystal::model_of(HertzLaw{A}), dt);
-  REQUIRE_FALSE(dyn.friction());
+  REQUIRE_FALSE(dyn.torques());
   dyn.vz = {v, -v};
   dyn.compute_forces_of_state();
   const double e0 = dyn.kinetic_energy() + dyn.potential_energy();
@@ -121,7 +121,7 @@ TEST_CASE("the Hertz-Mindlin law of a case: two-body contact time and maximum ov
                             : std::string(history) == "displacement_rescale" ? config::TangentialHistory::displacement_rescale
                                                                              : config::TangentialHistory::displacement;
     crystal::Dynamics dyn(pk, crystal::case_model(cp, rho), hz.contact_time / 20000);
-    CHECK(dyn.friction() == cp.mindlin);
+    CHECK(dyn.torques() == cp.mindlin);
     dyn.vz = {v, -v};
     dyn.compute_forces_of_state();
     const double e0 = dyn.kinetic_energy() + dyn.potential_energy();

@@ -40,13 +40,13 @@ TEST_CASE("contact laws name the case key of a bad parameter", "[contact]") {
   CHECK_THAT(message_of([] { contact::Hooke({-1.0, 0.0, false}); }), Catch::Contains("contact.kn"));
   CHECK_THAT(message_of([] { contact::Hooke({1e5, -0.1, false}); }), Catch::Contains("contact.gamma_n"));
   const LinearSpringDashpotParams n{1e5, 0.0, false};
-  CHECK_THAT(message_of([&] { contact::LinearLuding(n, {-1.0, 0.0, 0.5, 0.5}, false); }),
+  CHECK_THAT(message_of([&] { contact::LinearLuding(n, {-1.0, 0.0, 0.5, 0.5}, contact::LeverArm::radius); }),
              Catch::Contains("contact.kt"));
-  CHECK_THAT(message_of([&] { contact::LinearLuding(n, {1e5, -1.0, 0.5, 0.5}, false); }),
+  CHECK_THAT(message_of([&] { contact::LinearLuding(n, {1e5, -1.0, 0.5, 0.5}, contact::LeverArm::radius); }),
              Catch::Contains("contact.gamma_t"));
-  CHECK_THAT(message_of([&] { contact::LinearLuding(n, {1e5, 0.0, 0.3, 0.5}, false); }),
+  CHECK_THAT(message_of([&] { contact::LinearLuding(n, {1e5, 0.0, 0.3, 0.5}, contact::LeverArm::radius); }),
              Catch::Contains("contact.mu_dynamic"));
-  CHECK_NOTHROW(contact::LinearLuding(n, {1e5, 0.1, 0.5, 0.3}, true));
+  CHECK_NOTHROW(contact::LinearLuding(n, {1e5, 0.1, 0.5, 0.3}, contact::LeverArm::contact_point));
 }
 
 TEST_CASE("Hooke law: force, stored energy, dashpot and clipping losses", "[contact]") {
@@ -121,9 +121,12 @@ TEST_CASE("Hooke law: a head-on collision through the law keeps kinetic + stored
 
 TEST_CASE("linear + Luding law: history, slip decision, stored and opening energy", "[contact]") {
   const double k = 1e5, kt = 1e5, f_n = k * 2e-6;  // 0.2 N
-  const contact::LinearLuding law({k, 0.0, false}, {kt, 0.0, 0.5, 0.3}, false);
-  CHECK(law.arm_shift() == 0.0);
-  CHECK(contact::LinearLuding({k, 0.0, false}, {kt, 0.0, 0.5, 0.3}, true).arm_shift() == 0.5);
+  const contact::LinearLuding law({k, 0.0, false}, {kt, 0.0, 0.5, 0.3}, contact::LeverArm::radius);
+  CHECK(law.lever_arm() == contact::LeverArm::radius);
+  CHECK(contact::LinearLuding({k, 0.0, false}, {kt, 0.0, 0.5, 0.3}, contact::LeverArm::contact_point).lever_arm() ==
+        contact::LeverArm::contact_point);
+  CHECK(contact::arm_shift(contact::LeverArm::radius) == 0.0);
+  CHECK(contact::arm_shift(contact::LeverArm::contact_point) == 0.5);
   // A sticking contact: the vectorised evaluation finishes it, with the exact one's bits.
   contact::LinearLuding::History h{0.3e-6, 0.0, 0.0, 0.0}, h_exact = h;
   const Contact c = touching(2e-6, 0.0, Vec3(0.01, 0.0, 0.0), 1e-7);
@@ -161,7 +164,7 @@ TEST_CASE("linear + Luding law: history, slip decision, stored and opening energ
   CHECK(e == Approx(0.5 * k * 4e-12 + 0.5 * kt * big_exact.xi().squaredNorm()).epsilon(1e-14));
   CHECK(law.opening_loss(big_exact) == Approx(0.5 * kt * big_exact.xi().squaredNorm()).epsilon(1e-14));
   // A jump of positions: no dashpots.
-  const auto still = contact::LinearLuding({k, 0.1, false}, {kt, 0.2, 0.5, 0.5}, false).without_rates();
+  const auto still = contact::LinearLuding({k, 0.1, false}, {kt, 0.2, 0.5, 0.5}, contact::LeverArm::radius).without_rates();
   CHECK(still.normal.gamma_n == 0.0);
   CHECK(still.tangential.gamma_t == 0.0);
 }
@@ -211,7 +214,7 @@ TEST_CASE("linear + Luding law: stored + dissipated = work, with and without a t
   for (const double gamma_t : {0.0, 0.1}) {
     CAPTURE(gamma_t);
     // Sticking at constant velocity: spring and dashpot, exact to round-off.
-    const contact::LinearLuding stick({k, 0.0, false}, {1e5, gamma_t, 0.5, 0.5}, false);
+    const contact::LinearLuding stick({k, 0.0, false}, {1e5, gamma_t, 0.5, 0.5}, contact::LeverArm::radius);
     const Balance a = drive(stick, 200, dt, [&](int) { return v; });
     CHECK(a.slid_steps == 0.0);
     CHECK(a.worst_step < 1e-12 * a.work);
@@ -219,7 +222,7 @@ TEST_CASE("linear + Luding law: stored + dissipated = work, with and without a t
     if (gamma_t > 0.0) CHECK(a.lost == Approx(199 * gamma_t * v.squaredNorm() * dt).epsilon(1e-12));
     // Sliding at constant velocity (mu = 0.01: 2 mN, reached after ~20 steps): the force is
     // capped, the spring stops growing, the work mu f_n |v| dt is all dissipated.
-    const contact::LinearLuding slide({k, 0.0, false}, {1e5, gamma_t, 0.01, 0.01}, false);
+    const contact::LinearLuding slide({k, 0.0, false}, {1e5, gamma_t, 0.01, 0.01}, contact::LeverArm::radius);
     const Balance s = drive(slide, 200, dt, [&](int) { return v; });
     CHECK(s.slid_steps > 170.0);
     CHECK(std::abs(s.work - s.stored - s.lost) < 1e-3 * s.work);  // the first step's slip only
@@ -228,14 +231,14 @@ TEST_CASE("linear + Luding law: stored + dissipated = work, with and without a t
   }
   // No spring (k_t = 0): the dashpot alone, capped by Coulomb; -f^t . v_t dt either way.
   for (const double mu : {0.5, 0.001}) {
-    const contact::LinearLuding dash({k, 0.0, false}, {0.0, 0.1, mu, mu}, false);
+    const contact::LinearLuding dash({k, 0.0, false}, {0.0, 0.1, mu, mu}, contact::LeverArm::radius);
     const Balance d = drive(dash, 200, dt, [&](int) { return v; });
     CHECK(d.stored == 0.0);
     CHECK(std::abs(d.work - d.lost) < 1e-12 * d.work);
   }
   // Reversing velocity, sticking with a dashpot: the integrator's O(dt) mismatch of the dashpot
   // (forces at the two ends of a step see different velocities), shrinking with dt.
-  const contact::LinearLuding stick({k, 0.0, false}, {1e5, 0.1, 0.5, 0.5}, false);
+  const contact::LinearLuding stick({k, 0.0, false}, {1e5, 0.1, 0.5, 0.5}, contact::LeverArm::radius);
   auto osc = [&](double step) {
     return drive(stick, static_cast<int>(2e-5 / step), step,
                  [&](int s) { return std::cos(2e5 * (s + 0.5) * step) * v; });
@@ -251,14 +254,14 @@ TEST_CASE("linear + Luding law: the forms without dashpots or without the stick/
   const contact::LinearSpringDashpotParams n{1e5, 0.0, false};
   const contact::TangentialSpringParams t{1e5, 0.0, 0.01, 0.01};
   // mu_s != mu_d needs the flag.
-  CHECK_THAT(message_of([&] { LinearLudingLaw<true, false>(n, {1e5, 0.0, 0.5, 0.3}, false); }),
+  CHECK_THAT(message_of([&] { LinearLudingLaw<true, false>(n, {1e5, 0.0, 0.5, 0.3}, contact::LeverArm::radius); }),
              Catch::Contains("contact.mu_static"));
   CHECK(contact::history_columns<LinearLudingLaw<true, false>::History> == 3);
   CHECK(contact::history_columns<LinearLudingLaw<true, true>::History> == 4);
   // Drive one contact through sticking into sliding with each form: same forces, springs, losses.
-  const LinearLudingLaw<true, true> full(n, t, true);
-  const LinearLudingLaw<false, true> no_dashpots(n, t, true);
-  const LinearLudingLaw<false, false> lean(n, t, true);
+  const LinearLudingLaw<true, true> full(n, t, contact::LeverArm::contact_point);
+  const LinearLudingLaw<false, true> no_dashpots(n, t, contact::LeverArm::contact_point);
+  const LinearLudingLaw<false, false> lean(n, t, contact::LeverArm::contact_point);
   LinearLudingLaw<true, true>::History h_full;
   LinearLudingLaw<false, true>::History h_nd;
   LinearLudingLaw<false, false>::History h_lean;

@@ -254,7 +254,7 @@ TEST_CASE("contact-point lever arm: a - delta/2 in eq. (4) and in both torques, 
   cp.lever_arm = config::LeverArm::contact_point;
   const double dt = 1e-8, a = 1e-3, overlap = 2e-6;
   crystal::Dynamics dyn(two_spheres(-overlap), cp, dt);
-  REQUIRE(dyn.contact_point_shift() == 0.5);
+  REQUIRE(dyn.lever_arm() == contact::LeverArm::contact_point);
   dyn.wx = {0.0, 10.0};
   dyn.compute_forces();
   // YADE's and LIGGGHTS' convention: the arm is the distance to the middle of the overlap.

@@ -1,0 +1,178 @@
+"""The linear law of the case (`[contact] law = "linear"`, seed 002 sec. 2.1: linear spring-dashpot,
+Luding's tangential spring with Coulomb friction) in YADE's, LIGGGHTS' and LAMMPS' parameters
+(liggghts_inputs/MAPPING.md; liggghts_inputs/probe_linear.py measures the maps). The same functions as
+xclib.hertz_mindlin (xclib.laws)."""
+from __future__ import annotations
+
+import sys
+
+from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties
+
+NAME = "linear"
+CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
+
+
+def _g(x) -> str:
+    return repr(float(x))
+
+
+def tangential(c: dict) -> bool:
+    """A tangential force: kt > 0 or gamma_t > 0."""
+    return float(c["kt"]) > 0 or float(c["gamma_t"]) > 0
+
+
+def dashpot(c: dict) -> bool:
+    """A normal dashpot: gamma_n > 0."""
+    return float(c["gamma_n"]) > 0
+
+
+# ---------------------------------------------------------------------------------------------- YADE
+YADE_ENGINES = "crystal: CundallStrack (FrictPhys) undamped / ViscEl (material k,c = 2x contact) damped"
+
+
+def _yade_damped(c: dict) -> bool:
+    return c["gamma_n"] > 0 or c["gamma_t"] > 0
+
+
+def yade_interaction(c: dict, W, phi: float):
+    """(material, Ip2, Law2) of YADE (W: yade.wrapper) for the case's contact."""
+    if _yade_damped(c):
+        # Law2_ScGeom_ViscElPhys_Basic always clips (computeForceTorqueViscEl: normalForce = 0 when
+        # kn delta + cn v_n < 0, "prevent appearing of attraction forces"; checked on 2023.02a with two
+        # spheres: Fn = 10 N, Fv = -30 N gave normalForce = 0). Its Coulomb limit is then
+        # tan(phi) |normalForce| = 0 and the elastic shear force is scaled to zero with it (the history
+        # is lost). So "clip" is exactly what ViscEl does; "allow" (the seed's law, LIGGGHTS
+        # limitForce off) it cannot do: a documented difference, visible only where a dashpot pulls
+        # (contacts opening fast, e.g. the prestressed velocity drive).
+        if c["normal_tension"] != "clip":
+            sys.stderr.write("run_case.py: the case asks for normal_tension = \"%s\"; YADE's ViscEl law clips the "
+                             "pulling dashpot (no attraction), and its trace says normal_tension = \"clip\"\n"
+                             % c["normal_tension"])
+        # ViscEl contacts get k1 k2/(k1+k2): the material values are twice the contact values.
+        mat = W.ViscElMat(kn=2 * c["kn"], ks=2 * c["kt"], cn=2 * c["gamma_n"], cs=2 * c["gamma_t"],
+                          frictionAngle=phi, density=1000.0)
+        return mat, W.Ip2_ViscElMat_ViscElMat_ViscElPhys(), W.Law2_ScGeom_ViscElPhys_Basic()
+    mat = W.FrictMat(young=1e9, poisson=0.3, frictionAngle=phi, density=1000.0)
+    return mat, W.Ip2_FrictMat_FrictMat_FrictPhys(kn=c["kn"], ks=c["kt"]), W.Law2_ScGeom_FrictPhys_CundallStrack()
+
+
+def yade_attrs(c: dict) -> dict:
+    """What the YADE trace records of the law: ViscEl (any dashpot) clips; without a dashpot the normal
+    force cannot pull, so both conventions are the same law."""
+    return {"normal_tension": "clip"} if _yade_damped(c) else {}
+
+
+# ------------------------------------------------------------------------------------------ LIGGGHTS
+def _properties(kn, kt, gamma_n, gamma_t, mu) -> str:
+    """hooke/stiffness' per-type-pair k_n, k_t, absolute dashpots and mu."""
+    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
+    rows = zip(range(1, 6), ("kn", "kt", "gamman_abs", "gammat_abs", "coefficientFriction"), ["peratomtypepair 3"] * 5,
+               map(nine, (kn, kt, gamma_n, gamma_t, mu)))
+    return liggghts_properties(*rows)
+
+
+def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
+    """The contact lines of the crystal deck and whether the pair keeps a shear history."""
+    lines = ("# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed, 3 source: "
+             "one material)\n" + _properties(c["kn"], c["kt"], c["gamma_n"], c["gamma_t"], c["mu_static"]) +
+             "pair_style      gran model hooke/stiffness tangential history absolute_damping on limitForce %s\n"
+             "pair_coeff      * *\n" % limit_force)
+    return lines, c["kt"] > 0
+
+
+def liggghts_dump(c: dict, r, lay: dict) -> dict:
+    """The contact parameters the dump converter's dashpot correction takes (xclib.dumps)."""
+    return dict(gamma_n=float(c["gamma_n"]), gamma_t=float(c["gamma_t"]), kt=float(c["kt"]), kn=float(c["kn"]),
+                hertz=None)
+
+
+def liggghts_attrs(c: dict) -> dict:
+    return {}
+
+
+# -------------------------------------------------------------------------------------------- LAMMPS
+def lammps_style(c: dict, mass) -> dict:
+    """The pair style lines and the conventions they run (MAPPING.md, LAMMPS section)."""
+    import numpy as np
+    kn, kt, gn, gt = float(c["kn"]), float(c["kt"]), float(c["gamma_n"]), float(c["gamma_t"])
+    if gt > 0.0:
+        raise Unsupported("gamma_t > 0: the dumped tangential dashpot sees v(t) and w(t) instead of the step's "
+                          "half-step velocities, which the writer cannot put back (no case uses gamma_t)")
+    if kt > 0.0:
+        # gran/hooke/history: gamma_n per unit effective mass (damp = meff gamman v_n), one global value
+        if gn > 0.0 and not np.all(mass == mass[0]):
+            raise Unsupported("kt > 0 with gamma_n > 0 on unequal masses: gran/hooke/history scales the dashpot "
+                              "by each pair's effective mass (one gamman for all pairs), and pair granular's arm "
+                              "mixes radius (velocity) and contact point (torque), which no granwave option runs")
+        meff = float(mass[0]) * float(mass[0]) / (float(mass[0]) + float(mass[0]))
+        line = "pair_style      gran/hooke/history %s %s %s 0.0 %s 0\npair_coeff      * *" % (
+            _g(kn), _g(kt), _g(gn / meff), _g(c["mu_static"]))
+        conv = dict(FRICTION_STYLE_CONVENTIONS)
+        comment = ("gran/hooke/history: linear spring, dashpot per unit effective mass (gamma_n / m_eff), tangential "
+                   "spring with Coulomb limit mu |f_n|, lever arm a (seed 002 eq. 4)")
+        return dict(lines=line, conventions=conv, tangential=True, clip=False, comment=comment,
+                    style="gran/hooke/history")
+    clip = c["normal_tension"] == "clip" and gn > 0.0
+    line = ("pair_style      granular\npair_coeff      * * hooke %s %s tangential linear_nohistory 0 0 damping velocity%s"
+            % (_g(kn), _g(gn), " limit_damping" if clip else ""))
+    conv = dict(lever_arm=c.get("lever_arm", "radius"), normal_tension=c["normal_tension"],
+                coulomb_normal=c.get("coulomb_normal", "compressive"))
+    comment = ("granular hooke, absolute dashpot (damping velocity)%s, no tangential force"
+               % (", limit_damping (no pulling dashpot)" if clip else ""))
+    return dict(lines=line, conventions=conv, tangential=False, clip=clip, comment=comment, style="granular hooke")
+
+
+def lammps_dump(c: dict) -> dict:
+    """The contact parameters the dump converter's dashpot correction takes (xclib.dumps)."""
+    return dict(gamma_n=float(c["gamma_n"]), kn=float(c["kn"]), hertz=None)
+
+
+# ---------------------------------------------------------------------------- bench/side_by_side.py
+def bench_refusals(c: dict) -> list:
+    return []
+
+
+def bench_lammps(v: dict) -> dict:
+    """pair_style, pair_coeff and the variant's name of the benchmark's LAMMPS deck."""
+    if float(v["kt"]) > 0:
+        return dict(pair_style="gran/hooke/history %s %s 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["kt"]), _g(v["mu"])),
+                    pair_coeff="", variant="(gran/hooke/history, fix nve/sphere)")
+    return dict(pair_style="gran/hooke %s 0.0 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["mu"])), pair_coeff="",
+                variant="(gran/hooke without history, fix nve)")
+
+
+def bench_liggghts(v: dict) -> dict:
+    """properties, pair_style and the variant's name of the benchmark's LIGGGHTS deck (no dashpots)."""
+    friction = float(v["kt"]) > 0
+    properties = _properties(v["kn"], v["kt"], 0.0, 0.0, v["mu"]).rstrip("\n")
+    tang = "history" if friction else "no_history"
+    return dict(properties=properties,
+                pair_style="gran model hooke/stiffness tangential %s absolute_damping on limitForce off" % tang,
+                variant="(hooke/stiffness, tangential %s)" % tang)
+
+
+# ---------------------------------------------------------------------------------- YADE, continued
+YADE_F0_DT = 0.0  # O.dt of F(0) (yade_scripts/run_case.py first_verlet_step): no shear increment
+
+
+def yade_check(c: dict, O, ids, r, m, dyn_fixed, fail) -> None:
+    """The first interactions YADE made carry the case's contact values (ViscEl: the material's halved)."""
+    if _yade_damped(c):
+        for it in O.interactions:
+            if it.isReal:
+                ph = it.phys
+                for name, want in (("kn", c["kn"]), ("cn", c["gamma_n"]), ("ks", c["kt"]), ("cs", c["gamma_t"])):
+                    got = getattr(ph, name)
+                    if abs(got - want) > 1e-9 * max(abs(want), 1e-30):
+                        fail("ViscEl contact %s = %g, expected %g (stiffness halving)" % (name, got, want), 1)
+                break
+    else:
+        for it in O.interactions:
+            if it.isReal:
+                if abs(it.phys.kn - c["kn"]) > 1e-9 * c["kn"] or abs(it.phys.ks - c["kt"]) > 1e-9 * max(c["kt"], 1):
+                    fail("FrictPhys kn/ks = %g/%g, expected %g/%g" % (it.phys.kn, it.phys.ks, c["kn"], c["kt"]), 1)
+                break
+
+
+def yade_after_run(c: dict, rereads: int) -> None:
+    pass

@@ -1,0 +1,42 @@
+// What code outside a contact law asks of the case's law: one record per law, made from its
+// description (contact/case_law.hpp) by the registry (contact/case_laws.hpp), in the manner of
+// HOOMD-blue's evaluator registration. No code outside the registry compares config::ContactLaw.
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "config/case.hpp"
+#include "contact/case_law.hpp"
+
+namespace granwave::config {
+
+struct ContactLawInfo {
+  const char* name;                // in case files ([contact] law) and traces (contact_law)
+  std::vector<std::string_view> keys;  // its own [contact] keys
+  bool stiffness_of_overlap;       // the linearised contact depends on the overlap (Hertz)
+  bool hertz_normal;               // the normal force is Hertz's
+  const char* prestress_formula;   // sigma_0 as `granwave check` writes it
+  const char* linearisation_note;  // how eq. (10) linearises it (nullptr: the law is linear)
+  bool (*torques)(const ContactParams&);
+  const char* (*history_name)(const ContactParams&);  // the trace's tangential_history
+  // Two spheres of radii a_i, a_j (particles of `density`) at overlap delta, linearised.
+  contact::LinearisedContact (*at)(const ContactParams&, double density, double a_i, double a_j, double delta);
+  contact::GuardKeys (*guard_keys)();
+  contact::ScaleCheck (*scale)(const ContactParams&, const CrystalCase&, double m);
+  std::string (*stability_note)(double delta_max);
+  std::string (*check_line)(const ContactParams&, const contact::LinearisedContact& at_delta_0);
+  std::string (*tangential_line)(const ContactParams&);
+
+  bool has_key(std::string_view key) const;
+};
+
+const ContactLawInfo& law_of(ContactLaw law);
+inline const ContactLawInfo& law_of(const ContactParams& contact) { return law_of(contact.law); }
+
+// The laws' names, in registry order (the first is the default of [contact] law).
+std::vector<std::string_view> contact_law_names();
+// The names of the laws that have `key`, quoted and joined by " or " (refusal messages).
+std::string contact_law_owners(std::string_view key);
+
+}  // namespace granwave::config

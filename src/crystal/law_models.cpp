@@ -1,0 +1,35 @@
+// The registry's kernel half: the model of a case's law (its description's model(), through
+// crystal::model_of: the contact kernel's instantiations for every form of every law) and the
+// polydisperse relaxation with the law's frictionless, undamped form. With config/contact_laws.cpp,
+// the only translation units that dispatch on config::ContactLaw.
+//
+// 256-bit vectors for the contact loop, as in crystal/dynamics.cpp (whose comment gives the
+// measurements): the kernel's passes are instantiated here.
+#pragma GCC target("prefer-vector-width=256")
+#include <algorithm>
+#include <memory>
+
+#include "contact/case_laws.hpp"
+#include "crystal/dynamics.hpp"
+#include "crystal/kernel.hpp"
+
+namespace granwave::crystal {
+
+std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp, double density) {
+  return contact::visit_law(cp.law, [&]<class D>(D) -> std::shared_ptr<const ContactModel> {
+    return D::model(cp, density, [](const auto& law) -> std::shared_ptr<const ContactModel> { return model_of(law); });
+  });
+}
+
+RelaxResult relax(Packing& packing, const config::ContactParams& contact, double density, double tolerance,
+                  long max_steps) {
+  const double a_max = *std::max_element(packing.radius.begin(), packing.radius.end());
+  const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
+  const double overlap_max = 2.0 * a_max - packing.d_prime;
+  const contact::Relaxation r = contact::visit_law(contact.law, [&]<class D>(D) {
+    return D::relaxation(contact, density, a_max, m_min, overlap_max);
+  });
+  return relax_with(packing, case_model(r.params, density), r.t_c, tolerance, max_steps);
+}
+
+}  // namespace granwave::crystal

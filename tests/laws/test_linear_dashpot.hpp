@@ -1,0 +1,110 @@
+// The test-only third contact law (issue #26): a linear normal spring-dashpot and a viscous
+// tangential dashpot, f^t = -gamma_t v_t, no spring, no friction, no history. It exists to show
+// that a law is added through its description alone (contact/case_law.hpp): compiled only into
+// granwave_testlaw (GRANWAVE_TEST_LAW, CMakeLists.txt), whose registry lists it, and run by
+// tests/cli/law_registry.py through `granwave_testlaw check/run/theory`.
+#pragma once
+#include <array>
+#include <sstream>
+#include <string>
+
+#include "contact/case_law.hpp"
+#include "contact/hooke.hpp"
+#include "contact/law.hpp"
+#include "contact/linear_luding_case.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "contact/tangential_spring.hpp"
+
+namespace granwave::contact {
+
+// Rates = false: the same law for a jump of positions (no dashpots).
+template <bool Rates>
+struct TestLinearDashpotLaw {
+  LinearSpringDashpotParams normal;
+  double gamma_t = 0.0;
+  LeverArm arm = LeverArm::radius;
+  double shift = 0.0;
+
+  struct History {};
+  static constexpr bool torques = true;
+
+  TestLinearDashpotLaw(const LinearSpringDashpotParams& n, double gamma_t_, LeverArm lever_arm)
+      : normal(n), gamma_t(Rates ? gamma_t_ : 0.0), arm(lever_arm), shift(arm_shift(lever_arm)) {
+    normal.validate();
+    if (!Rates) normal.gamma_n = 0.0;
+  }
+
+  Response evaluate(const Contact& c, History&) const {
+    const double f_n = normal_force(normal, c.delta, c.delta_dot);
+    const double arm_i = c.a_i - shift * c.delta, arm_j = c.a_j - shift * c.delta;
+    const Vec3 vt = tangential_velocity(c.dv + arm_i * c.n.cross(c.w_i) + arm_j * c.n.cross(c.w_j), c.n);
+    const Vec3 ft = -gamma_t * vt;
+    // Dissipated: the normal dashpot's (or a clipped pull's) work and the tangential dashpot's power.
+    const double loss = (f_n - normal.kn * c.delta) * c.delta_dot * c.dt + gamma_t * vt.squaredNorm() * c.dt;
+    return {f_n * c.n + ft, c.n.cross(ft), loss};
+  }
+  double opening_loss(const History&) const { return 0.0; }
+  void add_stored_energy(double& e, double delta, const History&) const { e += normal_energy(normal, delta); }
+  LeverArm lever_arm() const { return arm; }
+  bool dissipates() const { return Rates; }
+  TestLinearDashpotLaw<false> without_rates() const { return {normal, 0.0, arm}; }
+};
+
+struct TestLinearDashpotCase {
+  static constexpr config::ContactLaw law = config::ContactLaw::test_linear_dashpot;
+  static constexpr const char* name = "test_linear_dashpot";
+  static constexpr std::array<const char*, 3> keys{"kn", "gamma_n", "gamma_t"};
+  static constexpr const char* refusal_note = " (this case's law is \"test_linear_dashpot\")";
+
+  // The linear law's keys and checks: kt is not this law's (a case giving it is refused first), so it stays 0.
+  template <class Reader, class Table>
+  static void read(const Reader& r, const Table& t, config::ContactParams& p) {
+    LinearLudingCase::read(r, t, p);
+  }
+  template <class Reader, class Table>
+  static void check_case(const Reader&, const Table&, const config::Case&) {}
+
+  static bool torques(const config::ContactParams& p) { return p.gamma_t > 0.0; }
+  static const char* history_name(const config::ContactParams&) { return "none"; }
+
+  // A dashpot has no stiffness: k_t = 0, its damping gamma_t.
+  static constexpr bool stiffness_of_overlap = false;
+  static constexpr bool hertz_normal = false;
+  static constexpr const char* prestress_formula = "2 sqrt(2) k delta / d'^2";
+  static constexpr const char* linearisation_note = "the linear spring k; the tangential dashpot adds no stiffness";
+  static LinearisedContact at(const config::ContactParams& p, double, double, double, double delta) {
+    return {p.kn * delta, p.kn, 0.0, p.gamma_n, p.gamma_t};
+  }
+  // The spring alone, as the linear law relaxes (its Hooke form), named as this law.
+  static Relaxation relaxation(const config::ContactParams& p, double density, double a_max, double m_min,
+                               double overlap_max) {
+    Relaxation r = LinearLudingCase::relaxation(p, density, a_max, m_min, overlap_max);
+    r.params.law = law;
+    return r;
+  }
+  template <class Make>
+  static auto model(const config::ContactParams& p, double, const Make& make) {
+    const LinearSpringDashpotParams n{p.kn, p.gamma_n, p.normal_tension == config::NormalTension::clip};
+    if (torques(p)) return make(TestLinearDashpotLaw<true>(n, p.gamma_t, p.lever_arm));
+    return with_flags([&]<bool Dashpot>() { return make(HookeLaw<Dashpot>(n)); }, n.gamma_n > 0.0);
+  }
+
+  static GuardKeys guard_keys() {
+    return {"contact.kn", "contact.gamma_n", "contact.kn, contact.gamma_n, contact.gamma_t, crystal.polydispersity",
+            "contact.kn, crystal.overlap, crystal.radius", "contact.kn"};
+  }
+  // The spring's: the linear law's first guard and (no) stability note.
+  static ScaleCheck scale(const config::ContactParams& p, const config::CrystalCase& k, double m) {
+    return LinearLudingCase::scale(p, k, m);
+  }
+  static std::string stability_note(double delta_max) { return LinearLudingCase::stability_note(delta_max); }
+  static std::string check_line(const config::ContactParams& p, const LinearisedContact&) {
+    std::ostringstream o;
+    o << "  contact law test_linear_dashpot: k = " << p.kn << " N/m, gamma_n = " << p.gamma_n
+      << " kg/s, tangential dashpot gamma_t = " << p.gamma_t << " kg/s (no spring, no friction)\n";
+    return o.str();
+  }
+  static std::string tangential_line(const config::ContactParams&) { return ""; }
+};
+
+}  // namespace granwave::contact
