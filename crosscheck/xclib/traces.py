@@ -15,6 +15,8 @@ import tomllib
 import h5py
 import numpy as np
 
+from xclib.laws import law_of
+
 SCHEMA_VERSION = 1
 
 # Every trace dataset by model (SCHEMA.md §3); `[output] fields` selects among them.
@@ -41,18 +43,13 @@ def contact_params(case: dict) -> dict:
 
 
 def has_tangential(c: dict) -> bool:
-    """Does the case's law have a tangential force? Linear: kt > 0 or gamma_t > 0; Hertz-Mindlin:
-    tangential = "mindlin"."""
-    if c.get("law", "linear") == "hertz_mindlin":
-        return c.get("tangential", "mindlin") == "mindlin"
-    return float(c["kt"]) > 0 or float(c["gamma_t"]) > 0
+    """Does the case's law have a tangential force? Its mapping module says (xclib.laws)."""
+    return law_of(c).tangential(c)
 
 
 def has_dashpot(c: dict) -> bool:
-    """Does the case's law have a normal dashpot? Linear: gamma_n > 0; Hertz-Mindlin: damping_ratio > 0."""
-    if c.get("law", "linear") == "hertz_mindlin":
-        return float(c.get("damping_ratio", 0.0)) > 0
-    return float(c["gamma_n"]) > 0
+    """Does the case's law have a normal dashpot? Its mapping module says (xclib.laws)."""
+    return law_of(c).dashpot(c)
 
 
 # YADE (ScGeom: contact point in the middle of the overlap) and LIGGGHTS take the lever arm of the
