@@ -86,6 +86,24 @@ const std::vector<Params> kCases = {
     {0.0, 0.0, 0.0},        {0.0, k * delta, 0.0},   {0.2 * k, 0.0, 0.0},     {1.0 * k, 0.0, 0.0},
     {1.0 * k, k * delta, 0.5}, {2.0 * k, k * delta, 0.0}, {2.0 * k, 0.0, 0.5}, {0.5 * k, k * delta, 0.5}};
 
+// Each mode's Hellmann-Feynman group velocity against the slope of the closed form it equals.
+void check_group_velocities(const Params& p, const LatticeCell& cell) {
+  for (double q : {0.3, 1.0, 2.0, 2.9}) {
+    const double h = 1e-6;
+    const Closed c = closed_forms(p, q), cp = closed_forms(p, q + h), cm = closed_forms(p, q - h);
+    auto slope = [&](double Closed::*f) { return (std::sqrt(cp.*f) - std::sqrt(cm.*f)) / (2 * h) * l0; };
+    for (const auto& md : lattice_modes(cell, ez, q / l0)) {
+      double expect = 0.0;
+      if (std::abs(md.omega2 - c.P) < 1e-9 * c.P) expect = slope(&Closed::P);
+      else if (std::abs(md.omega2 - c.torsion) < 1e-9 * c.torsion) expect = slope(&Closed::torsion);
+      else if (std::abs(md.omega2 - c.S_low) < 1e-9 * c.S_low) expect = slope(&Closed::S_low);
+      else if (std::abs(md.omega2 - c.S_high) < 1e-9 * c.S_high) expect = slope(&Closed::S_high);
+      else FAIL("mode omega^2 = " << md.omega2 << " matches no closed form");
+      CHECK_THAT(md.group_velocity, WithinAbs(expect, 1e-5 * 300.0));
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("dynamical matrix: Hermitian and positive semi-definite at every k of the zone", "[theory][lattice]") {
@@ -221,20 +239,7 @@ TEST_CASE("long waves: closed forms of V_p, V_s with rotations, and the rotation
 TEST_CASE("group velocities (Hellmann-Feynman) equal the slope of the closed forms", "[theory][lattice]") {
   const Params p{2.0 * k, k * delta, 0.5};
   const LatticeCell cell = fcc_cell(p);
-  for (double q : {0.3, 1.0, 2.0, 2.9}) {
-    const double h = 1e-6;
-    const Closed c = closed_forms(p, q), cp = closed_forms(p, q + h), cm = closed_forms(p, q - h);
-    auto slope = [&](double Closed::*f) { return (std::sqrt(cp.*f) - std::sqrt(cm.*f)) / (2 * h) * l0; };
-    for (const auto& md : lattice_modes(cell, ez, q / l0)) {
-      double expect = 0.0;
-      if (std::abs(md.omega2 - c.P) < 1e-9 * c.P) expect = slope(&Closed::P);
-      else if (std::abs(md.omega2 - c.torsion) < 1e-9 * c.torsion) expect = slope(&Closed::torsion);
-      else if (std::abs(md.omega2 - c.S_low) < 1e-9 * c.S_low) expect = slope(&Closed::S_low);
-      else if (std::abs(md.omega2 - c.S_high) < 1e-9 * c.S_high) expect = slope(&Closed::S_high);
-      else FAIL("mode omega^2 = " << md.omega2 << " matches no closed form");
-      CHECK_THAT(md.group_velocity, WithinAbs(expect, 1e-5 * 300.0));
-    }
-  }
+  check_group_velocities(p, cell);
   // kt/k = 2: the upper S branch falls from sqrt(16 kt a^2/I) to the zone edge: a backward wave
   // (negative group velocity at k > 0).
   const auto d = lattice_dispersion(cell, ez, l0, 41);
@@ -422,20 +427,7 @@ TEST_CASE("rolling and torsion: long waves unchanged, the zone edge moved by the
 TEST_CASE("rolling and torsion: group velocities (Hellmann-Feynman) equal the slope of the closed forms", "[theory][lattice]") {
   const Params p{1.0 * k, k * delta, 0.5, 2.0 * kta2, 1.0 * kta2};
   const LatticeCell cell = fcc_cell(p);
-  for (double q : {0.3, 1.0, 2.0, 2.9}) {
-    const double h = 1e-6;
-    const Closed c = closed_forms(p, q), cp = closed_forms(p, q + h), cm = closed_forms(p, q - h);
-    auto slope = [&](double Closed::*f) { return (std::sqrt(cp.*f) - std::sqrt(cm.*f)) / (2 * h) * l0; };
-    for (const auto& md : lattice_modes(cell, ez, q / l0)) {
-      double expect = 0.0;
-      if (std::abs(md.omega2 - c.P) < 1e-9 * c.P) expect = slope(&Closed::P);
-      else if (std::abs(md.omega2 - c.torsion) < 1e-9 * c.torsion) expect = slope(&Closed::torsion);
-      else if (std::abs(md.omega2 - c.S_low) < 1e-9 * c.S_low) expect = slope(&Closed::S_low);
-      else if (std::abs(md.omega2 - c.S_high) < 1e-9 * c.S_high) expect = slope(&Closed::S_high);
-      else FAIL("mode omega^2 = " << md.omega2 << " matches no closed form");
-      CHECK_THAT(md.group_velocity, WithinAbs(expect, 1e-5 * 300.0));
-    }
-  }
+  check_group_velocities(p, cell);
 }
 
 TEST_CASE("rolling and torsion without a tangential spring: rotational acoustic branches", "[theory][lattice]") {
