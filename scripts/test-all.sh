@@ -14,7 +14,7 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DG
   -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" > build-sanitize.configure.log 2>&1 || { cat build-sanitize.configure.log; exit 1; }
 # Only what the unit label runs: the unit test executables and the binary the cli tests call.
 unit_targets=$(cmake --build build-sanitize --target help | sed -n 's/^\.\.\. \(test_unit_[a-z_]*\).*/\1/p')
-cmake --build build-sanitize -j"$jobs" --target granwave $unit_targets
+cmake --build build-sanitize -j"$jobs" --target granwave granwave_testlaw $unit_targets
 echo "==> unit tests under sanitizers"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize -L unit --output-on-failure -j"$jobs"
