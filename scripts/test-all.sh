@@ -28,8 +28,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C
 cmake --build build-fuzz -j"$jobs" --target readers_fuzzer
 bash tests/fuzz/seed_corpus.sh build/granwave build-fuzz/corpus
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  build-fuzz/readers_fuzzer -max_total_time=60 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-  -artifact_prefix=build-fuzz/ build-fuzz/corpus
+  bash tests/fuzz/run_libfuzzer.sh build-fuzz/readers_fuzzer build-fuzz/corpus 60
 
 echo "==> pytest: the cross-code harness, including real YADE and LIGGGHTS runs"
 PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q tests/crosscheck
