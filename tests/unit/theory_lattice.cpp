@@ -86,6 +86,21 @@ const std::vector<Params> kCases = {
     {0.0, 0.0, 0.0},        {0.0, k * delta, 0.0},   {0.2 * k, 0.0, 0.0},     {1.0 * k, 0.0, 0.0},
     {1.0 * k, k * delta, 0.5}, {2.0 * k, k * delta, 0.0}, {2.0 * k, 0.0, 0.5}, {0.5 * k, k * delta, 0.5}};
 
+// kt a^2 = 0.1 N m for kt = k: the angular scale of the tangential spring.
+const double kta2 = k * a * a;
+// Rolling and torsion springs (N m/rad) on top of the tangential spring, and alone.
+const std::vector<Params> kRollingCases = {
+    {1.0 * k, 0.0, 0.0, 0.05 * kta2, 0.0},         {1.0 * k, 0.0, 0.0, 0.0, 0.5 * kta2},
+    {1.0 * k, k * delta, 0.5, 2.0 * kta2, 1.0 * kta2}, {0.2 * k, k * delta, 0.0, 0.5 * kta2, 0.2 * kta2},
+    {0.0, 0.0, 0.0, 1.0 * kta2, 0.3 * kta2}};
+
+// Without and with rolling and torsion springs.
+std::vector<Params> all_cases() {
+  std::vector<Params> all = kCases;
+  all.insert(all.end(), kRollingCases.begin(), kRollingCases.end());
+  return all;
+}
+
 // Each mode's Hellmann-Feynman group velocity against the slope of the closed form it equals.
 void check_group_velocities(const Params& p, const LatticeCell& cell) {
   for (double q : {0.3, 1.0, 2.0, 2.9}) {
@@ -107,7 +122,7 @@ void check_group_velocities(const Params& p, const LatticeCell& cell) {
 }  // namespace
 
 TEST_CASE("dynamical matrix: Hermitian and positive semi-definite at every k of the zone", "[theory][lattice]") {
-  for (const auto& p : kCases) {
+  for (const auto& p : all_cases()) {
     const LatticeCell cell = fcc_cell(p);
     for (int i = -50; i <= 50; ++i) {
       const double kz = std::numbers::pi / l0 * i / 50.0;
@@ -123,7 +138,7 @@ TEST_CASE("dynamical matrix: Hermitian and positive semi-definite at every k of 
 }
 
 TEST_CASE("FCC along z: all six branches equal the closed forms", "[theory][lattice]") {
-  for (const auto& p : kCases) {
+  for (const auto& p : all_cases()) {
     const LatticeCell cell = fcc_cell(p);
     REQUIRE(cell.bonds.size() == 12);
     for (int i = 0; i <= 40; ++i) {
@@ -134,7 +149,8 @@ TEST_CASE("FCC along z: all six branches equal the closed forms", "[theory][latt
       std::vector<double> expect = {c.P, c.torsion, c.S_low, c.S_low, c.S_high, c.S_high};
       std::sort(expect.begin(), expect.end());
       const double scale = std::max({c.P, c.torsion, c.S_high});
-      INFO("kt/k = " << p.kt / k << ", f0 = " << p.f0 << ", arm shift " << p.arm_shift << ", q = " << q);
+      INFO("kt/k = " << p.kt / k << ", f0 = " << p.f0 << ", arm shift " << p.arm_shift << ", kr = " << p.kr
+                     << ", ko = " << p.ko << ", q = " << q);
       for (int b = 0; b < 6; ++b) CHECK_THAT(modes[b].omega2, WithinAbs(expect[b], 1e-12 * scale));
       // Polarisation: P has no rotation at all; a mode is either in (u_z), (theta_z), (u_x, theta_y)
       // or (u_y, theta_x).
@@ -356,33 +372,6 @@ TEST_CASE("compare_ridge: finds a synthetic ridge on the branch, ignores lines o
 }
 
 // ---- rolling and torsion resistance (Luding's full contact model), as angular springs ----
-namespace {
-// kt a^2 = 0.1 N m for kt = k: the angular scale of the tangential spring.
-const double kta2 = k * a * a;
-const std::vector<Params> kRollingCases = {
-    {1.0 * k, 0.0, 0.0, 0.05 * kta2, 0.0},         {1.0 * k, 0.0, 0.0, 0.0, 0.5 * kta2},
-    {1.0 * k, k * delta, 0.5, 2.0 * kta2, 1.0 * kta2}, {0.2 * k, k * delta, 0.0, 0.5 * kta2, 0.2 * kta2},
-    {0.0, 0.0, 0.0, 1.0 * kta2, 0.3 * kta2}};
-}  // namespace
-
-TEST_CASE("rolling and torsion: all six branches along z equal the closed forms", "[theory][lattice]") {
-  for (const auto& p : kRollingCases) {
-    const LatticeCell cell = fcc_cell(p);
-    for (int i = 0; i <= 40; ++i) {
-      const double q = std::numbers::pi * i / 40.0;
-      const auto modes = lattice_modes(cell, ez, q / l0);
-      const Closed c = closed_forms(p, q);
-      std::vector<double> expect = {c.P, c.torsion, c.S_low, c.S_low, c.S_high, c.S_high};
-      std::sort(expect.begin(), expect.end());
-      const double scale = std::max({c.P, c.torsion, c.S_high});
-      INFO("kt/k = " << p.kt / k << ", kr = " << p.kr << ", ko = " << p.ko << ", q = " << q);
-      for (int b = 0; b < 6; ++b) CHECK_THAT(modes[b].omega2, WithinAbs(expect[b], 1e-12 * scale));
-      const Matrix6cd D = dynamical_matrix(cell, (q / l0) * ez);
-      CHECK(hermitian_defect(D) < 1e-14);
-      CHECK(hermitian_defect(dynamical_matrix(cell, Vec3(0.3, -0.7, 0.5) * (q / l0)) ) < 1e-14);
-    }
-  }
-}
 
 TEST_CASE("rolling and torsion: long waves unchanged, the zone edge moved by the closed form", "[theory][lattice]") {
   for (const auto& p : kRollingCases) {
