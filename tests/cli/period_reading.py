@@ -12,17 +12,9 @@ usage: period_reading.py GRANWAVE CASE CHAIN_CASE WORKDIR
 import json
 import math
 import os
-import subprocess
 import sys
 
-
-def fail(msg):
-    print("FAIL: " + msg)
-    sys.exit(1)
-
-
-def run(*cmd):
-    return subprocess.run(list(cmd), capture_output=True, text=True)
+from reading_option import check_each_greater, check_refusals, check_text_says, fail, run
 
 
 def check_lambda(a, key):
@@ -64,21 +56,11 @@ def main():
         fail("--period oscillation gave %r from %r" % (o["period_reading"], o["period_reading_source"]))
     check_lambda(o, "period")
     # The full oscillation is longer than its leading pulse wherever both exist.
-    for d, p in zip(o["layers"]["duration"]["values"], o["layers"]["period"]["values"]):
-        if d is not None and p is not None and not p > d:
-            fail("period %r not longer than duration %r" % (p, d))
-    if "T = the leading pulse" not in run(gw, "analyze", trace).stdout:
-        fail("analyze's text does not say which T it used")
+    check_each_greater(o["layers"]["duration"]["values"], o["layers"]["period"]["values"],
+                       "period %r not longer than duration %r")
+    check_text_says(gw, trace, "T = the leading pulse", "which T it used")
 
-    bad = run(gw, "analyze", trace, "--period", "cycle")
-    if bad.returncode != 2 or "--period cycle" not in bad.stderr:
-        fail("--period cycle: exit %d, %r" % (bad.returncode, bad.stderr))
-    ctrace = os.path.join(work, "chain.h5")
-    if run(gw, "run", chain_case, "-o", ctrace, "--quiet").returncode != 0:
-        fail("chain run failed")
-    c = run(gw, "analyze", ctrace, "--period", "pulse")
-    if c.returncode != 2 or "crystal traces" not in c.stderr:
-        fail("--period on a chain trace: exit %d, %r" % (c.returncode, c.stderr))
+    check_refusals(gw, trace, chain_case, work, "--period", "cycle", "pulse")
     print("ok")
 
 

@@ -21,19 +21,18 @@ foreach(spec
     COMMAND ${GW_SYSTEM_PYTHON3} ${ruler_script} $<TARGET_FILE:granwave> ${CMAKE_SOURCE_DIR}/${case} ${ruler_tmp} ${flag})
   set_tests_properties("cli: run and analyze print the same measures: ${label}" PROPERTIES LABELS "cli")
 endforeach()
-# The wavelength's reading of T (issue #15 item 5): [analysis] period, analyze --period, and the
-# run summary's lattice-dynamics S speed (tests/cli/period_reading.py).
-add_test(NAME "cli: [analysis] period and analyze --period choose T of lambda = V T; run prints the lattice S speed"
-  COMMAND ${GW_SYSTEM_PYTHON3} ${CMAKE_SOURCE_DIR}/tests/cli/period_reading.py $<TARGET_FILE:granwave>
-          ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_small_s_kt_pulse.toml ${CMAKE_SOURCE_DIR}/data/cases/oriented20.toml
-          ${CMAKE_BINARY_DIR}/cli-tests/period)
-set_tests_properties("cli: [analysis] period and analyze --period choose T of lambda = V T; run prints the lattice S speed"
-                     PROPERTIES LABELS "cli")
-# k's local speed (issue #31): [analysis] wavenumber_speed and analyze --wavenumber-speed
-# (tests/cli/wavenumber_speed_reading.py).
-add_test(NAME "cli: [analysis] wavenumber_speed and analyze --wavenumber-speed choose V of k = (2/l0) arccos(V/V(k->0))"
-  COMMAND ${GW_SYSTEM_PYTHON3} ${CMAKE_SOURCE_DIR}/tests/cli/wavenumber_speed_reading.py $<TARGET_FILE:granwave>
-          ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_small_k_first_peak.toml ${CMAKE_SOURCE_DIR}/data/cases/oriented20.toml
-          ${CMAKE_BINARY_DIR}/cli-tests/wavenumber_speed)
-set_tests_properties("cli: [analysis] wavenumber_speed and analyze --wavenumber-speed choose V of k = (2/l0) arccos(V/V(k->0))"
-                     PROPERTIES LABELS "cli")
+# The readings of analyze (tests/cli/<script>.py GRANWAVE CASE CHAIN_CASE WORKDIR): the option, the
+# case's [analysis] key read back from the trace, and their refusals.
+function(gw_reading_test name script case)
+  add_test(NAME "cli: ${name}"
+    COMMAND ${GW_SYSTEM_PYTHON3} ${CMAKE_SOURCE_DIR}/tests/cli/${script}.py $<TARGET_FILE:granwave>
+            ${CMAKE_SOURCE_DIR}/tests/cli/cases/${case}.toml ${CMAKE_SOURCE_DIR}/data/cases/oriented20.toml
+            ${CMAKE_BINARY_DIR}/cli-tests/${script})
+  set_tests_properties("cli: ${name}" PROPERTIES LABELS "cli")
+endfunction()
+# The wavelength's reading of T, and the run summary's lattice-dynamics S speed.
+gw_reading_test("[analysis] period and analyze --period choose T of lambda = V T; run prints the lattice S speed"
+                period_reading crystal_small_s_kt_pulse)
+# k's local speed in seed 002 sec. 3.4.
+gw_reading_test("[analysis] wavenumber_speed and analyze --wavenumber-speed choose V of k = (2/l0) arccos(V/V(k->0))"
+                wavenumber_speed_reading crystal_small_k_first_peak)

@@ -12,17 +12,9 @@ usage: wavenumber_speed_reading.py GRANWAVE CASE CHAIN_CASE WORKDIR
 import json
 import math
 import os
-import subprocess
 import sys
 
-
-def fail(msg):
-    print("FAIL: " + msg)
-    sys.exit(1)
-
-
-def run(*cmd):
-    return subprocess.run(list(cmd), capture_output=True, text=True)
+from reading_option import check_each_greater, check_refusals, check_text_says, fail, run
 
 
 def five_layer_speeds(t, l0):
@@ -85,21 +77,11 @@ def main():
         fail("--wavenumber-speed displacement_peak gave %r" % (got,))
     check_k(o, five_layer_speeds(o["layers"]["displacement_peak_time"]["values"], o["l0"]["value"]))
     # The displacement's first peak trails the stress's (the end of the velocity pulse).
-    for ts, tu in zip(o["layers"]["peak_time"]["values"], o["layers"]["displacement_peak_time"]["values"]):
-        if ts is not None and tu is not None and not tu > ts:
-            fail("displacement peak %r not after the stress peak %r" % (tu, ts))
-    if 'wavenumber_speed = "first_peak", from the case' not in run(gw, "analyze", trace).stdout:
-        fail("analyze's text does not say which V it used for k")
+    check_each_greater(o["layers"]["peak_time"]["values"], o["layers"]["displacement_peak_time"]["values"],
+                       "displacement peak %r not after the stress peak %r")
+    check_text_says(gw, trace, 'wavenumber_speed = "first_peak", from the case', "which V it used for k")
 
-    bad = run(gw, "analyze", trace, "--wavenumber-speed", "half_peak")
-    if bad.returncode != 2 or "--wavenumber-speed half_peak" not in bad.stderr:
-        fail("--wavenumber-speed half_peak: exit %d, %r" % (bad.returncode, bad.stderr))
-    ctrace = os.path.join(work, "chain.h5")
-    if run(gw, "run", chain_case, "-o", ctrace, "--quiet").returncode != 0:
-        fail("chain run failed")
-    c = run(gw, "analyze", ctrace, "--wavenumber-speed", "first_peak")
-    if c.returncode != 2 or "crystal traces" not in c.stderr:
-        fail("--wavenumber-speed on a chain trace: exit %d, %r" % (c.returncode, c.stderr))
+    check_refusals(gw, trace, chain_case, work, "--wavenumber-speed", "half_peak", "first_peak")
     print("ok")
 
 
