@@ -71,6 +71,11 @@ std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string&
 // A finished study file read back: member k at position k with `nvalues` values, else InputError.
 void require_members_in_order(const std::vector<MemberResult>& results, std::size_t nvalues, const std::string& path);
 
+// The members of the finished study file at `path` when it was written from the same inputs
+// (fingerprint) and holds all n of them, in order (else InputError); otherwise none.
+std::vector<MemberResult> read_finished_study(const std::string& path, const std::string& fingerprint, std::size_t n,
+                                              std::size_t nvalues);
+
 // A finished study: commit `w` (the study file, written as NAME.tmp, renamed to NAME), then remove
 // parts_dir, whose batches the file now holds; resuming needs them only until the rename.
 void commit_study(io::H5Writer& w, const std::string& parts_dir);
