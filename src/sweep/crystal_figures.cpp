@@ -161,28 +161,23 @@ void write_captured(io::H5Writer& w, const std::string& g, const Captured& c) {
   w.write(g + "/time", c.time);
   w.write(g + "/z_over_l0", c.zl);
   w.write(g + "/sigma_over_sigma0", c.sigma, {c.time.size(), c.zl.size()});
-  std::vector<double> z, vloc, vloc_e, lam_vt, lam_k, lam_k_first, v_k, lam_pulse, len_osc;
-  for (const auto& L : c.a.layers) {
-    z.push_back(L.z_over_l0);
-    vloc.push_back(L.local_speed.value);
-    vloc_e.push_back(L.local_speed.error);
-    lam_vt.push_back(L.lambda_vt.value / c.a.l0);
-    lam_k.push_back(2.0 * std::numbers::pi / L.k_from_speed.value / c.a.l0);
-    v_k.push_back(L.k_speed.value);
-    lam_k_first.push_back(2.0 * std::numbers::pi /
-                          analysis::wavenumber_from_speed(L.local_speed.value, c.a.dispersion.v_k0, c.a.l0) / c.a.l0);
-    lam_pulse.push_back(L.local_speed.value * L.duration.value / c.a.l0);
-    len_osc.push_back(L.oscillation_length.value / c.a.l0);
-  }
-  w.write(g + "/layers/z_over_l0", z);
-  w.write(g + "/layers/local_speed", vloc);
-  w.write(g + "/layers/local_speed_error", vloc_e);
-  w.write(g + "/layers/lambda_vt_over_l0", lam_vt);
-  w.write(g + "/layers/lambda_k_over_l0", lam_k);
-  w.write(g + "/layers/k_speed", v_k);
-  w.write(g + "/layers/lambda_k_first_peak_over_l0", lam_k_first);
-  w.write(g + "/layers/lambda_vt_pulse_over_l0", lam_pulse);
-  w.write(g + "/layers/oscillation_length_over_l0", len_osc);
+  const double l0 = c.a.l0, two_pi = 2.0 * std::numbers::pi;
+  using L = const analysis::LayerMeasures&;
+  write_columns(w, g + "/layers",
+                columns_of<analysis::LayerMeasures>(
+                    c.a.layers,
+                    {{"z_over_l0", [](L x) { return x.z_over_l0; }},
+                     {"local_speed", [](L x) { return x.local_speed.value; }},
+                     {"local_speed_error", [](L x) { return x.local_speed.error; }},
+                     {"lambda_vt_over_l0", [&](L x) { return x.lambda_vt.value / l0; }},
+                     {"lambda_k_over_l0", [&](L x) { return two_pi / x.k_from_speed.value / l0; }},
+                     {"k_speed", [](L x) { return x.k_speed.value; }},
+                     {"lambda_k_first_peak_over_l0",
+                      [&](L x) {
+                        return two_pi / analysis::wavenumber_from_speed(x.local_speed.value, c.a.dispersion.v_k0, l0) / l0;
+                      }},
+                     {"lambda_vt_pulse_over_l0", [&](L x) { return x.local_speed.value * x.duration.value / l0; }},
+                     {"oscillation_length_over_l0", [&](L x) { return x.oscillation_length.value / l0; }}}));
   w.attr(g, "period_reading", std::string(analysis::to_string(c.a.period_reading)));
   w.attr(g, "wavenumber_speed", std::string(analysis::to_string(c.a.wavenumber_speed)));
   const auto& d = c.a.dispersion;

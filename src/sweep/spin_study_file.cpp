@@ -73,31 +73,24 @@ void write_spin_study(io::H5Writer& w, const SpinStudy& s, const SpinStudyResult
       w.attr(G, k + "_slope", f->slope);
       w.attr(G, k + "_lack_of_fit", f->lack_of_fit);
     }
-    std::vector<double> cnt, mean, med, se, q25, q75, kmean, kse;
-    for (std::size_t k = 0; k < ga.M.size(); ++k) {
-      cnt.push_back(static_cast<double>(ga.norm[k].count));
-      mean.push_back(ga.norm[k].mean);
-      med.push_back(ga.norm[k].median);
-      se.push_back(ga.norm[k].stderr_mean);
-      q25.push_back(ga.norm[k].q25);
-      q75.push_back(ga.norm[k].q75);
-      kmean.push_back(ga.decay_rate[k].mean);
-      kse.push_back(ga.decay_rate[k].stderr_mean);
-    }
-    w.write(G + "/M", ga.M);
-    w.write(G + "/count", cnt);
-    w.write(G + "/mean", mean);
-    w.write(G + "/median", med);
-    w.write(G + "/stderr", se);
-    w.write(G + "/q25", q25);
-    w.write(G + "/q75", q75);
-    w.write(G + "/decay_rate_mean", kmean);
-    w.write(G + "/decay_rate_stderr", kse);
-    w.write(G + "/decay_rate_fit", ga.decay_rate_fit);
-    w.write(G + "/decay_rate_fit_error", ga.decay_rate_fit_error);
-    w.write(G + "/predicted_minority", ga.predicted_minority);
-    w.write(G + "/predicted_blocks", ga.predicted_blocks);
-    w.write(G + "/predicted_decay_rate", ga.predicted_decay_rate);
+    using S = const Summary&;
+    write_columns(w, G, {{"M", ga.M}});
+    write_columns(w, G,
+                  columns_of<Summary>(ga.norm, {{"count", [](S q) { return static_cast<double>(q.count); }},
+                                                {"mean", [](S q) { return q.mean; }},
+                                                {"median", [](S q) { return q.median; }},
+                                                {"stderr", [](S q) { return q.stderr_mean; }},
+                                                {"q25", [](S q) { return q.q25; }},
+                                                {"q75", [](S q) { return q.q75; }}}));
+    write_columns(w, G,
+                  columns_of<Summary>(ga.decay_rate, {{"decay_rate_mean", [](S q) { return q.mean; }},
+                                                      {"decay_rate_stderr", [](S q) { return q.stderr_mean; }}}));
+    write_columns(w, G,
+                  {{"decay_rate_fit", ga.decay_rate_fit},
+                   {"decay_rate_fit_error", ga.decay_rate_fit_error},
+                   {"predicted_minority", ga.predicted_minority},
+                   {"predicted_blocks", ga.predicted_blocks},
+                   {"predicted_decay_rate", ga.predicted_decay_rate}});
   }
   w.write("/groups/n_total", ntot);
   w.attr("/", "fingerprint", spin_study_fingerprint(s, stop));

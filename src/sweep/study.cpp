@@ -119,6 +119,10 @@ std::vector<MemberResult> read_finished_study(const std::string& path, const std
   return done;
 }
 
+void write_columns(io::H5Writer& w, const std::string& group, const Columns& columns) {
+  for (const auto& [name, column] : columns) w.write(group + "/" + name, column);
+}
+
 // ---- batch files ----
 
 void remove_parts(const std::string& parts_dir) {
