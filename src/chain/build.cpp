@@ -37,16 +37,9 @@ void lay_out_cells(ChainSystem& sys) {
 // Everything that follows from the bead materials: per-bead properties, A, overlaps, positions, M.
 void resolve(ChainSystem& sys) {
   const std::size_t n = sys.material.size();
-  sys.mass.resize(n);
-  sys.radius.resize(n);
-  sys.youngs_modulus.resize(n);
-  sys.poisson_ratio.resize(n);
-  for (std::size_t b = 0; b < n; ++b) {
-    const int m = sys.material[b];
-    sys.mass[b] = sys.mat_mass[m];
-    sys.radius[b] = sys.mat_radius[m];
-    sys.youngs_modulus[b] = sys.mat_youngs_modulus[m];
-    sys.poisson_ratio[b] = sys.mat_poisson_ratio[m];
+  for (const auto& [bead, table] : sys.material_columns()) {
+    bead->resize(n);
+    for (std::size_t b = 0; b < n; ++b) (*bead)[b] = (*table)[sys.material[b]];
   }
   const std::size_t nc = n - 1 + (sys.has_wall ? 1 : 0);
   sys.hertz_constant.resize(nc);

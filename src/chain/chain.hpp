@@ -15,12 +15,14 @@
 // Nothing here writes files except write_system / write_trace; the ensemble sweep (issue 3) calls
 // build_chain once, then apply_spins + simulate per member.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "config/case.hpp"
@@ -46,6 +48,12 @@ struct ChainSystem {
   std::vector<double> position;  // initial centres along the chain (m)
   std::vector<double> velocity;  // initial velocities (m/s); the striker's is v0
   std::vector<int> cell;         // cell index of each bead, -1 outside cells
+  // The bead properties taken from the material table, each with its table column: bead b holds
+  // row material[b] (the builder reads the table, the system file's reader writes it back).
+  std::array<std::pair<std::vector<double>*, std::vector<double>*>, 4> material_columns() {
+    return {{{&mass, &mat_mass}, {&radius, &mat_radius}, {&youngs_modulus, &mat_youngs_modulus},
+             {&poisson_ratio, &mat_poisson_ratio}}};
+  }
 
   // Cells (in chain order). A cell of `cell_materials.size()` beads: spin 1 = as written, 0 = reversed.
   std::vector<int> cell_materials;  // material indices of one cell, spin-up order

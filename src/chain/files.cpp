@@ -121,16 +121,9 @@ ChainSystem read_system(const io::H5Reader& r, const std::string& group) {
   // The material table's per-material values are not stored; take them from the beads.
   const std::size_t nm = s.material_names.size();
   const double nan = std::nan("");
-  s.mat_mass.assign(nm, nan);
-  s.mat_radius.assign(nm, nan);
-  s.mat_youngs_modulus.assign(nm, nan);
-  s.mat_poisson_ratio.assign(nm, nan);
-  for (std::size_t b = 0; b < n; ++b) {
-    const int m = s.material[b];
-    s.mat_mass[m] = s.mass[b];
-    s.mat_radius[m] = s.radius[b];
-    s.mat_youngs_modulus[m] = s.youngs_modulus[b];
-    s.mat_poisson_ratio[m] = s.poisson_ratio[b];
+  for (const auto& [bead, table] : s.material_columns()) {
+    table->assign(nm, nan);
+    for (std::size_t b = 0; b < n; ++b) (*table)[s.material[b]] = (*bead)[b];
   }
   if (s.hertz_constant.size() != n - 1 + (s.has_wall ? 1 : 0) || s.initial_overlap.size() != s.hertz_constant.size())
     throw InputError(r.path() + ": hertz_constant/initial_overlap do not match the beads and the wall");

@@ -1,12 +1,12 @@
 // granwave figures crystal [--out DIR] [--quick]: seed 002's Figs. 2-9 from fresh runs of the
 // crystal studies (data/studies/crystal_*.toml), with summary.md. The work is in
-// sweep::crystal_figures so that tests call it without the binary.
+// sweep::crystal_figures (sweep/crystal_figures.hpp) so that tests call it without the binary.
 #include <iostream>
 #include <string>
 
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
-#include "sweep/crystal_study.hpp"
+#include "sweep/crystal_figures.hpp"
 
 namespace granwave::cli {
 namespace {

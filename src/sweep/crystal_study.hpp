@@ -12,8 +12,10 @@
 //                           crystal; V_p, V_s against delta_0 and the prestress, power-law exponents
 //                           (affine FCC: V ~ delta_0^(1/4) ~ p^(1/6))
 //
-// The study file (data/SCHEMA.md §6) says `[study] kind = "crystal"`; the spin-chain loader
-// refuses that kind, so is_crystal_study() alone decides which loader a file goes to.
+// The study's TOML (data/SCHEMA.md §6) says `[study] kind = "crystal"`; the spin-chain loader
+// refuses that kind, so is_crystal_study() alone decides which loader a file goes to. Files: the
+// loader crystal_study_loader.cpp, the members and runner crystal_study.cpp, the HDF5 study file
+// crystal_study_file.cpp; `granwave figures crystal` is crystal_figures.hpp.
 #pragma once
 #include <cstddef>
 #include <functional>
@@ -28,6 +30,7 @@
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 #include "sweep/study.hpp"
+#include "theory/lattice_dynamics.hpp"
 
 namespace granwave::sweep {
 
@@ -87,6 +90,10 @@ struct CrystalMemberRun {
 };
 // keep_spectrum: store |F(omega, k)| of the dispersion (figures).
 CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum = false);
+// The lattice cell of a member's packing (its free layers, the case's lever arm) for the lattice
+// dynamics with rotations; nullopt when the packing is not a Bravais lattice (polydisperse).
+std::optional<theory::LatticeCell> member_lattice_cell(const config::Case& c, const crystal::Packing& packing,
+                                                       const theory::ContactNetwork& net);
 
 // Study-level results derived from the members.
 struct DampingSummary {  // vary = gamma_n, P members
@@ -109,6 +116,18 @@ struct PressureSummary {  // per mode present, P then S
 };
 PressureSummary pressure_summary(const CrystalStudy& s, const std::vector<MemberResult>& members);
 
+// The finished study: every member (ordered by index) and the study-level results of its kind.
+struct CrystalStudyResult {
+  std::vector<MemberResult> members;
+  std::optional<DampingSummary> damping;    // vary = gamma_n
+  std::optional<PressureSummary> pressure;  // vary = overlap
+};
+CrystalStudyResult analyse_crystal_study(const CrystalStudy& s, std::vector<MemberResult> members);
+// Batches and study files of other inputs (the study, its base case, the value columns) never mix.
+std::string crystal_study_fingerprint(const CrystalStudy& s);
+// The study file (data/SCHEMA.md §6) into `w`; the runner commits it (commit_study).
+void write_crystal_study(io::H5Writer& w, const CrystalStudy& s, const CrystalStudyResult& r);
+
 // Called for each member after its run, from the worker thread (caller synchronises).
 using CrystalMemberHook = std::function<void(std::size_t index, const CrystalMemberRun&)>;
 struct CrystalRunOptions {
@@ -127,10 +146,5 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
 // quiet, guards). Returns the number of members still to run (0 when the study file was written).
 std::size_t run_crystal_study(const std::string& path, const std::string& out_path, const CrystalRunOptions& opt,
                               std::ostream& out);
-
-// `granwave figures crystal`: Figs. 2-9 of seed 002 as PNG in out_dir, the data behind them, and
-// summary.md. quick = reduced sizes (about a minute). Progress on `log`.
-// threads: OpenMP threads over members (0 = default).
-int crystal_figures(const std::string& out_dir, bool quick, std::ostream& log, int threads = 0);
 
 }  // namespace granwave::sweep

@@ -1,16 +1,15 @@
-// The spin-chain study of seed 001 (sec. 3, Figs. 6-7, Appendix 3). See spin_study.hpp.
+// The spin-chain study of seed 001 (sec. 3, Figs. 6-7, Appendix 3). See spin_study.hpp; the study
+// file is spin_study_file.cpp.
 #include "sweep/spin_study.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <iostream>
 #include <map>
 #include <iomanip>
 #include <set>
 #include <sstream>
-#include <tuple>
 
 #include "chain/guards.hpp"
 #include "core/error.hpp"
@@ -279,11 +278,11 @@ int defect_blocks(const std::string& counted_spins) {  // maximal runs of revers
   return n;
 }
 
-std::string study_fingerprint(const SpinStudy& s, bool stop) {
+}  // namespace
+
+std::string spin_study_fingerprint(const SpinStudy& s, bool stop) {
   return fingerprint({s.text, s.base_text, stop ? "stop" : "nostop"});
 }
-
-}  // namespace
 
 SpinStudyResult analyse_spin_study(const SpinStudy& s, const std::vector<SpinGroup>& groups, const std::vector<SpinMember>& members,
                                    std::vector<MemberResult> results) {
@@ -399,7 +398,7 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
   const auto groups = spin_groups(s);
   const auto members = spin_members(s, groups);
   guard_members(s, groups, members, o.limits);
-  const std::string fp = study_fingerprint(s, o.stop);
+  const std::string fp = spin_study_fingerprint(s, o.stop);
   RunnerOptions ro;
   ro.parts_dir = o.output.empty() ? "" : o.output + ".parts";
   ro.fingerprint = fp;
@@ -418,15 +417,9 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
   RunStats stats;
   bool reused = false;
   on_root([&] {  // under mpirun rank 0 decides and every rank follows (distributed.hpp)
-    if (!o.output.empty() && std::filesystem::exists(o.output)) {
-      io::H5Reader r(o.output);
-      if (r.has_attr("/", "fingerprint") && r.attr_string("/", "fingerprint") == fp) {
-        results = read_members(r, "/members");
-        reused = results.size() == members.size();
-        if (reused) require_members_in_order(results, ro.value_names.size(), o.output);
-        stats.total = stats.resumed = results.size();
-      }
-    }
+    if (!o.output.empty()) results = read_finished_study(o.output, fp, members.size(), ro.value_names.size());
+    reused = !results.empty();
+    stats.total = stats.resumed = results.size();
   });
   reused = root_value(reused);
   if (!reused) {
@@ -448,107 +441,11 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
   SpinStudyResult out = analyse_spin_study(s, groups, members, std::move(results));
   out.stats = stats;
   if (!o.output.empty()) {
-    write_spin_study(o.output, s, out, o.stop);  // written as NAME.tmp, renamed when complete
-    remove_parts(ro.parts_dir);
+    io::H5Writer w(o.output);
+    write_spin_study(w, s, out, o.stop);
+    commit_study(w, ro.parts_dir);
   }
   return out;
-}
-
-void write_spin_study(const std::string& path, const SpinStudy& s, const SpinStudyResult& r, bool stop) {
-  io::H5Writer w(path);
-  io::write_provenance(w);
-  w.attr("/", "schema_version", std::int64_t{1});
-  w.attr("/", "kind", std::string("spin_chain"));
-  w.attr("/", "study_name", s.name);
-  w.attr("/", "study_toml", s.text);
-  w.attr("/", "case_toml", s.base_text);
-  w.attr("/", "case_name", s.base.name);
-  w.attr("/", "seed", static_cast<std::int64_t>(s.seed));
-  w.attr("/", "configurations", static_cast<std::int64_t>(s.configurations));
-  w.attr("/", "units", std::string("SI; forces in N, decay rates per bead"));
-  write_members(w, "/members", r.members, spin_value_names());
-  w.write("/members/measure_norm", r.measure_norm);
-  w.write("/members/decay_rate", r.decay_rate);
-  w.write("/members/decay_rate_error", r.decay_rate_error);
-  w.write("/members/defect_blocks", r.defect_blocks);
-  const auto& t = r.transmission;
-  w.group("/transmission");
-  w.attr("/transmission", "T", t.T);
-  w.attr("/transmission", "T_peak", t.T_peak);
-  w.attr("/transmission", "E_ordered", t.E_ordered);
-  w.attr("/transmission", "E_defect", t.E_defect);
-  w.attr("/transmission", "F_ordered", t.F_ordered);
-  w.attr("/transmission", "F_defect", t.F_defect);
-  w.attr("/transmission", "defect_dimer", static_cast<std::int64_t>(t.defect_dimer));
-  w.attr("/transmission", "measure_bead", static_cast<std::int64_t>(t.measure_bead));
-  w.attr("/transmission", "window_beads", static_cast<std::int64_t>(t.window_beads));
-  w.attr("/transmission", "chain_dimers", static_cast<std::int64_t>(s.transmission_dimers));
-  const auto groups = spin_groups(s);
-  std::vector<std::int64_t> ntot;
-  for (std::size_t gi = 0; gi < r.groups.size(); ++gi) {
-    const auto& ga = r.groups[gi];
-    const auto& g = groups[gi];
-    ntot.push_back(ga.n_total);
-    const std::string G = "/groups/N" + std::to_string(ga.n_total);
-    w.group(G);
-    w.attr(G, "n_total", static_cast<std::int64_t>(ga.n_total));
-    w.attr(G, "reference_measure", ga.reference);
-    w.attr(G, "first_flipped_bead", static_cast<std::int64_t>(g.first_flipped_bead));
-    w.attr(G, "last_flipped_bead", static_cast<std::int64_t>(g.last_flipped_bead));
-    w.attr(G, "measure_first_bead", static_cast<std::int64_t>(g.measure_beads.front()));
-    w.attr(G, "measure_last_bead", static_cast<std::int64_t>(g.measure_beads.back()));
-    w.attr(G, "stop_bead", static_cast<std::int64_t>(g.stop_bead));
-    w.attr(G, "max_time", g.max_time);
-    w.attr(G, "nbeads", static_cast<std::int64_t>(g.sys.nbeads()));
-    // M_c: the headline law's threshold, the interval spanning both laws (sweep/stats.hpp).
-    w.attr(G, "mc", ga.mc.fit.x_c);
-    w.attr(G, "mc_lo", ga.mc.lo);
-    w.attr(G, "mc_hi", ga.mc.hi);
-    w.attr(G, "mc_sd", ga.mc.sd);
-    w.attr(G, "mc_rise", std::string(rise_name(ga.mc.fit.rise)));
-    w.attr(G, "mc_plateau", ga.mc.fit.plateau);
-    w.attr(G, "mc_slope", ga.mc.fit.slope);
-    w.attr(G, "mc_replicas", static_cast<std::int64_t>(ga.mc.replicas));
-    for (const auto& [tag, f, lo, hi] : {std::tuple{"line", &ga.mc.line, ga.mc.line_lo, ga.mc.line_hi},
-                                         std::tuple{"exp", &ga.mc.exponential, ga.mc.exp_lo, ga.mc.exp_hi}}) {
-      const std::string k = std::string("mc_") + tag;
-      w.attr(G, k, f->x_c);
-      w.attr(G, k + "_lo", lo);
-      w.attr(G, k + "_hi", hi);
-      w.attr(G, k + "_plateau", f->plateau);
-      w.attr(G, k + "_slope", f->slope);
-      w.attr(G, k + "_lack_of_fit", f->lack_of_fit);
-    }
-    std::vector<double> cnt, mean, med, se, q25, q75, kmean, kse;
-    for (std::size_t k = 0; k < ga.M.size(); ++k) {
-      cnt.push_back(static_cast<double>(ga.norm[k].count));
-      mean.push_back(ga.norm[k].mean);
-      med.push_back(ga.norm[k].median);
-      se.push_back(ga.norm[k].stderr_mean);
-      q25.push_back(ga.norm[k].q25);
-      q75.push_back(ga.norm[k].q75);
-      kmean.push_back(ga.decay_rate[k].mean);
-      kse.push_back(ga.decay_rate[k].stderr_mean);
-    }
-    w.write(G + "/M", ga.M);
-    w.write(G + "/count", cnt);
-    w.write(G + "/mean", mean);
-    w.write(G + "/median", med);
-    w.write(G + "/stderr", se);
-    w.write(G + "/q25", q25);
-    w.write(G + "/q75", q75);
-    w.write(G + "/decay_rate_mean", kmean);
-    w.write(G + "/decay_rate_stderr", kse);
-    w.write(G + "/decay_rate_fit", ga.decay_rate_fit);
-    w.write(G + "/decay_rate_fit_error", ga.decay_rate_fit_error);
-    w.write(G + "/predicted_minority", ga.predicted_minority);
-    w.write(G + "/predicted_blocks", ga.predicted_blocks);
-    w.write(G + "/predicted_decay_rate", ga.predicted_decay_rate);
-  }
-  w.write("/groups/n_total", ntot);
-  w.attr("/", "fingerprint", study_fingerprint(s, stop));
-  w.attr("/", "early_stop", static_cast<std::int64_t>(stop));
-  w.commit();
 }
 
 std::string spin_study_markdown(const SpinStudy& s, const SpinStudyResult& r) {

@@ -149,7 +149,10 @@ struct SweepOptions {
 SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o);
 SpinStudyResult analyse_spin_study(const SpinStudy& s, const std::vector<SpinGroup>& groups,
                                    const std::vector<SpinMember>& members, std::vector<MemberResult> results);
-void write_spin_study(const std::string& path, const SpinStudy& s, const SpinStudyResult& r, bool stop);
+// Batches and study files of other inputs (the study, its base case, the early stop) never mix.
+std::string spin_study_fingerprint(const SpinStudy& s, bool stop);
+// The study file (data/SCHEMA.md §4) into `w`; the runner commits it (commit_study).
+void write_spin_study(io::H5Writer& w, const SpinStudy& s, const SpinStudyResult& r, bool stop);
 // A Markdown table of the groups (M_c, per-M statistics, Appendix 3) for stdout and notes.
 std::string spin_study_markdown(const SpinStudy& s, const SpinStudyResult& r);
 

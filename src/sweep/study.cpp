@@ -108,6 +108,21 @@ void require_members_in_order(const std::vector<MemberResult>& results, std::siz
                        " values: the study file is damaged (remove it to run the study again)");
 }
 
+std::vector<MemberResult> read_finished_study(const std::string& path, const std::string& fp, std::size_t n,
+                                              std::size_t nvalues) {
+  if (!fs::exists(path)) return {};
+  io::H5Reader r(path);
+  if (!r.has_attr("/", "fingerprint") || r.attr_string("/", "fingerprint") != fp) return {};
+  std::vector<MemberResult> done = read_members(r, "/members");
+  if (done.size() != n) return {};
+  require_members_in_order(done, nvalues, path);
+  return done;
+}
+
+void write_columns(io::H5Writer& w, const std::string& group, const Columns& columns) {
+  for (const auto& [name, column] : columns) w.write(group + "/" + name, column);
+}
+
 // ---- batch files ----
 
 void remove_parts(const std::string& parts_dir) {

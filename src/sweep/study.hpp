@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace granwave::io {
@@ -70,6 +71,28 @@ void write_members(io::H5Writer& w, const std::string& group, const std::vector<
 std::vector<MemberResult> read_members(const io::H5Reader& r, const std::string& group);
 // A finished study file read back: member k at position k with `nvalues` values, else InputError.
 void require_members_in_order(const std::vector<MemberResult>& results, std::size_t nvalues, const std::string& path);
+
+// The members of the finished study file at `path` when it was written from the same inputs
+// (fingerprint) and holds all n of them, in order (else InputError); otherwise none.
+std::vector<MemberResult> read_finished_study(const std::string& path, const std::string& fingerprint, std::size_t n,
+                                              std::size_t nvalues);
+
+// Named columns of doubles, each written as the dataset group/name, in order.
+using Columns = std::vector<std::pair<std::string, std::vector<double>>>;
+void write_columns(io::H5Writer& w, const std::string& group, const Columns& columns);
+// A table of rows (structs) as Columns: each field's value at every row.
+template <class Row>
+using Field = std::pair<std::string, std::function<double(const Row&)>>;
+template <class Row>
+Columns columns_of(const std::vector<Row>& rows, const std::vector<Field<Row>>& fields) {
+  Columns out;
+  for (const auto& [name, value] : fields) {
+    std::vector<double> column;
+    for (const Row& r : rows) column.push_back(value(r));
+    out.emplace_back(name, std::move(column));
+  }
+  return out;
+}
 
 // A finished study: commit `w` (the study file, written as NAME.tmp, renamed to NAME), then remove
 // parts_dir, whose batches the file now holds; resuming needs them only until the rename.

@@ -24,31 +24,29 @@ double max_abs(const std::array<double, 81>& c) {
   for (double v : c) m = std::max(m, std::abs(v));
   return m;
 }
+
+// The largest |C_abgf - C_(permuted)| over every index and every given permutation, relative to the
+// largest entry (0 for the zero tensor).
+template <class... Permuted>
+double relative_asymmetry(const Tensor4& t, Permuted... permuted) {
+  const double scale = max_abs(t.data());
+  if (scale == 0.0) return 0.0;
+  double m = 0.0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      for (int g = 0; g < 3; ++g)
+        for (int f = 0; f < 3; ++f) ((m = std::max(m, std::abs(t(a, b, g, f) - permuted(a, b, g, f)))), ...);
+  return m / scale;
+}
 }  // namespace
 
 double Tensor4::major_asymmetry() const {
-  const double scale = max_abs(c_);
-  if (scale == 0.0) return 0.0;
-  double m = 0.0;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      for (int g = 0; g < 3; ++g)
-        for (int f = 0; f < 3; ++f) m = std::max(m, std::abs((*this)(a, b, g, f) - (*this)(g, f, a, b)));
-  return m / scale;
+  return relative_asymmetry(*this, [this](int a, int b, int g, int f) { return (*this)(g, f, a, b); });
 }
 
 double Tensor4::minor_asymmetry() const {
-  const double scale = max_abs(c_);
-  if (scale == 0.0) return 0.0;
-  double m = 0.0;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      for (int g = 0; g < 3; ++g)
-        for (int f = 0; f < 3; ++f) {
-          m = std::max(m, std::abs((*this)(a, b, g, f) - (*this)(b, a, g, f)));
-          m = std::max(m, std::abs((*this)(a, b, g, f) - (*this)(a, b, f, g)));
-        }
-  return m / scale;
+  return relative_asymmetry(*this, [this](int a, int b, int g, int f) { return (*this)(b, a, g, f); },
+                            [this](int a, int b, int g, int f) { return (*this)(a, b, f, g); });
 }
 
 Tensor4 Tensor4::symmetrised() const {

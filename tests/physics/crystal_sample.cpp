@@ -81,7 +81,7 @@ void check_observers(const crystal::Dynamics& dyn) {
 
 }  // namespace
 
-TEST_CASE("the sample's per-layer sums equal the plain sums bit for bit", "[crystal][sample]") {
+TEST_CASE("the sample's per-layer sums equal the plain sums bit for bit", "[crystal][sample][route]") {
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
   c.contact.kt = 1e5;
   c.contact.gamma_n = 0.1;
@@ -139,7 +139,7 @@ TEST_CASE("the sample's per-layer sums equal the plain sums bit for bit", "[crys
 }
 
 TEST_CASE("a list no contact has lost energy in is skipped by the dissipation sums, bit for bit",
-          "[crystal][sample]") {
+          "[crystal][sample][route]") {
   // Friction without dashpots: the vectorised sweep dissipates nothing (contact::LosslessSweep), so
   // until a contact slides or opens with a stretched spring every entry stays +0.0 and the sums
   // skip the list (ContactList::losses_booked). Slow spins: nothing slides; fast spins: slip.

@@ -161,7 +161,7 @@ TEST_CASE("same forces after a shift across the periodic faces and after reorder
   CHECK(max_torque_diff < 1e-9 * f_scale * 1e-3);
 }
 
-TEST_CASE("results do not depend on the number of threads", "[crystal][static]") {
+TEST_CASE("results do not depend on the number of threads", "[crystal][static][route]") {
   // The threaded run must really use threads.
   test_support::require_openmp_threads(2, "thread invariance");
   config::Case c = load("crystal_small");
@@ -195,7 +195,7 @@ TEST_CASE("results do not depend on the number of threads", "[crystal][static]")
   }
 }
 
-TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit", "[crystal][static]") {
+TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit", "[crystal][static][route]") {
   // On one thread a law with torques adds each contact's force and n x f^t straight into
   // per-particle rows (crystal/kernel.hpp's scatter); threaded, the particle pass sums the stored
   // per-contact values. Both add in the same order: every force, torque and position agrees to
@@ -238,7 +238,7 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
   }
 }
 
-TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with the next drift)", "[crystal][static]") {
+TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with the next drift)", "[crystal][static][route]") {
   // On one thread Dynamics::advance finishes each step's forces and kicks in the same pass as the
   // next step's first half kick and drift, four particles at a time (the last few through the
   // two passes as they are). Every state and force must equal k calls of step() to the last bit:

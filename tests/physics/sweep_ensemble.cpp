@@ -40,7 +40,7 @@ std::filesystem::path scratch(const std::string& name) {
 }
 }  // namespace
 
-TEST_CASE("results do not depend on the thread count") {
+TEST_CASE("results do not depend on the thread count", "[route]") {
   // Vacuous unless OpenMP really runs two threads (a build without OpenMP, OMP_THREAD_LIMIT=1):
   // then the test is skipped, loudly, rather than passed.
   const int got = test_support::openmp_threads(2);
@@ -66,7 +66,7 @@ TEST_CASE("results do not depend on the thread count") {
   }
 }
 
-TEST_CASE("the early stop changes no measured value") {
+TEST_CASE("the early stop changes no measured value", "[route]") {
   // A long tail (40 fixed dimers): without the stop, every run goes on to the hard cap with no
   // wall echo reaching the measured beads, so the comparison isolates the stop itself.
   auto text = replace(smoke_text(), "tail_dimers = 15", "tail_dimers = 40");
@@ -94,7 +94,7 @@ TEST_CASE("the early stop changes no measured value") {
   REQUIRE(saved > total / 3);  // and it saves work
 }
 
-TEST_CASE("the profile's sampled peaks agree with the every-step measure at the measured beads") {
+TEST_CASE("the profile's sampled peaks agree with the every-step measure at the measured beads", "[route]") {
   const auto s = parse_spin_study(smoke_text(), "smoke");
   const auto groups = spin_groups(s);
   const auto members = spin_members(s, groups);
@@ -185,7 +185,7 @@ TEST_CASE("a reduced study (N_total = 16, K = 4) end to end") {
   REQUIRE(again.stats.computed == 0);
 }
 
-TEST_CASE("a study stopped part-way resumes from its batches and ends with the same datasets") {
+TEST_CASE("a study stopped part-way resumes from its batches and ends with the same datasets", "[route]") {
   const auto s = parse_spin_study(smoke_text(), "smoke");
   SweepOptions o;
   o.output = scratch("resume.h5").string();

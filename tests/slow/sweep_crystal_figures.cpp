@@ -20,7 +20,7 @@
 #include <unistd.h>
 
 #include "io/h5.hpp"
-#include "sweep/crystal_study.hpp"
+#include "sweep/crystal_figures.hpp"
 
 namespace fs = std::filesystem;
 
