@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # README command 2 (and .ci/run): install, build, and run every test:
-#   1. ctest on the Release build (labels unit, physics, regression, cli, slow, mpi),
+#   1. ctest on the Release build (labels unit, physics, route, regression, cli, slow, mpi),
 #   2. the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer (with the files
 #      fuzzer, tests/files.cmake), then libFuzzer on the readers for 60 s (issue #25),
 #   3. pytest for the cross-code harness (real YADE, LIGGGHTS and LAMMPS runs).
