@@ -5,8 +5,11 @@
 #include <string>
 
 #include "analysis/trace_analysis.hpp"
+#include "analysis/trace_json.hpp"
+#include "analysis/trace_text.hpp"
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
+#include "crystal/case_lattice.hpp"
 
 namespace granwave::cli {
 namespace {
@@ -129,7 +132,7 @@ int cmd_analyze(const Args& args) {
       throw InputError(pos[0] + ": --wavenumber-speed is for crystal traces (the wavelength of seed 002 sec. 3.4)");
     const auto a = analysis::analyze_chain(file.chain, {lo, hi});
     if (json) {
-      std::cout << analysis::to_json(file, a);
+      std::cout << json_text(analysis::to_json(file, a));
       return 0;
     }
     std::cout << analysis::to_text(file, a);
@@ -137,6 +140,7 @@ int cmd_analyze(const Args& args) {
   }
 
   analysis::CrystalAnalysisOptions opt;
+  crystal::add_case_lattice(opt, file.case_toml, pos[0] + ":/case_toml");
   opt.lo = lo;
   opt.hi = hi;
   if (const auto f = option_value(args, "", "--field"); !f.empty()) opt.field = f;
@@ -157,7 +161,7 @@ int cmd_analyze(const Args& args) {
   }
   const auto a = analysis::analyze_crystal(file.crystal, opt);
   if (json) {
-    std::cout << analysis::to_json(file, a);
+    std::cout << json_text(analysis::to_json(file, a));
     return 0;
   }
   std::cout << analysis::to_text(file, a);
