@@ -113,6 +113,18 @@ void keep_causal_arrivals(std::vector<Signal>& s) {
   }
 }
 
+// A reading of the seed (measures.hpp): the option's, else the case's, else the default already set.
+template <class T>
+void choose_reading(const std::optional<T>& option, const std::optional<T>& from_case, T* reading, std::string* source) {
+  if (option) {
+    *reading = *option;
+    *source = "option";
+  } else if (from_case) {
+    *reading = *from_case;
+    *source = "case_toml";
+  }
+}
+
 SpeedFit fit_speed(const std::string& name, const std::vector<double>& times, const std::vector<double>& z,
                    const std::vector<int>& zl, int lo, int hi) {
   SpeedFit f;
@@ -160,20 +172,8 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   a.mode = tr.mode;
   a.mode_source = tr.mode_source;
   a.l0 = tr.l0;
-  if (opt.period) {
-    a.period_reading = *opt.period;
-    a.period_source = "option";
-  } else if (tr.period) {
-    a.period_reading = *tr.period;
-    a.period_source = "case_toml";
-  }
-  if (opt.wavenumber_speed) {
-    a.wavenumber_speed = *opt.wavenumber_speed;
-    a.wavenumber_speed_source = "option";
-  } else if (tr.wavenumber_speed) {
-    a.wavenumber_speed = *tr.wavenumber_speed;
-    a.wavenumber_speed_source = "case_toml";
-  }
+  choose_reading(opt.period, tr.period, &a.period_reading, &a.period_source);
+  choose_reading(opt.wavenumber_speed, tr.wavenumber_speed, &a.wavenumber_speed, &a.wavenumber_speed_source);
   const std::size_t nl = tr.nlayers;
   std::size_t nt = tr.nt;
   if (opt.t_max >= 0.0) nt = std::upper_bound(tr.time.begin(), tr.time.end(), opt.t_max) - tr.time.begin();

@@ -10,17 +10,35 @@ namespace {
 Json qty(const Measured& m, const char* unit) { return {{"value", m.value}, {"error", m.error}, {"unit", unit}}; }
 Json qty(double v, const char* unit) { return {{"value", v}, {"unit", unit}}; }
 
-// One measure over the layers (contacts): {"unit", "values", ["errors"]}.
+// One number of each layer (contact).
 template <class T, class F>
-Json column(const std::vector<T>& rows, F get, const char* unit, bool with_error) {
+Json list(const std::vector<T>& rows, F get) {
+  Json a = Json::array();
+  for (const auto& r : rows) a.push_back(get(r));
+  return a;
+}
+
+// One measure over the layers (contacts): {"unit", "values", ["errors"]}.
+template <class T>
+Json column(const std::vector<T>& rows, Measured T::*m, const char* unit, bool with_error = true) {
   Json values = Json::array(), errors = Json::array();
   for (const auto& r : rows) {
-    values.push_back(get(r).value);
-    errors.push_back(get(r).error);
+    values.push_back((r.*m).value);
+    errors.push_back((r.*m).error);
   }
   Json o = {{"unit", unit}, {"values", values}};
   if (with_error) o["errors"] = errors;
   return o;
+}
+
+// The first-pulse columns layers and contacts share; `value_unit` that of the measured signal.
+template <class T>
+void pulse_columns(Json& o, const std::vector<T>& rows, const char* value_unit) {
+  o["peak_time"] = column(rows, &T::peak_time, "s");
+  o["peak_value"] = column(rows, &T::peak_value, value_unit);
+  o["half_peak_time"] = column(rows, &T::half_peak_time, "s");
+  o["one_percent_time"] = column(rows, &T::one_percent_time, "s");
+  o["duration"] = column(rows, &T::duration, "s");
 }
 
 Json speed(const SpeedFit& f, const char* range_key) {
@@ -106,30 +124,20 @@ Json to_json(const TraceFile& f, const CrystalAnalysis& a) {
   }
   o["wavelength_at"] = table;
   const auto& Ls = a.layers;
-  Json layer = Json::array(), z = Json::array(), arrived = Json::array();
-  for (const auto& L : Ls) {
-    layer.push_back(L.layer);
-    z.push_back(L.z_over_l0);
-    arrived.push_back(L.arrived);
-  }
   const char* su = a.measure_field.find("stress") != std::string::npos ? "Pa" : "m/s";
   using LM = LayerMeasures;
-  o["layers"] = {{"layer", layer},
-                 {"z_over_l0", z},
-                 {"arrived", arrived},
-                 {"peak_time", column(Ls, [](const LM& L) { return L.peak_time; }, "s", true)},
-                 {"peak_value", column(Ls, [](const LM& L) { return L.peak_value; }, su, true)},
-                 {"half_peak_time", column(Ls, [](const LM& L) { return L.half_peak_time; }, "s", true)},
-                 {"one_percent_time", column(Ls, [](const LM& L) { return L.one_percent_time; }, "s", true)},
-                 {"duration", column(Ls, [](const LM& L) { return L.duration; }, "s", true)},
-                 {"period", column(Ls, [](const LM& L) { return L.period; }, "s", true)},
-                 {"oscillation_length", column(Ls, [](const LM& L) { return L.oscillation_length; }, "m", false)},
-                 {"leading_max", column(Ls, [](const LM& L) { return L.leading_max; }, su, true)},
-                 {"local_speed", column(Ls, [](const LM& L) { return L.local_speed; }, "m/s", true)},
-                 {"lambda_vt", column(Ls, [](const LM& L) { return L.lambda_vt; }, "m", true)},
-                 {"displacement_peak_time", column(Ls, [](const LM& L) { return L.displacement_peak_time; }, "s", true)},
-                 {"k_speed", column(Ls, [](const LM& L) { return L.k_speed; }, "m/s", true)},
-                 {"k_from_speed", column(Ls, [](const LM& L) { return L.k_from_speed; }, "1/m", true)}};
+  Json& c = o["layers"] = {{"layer", list(Ls, [](const LM& L) { return L.layer; })},
+                           {"z_over_l0", list(Ls, [](const LM& L) { return L.z_over_l0; })},
+                           {"arrived", list(Ls, [](const LM& L) { return L.arrived; })}};
+  pulse_columns(c, Ls, su);
+  c["period"] = column(Ls, &LM::period, "s");
+  c["oscillation_length"] = column(Ls, &LM::oscillation_length, "m", false);
+  c["leading_max"] = column(Ls, &LM::leading_max, su);
+  c["local_speed"] = column(Ls, &LM::local_speed, "m/s");
+  c["lambda_vt"] = column(Ls, &LM::lambda_vt, "m");
+  c["displacement_peak_time"] = column(Ls, &LM::displacement_peak_time, "s");
+  c["k_speed"] = column(Ls, &LM::k_speed, "m/s");
+  c["k_from_speed"] = column(Ls, &LM::k_from_speed, "1/m");
   return o;
 }
 
@@ -141,22 +149,12 @@ Json to_json(const TraceFile& f, const ChainAnalysis& a) {
   o["v_first_peak_contacts"] = qty(a.v_first_peak_contacts, "contacts/s");
   o["v_half_peak_contacts"] = qty(a.v_half_peak_contacts, "contacts/s");
   const auto& Cs = a.contacts;
-  Json contact = Json::array(), position = Json::array(), arrived = Json::array();
-  for (const auto& c : Cs) {
-    contact.push_back(c.contact);
-    position.push_back(c.position);
-    arrived.push_back(c.arrived);
-  }
   using CM = ContactMeasures;
-  o["contacts"] = {{"contact", contact},
-                   {"position", {{"unit", "m"}, {"values", position}}},
-                   {"arrived", arrived},
-                   {"peak_time", column(Cs, [](const CM& c) { return c.peak_time; }, "s", true)},
-                   {"peak_value", column(Cs, [](const CM& c) { return c.peak_value; }, "N", true)},
-                   {"half_peak_time", column(Cs, [](const CM& c) { return c.half_peak_time; }, "s", true)},
-                   {"one_percent_time", column(Cs, [](const CM& c) { return c.one_percent_time; }, "s", true)},
-                   {"duration", column(Cs, [](const CM& c) { return c.duration; }, "s", true)},
-                   {"leading_max", column(Cs, [](const CM& c) { return c.leading_max; }, "N", true)}};
+  Json& c = o["contacts"] = {{"contact", list(Cs, [](const CM& x) { return x.contact; })},
+                             {"position", {{"unit", "m"}, {"values", list(Cs, [](const CM& x) { return x.position; })}}},
+                             {"arrived", list(Cs, [](const CM& x) { return x.arrived; })}};
+  pulse_columns(c, Cs, "N");
+  c["leading_max"] = column(Cs, &CM::leading_max, "N");
   return o;
 }
 

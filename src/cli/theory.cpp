@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/json.hpp"
+#include "core/resources.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 #include "theory/hertz.hpp"
@@ -76,27 +77,11 @@ Json tensor_json(const theory::Tensor4& C) {
   return {{"unit", "Pa"}, {"index_order", "C[a][b][g][f]: a,g branch, b,f displacement"}, {"values", values}};
 }
 
-void parse_range(const std::string& s, int* lo, int* hi) {
-  const auto colon = s.find(':');
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
-    *lo = std::stoi(s.substr(0, colon));
-    *hi = std::stoi(s.substr(colon + 1));
-  } catch (const std::exception&) {
-    throw InputError("--layers " + s + ": expected LO:HI (layer indices)");
-  }
-  if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
-}
-
 int parse_nk(const std::string& s) {
   std::size_t used = 0;
-  int n = 0;
-  try {
-    n = std::stoi(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != s.size() || s.empty() || n < 3 || n > 10001 || n % 2 == 0)
+  const double v = leading_number(s, &used);
+  const int n = v >= 3 && v <= 10001 ? static_cast<int>(v) : 0;
+  if (used != s.size() || s.empty() || n != v || n % 2 == 0)
     throw InputError("--nk " + s + ": must be an odd integer in [3, 10001] (points of the k grid over the zone)");
   return n;
 }
@@ -218,7 +203,7 @@ int cmd_theory(const Args& args) {
   const theory::ContactNetwork net = crystal::contact_network(c, pk);
 
   theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
-  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &slab.layer_lo, &slab.layer_hi);
+  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_layers(s, "layer indices", &slab.layer_lo, &slab.layer_hi);
   if (slab.layer_hi >= pk.layers) throw InputError("--layers: the case has " + std::to_string(pk.layers) + " layers");
   const auto r = theory::crystal_prediction(net, slab);
   const LatticePart L = lattice_part(c, net, slab, nk);

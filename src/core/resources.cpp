@@ -93,14 +93,19 @@ std::string describe(const ResourceEstimate& e, const ResourceLimits& l) {
   return s.str();
 }
 
+double leading_number(const std::string& text, std::size_t* used) {
+  *used = 0;
+  try {
+    return std::stod(text, used);
+  } catch (const std::exception&) {
+    *used = 0;
+    return 0.0;
+  }
+}
+
 double parse_count(const std::string& option, const std::string& text) {
   std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  const double v = leading_number(text, &used);
   if (used != text.size() || !std::isfinite(v) || !(v >= 1.0))
     throw InputError(option + " must be a number >= 1 (got '" + text + "')");
   return std::floor(v);
@@ -108,12 +113,7 @@ double parse_count(const std::string& option, const std::string& text) {
 
 double parse_bytes(const std::string& option, const std::string& text) {
   std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  const double v = leading_number(text, &used);
   double scale = 1.0;
   if (used > 0 && used + 1 == text.size()) {
     switch (text.back()) {
