@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake pkg-config git
-  libeigen3-dev libhdf5-dev hdf5-tools catch2 libtomlplusplus-dev libfftw3-dev libbenchmark-dev
+  libeigen3-dev libhdf5-dev hdf5-tools catch2 libtomlplusplus-dev nlohmann-json3-dev libfftw3-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pytest
   yade liggghts lammps libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev ccache

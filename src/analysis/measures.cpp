@@ -100,27 +100,34 @@ bool end_of_first_oscillation(std::span<const double> t, std::span<const double>
   }
   return false;
 }
+
+// The 1 % arrival and the next 1 % crossing (the leading pulse's end); found = both exist.
+struct LeadingPulse {
+  bool found = false;
+  double start = 0.0, end_time = 0.0;
+  std::size_t end_index = 0;
+};
+LeadingPulse leading_pulse(std::span<const double> t, std::span<const double> y, const Peak& peak) {
+  LeadingPulse p;
+  const Arrival start = one_percent_arrival(t, y, peak);
+  p.start = start.time;
+  p.found = start.found && end_of_first_oscillation(t, y, peak, &p.end_index, &p.end_time);
+  return p;
+}
 }  // namespace
 
 double first_oscillation_duration(std::span<const double> t, std::span<const double> y, const Peak& peak) {
-  const Arrival start = one_percent_arrival(t, y, peak);
-  if (!start.found) return 0.0;
-  std::size_t end_index = 0;
-  double end_time = 0.0;
-  if (!end_of_first_oscillation(t, y, peak, &end_index, &end_time)) return 0.0;
-  return end_time - start.time;
+  const LeadingPulse p = leading_pulse(t, y, peak);
+  return p.found ? p.end_time - p.start : 0.0;
 }
 
 double first_oscillation_period(std::span<const double> t, std::span<const double> y, const Peak& peak) {
-  const Arrival start = one_percent_arrival(t, y, peak);
-  if (!start.found) return 0.0;
-  std::size_t end_index = 0;
-  double end_time = 0.0;
-  if (!end_of_first_oscillation(t, y, peak, &end_index, &end_time)) return 0.0;
+  const LeadingPulse p = leading_pulse(t, y, peak);
+  if (!p.found) return 0.0;
   // The third crossing: the first upward crossing of the 1 % level after the second one.
-  const Arrival back = first_crossing(t, y, 0.01 * peak.value, end_index);
+  const Arrival back = first_crossing(t, y, 0.01 * peak.value, p.end_index);
   if (!back.found) return 0.0;
-  return back.time - start.time;
+  return back.time - p.start;
 }
 
 double first_oscillation_length(std::span<const double> z, std::span<const double> y, double level) {

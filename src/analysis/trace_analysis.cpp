@@ -4,62 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <sstream>
 
-#include "config/case.hpp"
 #include "core/error.hpp"
-#include "io/h5.hpp"
 
 namespace granwave::analysis {
 namespace {
-
-// ---------- reading ----------
-
-// A trace from elsewhere may hold NaN or infinities (a run that blew up, a damaged copy): refused,
-// naming the dataset, the sample and the column, rather than measured.
-void require_finite(const io::H5Reader& r, const std::string& path, const std::vector<double>& v, std::size_t ncols) {
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (!std::isfinite(v[i]))
-      throw InputError(r.path() + ": " + path + " holds " + std::to_string(v[i]) + " at sample " +
-                       std::to_string(ncols ? i / ncols : i) + (ncols > 1 ? ", column " + std::to_string(i % ncols) : "") +
-                       ": only finite values can be measured");
-}
-
-std::vector<double> read_matrix(const io::H5Reader& r, const std::string& path, std::size_t nt, std::size_t ncols) {
-  if (!r.has(path)) return {};
-  std::vector<std::size_t> dims;
-  auto v = r.read_double(path, &dims);
-  if (dims.size() != 2 || dims[0] != nt || dims[1] != ncols)
-    throw InputError(r.path() + ": " + path + " must have shape [nt, n] = [" + std::to_string(nt) + ", " +
-                     std::to_string(ncols) + "]");
-  require_finite(r, path, v, ncols);
-  return v;
-}
-
-// Provenance text is informative: an unreadable attribute must not stop the measurement.
-std::string root_attr(const io::H5Reader& r, const std::string& name) {
-  if (!r.has_attr("/", name)) return {};
-  try {
-    return r.attr_string("/", name);
-  } catch (const InputError&) {
-    return "(unreadable)";
-  }
-}
-
-double median_spacing(const std::vector<double>& x) {
-  std::vector<double> d;
-  for (std::size_t i = 1; i < x.size(); ++i) d.push_back(x[i] - x[i - 1]);
-  if (d.empty()) return 0.0;
-  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  return d[d.size() / 2];
-}
-
-double max_abs_change(const std::vector<double>& f, std::size_t nt, std::size_t n) {
-  double m = 0.0;
-  for (std::size_t i = 0; i < nt; ++i)
-    for (std::size_t p = 0; p < n; ++p) m = std::max(m, std::abs(f[i * n + p] - f[p]));
-  return m;
-}
 
 // ---------- per-signal errors ----------
 
@@ -164,6 +113,18 @@ void keep_causal_arrivals(std::vector<Signal>& s) {
   }
 }
 
+// A reading of the seed (measures.hpp): the option's, else the case's, else the default already set.
+template <class T>
+void choose_reading(const std::optional<T>& option, const std::optional<T>& from_case, T* reading, std::string* source) {
+  if (option) {
+    *reading = *option;
+    *source = "option";
+  } else if (from_case) {
+    *reading = *from_case;
+    *source = "case_toml";
+  }
+}
+
 SpeedFit fit_speed(const std::string& name, const std::vector<double>& times, const std::vector<double>& z,
                    const std::vector<int>& zl, int lo, int hi) {
   SpeedFit f;
@@ -182,115 +143,6 @@ SpeedFit fit_speed(const std::string& name, const std::vector<double>& times, co
 }
 
 }  // namespace
-
-// ---------- reading ----------
-
-TraceFile read_trace(const std::string& path) {
-  io::H5Reader r(path);
-  TraceFile f;
-  f.path = path;
-  f.code = root_attr(r, "code");
-  f.code_version = root_attr(r, "code_version");
-  f.case_name = root_attr(r, "case_name");
-  f.time_convention = root_attr(r, "time_convention");
-  if (!r.has("/time")) throw InputError(path + ": no /time dataset (not a granwave trace file, SCHEMA.md §3)");
-  const auto time = r.read_double("/time");
-  const std::size_t nt = time.size();
-  if (nt < 3) throw InputError(path + ": /time has fewer than 3 samples");
-  require_finite(r, "/time", time, 1);
-  for (std::size_t i = 1; i < nt; ++i)
-    if (!(time[i] > time[i - 1]))
-      throw InputError(path + ": /time is not strictly increasing (sample " + std::to_string(i) + ")");
-
-  if (r.has("/crystal/layer_z")) {
-    f.model = "crystal";
-    auto& c = f.crystal;
-    c.time = time;
-    c.nt = nt;
-    c.layer_z = r.read_double("/crystal/layer_z");
-    c.nlayers = c.layer_z.size();
-    if (c.nlayers < 4) throw InputError(path + ": /crystal/layer_z has fewer than 4 layers");
-    require_finite(r, "/crystal/layer_z", c.layer_z, 1);
-    c.stress_zz = read_matrix(r, "/crystal/layer_stress_zz", nt, c.nlayers);
-    c.stress_zx = read_matrix(r, "/crystal/layer_stress_zx", nt, c.nlayers);
-    c.displacement_z = read_matrix(r, "/crystal/layer_displacement_z", nt, c.nlayers);
-    c.displacement_x = read_matrix(r, "/crystal/layer_displacement_x", nt, c.nlayers);
-    c.velocity_z = read_matrix(r, "/crystal/layer_velocity_z", nt, c.nlayers);
-    c.velocity_x = read_matrix(r, "/crystal/layer_velocity_x", nt, c.nlayers);
-    if (r.has("/crystal/coordination")) c.coordination = r.read_double("/crystal/coordination");
-    c.l0 = r.has_attr("/system", "l0") ? r.attr_double("/system", "l0") : median_spacing(c.layer_z);
-    if (!(c.l0 > 0.0 && std::isfinite(c.l0)))
-      throw InputError(path + ": the layer spacing l0 = " + std::to_string(c.l0) +
-                       " (/system attribute l0, or the median spacing of /crystal/layer_z) is not a positive number");
-    if (r.has_attr("/system", "fixed_layers")) {
-      const double fl = r.attr_double("/system", "fixed_layers");
-      if (!(std::abs(fl) < 1e9))
-        throw InputError(path + ": /system attribute fixed_layers = " + std::to_string(fl) + " is not a layer count");
-      c.fixed_layers = static_cast<int>(std::lround(fl));
-    } else {  // layer_z = 0 is the innermost driven layer: the ones below it are driven too
-      int below = 0;
-      for (double z : c.layer_z) below += z < -0.5 * c.l0;
-      c.fixed_layers = below + 1;
-    }
-    // Driven layers at each end; the measured ones, from the innermost driven layer at the source
-    // to the last free one (at least 2), must be layers.
-    if (c.fixed_layers < 1 || 2 * static_cast<std::size_t>(c.fixed_layers) + 1 > c.nlayers)
-      throw InputError(path + ": " + std::to_string(c.fixed_layers) + " fixed layers at each end of " +
-                       std::to_string(c.nlayers) + " layers (/system attribute fixed_layers, or layer_z below 0) "
-                       "leave fewer than 2 layers to measure");
-    // Excitation mode: from the case text every trace carries; else from which field moved.
-    const std::string toml = root_attr(r, "case_toml");
-    bool known = false;
-    if (!toml.empty()) {
-      try {
-        const auto cs = config::parse_case(toml, path + ":/case_toml");
-        c.mode = cs.excitation.mode == config::Excitation::Mode::S ? 'S' : 'P';
-        c.mode_source = "case_toml";
-        if (!cs.analysis.period.empty()) c.period = parse_period_reading(cs.analysis.period);
-        if (!cs.analysis.wavenumber_speed.empty()) c.wavenumber_speed = parse_wavenumber_speed(cs.analysis.wavenumber_speed);
-        known = true;
-      } catch (const std::exception&) {
-      }
-    }
-    if (!known) {
-      auto pick = [&](const std::vector<double>& zf, const std::vector<double>& xf) {
-        if (zf.empty() || xf.empty()) return 0;
-        return max_abs_change(xf, nt, c.nlayers) > max_abs_change(zf, nt, c.nlayers) ? 2 : 1;
-      };
-      int v = pick(c.displacement_z, c.displacement_x);
-      if (!v) v = pick(c.velocity_z, c.velocity_x);
-      if (!v) v = pick(c.stress_zz, c.stress_zx);
-      c.mode = v == 2 ? 'S' : 'P';
-      c.mode_source = "inferred";
-    }
-  } else if (r.has("/chain/contact_force")) {
-    f.model = "chain";
-    auto& c = f.chain;
-    c.time = time;
-    c.nt = nt;
-    std::vector<std::size_t> dims;
-    c.contact_force = r.read_double("/chain/contact_force", &dims);
-    if (dims.size() != 2 || dims[0] != nt || dims[1] == 0)
-      throw InputError(path + ": /chain/contact_force must be [nt, ncontacts] with nt = " + std::to_string(nt) +
-                       " (the samples of /time) and ncontacts > 0");
-    require_finite(r, "/chain/contact_force", c.contact_force, dims[1]);
-    c.ncontacts = dims[1];
-    c.contact_position.assign(c.ncontacts, kNaN);
-    if (r.has("/system/position")) {
-      std::vector<std::size_t> pd;
-      const auto pos = r.read_double("/system/position", &pd);
-      std::vector<double> rad;
-      if (r.has("/system/radius")) rad = r.read_double("/system/radius");
-      const std::size_t nb = pd.size() == 2 && pd[1] == 3 ? pd[0] : 0;  // [n, 3], else not used
-      // Contact j touches bead j on its far side: x_j + a_j (the wall contact too).
-      for (std::size_t j = 0; j < c.ncontacts && j < nb; ++j)
-        c.contact_position[j] = pos[j * 3] + (rad.size() == nb ? rad[j] : 0.0);
-    }
-  } else {
-    throw InputError(path + ": neither /crystal/layer_z nor /chain/contact_force (SCHEMA.md §3)");
-  }
-  return f;
-}
 
 // ---------- crystal ----------
 
@@ -320,20 +172,8 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   a.mode = tr.mode;
   a.mode_source = tr.mode_source;
   a.l0 = tr.l0;
-  if (opt.period) {
-    a.period_reading = *opt.period;
-    a.period_source = "option";
-  } else if (tr.period) {
-    a.period_reading = *tr.period;
-    a.period_source = "case_toml";
-  }
-  if (opt.wavenumber_speed) {
-    a.wavenumber_speed = *opt.wavenumber_speed;
-    a.wavenumber_speed_source = "option";
-  } else if (tr.wavenumber_speed) {
-    a.wavenumber_speed = *tr.wavenumber_speed;
-    a.wavenumber_speed_source = "case_toml";
-  }
+  choose_reading(opt.period, tr.period, &a.period_reading, &a.period_source);
+  choose_reading(opt.wavenumber_speed, tr.wavenumber_speed, &a.wavenumber_speed, &a.wavenumber_speed_source);
   const std::size_t nl = tr.nlayers;
   std::size_t nt = tr.nt;
   if (opt.t_max >= 0.0) nt = std::upper_bound(tr.time.begin(), tr.time.end(), opt.t_max) - tr.time.begin();
@@ -516,8 +356,11 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
         field[i * nz + q] = differentiate ? ((*df)[(i + 1) * nl + p] - (*df)[i * nl + p]) / a.dt
                                           : (*df)[i * nl + p] - (*df)[p];
       }
-    a.dispersion = dispersion(field, ntd, nz, a.dt, tr.l0, opt.dispersion);
+    DispersionOptions dopt = opt.dispersion;
+    dopt.keep_spectrum = dopt.keep_spectrum || opt.lattice.has_value();  // the ridge against the branch
+    a.dispersion = dispersion(field, ntd, nz, a.dt, tr.l0, dopt);
   }
+  a.long_wave = fit_long_wave(a.dispersion, tr.mode, opt.lattice, opt.no_lattice);
 
   // The first oscillation in space: the snapshot when a layer's first peak passes, over every layer
   // above the source (z ascending), on the same signal (polarity, minus its t = 0 value).
@@ -620,270 +463,6 @@ ChainAnalysis analyze_chain(const ChainTrace& tr, const ChainAnalysisOptions& op
     a.v_half_peak = fit_speed("half_peak", th, pos, il, lo, hi).speed;
   }
   return a;
-}
-
-// ---------- text ----------
-namespace {
-
-// printf into a string (the report used to be printed straight to stdout by `analyze`).
-template <class... T>
-std::string sfmt(const char* f, T... x) {
-  const int n = std::snprintf(nullptr, 0, f, x...);
-  std::string out(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-  std::snprintf(out.data(), out.size(), f, x...);
-  out.pop_back();
-  return out;
-}
-
-std::string measured_line(const char* name, const Measured& m, const char* unit) {
-  return sfmt("%-16s %.6g +- %.2g %s\n", name, m.value, m.error, unit);
-}
-
-}  // namespace
-
-std::string to_text(const TraceFile& f, const ChainAnalysis& a, bool table) {
-  std::string o;
-  o += sfmt("%s: chain trace of %s (%s), %zu contacts, %zu samples\n", f.path.c_str(), f.code.c_str(), f.case_name.c_str(),
-            f.chain.ncontacts, f.chain.nt);
-  if (a.shortened) o += sfmt("note: %s\n", a.note.c_str());
-  o += sfmt("front speed over contacts %d..%d:\n", a.lo, a.hi);
-  o += measured_line("  first peak", a.v_first_peak_contacts, "contacts/s");
-  o += measured_line("  half peak", a.v_half_peak_contacts, "contacts/s");
-  o += measured_line("  first peak", a.v_first_peak, "m/s");
-  o += measured_line("  half peak", a.v_half_peak, "m/s");
-  if (!table) {  // a few rows of the table: the striker's contact and three along the chain
-    const std::size_t nc = a.contacts.size();
-    o += "first peak force:";
-    std::vector<std::size_t> rows{0, nc / 4, nc / 2, (3 * nc) / 4};
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-    for (std::size_t j : rows) {
-      const auto& c = a.contacts[j];
-      o += c.arrived ? sfmt(" contact %zu %.6g N at %.6g s;", j, c.peak_value.value, c.peak_time.value)
-                     : sfmt(" contact %zu not arrived;", j);
-    }
-    o.back() = '\n';
-    return o;
-  }
-  o += sfmt("%8s %12s %12s %12s %12s %12s\n", "contact", "t_peak(s)", "F_peak(N)", "t_half(s)", "F_lead(N)", "T(s)");
-  for (const auto& c : a.contacts)
-    o += sfmt("%8zu %12.6g %12.6g %12.6g %12.6g %12.6g\n", c.contact, c.peak_time.value, c.peak_value.value,
-              c.half_peak_time.value, c.leading_max.value, c.duration.value);
-  return o;
-}
-
-std::string to_text(const TraceFile& f, const CrystalAnalysis& a, bool table) {
-  std::string o;
-  o += sfmt("%s: crystal trace of %s (%s), %c wave (%s), %zu layers, %zu samples, dt = %.4g s, l0 = %.6g m\n",
-            f.path.c_str(), f.code.c_str(), f.case_name.c_str(), a.mode, a.mode_source.c_str(), f.crystal.nlayers,
-            f.crystal.nt, a.dt, a.l0);
-  o += sfmt("measures on %s - its t=0 value (polarity %+g)\n", a.measure_field.c_str(), a.polarity);
-  if (a.shortened) o += sfmt("note: %s\n", a.note.c_str());
-  o += sfmt("speeds over z/l0 = %d..%d (n = %zu):\n", a.v_first_peak.lo, a.v_first_peak.hi, a.v_first_peak.n);
-  o += measured_line("  first peak", a.v_first_peak.speed, "m/s");
-  o += measured_line("  half peak", a.v_half_peak.speed, "m/s");
-  o += measured_line("  1 % arrival", a.v_one_percent.speed, "m/s");
-  const auto& d = a.dispersion;
-  o += sfmt("dispersion (%s, %zu x %zu, domega = %.4g 1/s, %zu k bins, rms %.4g 1/s):\n", a.dispersion_field.c_str(), d.nt,
-            d.nz, d.domega, d.n_fit, d.fit_rms);
-  o += measured_line("  omega_0", {d.omega0, d.omega0_error}, "1/s");
-  o += measured_line("  V(k->0)", {d.v_k0, d.v_k0_error}, "m/s");
-  o += sfmt("local speeds need (l0/V)/dt = %.3g samples per layer delay here\n", a.delay_samples);
-  o += sfmt("wavelength V T: T = %s (period = \"%s\", %s)\n",
-            a.period_reading == PeriodReading::pulse ? "the leading pulse, 1 % arrival to the next 1 % crossing"
-                                                     : "the full first oscillation, 1 % arrival to the third 1 % crossing",
-            to_string(a.period_reading), a.period_source == "case_toml" ? "from the case" : a.period_source.c_str());
-  o += sfmt("wavenumber k = (2/l0) arccos(V_k/V(k->0)): V_k = the local speed of the first peaks of %s "
-            "(wavenumber_speed = \"%s\", %s)\n",
-            a.wavenumber_speed_field.c_str(), to_string(a.wavenumber_speed),
-            a.wavenumber_speed_source == "case_toml" ? "from the case" : a.wavenumber_speed_source.c_str());
-  if (!table) return o;
-  o += sfmt("%6s %12s %12s %12s %12s %12s %10s %9s %9s %10s %9s\n", "z/l0", "t_peak(s)", "peak", "t_half(s)",
-            "T_pulse(s)", "T_osc(s)", "V(m/s)", "VT/l0", "Losc/l0", "V_k(m/s)", "2pi/kl0");
-  for (const auto& L : a.layers) {
-    const double lk = std::isfinite(L.k_from_speed.value) ? 2 * M_PI / L.k_from_speed.value / a.l0 : NAN;
-    o += sfmt("%6.0f %12.6g %12.6g %12.6g %12.6g %12.6g %10.4g %9.3g %9.3g %10.4g %9.3g\n", L.z_over_l0,
-              L.peak_time.value, L.peak_value.value, L.half_peak_time.value, L.duration.value, L.period.value,
-              L.local_speed.value, L.lambda_vt.value / a.l0, L.oscillation_length.value / a.l0, L.k_speed.value, lk);
-  }
-  return o;
-}
-
-FileReport report_file(const std::string& path) {
-  FileReport r;
-  const TraceFile f = read_trace(path);
-  try {
-    if (f.model == "chain") {
-      const ChainAnalysis a = analyze_chain(f.chain);
-      r.text = to_text(f, a, false);
-      r.json = to_json(f, a);
-    } else {
-      const CrystalAnalysis a = analyze_crystal(f.crystal);
-      r.text = to_text(f, a, false);
-      r.json = to_json(f, a);
-    }
-  } catch (const InputError& e) {
-    r.error = e.what();
-    r.text.clear();
-    r.json.clear();
-  }
-  const std::string head = "measures (granwave analyze " + path + ", the same code; per-" +
-                           (f.model == "chain" ? "contact" : "layer") + " table there):\n";
-  r.text = r.error.empty() ? head + r.text : "measures: none, " + r.error + "\n";
-  return r;
-}
-
-// ---------- JSON ----------
-namespace {
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-std::string str(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\', o += c;
-    else if (c == '\n') o += "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20) o += ' ';
-    else o += c;
-  }
-  return o + "\"";
-}
-std::string qty(const Measured& m, const char* unit) {
-  return "{\"value\": " + num(m.value) + ", \"error\": " + num(m.error) + ", \"unit\": \"" + unit + "\"}";
-}
-std::string qty(double v, const char* unit) { return "{\"value\": " + num(v) + ", \"unit\": \"" + unit + "\"}"; }
-template <class T, class F>
-std::string column_json(const std::vector<T>& rows, F get, const char* unit, bool with_error) {
-  std::ostringstream o;
-  o << "{\"unit\": \"" << unit << "\", \"values\": [";
-  for (std::size_t i = 0; i < rows.size(); ++i) o << (i ? ", " : "") << num(get(rows[i]).value);
-  o << "]";
-  if (with_error) {
-    o << ", \"errors\": [";
-    for (std::size_t i = 0; i < rows.size(); ++i) o << (i ? ", " : "") << num(get(rows[i]).error);
-    o << "]";
-  }
-  o << "}";
-  return o.str();
-}
-std::string speed_json(const SpeedFit& f, const char* range_key) {
-  std::ostringstream o;
-  o << "{\"value\": " << num(f.speed.value) << ", \"error\": " << num(f.speed.error) << ", \"unit\": \"m/s\", \""
-    << range_key << "\": [" << f.lo << ", " << f.hi << "], \"n\": " << f.n << "}";
-  return o.str();
-}
-std::string header_json(const TraceFile& f) {
-  return "  \"schema\": \"granwave-analyze/1\",\n  \"file\": " + str(f.path) + ",\n  \"code\": " + str(f.code) +
-         ",\n  \"code_version\": " + str(f.code_version) + ",\n  \"case_name\": " + str(f.case_name) +
-         ",\n  \"time_convention\": " + str(f.time_convention) + ",\n  \"model\": " + str(f.model) + ",\n";
-}
-
-}  // namespace
-
-std::string to_json(const TraceFile& f, const CrystalAnalysis& a) {
-  std::ostringstream o;
-  o << "{\n" << header_json(f);
-  o << "  \"mode\": " << str(std::string(1, a.mode)) << ",\n  \"mode_source\": " << str(a.mode_source) << ",\n";
-  o << "  \"measure_field\": " << str(a.measure_field) << ",\n  \"polarity\": " << num(a.polarity) << ",\n";
-  o << "  \"period_reading\": " << str(to_string(a.period_reading)) << ",\n  \"period_reading_source\": "
-    << str(a.period_source) << ",\n";
-  o << "  \"wavenumber_speed_reading\": " << str(to_string(a.wavenumber_speed))
-    << ",\n  \"wavenumber_speed_reading_source\": " << str(a.wavenumber_speed_source)
-    << ",\n  \"wavenumber_speed_field\": " << str(a.wavenumber_speed_field) << ",\n";
-  o << "  \"l0\": " << qty(a.l0, "m") << ",\n  \"output_interval\": " << qty(a.dt, "s") << ",\n";
-  o << "  \"last_free_layer_z_over_l0\": " << a.last_free << ",\n";
-  o << "  \"fit_range\": {\"z_over_l0\": [" << a.v_first_peak.lo << ", " << a.v_first_peak.hi << "], \"requested\": ["
-    << a.requested_lo << ", " << a.requested_hi << "], \"shortened\": " << (a.shortened ? "true" : "false")
-    << ", \"note\": " << str(a.note) << "},\n";
-  o << "  \"v_first_peak\": " << speed_json(a.v_first_peak, "z_over_l0") << ",\n";
-  o << "  \"v_half_peak\": " << speed_json(a.v_half_peak, "z_over_l0") << ",\n";
-  o << "  \"v_one_percent\": " << speed_json(a.v_one_percent, "z_over_l0") << ",\n";
-  const auto& d = a.dispersion;
-  o << "  \"omega_0\": " << qty(Measured{d.omega0, d.omega0_error}, "1/s") << ",\n";
-  o << "  \"v_k0\": " << qty(Measured{d.v_k0, d.v_k0_error}, "m/s") << ",\n";
-  o << "  \"dispersion\": {\"field\": " << str(a.dispersion_field) << ", \"nt\": " << d.nt << ", \"nz\": " << d.nz
-    << ", \"domega\": " << qty(d.domega, "1/s") << ", \"dk\": " << qty(d.dk, "1/m") << ", \"n_fit\": " << d.n_fit
-    << ", \"fit_rms\": " << qty(d.fit_rms, "1/s") << ",\n    \"k\": {\"unit\": \"1/m\", \"values\": [";
-  for (std::size_t i = 0; i < d.k.size(); ++i) o << (i ? ", " : "") << num(d.k[i]);
-  o << "]},\n    \"omega_max\": {\"unit\": \"1/s\", \"values\": [";
-  for (std::size_t i = 0; i < d.omega_max.size(); ++i) o << (i ? ", " : "") << num(d.omega_max[i]);
-  o << "]}},\n";
-  o << "  \"local_speed\": {\"method\": \"slowness = (1,2,2,1)/6-weighted mean of the 4 first-peak delays over "
-       "layers i-2..i+2\", \"delay_samples\": "
-    << num(a.delay_samples) << "},\n";
-  // The seed's wavelength table (sec. 3.4) at z/l0 = 10, 15, 20, 80, 150.
-  o << "  \"wavelength_at\": [";
-  bool first = true;
-  for (int zq : {10, 15, 20, 80, 150}) {
-    for (const auto& L : a.layers) {
-      if (std::lround(L.z_over_l0) != zq) continue;
-      const double k = L.k_from_speed.value, ke = L.k_from_speed.error;
-      const double two_pi = 2.0 * std::acos(-1.0);
-      Measured lk{std::isfinite(k) ? two_pi / k / a.l0 : kNaN, std::isfinite(k) ? two_pi * ke / (k * k) / a.l0 : kNaN};
-      o << (first ? "" : ",") << "\n    {\"z_over_l0\": " << zq << ", \"local_speed\": " << qty(L.local_speed, "m/s")
-        << ", \"duration\": " << qty(L.duration, "s") << ", \"period\": " << qty(L.period, "s")
-        << ", \"oscillation_length_over_l0\": "
-        << qty(Measured{L.oscillation_length.value / a.l0, L.oscillation_length.error / a.l0}, "1")
-        << ", \"lambda_vt_over_l0\": " << qty(Measured{L.lambda_vt.value / a.l0, L.lambda_vt.error / a.l0}, "1")
-        << ", \"k_speed\": " << qty(L.k_speed, "m/s") << ", \"lambda_k_over_l0\": " << qty(lk, "1") << "}";
-      first = false;
-    }
-  }
-  o << "],\n";
-  const auto& Ls = a.layers;
-  o << "  \"layers\": {\n    \"layer\": [";
-  for (std::size_t i = 0; i < Ls.size(); ++i) o << (i ? ", " : "") << Ls[i].layer;
-  o << "],\n    \"z_over_l0\": [";
-  for (std::size_t i = 0; i < Ls.size(); ++i) o << (i ? ", " : "") << num(Ls[i].z_over_l0);
-  o << "],\n    \"arrived\": [";
-  for (std::size_t i = 0; i < Ls.size(); ++i) o << (i ? ", " : "") << (Ls[i].arrived ? "true" : "false");
-  o << "],\n";
-  const char* su = a.measure_field.find("stress") != std::string::npos ? "Pa" : "m/s";
-  o << "    \"peak_time\": " << column_json(Ls, [](const LayerMeasures& L) { return L.peak_time; }, "s", true) << ",\n";
-  o << "    \"peak_value\": " << column_json(Ls, [](const LayerMeasures& L) { return L.peak_value; }, su, true) << ",\n";
-  o << "    \"half_peak_time\": " << column_json(Ls, [](const LayerMeasures& L) { return L.half_peak_time; }, "s", true) << ",\n";
-  o << "    \"one_percent_time\": " << column_json(Ls, [](const LayerMeasures& L) { return L.one_percent_time; }, "s", true) << ",\n";
-  o << "    \"duration\": " << column_json(Ls, [](const LayerMeasures& L) { return L.duration; }, "s", true) << ",\n";
-  o << "    \"period\": " << column_json(Ls, [](const LayerMeasures& L) { return L.period; }, "s", true) << ",\n";
-  o << "    \"oscillation_length\": " << column_json(Ls, [](const LayerMeasures& L) { return L.oscillation_length; }, "m", false) << ",\n";
-  o << "    \"leading_max\": " << column_json(Ls, [](const LayerMeasures& L) { return L.leading_max; }, su, true) << ",\n";
-  o << "    \"local_speed\": " << column_json(Ls, [](const LayerMeasures& L) { return L.local_speed; }, "m/s", true) << ",\n";
-  o << "    \"lambda_vt\": " << column_json(Ls, [](const LayerMeasures& L) { return L.lambda_vt; }, "m", true) << ",\n";
-  o << "    \"displacement_peak_time\": " << column_json(Ls, [](const LayerMeasures& L) { return L.displacement_peak_time; }, "s", true) << ",\n";
-  o << "    \"k_speed\": " << column_json(Ls, [](const LayerMeasures& L) { return L.k_speed; }, "m/s", true) << ",\n";
-  o << "    \"k_from_speed\": " << column_json(Ls, [](const LayerMeasures& L) { return L.k_from_speed; }, "1/m", true) << "\n";
-  o << "  }\n}\n";
-  return o.str();
-}
-
-std::string to_json(const TraceFile& f, const ChainAnalysis& a) {
-  std::ostringstream o;
-  o << "{\n" << header_json(f);
-  o << "  \"fit_range\": {\"contacts\": [" << a.lo << ", " << a.hi << "], \"shortened\": " << (a.shortened ? "true" : "false")
-    << ", \"note\": " << str(a.note) << "},\n";
-  o << "  \"v_first_peak\": " << qty(a.v_first_peak, "m/s") << ",\n";
-  o << "  \"v_half_peak\": " << qty(a.v_half_peak, "m/s") << ",\n";
-  o << "  \"v_first_peak_contacts\": " << qty(a.v_first_peak_contacts, "contacts/s") << ",\n";
-  o << "  \"v_half_peak_contacts\": " << qty(a.v_half_peak_contacts, "contacts/s") << ",\n";
-  const auto& Cs = a.contacts;
-  o << "  \"contacts\": {\n    \"contact\": [";
-  for (std::size_t i = 0; i < Cs.size(); ++i) o << (i ? ", " : "") << Cs[i].contact;
-  o << "],\n    \"position\": {\"unit\": \"m\", \"values\": [";
-  for (std::size_t i = 0; i < Cs.size(); ++i) o << (i ? ", " : "") << num(Cs[i].position);
-  o << "]},\n    \"arrived\": [";
-  for (std::size_t i = 0; i < Cs.size(); ++i) o << (i ? ", " : "") << (Cs[i].arrived ? "true" : "false");
-  o << "],\n";
-  o << "    \"peak_time\": " << column_json(Cs, [](const ContactMeasures& c) { return c.peak_time; }, "s", true) << ",\n";
-  o << "    \"peak_value\": " << column_json(Cs, [](const ContactMeasures& c) { return c.peak_value; }, "N", true) << ",\n";
-  o << "    \"half_peak_time\": " << column_json(Cs, [](const ContactMeasures& c) { return c.half_peak_time; }, "s", true) << ",\n";
-  o << "    \"one_percent_time\": " << column_json(Cs, [](const ContactMeasures& c) { return c.one_percent_time; }, "s", true) << ",\n";
-  o << "    \"duration\": " << column_json(Cs, [](const ContactMeasures& c) { return c.duration; }, "s", true) << ",\n";
-  o << "    \"leading_max\": " << column_json(Cs, [](const ContactMeasures& c) { return c.leading_max; }, "N", true) << "\n";
-  o << "  }\n}\n";
-  return o.str();
 }
 
 }  // namespace granwave::analysis

@@ -1,5 +1,5 @@
-// The analysis of a trace file (data/SCHEMA.md §3) of any code — granwave, YADE or LIGGGHTS:
-// one ruler for all three. Crystal traces (seed 002): per-layer measures of docs/design.md §2.4 on
+// The measures of a trace (trace_file.hpp) of any code -- granwave, YADE, LIGGGHTS -- one ruler for
+// all of them. Crystal traces (seed 002): per-layer measures of docs/design.md §2.4 on
 // sigma - sigma(t = 0), speed fits with standard errors, local speeds, the 2D-FFT dispersion fit
 // and the wavelength estimates of sec. 3.4. Chain traces (seed 001): per-contact measures and the
 // front speed. Every measure comes from analysis/measures.hpp; nothing here knows which code
@@ -17,56 +17,22 @@
 // default (measures.hpp WavenumberSpeed; `[analysis] wavenumber_speed`, `analyze --wavenumber-speed`).
 #pragma once
 #include <cstddef>
-#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/dispersion.hpp"
+#include "analysis/long_wave.hpp"
 #include "analysis/measures.hpp"
+#include "analysis/trace_file.hpp"
 
 namespace granwave::analysis {
-
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A measured number with its standard error (NaN when not available).
 struct Measured {
   double value = kNaN;
   double error = kNaN;
 };
-
-// ---- reading ----
-struct CrystalTrace {
-  std::vector<double> time;      // [nt] s
-  std::vector<double> layer_z;   // [nlayers] m, from the innermost driven layer
-  std::size_t nt = 0, nlayers = 0;
-  double l0 = 0.0;               // layer spacing (m): /system attr l0, else from layer_z
-  int fixed_layers = 0;          // at each end
-  char mode = 'P';               // 'P' or 'S' (from case_toml, else from the field amplitudes)
-  std::string mode_source;       // "case_toml" | "inferred"
-  // Row-major [nt, nlayers]; empty when the trace lacks the dataset.
-  std::vector<double> stress_zz, stress_zx, displacement_z, displacement_x, velocity_z, velocity_x;
-  std::vector<double> coordination;
-  // The case's `[analysis] period` (data/SCHEMA.md §1), when its text is in the trace and sets it.
-  std::optional<PeriodReading> period;
-  // The case's `[analysis] wavenumber_speed`, likewise.
-  std::optional<WavenumberSpeed> wavenumber_speed;
-};
-
-struct ChainTrace {
-  std::vector<double> time;
-  std::size_t nt = 0, ncontacts = 0;
-  std::vector<double> contact_force;     // [nt, ncontacts]
-  std::vector<double> contact_position;  // [ncontacts] m along the chain (NaN if no system)
-};
-
-struct TraceFile {
-  std::string path, code, code_version, case_name, time_convention;
-  std::string model;  // "crystal" | "chain"
-  CrystalTrace crystal;
-  ChainTrace chain;
-};
-TraceFile read_trace(const std::string& path);  // throws InputError
 
 // ---- crystal ----
 struct LayerMeasures {
@@ -117,6 +83,10 @@ struct CrystalAnalysisOptions {
   // V of k(V) (measures.hpp); unset: the trace's case ([analysis] wavenumber_speed), else displacement_peak.
   std::optional<WavenumberSpeed> wavenumber_speed;
   DispersionOptions dispersion;
+  // The case's lattice branches (long_wave.hpp): V(k->0) from the branch when it is not a sine.
+  // Unset: the sine fit, for the reason in `no_lattice`.
+  std::optional<LatticeBranches> lattice;
+  std::string no_lattice = "no lattice of the case given";
 };
 
 struct CrystalAnalysis {
@@ -141,6 +111,7 @@ struct CrystalAnalysis {
   // the layer delay l0/V; `delay_samples` = (l0/V_first_peak)/dt samples per layer delay.
   double delay_samples = kNaN;
   DispersionResult dispersion;
+  LongWaveFit long_wave;  // V(k->0) and the model of the branch it comes from
 };
 
 CrystalAnalysis analyze_crystal(const CrystalTrace& trace, const CrystalAnalysisOptions& options = {});
@@ -169,23 +140,5 @@ struct ChainAnalysisOptions {
   int lo = -1, hi = -1;  // contact range (< 0: default 5 .. ncontacts - 7)
 };
 ChainAnalysis analyze_chain(const ChainTrace& trace, const ChainAnalysisOptions& options = {});
-
-// ---- text: the report of `granwave analyze`; `granwave run` prints the same for the trace it
-// wrote. `table`: the per-layer (per-contact) table after the summary lines. ----
-std::string to_text(const TraceFile& file, const CrystalAnalysis& a, bool table = true);
-std::string to_text(const TraceFile& file, const ChainAnalysis& a, bool table = true);
-
-// ---- `granwave analyze PATH` with its default options: what `granwave run` prints for the trace
-// it has just written (one ruler). `text` is the summary without the table; `error` says why the
-// trace cannot be measured (the analysis' InputError, e.g. fewer than 3 layers in the fit range),
-// and then text says so and json is empty. ----
-struct FileReport {
-  std::string text, json, error;
-};
-FileReport report_file(const std::string& path);
-
-// ---- JSON (the crosscheck's ruler: keep stable; schema in `granwave analyze --help`) ----
-std::string to_json(const TraceFile& file, const CrystalAnalysis& a);
-std::string to_json(const TraceFile& file, const ChainAnalysis& a);
 
 }  // namespace granwave::analysis

@@ -6,16 +6,11 @@
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "theory/hertz.hpp"
 
 namespace granwave::chain {
 namespace {
-
-std::string fmt(const char* f, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
 
 // Measured costs (granwave run on oriented20 and on 10x its t_end, /usr/bin/time maxrss): 21.8 MB
 // at 6001 samples, +0.675 kB per sample of 82 stored columns (8 bytes each, reserved up front).

@@ -9,33 +9,17 @@
 #include <ostream>
 #include <sstream>
 
-#include "analysis/trace_analysis.hpp"
+#include "analysis/report.hpp"
 #include "chain/chain.hpp"
 #include "chain/guards.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/json.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
 
 namespace granwave::chain {
 namespace {
-
-std::string fmt(const char* f, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
-
-std::string json_number(double x) { return std::isfinite(x) ? fmt("%.10g", x) : "null"; }
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') { out += "\\n"; continue; }
-    out += c;
-  }
-  return out + "\"";
-}
 
 // The chain by runs of beads: "beads 1-40: cells 0-19 (spins 1111...)", "bead 41: small_steel".
 std::string bead_layout(const ChainSystem& sys) {
@@ -183,17 +167,24 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
   const double t_run = static_cast<double>(f.steps) * f.dt;
   const double bead_steps_per_second = static_cast<double>(f.nbeads) * f.steps / std::max(f.seconds, 1e-12);
   if (request.json) {
-    out << "{\"schema\": \"granwave-run/1\", \"case\": " << json_string(c.name) << ", \"model\": \"chain\", \"trace\": "
-        << json_string(path) << ", \"nbeads\": " << f.nbeads << ", \"ncontacts\": " << f.ncontacts
-        << ", \"dt\": " << json_number(f.dt) << ", \"steps\": " << f.steps << ", \"t_end\": " << json_number(t_run)
-        << ", \"wall_seconds\": " << json_number(f.seconds)
-        << ", \"bead_steps_per_second\": " << json_number(bead_steps_per_second)
-        << ", \"stopped_early\": " << (f.stopped_early ? "true" : "false")
-        << ", \"magnetisation\": " << json_number(sys.magnetisation) << ", \"energy_error\": " << json_number(f.energy_error)
-        << ", \"warnings\": [";
-    for (std::size_t i = 0; i < a.warnings.size(); ++i) out << (i ? ", " : "") << json_string(a.warnings[i]);
-    out << "], \"analysis_error\": " << (rep.error.empty() ? "null" : json_string(rep.error))
-        << ",\n\"analysis\": " << (rep.error.empty() ? rep.json : "null\n") << "}\n";
+    Json j = {{"schema", "granwave-run/1"},
+              {"case", c.name},
+              {"model", "chain"},
+              {"trace", path},
+              {"nbeads", f.nbeads},
+              {"ncontacts", f.ncontacts},
+              {"dt", f.dt},
+              {"steps", f.steps},
+              {"t_end", t_run},
+              {"wall_seconds", f.seconds},
+              {"bead_steps_per_second", bead_steps_per_second},
+              {"stopped_early", f.stopped_early},
+              {"magnetisation", sys.magnetisation},
+              {"energy_error", f.energy_error},
+              {"warnings", a.warnings}};
+    j["analysis_error"] = rep.error.empty() ? Json(nullptr) : Json(rep.error);
+    j["analysis"] = rep.json;
+    out << json_text(j);
     return 0;
   }
   out << "granwave chain: " << c.name << ", " << f.nbeads << " beads, wall " << sys.wall << ", "

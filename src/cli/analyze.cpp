@@ -5,8 +5,11 @@
 #include <string>
 
 #include "analysis/trace_analysis.hpp"
+#include "analysis/trace_json.hpp"
+#include "analysis/trace_text.hpp"
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
+#include "crystal/case_lattice.hpp"
 
 namespace granwave::cli {
 namespace {
@@ -46,6 +49,14 @@ Crystal traces (seed 002):
   (6 % low on YADE traces of the seed's crystal). Not the raw displacement of a held step either:
   it stays at the step height to the end of the record, the window cuts it, and the resulting
   |F| ~ 1/omega dominates |F|^4 (omega_0 = 2.0e4 1/s instead of 3.09e5 on the 3200-particle run).
+  The sine is the lattice's branch only for a wave that turns no particle (P along z, or S
+  without tangential springs). The case's lattice is rebuilt from the trace's case text
+  (case_toml; as `granwave theory`); when the wave's branch (u_z for P, u_x for S) is not the
+  sine -- an S wave with tangential springs drives rotations -- the ridge of the spectrum is
+  compared with that branch (as `figures crystal` does), the branch scaled to it,
+  omega_ridge = s omega_branch(k), and V(k->0) = s V_branch (crystal_hm_s: 967.2 +- 0.8 m/s
+  against the lattice's 967.6; the sine fit says 1081). The report says which model was fitted;
+  a trace without its case, or of a polydisperse packing, gets the sine fit, labelled so.
 Chain traces (seed 001): per contact the same measures on the contact force minus its t = 0 value,
   arrivals as for layers, front speed over contacts LO..HI (default 5 .. ncontacts - 7) in
   contacts/s and m/s (positions: x_j + a_j of /system, the far side of bead j).
@@ -73,14 +84,20 @@ for the trace it writes: the same code, the same numbers.
                    lambda = V T: 10.7, 12.5, 13.9 l0 there). Without the flag, the trace's case
                    decides ([analysis] wavenumber_speed), else displacement_peak. A trace without
                    the displacement has no k in the default reading
-  --json           one JSON object (schema "granwave-analyze/1"): every number as
-                   {"value", "error", "unit"} (error null where none applies). Top-level keys:
+  --json           one JSON object (schema "granwave-analyze/1") on one line: every number as
+                   {"value", "error", "unit"} (error null where none applies), written as the
+                   shortest decimal that reads back as the same double (NaN, inf: null; data/SCHEMA.md
+                   "JSON outputs"). Top-level keys:
                    schema, file, code, code_version, case_name, time_convention, model,
                    crystal: mode, mode_source, measure_field, polarity, l0, output_interval,
                      wavenumber_speed_reading, wavenumber_speed_reading_source,
                      wavenumber_speed_field, last_free_layer_z_over_l0, fit_range {z_over_l0, requested, shortened, note},
                      v_first_peak, v_half_peak, v_one_percent (m/s, + z_over_l0 range, n),
-                     omega_0 (1/s), v_k0 (m/s), dispersion {field, nt, nz, domega, dk, n_fit,
+                     omega_0 (1/s), v_k0 (m/s) (the sine fit, whatever the model),
+                     dispersion_model ("sine" | "lattice_branch"), long_wave {model, reason,
+                     value, error, unit: V(k->0) of that model; with the case's lattice also
+                     branch, v_lattice, sine_deviation; lattice_branch also ridge {scale,
+                     columns, with_ridge, within_one_bin, median_offset_bins}}, dispersion {field, nt, nz, domega, dk, n_fit,
                      fit_rms, k, omega_max}, local_speed {method, delay_samples},
                      wavelength_at [{z_over_l0, local_speed, duration, period,
                      oscillation_length_over_l0, lambda_vt_over_l0, k_speed, lambda_k_over_l0}] at
@@ -96,18 +113,6 @@ for the trace it writes: the same code, the same numbers.
                      one_percent_time, duration, leading_max}
 )";
 
-void parse_range(const std::string& s, int* lo, int* hi) {
-  const auto colon = s.find(':');
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
-    *lo = std::stoi(s.substr(0, colon));
-    *hi = std::stoi(s.substr(colon + 1));
-  } catch (const std::exception&) {
-    throw InputError("--layers " + s + ": expected LO:HI (integers)");
-  }
-  if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
-}
-
 }  // namespace
 
 int cmd_analyze(const Args& args) {
@@ -119,7 +124,7 @@ int cmd_analyze(const Args& args) {
   if (pos.size() != 1) throw InputError("analyze: expected one trace file (granwave analyze --help)");
   const bool json = has_flag(args, "--json");
   int lo = -1, hi = -1;
-  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &lo, &hi);
+  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_layers(s, "integers", &lo, &hi);
   const auto file = analysis::read_trace(pos[0]);
 
   if (file.model == "chain") {
@@ -129,7 +134,7 @@ int cmd_analyze(const Args& args) {
       throw InputError(pos[0] + ": --wavenumber-speed is for crystal traces (the wavelength of seed 002 sec. 3.4)");
     const auto a = analysis::analyze_chain(file.chain, {lo, hi});
     if (json) {
-      std::cout << analysis::to_json(file, a);
+      std::cout << json_text(analysis::to_json(file, a));
       return 0;
     }
     std::cout << analysis::to_text(file, a);
@@ -137,6 +142,7 @@ int cmd_analyze(const Args& args) {
   }
 
   analysis::CrystalAnalysisOptions opt;
+  crystal::add_case_lattice(opt, file.case_toml, pos[0] + ":/case_toml");
   opt.lo = lo;
   opt.hi = hi;
   if (const auto f = option_value(args, "", "--field"); !f.empty()) opt.field = f;
@@ -157,7 +163,7 @@ int cmd_analyze(const Args& args) {
   }
   const auto a = analysis::analyze_crystal(file.crystal, opt);
   if (json) {
-    std::cout << analysis::to_json(file, a);
+    std::cout << json_text(analysis::to_json(file, a));
     return 0;
   }
   std::cout << analysis::to_text(file, a);

@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
@@ -21,6 +23,18 @@ std::string option_value(const Args& args, const std::string& short_name, const 
 }
 
 bool has_flag(const Args& args, const std::string& name) { return std::find(args.begin(), args.end(), name) != args.end(); }
+
+void parse_layers(const std::string& s, const char* what, int* lo, int* hi) {
+  const auto colon = s.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    *lo = std::stoi(s.substr(0, colon));
+    *hi = std::stoi(s.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw InputError("--layers " + s + ": expected LO:HI (" + what + ")");
+  }
+  if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
+}
 
 std::vector<std::string> positionals(const Args& args, const std::vector<std::string>& valued) {
   std::vector<std::string> out;

@@ -8,13 +8,15 @@
 #include <cstdio>
 #include <iostream>
 #include <numbers>
-#include <sstream>
 #include <string>
 
 #include "cli/verbs.hpp"
 #include "config/case.hpp"
 #include "config/contact_laws.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/json.hpp"
+#include "core/resources.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 #include "theory/hertz.hpp"
@@ -55,74 +57,31 @@ Index convention: C[a][b][g][f] with a, g branch (gradient) directions and b, f 
                    fractions and the fraction in each of u_x u_y u_z theta_x theta_y theta_z), ...
 )";
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-std::string quantity(double v, const char* unit) { return std::string("{\"value\": ") + num(v) + ", \"unit\": \"" + unit + "\"}"; }
-std::string escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\', o += c;
-    else if (c == '\n') o += "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20) o += ' ';
-    else o += c;
-  }
-  return o;
-}
-std::string tensor_json(const theory::Tensor4& C) {
-  std::ostringstream o;
-  o << "{\"unit\": \"Pa\", \"index_order\": \"C[a][b][g][f]: a,g branch, b,f displacement\", \"values\": [";
+Json quantity(double v, const char* unit) { return {{"value", v}, {"unit", unit}}; }
+Json values(const std::vector<double>& v, const char* unit) { return {{"unit", unit}, {"values", v}}; }
+Json tensor_json(const theory::Tensor4& C) {
+  Json values = Json::array();
   for (int a = 0; a < 3; ++a) {
-    o << (a ? ", " : "") << "[";
+    Json A = Json::array();
     for (int b = 0; b < 3; ++b) {
-      o << (b ? ", " : "") << "[";
+      Json B = Json::array();
       for (int g = 0; g < 3; ++g) {
-        o << (g ? ", " : "") << "[";
-        for (int f = 0; f < 3; ++f) o << (f ? ", " : "") << num(C(a, b, g, f));
-        o << "]";
+        Json G = Json::array();
+        for (int f = 0; f < 3; ++f) G.push_back(C(a, b, g, f));
+        B.push_back(G);
       }
-      o << "]";
+      A.push_back(B);
     }
-    o << "]";
+    values.push_back(A);
   }
-  o << "]}";
-  return o.str();
-}
-
-void parse_range(const std::string& s, int* lo, int* hi) {
-  const auto colon = s.find(':');
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
-    *lo = std::stoi(s.substr(0, colon));
-    *hi = std::stoi(s.substr(colon + 1));
-  } catch (const std::exception&) {
-    throw InputError("--layers " + s + ": expected LO:HI (layer indices)");
-  }
-  if (*lo < 0 || *hi <= *lo) throw InputError("--layers " + s + ": need 0 <= LO < HI");
-}
-
-std::string array_json(const std::vector<double>& v, const char* unit = nullptr) {
-  std::ostringstream o;
-  if (unit) o << "{\"unit\": \"" << unit << "\", \"values\": ";
-  o << "[";
-  for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << num(v[i]);
-  o << "]";
-  if (unit) o << "}";
-  return o.str();
+  return {{"unit", "Pa"}, {"index_order", "C[a][b][g][f]: a,g branch, b,f displacement"}, {"values", values}};
 }
 
 int parse_nk(const std::string& s) {
   std::size_t used = 0;
-  int n = 0;
-  try {
-    n = std::stoi(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != s.size() || s.empty() || n < 3 || n > 10001 || n % 2 == 0)
+  const double v = leading_number(s, &used);
+  const int n = v >= 3 && v <= 10001 ? static_cast<int>(v) : 0;
+  if (used != s.size() || s.empty() || n != v || n % 2 == 0)
     throw InputError("--nk " + s + ": must be an odd integer in [3, 10001] (points of the k grid over the zone)");
   return n;
 }
@@ -140,7 +99,7 @@ struct LatticePart {
 LatticePart lattice_part(const config::Case& c, const theory::ContactNetwork& net, theory::SlabSelection slab, int nk) {
   LatticePart L;
   if (c.crystal->polydispersity > 0.0) {
-    L.note = "omitted: a polydisperse packing (polydispersity = " + num(c.crystal->polydispersity) +
+    L.note = "omitted: a polydisperse packing (polydispersity = " + fmt("%.10g", c.crystal->polydispersity) +
              " delta) is not a Bravais lattice; Bloch waves of one particle do not describe it";
     return L;
   }
@@ -171,38 +130,41 @@ LatticePart lattice_part(const config::Case& c, const theory::ContactNetwork& ne
   return L;
 }
 
-std::string dispersion_json(const LatticePart& L) {
+Json dispersion_json(const LatticePart& L) {
   const auto& d = L.disp;
-  std::ostringstream o;
   std::vector<double> kl0;
   for (double k : d.k) kl0.push_back(k * L.l0);
-  o << "{\"direction\": [0, 0, 1], \"zone\": \"k in [-pi/l0, pi/l0]\", \"l0\": " << quantity(L.l0, "m")
-    << ",\n    \"k\": " << array_json(d.k, "1/m") << ",\n    \"k_l0\": " << array_json(kl0, "1")
-    << ",\n    \"dof\": [\"u_x\", \"u_y\", \"u_z\", \"theta_x\", \"theta_y\", \"theta_z\"]"
-    << ",\n    \"note\": \"branches followed through crossings from k = 0; fractions are |e_i|^2 of the mass-weighted "
-       "eigenvector; omega(-k) = omega(k); group velocity d omega/dk\""
-    << ",\n    \"max_hermitian_defect\": " << num(d.max_hermitian_defect) << ", \"min_omega2\": " << quantity(d.min_omega2, "1/s^2")
-    << ",\n    \"branches\": [";
+  Json branches = Json::array();
   for (int b = 0; b < 6; ++b) {
-    const auto& br = d.branches[b];
     std::vector<double> w, vg, tr, rot;
     std::array<std::vector<double>, 6> frac;
-    for (const auto& m : br) {
+    for (const auto& m : d.branches[b]) {
       w.push_back(m.omega);
       vg.push_back(m.group_velocity);
       tr.push_back(m.translation());
       rot.push_back(m.rotation());
       for (int i = 0; i < 6; ++i) frac[i].push_back(m.content[i]);
     }
-    o << (b ? ",\n      " : "\n      ") << "{\"dominant\": \"" << theory::kLatticeDof[d.dominant[b]]
-      << "\", \"kind\": \"" << d.kind(b) << "\", \"omega\": " << array_json(w, "1/s")
-      << ", \"group_velocity\": " << array_json(vg, "m/s") << ", \"translation\": " << array_json(tr)
-      << ", \"rotation\": " << array_json(rot);
-    for (int i = 0; i < 6; ++i) o << ", \"" << theory::kLatticeDof[i] << "\": " << array_json(frac[i]);
-    o << "}";
+    Json br = {{"dominant", theory::kLatticeDof[d.dominant[b]]},
+               {"kind", d.kind(b)},
+               {"omega", values(w, "1/s")},
+               {"group_velocity", values(vg, "m/s")},
+               {"translation", tr},
+               {"rotation", rot}};
+    for (int i = 0; i < 6; ++i) br[theory::kLatticeDof[i]] = frac[i];
+    branches.push_back(br);
   }
-  o << "]}";
-  return o.str();
+  return {{"direction", {0, 0, 1}},
+          {"zone", "k in [-pi/l0, pi/l0]"},
+          {"l0", quantity(L.l0, "m")},
+          {"k", values(d.k, "1/m")},
+          {"k_l0", values(kl0, "1")},
+          {"dof", theory::kLatticeDof},
+          {"note", "branches followed through crossings from k = 0; fractions are |e_i|^2 of the mass-weighted "
+                   "eigenvector; omega(-k) = omega(k); group velocity d omega/dk"},
+          {"max_hermitian_defect", d.max_hermitian_defect},
+          {"min_omega2", quantity(d.min_omega2, "1/s^2")},
+          {"branches", branches}};
 }
 
 }  // namespace
@@ -241,7 +203,7 @@ int cmd_theory(const Args& args) {
   const theory::ContactNetwork net = crystal::contact_network(c, pk);
 
   theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
-  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_range(s, &slab.layer_lo, &slab.layer_hi);
+  if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_layers(s, "layer indices", &slab.layer_lo, &slab.layer_hi);
   if (slab.layer_hi >= pk.layers) throw InputError("--layers: the case has " + std::to_string(pk.layers) + " layers");
   const auto r = theory::crystal_prediction(net, slab);
   const LatticePart L = lattice_part(c, net, slab, nk);
@@ -264,83 +226,91 @@ int cmd_theory(const Args& args) {
   }
 
   if (json) {
-    std::ostringstream o;
-    o << "{\n  \"case\": \"" << escape(c.name) << "\",\n  \"model\": \"crystal\",\n";
-    o << "  \"contact_law\": \"" << crystal::contact_law_name(c.contact) << "\",\n";
-    o << "  \"k_n\": " << quantity(k0.kn, "N/m") << ",\n";
-    o << "  \"k_t\": " << quantity(k0.kt, "N/m") << ",\n";
-    o << "  \"gamma_n\": " << quantity(k0.gamma_n, "kg/s") << ",\n";
-    o << "  \"f0\": " << quantity(k0.f_n, "N") << ",\n";
-    o << "  \"delta_0\": " << quantity(pk.delta, "m") << ",\n";
-    if (law.linearisation_note) o << "  \"linearisation\": \"" << law.linearisation_note << "\",\n";
+    Json o = {{"case", c.name},
+              {"model", "crystal"},
+              {"contact_law", crystal::contact_law_name(c.contact)},
+              {"k_n", quantity(k0.kn, "N/m")},
+              {"k_t", quantity(k0.kt, "N/m")},
+              {"gamma_n", quantity(k0.gamma_n, "kg/s")},
+              {"f0", quantity(k0.f_n, "N")},
+              {"delta_0", quantity(pk.delta, "m")}};
+    if (law.linearisation_note) o["linearisation"] = law.linearisation_note;
     if (hertz)
-      o << "  \"hertz_impact\": {\"velocity\": " << quantity(impact.velocity, "m/s")
-        << ", \"t_c\": " << quantity(impact.contact_time, "s") << ", \"max_overlap\": " << quantity(impact.max_overlap, "m")
-        << ", \"peak_force\": " << quantity(impact.peak_force, "N") << ", \"A\": " << quantity(impact.hertz_constant, "N/m^1.5")
-        << ", \"restitution\": " << quantity(damped.restitution, "1") << ", \"t_c_damped\": "
-        << quantity(damped.time_ratio * impact.contact_time, "s")
-        << ", \"note\": \"two free mean particles closing at velocity (the velocity drive's, else 1 m/s): t_c = 2.86827 "
-           "(m*^2/(R* E*^2 v))^(1/5), delta_max = (5 m* v^2/(4 A))^(2/5) (elastic); restitution and t_c_damped with the case's "
-           "damping_ratio (and normal_tension), the same at every velocity\"},\n";
-    o << "  \"V_pz\": " << quantity(r.V_pz, "m/s") << ",\n";
-    o << "  \"V_sz\": " << quantity(r.V_sz, "m/s") << ",\n";
-    o << "  \"V_sy\": " << quantity(r.V_sy, "m/s") << ",\n";
-    o << "  \"V_pz_frictionless\": " << quantity(r.V_pz_frictionless, "m/s") << ",\n";
-    o << "  \"V_sz_frictionless\": " << quantity(r.V_sz_frictionless, "m/s") << ",\n";
-    o << "  \"t_c\": " << quantity(tc.t_c, "s") << ",\n";
-    o << "  \"restitution\": " << quantity(tc.restitution, "1") << ",\n";
-    o << "  \"contact_omega\": " << quantity(tc.omega, "1/s") << ",\n";
-    o << "  \"eta_0\": " << quantity(tc.eta0, "1/s") << ",\n";
-    o << "  \"omega_0\": " << quantity(r.omega0_p, "1/s") << ",\n";
-    o << "  \"omega_0_s\": " << quantity(r.omega0_s, "1/s") << ",\n";
-    o << "  \"v_k0\": " << quantity(r.V_k0_p, "m/s") << ",\n";
-    o << "  \"v_k0_s\": " << quantity(r.V_k0_s, "m/s") << ",\n";
-    o << "  \"omega_0_prestressed\": " << quantity(r.omega0_p_prestressed, "1/s") << ",\n";
-    o << "  \"omega_0_s_prestressed\": " << quantity(r.omega0_s_prestressed, "1/s") << ",\n";
-    o << "  \"rho_bulk\": " << quantity(r.rho_bulk, "kg/m^3") << ",\n";
-    o << "  \"l0\": " << quantity(r.l0, "m") << ",\n";
-    o << "  \"d\": " << quantity(pk.d, "m") << ",\n";
-    o << "  \"d_prime\": " << quantity(pk.d_prime, "m") << ",\n";
-    o << "  \"coordination\": " << quantity(r.coordination, "1") << ",\n";
-    o << "  \"slab\": {\"layer_lo\": " << r.layer_lo << ", \"layer_hi\": " << r.layer_hi
-      << ", \"particles\": " << r.n_particles << ", \"volume\": " << quantity(r.volume, "m^3")
-      << ", \"mass\": " << quantity(r.mass, "kg") << "},\n";
-    o << "  \"ratios\": {\"C_xxxx/C_zzzz\": " << quantity(r.ratio_xxxx_zzzz, "1")
-      << ", \"C_zxzx/C_yxyx\": " << quantity(r.ratio_zxzx_yxyx, "1")
-      << ", \"C_zzzz/C_zxzx\": " << quantity(r.ratio_zzzz_zxzx, "1") << "},\n";
-    o << "  \"major_asymmetry\": " << quantity(r.major_asymmetry, "1") << ",\n";
-    o << "  \"minor_asymmetry\": " << quantity(r.minor_asymmetry, "1") << ",\n";
+      o["hertz_impact"] = {
+          {"velocity", quantity(impact.velocity, "m/s")},
+          {"t_c", quantity(impact.contact_time, "s")},
+          {"max_overlap", quantity(impact.max_overlap, "m")},
+          {"peak_force", quantity(impact.peak_force, "N")},
+          {"A", quantity(impact.hertz_constant, "N/m^1.5")},
+          {"restitution", quantity(damped.restitution, "1")},
+          {"t_c_damped", quantity(damped.time_ratio * impact.contact_time, "s")},
+          {"note", "two free mean particles closing at velocity (the velocity drive's, else 1 m/s): t_c = 2.86827 "
+                   "(m*^2/(R* E*^2 v))^(1/5), delta_max = (5 m* v^2/(4 A))^(2/5) (elastic); restitution and t_c_damped with "
+                   "the case's damping_ratio (and normal_tension), the same at every velocity"}};
+    o["V_pz"] = quantity(r.V_pz, "m/s");
+    o["V_sz"] = quantity(r.V_sz, "m/s");
+    o["V_sy"] = quantity(r.V_sy, "m/s");
+    o["V_pz_frictionless"] = quantity(r.V_pz_frictionless, "m/s");
+    o["V_sz_frictionless"] = quantity(r.V_sz_frictionless, "m/s");
+    o["t_c"] = quantity(tc.t_c, "s");
+    o["restitution"] = quantity(tc.restitution, "1");
+    o["contact_omega"] = quantity(tc.omega, "1/s");
+    o["eta_0"] = quantity(tc.eta0, "1/s");
+    o["omega_0"] = quantity(r.omega0_p, "1/s");
+    o["omega_0_s"] = quantity(r.omega0_s, "1/s");
+    o["v_k0"] = quantity(r.V_k0_p, "m/s");
+    o["v_k0_s"] = quantity(r.V_k0_s, "m/s");
+    o["omega_0_prestressed"] = quantity(r.omega0_p_prestressed, "1/s");
+    o["omega_0_s_prestressed"] = quantity(r.omega0_s_prestressed, "1/s");
+    o["rho_bulk"] = quantity(r.rho_bulk, "kg/m^3");
+    o["l0"] = quantity(r.l0, "m");
+    o["d"] = quantity(pk.d, "m");
+    o["d_prime"] = quantity(pk.d_prime, "m");
+    o["coordination"] = quantity(r.coordination, "1");
+    o["slab"] = {{"layer_lo", r.layer_lo},
+                 {"layer_hi", r.layer_hi},
+                 {"particles", r.n_particles},
+                 {"volume", quantity(r.volume, "m^3")},
+                 {"mass", quantity(r.mass, "kg")}};
+    o["ratios"] = {{"C_xxxx/C_zzzz", quantity(r.ratio_xxxx_zzzz, "1")},
+                   {"C_zxzx/C_yxyx", quantity(r.ratio_zxzx_yxyx, "1")},
+                   {"C_zzzz/C_zxzx", quantity(r.ratio_zzzz_zxzx, "1")}};
+    o["major_asymmetry"] = quantity(r.major_asymmetry, "1");
+    o["minor_asymmetry"] = quantity(r.minor_asymmetry, "1");
     if (L.available) {
-      o << "  \"V_pz_lattice\": " << quantity(L.lw.speed_along(ez), "m/s") << ",\n";
-      o << "  \"V_sz_lattice\": " << quantity(L.lw.speed_along(ex), "m/s") << ",\n";
-      o << "  \"V_sy_lattice\": " << quantity(L.lw.speed_along(ey), "m/s") << ",\n";
-      std::vector<double> wr(L.lw.omega_rotation_k0.begin(), L.lw.omega_rotation_k0.end());
-      o << "  \"lattice\": {\"available\": true, \"note\": \"Bloch waves along z with rotations; speeds include the "
-           "prestress's geometric stiffness (unstressed: without it; affine: rotations held, eq. (10)'s kind)\""
-        << ", \"mass\": " << quantity(L.cell.mass, "kg") << ", \"inertia\": " << quantity(L.cell.inertia, "kg m^2")
-        << ", \"contacts\": " << L.cell.bonds.size() << ", \"lever_arm\": " << quantity(L.arm, "m")
-        << ", \"lever_arm_convention\": \""
-        << contact::lever_arm_name(c.contact.lever_arm) << "\""
-        << ", \"f0\": " << quantity(L.f0, "N") << ", \"l0\": " << quantity(L.l0, "m")
-        << ",\n    \"V_pz_unstressed\": " << quantity(L.lw_unstressed.speed_along(ez), "m/s")
-        << ", \"V_sz_unstressed\": " << quantity(L.lw_unstressed.speed_along(ex), "m/s")
-        << ", \"V_pz_affine\": " << quantity(L.lw.speed_along(ez, false), "m/s")
-        << ", \"V_sz_affine\": " << quantity(L.lw.speed_along(ex, false), "m/s")
-        << ",\n    \"omega_rotation_k0\": " << array_json(wr, "1/s") << "},\n";
-      o << "  \"dispersion\": " << dispersion_json(L) << ",\n";
+      o["V_pz_lattice"] = quantity(L.lw.speed_along(ez), "m/s");
+      o["V_sz_lattice"] = quantity(L.lw.speed_along(ex), "m/s");
+      o["V_sy_lattice"] = quantity(L.lw.speed_along(ey), "m/s");
+      const std::vector<double> wr(L.lw.omega_rotation_k0.begin(), L.lw.omega_rotation_k0.end());
+      o["lattice"] = {{"available", true},
+                      {"note", "Bloch waves along z with rotations; speeds include the prestress's geometric stiffness "
+                               "(unstressed: without it; affine: rotations held, eq. (10)'s kind)"},
+                      {"mass", quantity(L.cell.mass, "kg")},
+                      {"inertia", quantity(L.cell.inertia, "kg m^2")},
+                      {"contacts", L.cell.bonds.size()},
+                      {"lever_arm", quantity(L.arm, "m")},
+                      {"lever_arm_convention", contact::lever_arm_name(c.contact.lever_arm)},
+                      {"f0", quantity(L.f0, "N")},
+                      {"l0", quantity(L.l0, "m")},
+                      {"V_pz_unstressed", quantity(L.lw_unstressed.speed_along(ez), "m/s")},
+                      {"V_sz_unstressed", quantity(L.lw_unstressed.speed_along(ex), "m/s")},
+                      {"V_pz_affine", quantity(L.lw.speed_along(ez, false), "m/s")},
+                      {"V_sz_affine", quantity(L.lw.speed_along(ex, false), "m/s")},
+                      {"omega_rotation_k0", values(wr, "1/s")}};
+      o["dispersion"] = dispersion_json(L);
     } else {
-      o << "  \"lattice\": {\"available\": false, \"note\": \"" << escape(L.note) << "\"},\n";
+      o["lattice"] = {{"available", false}, {"note", L.note}};
     }
-    o << "  \"C\": " << tensor_json(r.C) << ",\n";
-    o << "  \"C_frictionless\": " << tensor_json(r.C_frictionless) << ",\n";
-    o << "  \"C_voigt_sym\": {\"unit\": \"Pa\", \"order\": [\"xx\", \"yy\", \"zz\", \"yz\", \"xz\", \"xy\"], \"values\": [";
+    o["C"] = tensor_json(r.C);
+    o["C_frictionless"] = tensor_json(r.C_frictionless);
+    Json voigt = Json::array();
     for (int I = 0; I < 6; ++I) {
-      o << (I ? ", " : "") << "[";
-      for (int J = 0; J < 6; ++J) o << (J ? ", " : "") << num(r.C_voigt_sym(I, J));
-      o << "]";
+      Json row = Json::array();
+      for (int J = 0; J < 6; ++J) row.push_back(r.C_voigt_sym(I, J));
+      voigt.push_back(row);
     }
-    o << "]}\n}\n";
-    std::cout << o.str();
+    o["C_voigt_sym"] = {{"unit", "Pa"}, {"order", {"xx", "yy", "zz", "yz", "xz", "xy"}}, {"values", voigt}};
+    std::cout << json_text(o);
     return 0;
   }
 

@@ -25,6 +25,8 @@ bool wants_help(const Args& args);
 // option is last with no value.
 std::string option_value(const Args& args, const std::string& short_name, const std::string& long_name);
 bool has_flag(const Args& args, const std::string& name);
+// "--layers LO:HI" with 0 <= LO < HI; `what` names the integers in the message.
+void parse_layers(const std::string& value, const char* what, int* lo, int* hi);
 // Positional arguments (not options and not option values). `valued` lists options taking a value.
 std::vector<std::string> positionals(const Args& args, const std::vector<std::string>& valued);
 

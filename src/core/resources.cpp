@@ -8,18 +8,9 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace granwave {
-namespace {
-
-std::string num(double x, const char* f = "%.3g") {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
-
-}  // namespace
-
 double available_memory() {
   std::ifstream in("/proc/meminfo");
   std::string key, unit;
@@ -46,25 +37,25 @@ std::string bytes_text(double b) {
   const char* unit[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
   int u = 0;
   while (b >= 1000.0 && u < 6) b /= 1000.0, ++u;
-  return num(b, b < 10 ? "%.2g" : b < 1000 ? "%.0f" : "%.3g") + " " + unit[u];
+  return fmt(b < 10 ? "%.2g" : b < 1000 ? "%.0f" : "%.3g", b) + " " + unit[u];
 }
 
 void Assessment::require_finite(const std::string& name, double value, const std::string& keys, bool positive) {
   if (std::isfinite(value) && (!positive || value > 0.0)) return;
-  refusals.push_back(name + " = " + num(value, "%.6g") + " is not " + (positive ? "a finite positive number" : "finite") +
+  refusals.push_back(name + " = " + fmt("%.6g", value) + " is not " + (positive ? "a finite positive number" : "finite") +
                      "; change " + keys);
 }
 
 void check_resources(Assessment& a, const ResourceLimits& l) {
   const ResourceEstimate& e = a.estimate;
   if (!(e.steps <= l.max_steps))
-    a.refusals.push_back(num(e.steps, "%.6g") + " time steps (" + e.size + ") exceed the limit of " + num(l.max_steps, "%.6g") +
+    a.refusals.push_back(fmt("%.6g", e.steps) + " time steps (" + e.size + ") exceed the limit of " + fmt("%.6g", l.max_steps) +
                          " steps; change " + e.steps_keys + ", or raise the limit with --max-steps N");
   std::string source;
   const double limit = memory_limit(l, &source);
   const double need = e.memory * std::max(1, l.parallel_runs);
   if (limit > 0.0 && !(need <= limit))
-    a.refusals.push_back("the run (" + e.size + (e.samples > 0 ? ", " + num(e.samples, "%.6g") + " samples" : std::string()) +
+    a.refusals.push_back("the run (" + e.size + (e.samples > 0 ? ", " + fmt("%.6g", e.samples) + " samples" : std::string()) +
                          ") needs about " + bytes_text(need) +
                          (l.parallel_runs > 1 ? " (" + std::to_string(l.parallel_runs) + " runs at once)" : std::string()) +
                          " of memory, more than the " + bytes_text(limit) + " available (" + source + "); change " +
@@ -96,20 +87,25 @@ std::string describe(const ResourceEstimate& e, const ResourceLimits& l) {
   std::string source;
   const double limit = memory_limit(l, &source);
   std::ostringstream s;
-  s << num(e.steps, "%.6g") << " steps of " << e.size << " (limit " << num(l.max_steps, "%.4g") << ", --max-steps), "
-    << num(e.samples, "%.6g") << " samples; memory ~ " << bytes_text(e.memory) << " of "
+  s << fmt("%.6g", e.steps) << " steps of " << e.size << " (limit " << fmt("%.4g", l.max_steps) << ", --max-steps), "
+    << fmt("%.6g", e.samples) << " samples; memory ~ " << bytes_text(e.memory) << " of "
     << (limit > 0.0 ? bytes_text(limit) : std::string("?")) << " (" << source << "); output ~ " << bytes_text(e.output);
   return s.str();
 }
 
+double leading_number(const std::string& text, std::size_t* used) {
+  *used = 0;
+  try {
+    return std::stod(text, used);
+  } catch (const std::exception&) {
+    *used = 0;
+    return 0.0;
+  }
+}
+
 double parse_count(const std::string& option, const std::string& text) {
   std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  const double v = leading_number(text, &used);
   if (used != text.size() || !std::isfinite(v) || !(v >= 1.0))
     throw InputError(option + " must be a number >= 1 (got '" + text + "')");
   return std::floor(v);
@@ -117,12 +113,7 @@ double parse_count(const std::string& option, const std::string& text) {
 
 double parse_bytes(const std::string& option, const std::string& text) {
   std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  const double v = leading_number(text, &used);
   double scale = 1.0;
   if (used > 0 && used + 1 == text.size()) {
     switch (text.back()) {

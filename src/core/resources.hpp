@@ -59,6 +59,8 @@ std::string bytes_text(double bytes);
 // Command-line values: a positive count ("1e9", "150000") and a size ("8G", "512M", "1e9").
 // Throw InputError naming the option.
 double parse_count(const std::string& option, const std::string& text);
+// The number at the start of `text` (std::stod) and in *used the characters it took (0: none).
+double leading_number(const std::string& text, std::size_t* used);
 double parse_bytes(const std::string& option, const std::string& text);
 
 }  // namespace granwave

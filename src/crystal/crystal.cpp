@@ -6,11 +6,12 @@
 #include <limits>
 #include <memory>
 #include <ostream>
-#include <sstream>
 
-#include "analysis/trace_analysis.hpp"
+#include "analysis/report.hpp"
 #include "config/contact_laws.hpp"
 #include "core/error.hpp"
+#include "core/json.hpp"
+#include "crystal/case_lattice.hpp"
 #include "crystal/guards.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
@@ -30,24 +31,6 @@ void check_system_matches(const config::Case& c, const Packing& p, const std::st
   if (p.nx != k.cells[0] || p.ny != k.cells[1] || p.layers != k.cells[2] || p.fixed_layers != k.fixed_layers ||
       std::abs(p.d - 2.0 * k.radius) > 1e-12 * p.d)
     throw InputError(path + ": the system's packing (cells, fixed layers, radius) is not the one of " + c.path);
-}
-
-std::string json_string(const std::string& s) {
-  std::string o = "\"";
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') o += '\\', o += ch;
-    else if (ch == '\n') o += "\\n";
-    else if (static_cast<unsigned char>(ch) < 0x20) o += ' ';
-    else o += ch;
-  }
-  return o + "\"";
-}
-
-std::string json_array(const std::vector<double>& v) {
-  std::ostringstream o;
-  o << std::setprecision(10) << "[";
-  for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << v[i];
-  return o.str() + "]";
 }
 
 std::string trace_path_for(const config::Case& c, const RunRequest& req) {
@@ -185,31 +168,40 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   if (!root) return 0;
 
   // The measures: `granwave analyze` of the trace just written (one ruler, src/analysis).
-  const analysis::FileReport rep = analysis::report_file(trace_path);
+  analysis::CrystalAnalysisOptions measure;
+  add_case_lattice(measure, c.toml_text, trace_path + ":/case_toml");
+  const analysis::FileReport rep = analysis::report_file(trace_path, measure);
   const Derived d = derive(c);
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;
   const double pss = static_cast<double>(packing.size()) * steps / std::max(seconds, 1e-12);
   const double v_lattice = lattice_speed(c, packing, shear);
   if (req.json) {
-    out << std::setprecision(10) << "{\"schema\": \"granwave-run/1\", \"case\": " << json_string(c.name)
-        << ", \"model\": \"crystal\", \"trace\": " << json_string(trace_path) << ", \"particles\": " << packing.size()
-        << ", \"steps\": " << steps << ", \"samples\": " << samples << ", \"mpi_ranks\": " << ranks
-        << ", \"mpi_rank_seconds\": " << json_array(rank_seconds)
-        << ", \"mpi_rank_message_seconds\": " << json_array(rank_message_seconds)
-        << ", \"mpi_rank_cpu_seconds\": " << json_array(rank_cpu_seconds)
-        << ", \"mpi_rank_message_cpu_seconds\": " << json_array(rank_message_cpu_seconds) << ", \"wall_seconds\": " << seconds
-        << ", \"particle_steps_per_second\": " << pss << ", \"mode\": \"" << (shear ? "S" : "P")
-        << "\", \"speed_theory\": " << (shear ? d.v_s : d.v_p) << ", \"speed_theory_lattice\": ";
-    if (std::isfinite(v_lattice))
-      out << v_lattice;
-    else
-      out << "null";
-    out << ", \"coordination\": " << coordination0
-        << ", \"work_in\": " << work_in << ", \"dissipated\": " << dissipated << ", \"energy_residual\": " << residual
-        << ", \"energy_residual_shadow\": " << shadow_residual << ", \"warnings\": [";
-    for (std::size_t i = 0; i < a.warnings.size(); ++i) out << (i ? ", " : "") << json_string(a.warnings[i]);
-    out << "], \"analysis_error\": " << (rep.error.empty() ? "null" : json_string(rep.error))
-        << ",\n\"analysis\": " << (rep.error.empty() ? rep.json : "null\n") << "}\n";
+    Json j = {{"schema", "granwave-run/1"},
+              {"case", c.name},
+              {"model", "crystal"},
+              {"trace", trace_path},
+              {"particles", packing.size()},
+              {"steps", steps},
+              {"samples", samples},
+              {"mpi_ranks", ranks},
+              {"mpi_rank_seconds", rank_seconds},
+              {"mpi_rank_message_seconds", rank_message_seconds},
+              {"mpi_rank_cpu_seconds", rank_cpu_seconds},
+              {"mpi_rank_message_cpu_seconds", rank_message_cpu_seconds},
+              {"wall_seconds", seconds},
+              {"particle_steps_per_second", pss},
+              {"mode", shear ? "S" : "P"},
+              {"speed_theory", shear ? d.v_s : d.v_p},
+              {"speed_theory_lattice", v_lattice},
+              {"coordination", coordination0},
+              {"work_in", work_in},
+              {"dissipated", dissipated},
+              {"energy_residual", residual},
+              {"energy_residual_shadow", shadow_residual},
+              {"warnings", a.warnings}};
+    j["analysis_error"] = rep.error.empty() ? Json(nullptr) : Json(rep.error);
+    j["analysis"] = rep.json;
+    out << json_text(j);
   } else {
     out << std::setprecision(5);
     out << "crystal " << c.name << ": " << packing.size() << " particles, " << steps << " steps in " << seconds << " s (" << pss

@@ -8,16 +8,11 @@
 
 #include "config/contact_laws.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "crystal/simulation.hpp"
 
 namespace granwave::crystal {
 namespace {
-
-std::string fmt(const char* f, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
 
 // Measured costs (granwave run, /usr/bin/time maxrss): 18.6 MB with 3200 particles, 72.0 MB with
 // 51200, 245 MB with 204800 (1125 bytes per particle: state, contact list with history, packing;

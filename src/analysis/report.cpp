@@ -1,0 +1,33 @@
+#include "analysis/report.hpp"
+
+#include "analysis/trace_json.hpp"
+#include "analysis/trace_text.hpp"
+#include "core/error.hpp"
+
+namespace granwave::analysis {
+
+FileReport report_file(const std::string& path, const CrystalAnalysisOptions& options) {
+  FileReport r;
+  const TraceFile f = read_trace(path);
+  try {
+    if (f.model == "chain") {
+      const ChainAnalysis a = analyze_chain(f.chain);
+      r.text = to_text(f, a, false);
+      r.json = to_json(f, a);
+    } else {
+      const CrystalAnalysis a = analyze_crystal(f.crystal, options);
+      r.text = to_text(f, a, false);
+      r.json = to_json(f, a);
+    }
+  } catch (const InputError& e) {
+    r.error = e.what();
+    r.text.clear();
+    r.json = nullptr;
+  }
+  const std::string head = "measures (granwave analyze " + path + ", the same code; per-" +
+                           (f.model == "chain" ? "contact" : "layer") + " table there):\n";
+  r.text = r.error.empty() ? head + r.text : "measures: none, " + r.error + "\n";
+  return r;
+}
+
+}  // namespace granwave::analysis

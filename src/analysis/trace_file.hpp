@@ -1,0 +1,50 @@
+// Reading a trace file (data/SCHEMA.md §3) of any code -- granwave, YADE, LIGGGHTS, LAMMPS -- into
+// memory: the crystal's layer series or the chain's contact forces, with what the root attributes
+// and the case text say (excitation mode, the case's [analysis] readings). Nothing is measured here.
+#pragma once
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/measures.hpp"
+
+namespace granwave::analysis {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct CrystalTrace {
+  std::vector<double> time;      // [nt] s
+  std::vector<double> layer_z;   // [nlayers] m, from the innermost driven layer
+  std::size_t nt = 0, nlayers = 0;
+  double l0 = 0.0;               // layer spacing (m): /system attr l0, else from layer_z
+  int fixed_layers = 0;          // at each end
+  char mode = 'P';               // 'P' or 'S' (from case_toml, else from the field amplitudes)
+  std::string mode_source;       // "case_toml" | "inferred"
+  // Row-major [nt, nlayers]; empty when the trace lacks the dataset.
+  std::vector<double> stress_zz, stress_zx, displacement_z, displacement_x, velocity_z, velocity_x;
+  std::vector<double> coordination;
+  // The case's `[analysis] period` (data/SCHEMA.md §1), when its text is in the trace and sets it.
+  std::optional<PeriodReading> period;
+  // The case's `[analysis] wavenumber_speed`, likewise.
+  std::optional<WavenumberSpeed> wavenumber_speed;
+};
+
+struct ChainTrace {
+  std::vector<double> time;
+  std::size_t nt = 0, ncontacts = 0;
+  std::vector<double> contact_force;     // [nt, ncontacts]
+  std::vector<double> contact_position;  // [ncontacts] m along the chain (NaN if no system)
+};
+
+struct TraceFile {
+  std::string path, code, code_version, case_name, time_convention;
+  std::string case_toml;  // the case's text (root attribute), empty when the trace has none
+  std::string model;  // "crystal" | "chain"
+  CrystalTrace crystal;
+  ChainTrace chain;
+};
+TraceFile read_trace(const std::string& path);  // throws InputError
+
+}  // namespace granwave::analysis
