@@ -2,6 +2,8 @@
 // the members the figures show, their data file, summary.md and the plotting script.
 #include "sweep/crystal_figures.hpp"
 
+#include "core/format.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -225,11 +227,6 @@ void write_captured(io::H5Writer& w, const std::string& g, const Captured& c) {
   }
 }
 
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 std::string pm(double v, double e, const char* f = "%.2f") { return fmt(f, v) + " ± " + fmt("%.2g", e); }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // study-level results, the runner and its table. The study file is crystal_study_file.cpp.
 #include "sweep/crystal_study.hpp"
 
+#include "core/format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,12 +28,6 @@
 namespace granwave::sweep {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 }  // namespace
 
 const char* to_string(CrystalVary v) {
