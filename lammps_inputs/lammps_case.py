@@ -197,9 +197,23 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
         thermo=max(1, facts["nsteps"] // 10), nsteps=facts["nsteps"])
 
 
-def render(case: dict, system: dict, workdir: str) -> dict:
+def render_layers(case: dict, system: dict, workdir: str) -> dict:
+    """The benchmark's deck (bench/side_by_side.py): per-layer means written by LAMMPS itself (`compute
+    stress/atom`, `fix ave/chunk` into layers.txt), no dumps. Raises Unsupported beyond its crystals."""
+    v = DRV.layer_deck_values(case, system)
+    v.update(v["law"].bench_lammps(v))   # pair_style, pair_coeff, variant: the law's LAMMPS mapping
+    v["format"] = '" %.10g"'   # a leading space separates the columns
+    deck = _template("crystal_layers.in.tmpl").substitute(v)
+    return DRV.write_layer_deck(deck, case, system, workdir, "LAMMPS data file (benchmark)", v)
+
+
+def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dict:
     """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...).
-    Raises Unsupported for a case LAMMPS cannot run with the same law."""
+    output "dumps": the crosscheck's deck (per-atom and per-contact dumps for the trace file);
+    "layers": the benchmark's (render_layers). Raises Unsupported for a case LAMMPS cannot run with
+    the same law."""
+    if output == "layers":
+        return render_layers(case, system, workdir)
     facts = DRV.run_facts(case, system)
     scheme = case.get("integrator", {}).get("scheme", "verlet")
     if scheme != "verlet":
@@ -350,24 +364,14 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
                   extra_attrs=extra)
 
 
-class Lammps(DRV.DeckDriver):
-    name, code, title, package = "lammps_case", "lammps", "LAMMPS", "lammps"
-    exe_option, exe_default, version_prefix = "lmp", os.environ.get("XC_LMP", "lmp"), "LAMMPS ("
-    refused = (Unsupported,)
-    doc = __doc__
-
-    def command(self, exe):
-        return [exe, "-in", "in.case", "-log", "log.lammps", "-nocite"]
-
-    def render(self, case, system, workdir):
-        return render(case, system, workdir)
-
-    def convert(self, *args):
-        convert(*args)
+DRIVER = DRV.DeckDriver(name="lammps_case", code="lammps", title="LAMMPS", package="lammps", exe_option="lmp",
+                        exe_default=os.environ.get("XC_LMP", "lmp"), version_prefix="LAMMPS (", refused=(Unsupported,),
+                        render=render, convert=convert, run_args=("-in", "in.case", "-log", "log.lammps", "-nocite"),
+                        doc=__doc__)
 
 
 def main(argv) -> int:
-    return Lammps().main(argv)
+    return DRIVER.main(argv)
 
 
 if __name__ == "__main__":

@@ -51,8 +51,23 @@ def _data_file(path, n_types, box, types, radius, mass, pos):
     DRV.data_file(path, "LIGGGHTS data file (atom_style granular)", "Atoms", n_types, box, types, radius, mass, pos)
 
 
-def render(case: dict, system: dict, workdir: str) -> dict:
-    """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...)."""
+def render_layers(case: dict, system: dict, workdir: str) -> dict:
+    """The benchmark's deck (bench/side_by_side.py): per-layer means written by LIGGGHTS itself (`compute
+    stress/atom`, `fix ave/spatial` into layers.txt), no dumps. Raises Unsupported beyond its crystals."""
+    v = DRV.layer_deck_values(case, system)
+    # LIGGGHTS 3.8 refuses shear history with newton on (pair_gran.cpp: "requires newton pair off")
+    v.update(newton="off" if v["friction"] else "on")
+    v.update(v["law"].bench_liggghts(v))   # properties, pair_style, variant: the law's LIGGGHTS mapping
+    deck = _template("crystal_layers.in.tmpl").substitute(v)
+    return DRV.write_layer_deck(deck, case, system, workdir, "LIGGGHTS data file (benchmark)", v)
+
+
+def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dict:
+    """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...).
+    output "dumps": the crosscheck's deck (per-atom and per-contact dumps for the trace file);
+    "layers": the benchmark's (render_layers)."""
+    if output == "layers":
+        return render_layers(case, system, workdir)
     facts = DRV.run_facts(case, system)
     dt, nsteps, every = facts["dt"], facts["nsteps"], facts["every"]
     if facts["model"] == "chain":
@@ -254,21 +269,14 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
                   extra_attrs=extra)
 
 
-class Liggghts(DRV.DeckDriver):
-    name, code, title, package = "liggghts_case", "liggghts", "LIGGGHTS", "liggghts"
-    exe_option, exe_default, version_prefix = "liggghts", "liggghts", "LIGGGHTS"
-    refused = (ValueError,)     # a law LIGGGHTS cannot express (damping_ratio beyond its hertz damping)
-    doc = __doc__
-
-    def render(self, case, system, workdir):
-        return render(case, system, workdir)
-
-    def convert(self, *args):
-        convert(*args)
+# refused: a law LIGGGHTS cannot express (damping_ratio beyond its hertz damping)
+DRIVER = DRV.DeckDriver(name="liggghts_case", code="liggghts", title="LIGGGHTS", package="liggghts",
+                        exe_option="liggghts", exe_default="liggghts", version_prefix="LIGGGHTS", refused=(ValueError,),
+                        render=render, convert=convert, doc=__doc__)
 
 
 def main(argv) -> int:
-    return Liggghts().main(argv)
+    return DRIVER.main(argv)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@ data file, running the code, the trace datasets every driver writes alike, and t
 a deck driver (render, run, convert, `XC_SUMMARY`). Each driver keeps its own deck language, its
 code's conventions and the conversion of its code's output.
 
-Imports only numpy and xclib.traces, so YADE's own Python can import it (run_case.py puts
+Imports only numpy and xclib.traces, codefacts and laws, so YADE's own Python can import it (run_case.py puts
 crosscheck/ on sys.path relative to its own file)."""
 from __future__ import annotations
 
@@ -21,7 +21,9 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from . import laws as L
 from . import traces as T
+from .codefacts import Unsupported
 
 
 def g(x: float) -> str:
@@ -121,6 +123,56 @@ def crystal_source(x: SimpleNamespace) -> dict:
                 "exclude type 2 2 exclude type 2 3 exclude type 3 3", free_types="1 3" if vdrive else "1")
 
 
+# ------------------------------------------------------------------------------- benchmark decks
+# The benchmark's decks (bench/side_by_side.py, which explains every choice): the fastest set-up of each
+# code that computes the same thing as `granwave run`, writing per-layer means itself instead of dumps.
+SKIN_OVER_RADIUS = 0.2       # < 0.83 a: only the touching shell is in the neighbour list
+NEIGH_EVERY = 10             # displacement check every 10 steps (no rebuild happens at all)
+
+
+def layer_deck_values(case: dict, system: dict) -> dict:
+    """The numbers both codes' per-layer decks need; Unsupported for a case they cannot render (they
+    render the benchmark's crystals; anything else is refused, not approximated)."""
+    c = T.contact_params(case)
+    ex = T.excitation(case)
+    law = L.law_of(c)
+    bad = list(law.bench_refusals(c))   # what the law's decks cannot render (xclib.laws)
+    if case["case"]["model"] != "crystal":
+        bad.append("model = %r (crystal only)" % case["case"]["model"])
+    if c["gamma_n"] != 0 or c["gamma_t"] != 0:
+        bad.append("gamma_n, gamma_t must be 0 (LAMMPS' dashpot is per unit mass)")
+    if c["mu_static"] != c["mu_dynamic"]:
+        bad.append("mu_static != mu_dynamic (one mu in LAMMPS and LIGGGHTS)")
+    if c["normal_tension"] != "allow":
+        bad.append("normal_tension must be \"allow\"")
+    if ex["mode"] != "P" or ex["drive"] != "displacement":
+        bad.append("excitation must be a P displacement step")
+    if np.max(system["radius"]) != np.min(system["radius"]):
+        bad.append("polydisperse radii (the decks take one skin and mass from density)")
+    if bad:
+        raise Unsupported("case %s cannot be rendered: %s" % (case["case"]["name"], "; ".join(bad)))
+    lay = T.crystal_layout(system)
+    f = run_facts(case, system)
+    r = float(np.min(system["radius"]))
+    z0 = float(np.min(np.asarray(system["position"], float)[lay["layer"] == 0, 2]))
+    friction = law.tangential(c)
+    return dict(case_name=case["case"]["name"], dt=g(f["dt"]), nsteps=f["nsteps"], every=f["every"], law=law,
+                youngs=c.get("youngs_modulus", 0.0), poisson=c.get("poisson_ratio", 0.0),
+                skin=g(SKIN_OVER_RADIUS * r), neigh_every=NEIGH_EVERY, l0=g(lay["l0"]),
+                origin=g(z0 - 0.5 * lay["l0"]), friction=friction, kn=c["kn"], kt=c["kt"], mu=c["mu_static"],
+                excitation_line="displace_atoms  source move 0 0 %s units box" % g(float(ex["amplitude"]) * lay["d"]),
+                integrator="nve/sphere" if friction else "nve", n=f["n"])
+
+
+def write_layer_deck(deck: str, case: dict, system: dict, workdir: str, title: str, v: dict) -> dict:
+    """in.case and data.system of a per-layer deck (atoms as the crystal decks' data file: the masses
+    as densities, monodisperse); what the benchmark runs by."""
+    crystal_atoms(crystal(case, system), workdir, title, "Atoms")
+    with open(os.path.join(workdir, "in.case"), "w") as f:
+        f.write(deck)
+    return dict(deck="in.case", nsteps=v["nsteps"], every=v["every"], n=v["n"])
+
+
 # ------------------------------------------------------------------------------- trace datasets
 def chain_potential(a: np.ndarray, r: np.ndarray, x: np.ndarray, lay: dict) -> float:
     """Hertz energy 2/5 A delta^5/2 of the chain's contacts (and the wall's) at bead positions x."""
@@ -215,18 +267,20 @@ def find_exe(name: str) -> str | None:
 class DeckDriver:
     """A driver that renders a deck, runs the code on it and converts its dumps to a trace file.
 
-    A subclass (or an instance with these attributes) gives: `name` (the script's name in messages),
-    `code` (trace and summary), `title` (LAMMPS, LIGGGHTS), `package` (Debian's), `exe_option`,
-    `exe_default`, `refused` (the exceptions of a case the code cannot run: exit 2), `render(case,
-    system, workdir) -> facts`, `convert(workdir, case, text, system_path, out, facts, version)`,
-    `command(exe) -> argv` (run in the workdir) and `version_prefix` (the log line naming the version)."""
+    name: the script's name in messages; code: the trace's and summary's code name; title: LAMMPS,
+    LIGGGHTS; package: Debian's; exe_option, exe_default: the executable's option; version_prefix: the
+    log line naming the version; refused: the exceptions of a case the code cannot run (exit 2);
+    render(case, system, workdir) -> facts; convert(workdir, case, text, system_path, out, facts,
+    version); run_args: the code's arguments after the executable (run in the workdir); doc: --help."""
 
-    name = code = title = package = exe_option = exe_default = version_prefix = ""
-    refused: tuple = (ValueError,)
-    doc = ""
+    def __init__(self, *, name, code, title, package, exe_option, exe_default, version_prefix, refused, render,
+                 convert, run_args=("-in", "in.case"), doc=""):
+        self.name, self.code, self.title, self.package = name, code, title, package
+        self.exe_option, self.exe_default, self.version_prefix = exe_option, exe_default, version_prefix
+        self.refused, self.render, self.convert, self.run_args, self.doc = refused, render, convert, run_args, doc
 
     def command(self, exe: str) -> list:
-        return [exe, "-in", "in.case"]
+        return [exe, *self.run_args]
 
     def version(self, log: str) -> str:
         for ln in log.splitlines():
