@@ -259,10 +259,6 @@ def run_binary(cmd: list, work: str, timeout: float):
     return "ok", rc, time.time() - t
 
 
-def find_exe(name: str) -> str | None:
-    return shutil.which(name)
-
-
 # ------------------------------------------------------------------------------- a deck driver's command line
 class DeckDriver:
     """A driver that renders a deck, runs the code on it and converts its dumps to a trace file.
@@ -343,7 +339,7 @@ class DeckDriver:
             print("rendered %s" % work)
             return 0
         exe_name = getattr(a, self.exe_option.replace("-", "_"))
-        exe = find_exe(exe_name)
+        exe = shutil.which(exe_name)
         if exe is None:
             self.say("%s executable %s not found (apt-get install %s)" % (self.title, exe_name, self.package))
             return 127
