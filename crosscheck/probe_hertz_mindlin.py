@@ -46,6 +46,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from xclib import driver as DRV  # noqa: E402
 from xclib import hertz_mindlin as HM  # noqa: E402
 
 A, RHO, E, NU, MU = 1e-3, 2000.0, 63e9, 0.23, 0.5
@@ -99,15 +100,7 @@ def _fn_ft(a):
 
 
 # ---------------------------------------------------------------------- LAMMPS and LIGGGHTS decks
-_LMP_HEAD = """units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-newton off
-comm_modify vel yes
-region box block -0.02 0.02 -0.02 0.02 -0.02 0.02 units box
-create_box 1 box
-"""
+_LMP_HEAD = DRV.lammps_two_spheres(1)
 _LIG_HEAD = """units si
 atom_style granular
 atom_modify map array

@@ -22,20 +22,15 @@ are [samples, layers] (or [samples, contacts]), so the resident size does not gr
 """
 from __future__ import annotations
 
-import json
 import math
 import os
-import shutil
-import signal
-import string
-import subprocess
 import sys
-import time
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+from xclib import driver as DRV  # noqa: E402
 from xclib import dumps as D  # noqa: E402
 from xclib import laws as L  # noqa: E402
 from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, MIXED_ARM, Unsupported  # noqa: E402,F401
@@ -56,13 +51,11 @@ TIME_CONVENTION = ("synchronous: LAMMPS velocity Verlet, dumps after a whole ste
 WALL = os.environ.get("XC_LAMMPS_WALL", "plane")
 
 
-def _template(name: str) -> string.Template:
-    with open(os.path.join(HERE, "templates", name)) as f:
-        return string.Template(f.read())
+def _template(name: str):
+    return DRV.template(HERE, name)
 
 
-def _g(x: float) -> str:
-    return repr(float(x))
+_g = DRV.g
 
 
 def mass_lines(m: np.ndarray) -> str:
@@ -81,17 +74,7 @@ def mass_lines(m: np.ndarray) -> str:
 
 
 def _data_file(path, n_types, box, types, radius, mass, pos):
-    vol = 4.0 / 3.0 * math.pi * radius ** 3
-    with open(path, "w") as f:
-        f.write("granwave system -> LAMMPS data file (atom_style sphere)\n\n")
-        f.write("%d atoms\n%d atom types\n\n" % (len(radius), n_types))
-        for lo, hi, ax in zip(box[0], box[1], "xyz"):
-            f.write("%s %s %slo %shi\n" % (_g(lo), _g(hi), ax, ax))
-        f.write("\nAtoms # sphere\n\n")
-        for k in range(len(radius)):
-            # atom-ID atom-type diameter density x y z
-            f.write("%d %d %s %s %s %s %s\n" % (k + 1, types[k], _g(2 * radius[k]), _g(mass[k] / vol[k]),
-                                               _g(pos[k, 0]), _g(pos[k, 1]), _g(pos[k, 2])))
+    DRV.data_file(path, "LAMMPS data file (atom_style sphere)", "Atoms # sphere", n_types, box, types, radius, mass, pos)
 
 
 def e_star(e1, nu1, e2, nu2) -> float:
@@ -111,13 +94,7 @@ def render_chain(case: dict, system: dict, workdir: str, facts: dict) -> str:
     e = np.asarray(system["youngs_modulus"], float)
     nu = np.asarray(system["poisson_ratio"], float)
     n = len(m)
-    mats = []
-    types = np.zeros(n, int)
-    for k in range(n):
-        key = (float(e[k]), float(nu[k]))
-        if key not in mats:
-            mats.append(key)
-        types[k] = mats.index(key) + 1
+    mats, types = DRV.material_types(e, nu)
     nt = len(mats)
     # eq. (13) per pair of bead materials; checked against the system's Hertz constants below
     kmat = {(a, b): 4.0 / 3.0 * e_star(*mats[a - 1], *mats[b - 1]) for a in range(1, nt + 1) for b in range(a, nt + 1)}
@@ -173,9 +150,7 @@ def render_chain(case: dict, system: dict, workdir: str, facts: dict) -> str:
         lo[1], hi[1] = pos[-1, 1] - 1.01 * sphere_r, pos[-1, 1] + 1.01 * sphere_r
         lo[2], hi[2] = pos[-1, 2] - 1.01 * sphere_r, pos[-1, 2] + 1.01 * sphere_r
     _data_file(os.path.join(workdir, "data.system"), ntypes, (lo, hi), ptypes, radius, mass, ppos)
-    v = np.asarray(system["velocity"], float)
-    vel = "\n".join("set             atom %d vx %s vy %s vz %s" % (k + 1, _g(v[k, 0]), _g(v[k, 1]), _g(v[k, 2]))
-                    for k in range(n) if np.any(v[k] != 0))
+    vel = DRV.velocity_lines(np.asarray(system["velocity"], float))
     facts.update(has_wall=lay["has_wall"], wall=("sphere R = %g m" % sphere_r) if sphere_r else "plane", n_beads=n,
                  wall_atom=(n + 1) if sphere_r else None)
     return _template("chain.in.tmpl").substitute(
@@ -193,17 +168,9 @@ def crystal_style(c: dict, mass: np.ndarray) -> dict:
 
 
 def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
-    c = T.contact_params(case)
-    ex = T.excitation(case)
-    lay = T.crystal_layout(system)
-    m = np.asarray(system["mass"], float)
-    r = np.asarray(system["radius"], float)
-    pos = np.asarray(system["position"], float)
-    fixed = np.asarray(system["fixed"], int).astype(bool)
-    layer = lay["layer"]
-    # types: 1 free, 2 fixed (top, and for a velocity drive the wall below the source), 3 the source
-    types = np.where(T.source_mask(fixed, layer, lay["fixed_layers"], ex["drive"]), 3, np.where(fixed, 2, 1))
-    sty = crystal_style(c, m)
+    x = DRV.crystal(case, system)
+    c = x.c
+    sty = crystal_style(c, x.m)
     for key, used in sty["conventions"].items():
         asked = c.get(key)
         law = L.law_of(c)
@@ -218,45 +185,40 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
     if c["mu_static"] != c["mu_dynamic"] and sty["tangential"]:
         sys.stderr.write("lammps_case: LAMMPS has one Coulomb mu; using mu_static=%g (mu_dynamic=%g ignored: a "
                          "documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
-    zmin, zmax = float(pos[:, 2].min()), float(pos[:, 2].max())
-    rmax = float(r.max())
-    lo = [0.0, 0.0, zmin - 3 * rmax]
-    hi = [lay["box_x"], lay["box_y"], zmax + 3 * rmax]
-    p = pos.copy()
-    p[:, 0] = np.mod(p[:, 0] - lo[0], lay["box_x"]) + lo[0]
-    p[:, 1] = np.mod(p[:, 1] - lo[1], lay["box_y"]) + lo[1]
-    _data_file(os.path.join(workdir, "data.system"), 3, (lo, hi), types, r, m, p)
-    axis = (0, 0, 1) if ex["mode"] == "P" else (1, 0, 0)
-    if ex["drive"] == "displacement":
-        s = float(ex["amplitude"]) * lay["d"]
-        exl = "displace_atoms  source move %s %s %s units box" % tuple(_g(s * a) for a in axis)
-    else:
-        vv = float(ex["amplitude"])
-        exl = "velocity        source set %s %s %s units box" % tuple(_g(vv * a) for a in axis)
-    vdrive = ex["drive"] != "displacement"
-    # pairs of two fixed particles; with a velocity drive the source (3) feels the wall (2)
-    exclude = "exclude type 2 2" if vdrive else "exclude type 2 2 exclude type 2 3 exclude type 3 3"
-    facts.update(lay={k: v for k, v in lay.items() if k != "layer"}, conventions=sty["conventions"],
+    DRV.crystal_atoms(x, workdir, "LAMMPS data file (atom_style sphere)", "Atoms # sphere")
+    src = DRV.crystal_source(x)
+    facts.update(lay={k: v for k, v in x.lay.items() if k != "layer"}, conventions=sty["conventions"],
                  pair_style=sty["style"], tangential=sty["tangential"], damped=T.has_dashpot(c), clip=sty["clip"])
     return _template("crystal.in.tmpl").substitute(
-        case_name=case["case"]["name"], mass_lines=mass_lines(m), skin=_g(0.2 * float(r.min())), exclude=exclude,
-        free_types="1 3" if vdrive else "1", pair_comment=sty["comment"], pair_lines=sty["lines"], dt=_g(facts["dt"]),
-        excitation_line=exl, tangential_columns=" p1 p2 p3" if sty["tangential"] else "",
+        case_name=case["case"]["name"], mass_lines=mass_lines(x.m), skin=_g(0.2 * float(x.r.min())),
+        exclude=src["exclude"], free_types=src["free_types"], pair_comment=sty["comment"], pair_lines=sty["lines"],
+        dt=_g(facts["dt"]), excitation_line=src["excitation_line"], tangential_columns=" p1 p2 p3" if sty["tangential"] else "",
         every=facts["every"],
         thermo=max(1, facts["nsteps"] // 10), nsteps=facts["nsteps"])
 
 
-def render(case: dict, system: dict, workdir: str) -> dict:
+def render_layers(case: dict, system: dict, workdir: str) -> dict:
+    """The benchmark's deck (bench/side_by_side.py): per-layer means written by LAMMPS itself (`compute
+    stress/atom`, `fix ave/chunk` into layers.txt), no dumps. Raises Unsupported beyond its crystals."""
+    v = DRV.layer_deck_values(case, system)
+    v.update(v["law"].bench_lammps(v))   # pair_style, pair_coeff, variant: the law's LAMMPS mapping
+    v["format"] = '" %.10g"'   # a leading space separates the columns
+    deck = _template("crystal_layers.in.tmpl").substitute(v)
+    return DRV.write_layer_deck(deck, case, system, workdir, "LAMMPS data file (benchmark)", v)
+
+
+def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dict:
     """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...).
-    Raises Unsupported for a case LAMMPS cannot run with the same law."""
-    model = case["case"]["model"]
-    dt = T.timestep(case, system)
-    nsteps, every = T.sampling(case, dt)
-    facts = dict(model=model, dt=dt, nsteps=nsteps, every=every, n=len(system["mass"]))
+    output "dumps": the crosscheck's deck (per-atom and per-contact dumps for the trace file);
+    "layers": the benchmark's (render_layers). Raises Unsupported for a case LAMMPS cannot run with
+    the same law."""
+    if output == "layers":
+        return render_layers(case, system, workdir)
+    facts = DRV.run_facts(case, system)
     scheme = case.get("integrator", {}).get("scheme", "verlet")
     if scheme != "verlet":
         sys.stderr.write("lammps_case: the case says scheme = \"%s\"; LAMMPS runs velocity Verlet at the same dt\n" % scheme)
-    deck = (render_chain if model == "chain" else render_crystal)(case, system, workdir, facts)
+    deck = (render_chain if facts["model"] == "chain" else render_crystal)(case, system, workdir, facts)
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
     return facts
@@ -315,38 +277,26 @@ def convert_chain(workdir, system, facts):
                 cf[nc - 1] = -float(f[w, 0].sum()) if np.any(w) else 0.0
         if lay["has_wall"] and wall_atom is None:
             cf[nc - 1] = -D.columns(cols, rows, ["f_wall[2]"])[-1, 0]   # fix wall/gran's own force on the last bead
-        dl = r[:-1] + r[1:] - np.diff(x)
-        if lay["has_wall"]:
-            dl = np.append(dl, r[-1] - (lay["wall_x"] - x[-1]))
         times.append(s * facts["dt"])
         cf_rows.append(cf)
         ke.append(0.5 * float(np.sum(m * v * v)))
-        pe.append(float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5)))
-    cf = np.array(cf_rows).reshape(len(times), nc)
-    data = {"/chain/contact_force": cf, "/chain/bead_force": T.bead_force_from_contacts(cf, n, lay["has_wall"]),
-            "/energy/kinetic": np.array(ke), "/energy/potential": np.array(pe)}
+        pe.append(DRV.chain_potential(a, r, x, lay))
+    data = DRV.chain_datasets(np.array(cf_rows).reshape(len(times), nc), ke, pe, n, lay["has_wall"])
     return np.array(times), data, {"wall": facts["wall"]}
 
 
 def convert_crystal(workdir, case, system, facts):
-    lay = T.crystal_layout(system)
+    x = DRV.crystal(case, system)
+    lay, layer, fixed, mass, r, cp = x.lay, x.layer, x.fixed, x.m, x.r, x.c
     nl = lay["nlayers"]
-    fixed = np.asarray(system["fixed"], int).astype(bool)
-    layer = lay["layer"]
-    x0 = np.asarray(system["position"], float)
-    mass = np.asarray(system["mass"], float)
-    r = np.asarray(system["radius"], float)
-    cp = T.contact_params(case)
     clip = facts["clip"]
     dl = L.law_of(cp).lammps_dump(cp)    # the law's dashpot correction (Hertz-Mindlin: per contact)
     gamma_n, kn, hertz = dl["gamma_n"], dl["kn"], dl["hertz"]
-    mobile = ~fixed
-    if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
-        mobile = mobile | T.source_mask(fixed, layer, lay["fixed_layers"], "velocity")
+    mobile = DRV.mobile(case, x)
     bx, by, dt = lay["box_x"], lay["box_y"], facts["dt"]
     ncol = 6 if facts["tangential"] else 3
-    times = []
-    out = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx", "coord")}
+    times, coord = [], []
+    layers = DRV.LayerRows(lay, x.pos)
     assumed_rows = unrecovered = 0
     balance = 0.0
     n_atoms = len(r)
@@ -383,22 +333,12 @@ def convert_crystal(workdir, case, system, facts):
                 unrecovered += int(np.count_nonzero(assumed & (off[i] | off[j])))
         a, b, fab = D.on_lower_id(i, j, f)
         szz, szx = T.layer_stress(p, r, layer, fixed, a, b, fab, bx, by, lay["l0"], nl)
-        du = p - x0
-        du[:, 0] -= bx * np.round(du[:, 0] / bx)
-        du[:, 1] -= by * np.round(du[:, 1] / by)
         times.append(s * dt)
-        out["szz"].append(szz)
-        out["szx"].append(szx)
-        out["uz"].append(T.layer_mean(du[:, 2], layer, nl))
-        out["ux"].append(T.layer_mean(du[:, 0], layer, nl))
-        out["vz"].append(T.layer_mean(v[:, 2], layer, nl))
-        out["vx"].append(T.layer_mean(v[:, 0], layer, nl))
+        layers.add(p, v, layer, szz, szx)
         touch = ~(fixed[a] & fixed[b])
-        out["coord"].append(float(np.count_nonzero(~fixed[a[touch]]) + np.count_nonzero(~fixed[b[touch]])) / nfree)
-    data = {"/crystal/layer_z": lay["layer_z"], "/crystal/coordination": np.array(out["coord"])}
-    for key, name in (("szz", "layer_stress_zz"), ("szx", "layer_stress_zx"), ("uz", "layer_displacement_z"),
-                      ("ux", "layer_displacement_x"), ("vz", "layer_velocity_z"), ("vx", "layer_velocity_x")):
-        data["/crystal/" + name] = np.array(out[key]).reshape(len(times), nl)
+        coord.append(float(np.count_nonzero(~fixed[a[touch]]) + np.count_nonzero(~fixed[b[touch]])) / nfree)
+    data = layers.datasets(len(times))
+    data["/crystal/coordination"] = np.array(coord)
     if unrecovered:
         sys.stderr.write("lammps_case: %d of %d contact rows cut by the dump-time Coulomb test do not add up to the "
                          "per-atom forces when taken as sliding in the step (trace attribute "
@@ -424,111 +364,14 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
                   extra_attrs=extra)
 
 
-def lammps_version(log: str) -> str:
-    for ln in log.splitlines():
-        if ln.startswith("LAMMPS ("):
-            return ln.strip()
-    return "LAMMPS"
-
-
-def _die_with_parent():
-    """LAMMPS gets SIGKILL if this driver dies (Linux prctl PR_SET_PDEATHSIG): a harness that kills
-    the driver never leaves a LAMMPS running. Its Open MPI singleton helper (orted) exits with it."""
-    try:
-        import ctypes
-        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)
-    except Exception:  # noqa: BLE001 -- not Linux: the process group below still holds
-        pass
-
-
-def run_lammps(exe, work, timeout):
-    """(status, returncode, wall). LAMMPS stays in this driver's process group (the harness kills
-    the group at its own timeout) and dies with the driver; at this driver's timeout it is killed."""
-    t = time.time()
-    with open(os.path.join(work, "log.stdout"), "w") as lo:
-        p = subprocess.Popen([exe, "-in", "in.case", "-log", "log.lammps", "-nocite"], cwd=work, stdout=lo,
-                             stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
-        try:
-            rc = p.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            p.kill()
-            p.wait()
-            return "timeout", None, time.time() - t
-    return "ok", rc, time.time() - t
+DRIVER = DRV.DeckDriver(name="lammps_case", code="lammps", title="LAMMPS", package="lammps", exe_option="lmp",
+                        exe_default=os.environ.get("XC_LMP", "lmp"), version_prefix="LAMMPS (", refused=(Unsupported,),
+                        render=render, convert=convert, run_args=("-in", "in.case", "-log", "log.lammps", "-nocite"),
+                        doc=__doc__)
 
 
 def main(argv) -> int:
-    import argparse
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case")
-    ap.add_argument("system")
-    ap.add_argument("out")
-    ap.add_argument("--workdir", help="where the deck, data file and dumps go (default: OUT's name + .lammps)")
-    ap.add_argument("--timeout", type=float, default=1800)
-    ap.add_argument("--render-only", action="store_true")
-    ap.add_argument("--lmp", default=os.environ.get("XC_LMP", "lmp"), help="LAMMPS executable (default $XC_LMP or lmp)")
-    ap.add_argument("--keep-dumps", action="store_true", help="keep dump.atoms / dump.pairs after the conversion")
-    ap.add_argument("--convert-only", action="store_true", help="convert the dumps already in --workdir (kept with "
-                    "--keep-dumps) without running LAMMPS")
-    a = ap.parse_args(argv)
-    if os.path.exists(a.out):
-        print("lammps_case: %s exists: nothing is overwritten" % a.out, file=sys.stderr)
-        return 2
-    work = a.workdir or (a.out + ".lammps")
-    case, text = T.load_case(a.case)
-    system = T.read_system(a.system)
-    if a.convert_only:
-        import tempfile
-        facts = render(case, system, tempfile.mkdtemp(prefix="lammps_render_"))
-        t = time.time()
-        convert(work, case, text, a.system, a.out, facts, "LAMMPS (converted from kept dumps)")
-        print("XC_SUMMARY " + json.dumps(dict(code="lammps", case=case["case"]["name"], convert_s=time.time() - t,
-                                              trace=a.out)))
-        return 0
-    os.makedirs(work, exist_ok=False)
-    try:
-        facts = render(case, system, work)
-    except Unsupported as e:
-        print("lammps_case: %s: %s" % (a.case, e), file=sys.stderr)
-        return 2
-    if a.render_only:
-        print("rendered %s" % work)
-        return 0
-    exe = shutil.which(a.lmp)
-    if exe is None:
-        print("lammps_case: LAMMPS executable %s not found (apt-get install lammps)" % a.lmp, file=sys.stderr)
-        return 127
-    status, rc, wall = run_lammps(exe, work, a.timeout)
-    if status == "timeout":
-        print("lammps_case: LAMMPS did not finish within %g s (killed)" % a.timeout, file=sys.stderr)
-        return 124
-    log = open(os.path.join(work, "log.stdout")).read()
-    if rc != 0 or "ERROR" in log:
-        err = [ln for ln in log.splitlines() if "ERROR" in ln]
-        print("lammps_case: LAMMPS failed (exit %s): %s" % (rc, "; ".join(err[-3:]) or log.strip()[-300:]),
-              file=sys.stderr)
-        return 1
-    loops = [float(ln.split()[3]) for ln in log.splitlines() if ln.startswith("Loop time of")]
-    t = time.time()
-    try:
-        convert(work, case, text, a.system, a.out, facts, lammps_version(log))
-    except (ValueError, KeyError, OSError) as e:
-        print("lammps_case: the dumps could not be converted: %s" % e, file=sys.stderr)
-        return 1
-    conv = time.time() - t
-    if not a.keep_dumps:   # the trace file holds what they carried
-        for name in ("dump.atoms", "dump.pairs"):
-            try:
-                os.remove(os.path.join(work, name))
-            except OSError:
-                pass
-    solver = loops[-1] if loops else wall
-    print("XC_SUMMARY " + json.dumps(dict(code="lammps", case=case["case"]["name"], dt=facts["dt"],
-                                          steps=facts["nsteps"], wall_s=wall, solver_s=solver, convert_s=conv,
-                                          particles=facts["n"],
-                                          particle_steps_per_s=facts["n"] * facts["nsteps"] / max(solver, 1e-9),
-                                          trace=a.out)))
-    return 0
+    return DRIVER.main(argv)
 
 
 if __name__ == "__main__":

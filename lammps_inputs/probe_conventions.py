@@ -22,7 +22,6 @@ Probes (SI, spheres of radius a = 1e-3 m, density 2000 kg/m^3 unless said):
 """
 from __future__ import annotations
 
-import json
 import math
 import os
 import shutil
@@ -32,15 +31,11 @@ import tempfile
 
 import numpy as np
 
-HEAD = """units si
-atom_style sphere
-atom_modify map array
-boundary f f f
-newton off
-comm_modify vel yes
-region box block -0.02 0.02 -0.02 0.02 -0.02 0.02 units box
-create_box 2 box
-"""
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+from xclib import driver as DRV  # noqa: E402
+
+HEAD = DRV.lammps_two_spheres(2)
 
 
 def _frames(path):
@@ -218,25 +213,15 @@ def probe(lmp: str) -> dict:
     return res
 
 
+def _show(res):
+    for style, d in res.items():
+        print(style)
+        for k, v in d.items():
+            print("  %-22s %s" % (k, v))
+
+
 def main(argv) -> int:
-    import argparse
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--lmp", default=os.environ.get("XC_LMP", "lmp"))
-    ap.add_argument("--json", action="store_true")
-    a = ap.parse_args(argv)
-    exe = shutil.which(a.lmp)
-    if not exe:
-        print("probe_conventions: LAMMPS executable %s not found" % a.lmp, file=sys.stderr)
-        return 127
-    res = probe(exe)
-    if a.json:
-        print(json.dumps(res, indent=1, default=float))
-    else:
-        for style, d in res.items():
-            print(style)
-            for k, v in d.items():
-                print("  %-22s %s" % (k, v))
-    return 0
+    return DRV.probe_main(argv, __doc__, "probe_conventions", "lmp", os.environ.get("XC_LMP", "lmp"), probe, _show)
 
 
 if __name__ == "__main__":

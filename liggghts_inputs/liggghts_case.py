@@ -14,19 +14,14 @@ with `run 1` in the undisplaced packing and resets the step counter before the s
 """
 from __future__ import annotations
 
-import json
-import math
 import os
-import shutil
-import string
-import subprocess
 import sys
-import time
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+from xclib import driver as DRV  # noqa: E402
 from xclib import dumps as D  # noqa: E402
 from xclib import laws as L  # noqa: E402
 from xclib import traces as T  # noqa: E402
@@ -37,58 +32,51 @@ TIME_CONVENTION = ("synchronous: LIGGGHTS velocity Verlet, dumps after a whole s
                    "v(t) - f(t)/m dt/2 (the force that acted, as granwave and YADE record)")
 
 
+_g = DRV.g
+
+
+def _template(name: str):
+    return DRV.template(HERE, name)
+
+
 # neigh_modify contact_distance_factor of the friction decks (render: the history is lost when a contact opens)
 CONTACT_DISTANCE_FACTOR = 1.01
-
-
-def _template(name: str) -> string.Template:
-    with open(os.path.join(HERE, "templates", name)) as f:
-        return string.Template(f.read())
-
-
-def _g(x: float) -> str:
-    return repr(float(x))
 
 
 def _masses(m: np.ndarray) -> str:
     return "\n".join("set             atom %d mass %s" % (k + 1, _g(v)) for k, v in enumerate(m))
 
 
-def _data_file(path, n_types, box, ids_types, radius, mass, pos):
-    vol = 4.0 / 3.0 * math.pi * radius ** 3
-    with open(path, "w") as f:
-        f.write("granwave system -> LIGGGHTS data file (atom_style granular)\n\n")
-        f.write("%d atoms\n%d atom types\n\n" % (len(mass), n_types))
-        for lo, hi, ax in zip(box[0], box[1], "xyz"):
-            f.write("%s %s %slo %shi\n" % (_g(lo), _g(hi), ax, ax))
-        f.write("\nAtoms\n\n")
-        for k in range(len(mass)):
-            # atom-ID atom-type diameter density x y z
-            f.write("%d %d %s %s %s %s %s\n" % (k + 1, ids_types[k], _g(2 * radius[k]), _g(mass[k] / vol[k]),
-                                               _g(pos[k, 0]), _g(pos[k, 1]), _g(pos[k, 2])))
+def _data_file(path, n_types, box, types, radius, mass, pos):
+    DRV.data_file(path, "LIGGGHTS data file (atom_style granular)", "Atoms", n_types, box, types, radius, mass, pos)
 
 
-def render(case: dict, system: dict, workdir: str) -> dict:
-    """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...)."""
-    model = case["case"]["model"]
-    dt = T.timestep(case, system)
-    nsteps, every = T.sampling(case, dt)
-    m = np.asarray(system["mass"], float)
-    r = np.asarray(system["radius"], float)
-    pos = np.asarray(system["position"], float)
-    n = len(m)
-    facts = dict(model=model, dt=dt, nsteps=nsteps, every=every, n=n)
-    if model == "chain":
+def render_layers(case: dict, system: dict, workdir: str) -> dict:
+    """The benchmark's deck (bench/side_by_side.py): per-layer means written by LIGGGHTS itself (`compute
+    stress/atom`, `fix ave/spatial` into layers.txt), no dumps. Raises Unsupported beyond its crystals."""
+    v = DRV.layer_deck_values(case, system)
+    # LIGGGHTS 3.8 refuses shear history with newton on (pair_gran.cpp: "requires newton pair off")
+    v.update(newton="off" if v["friction"] else "on")
+    v.update(v["law"].bench_liggghts(v))   # properties, pair_style, variant: the law's LIGGGHTS mapping
+    deck = _template("crystal_layers.in.tmpl").substitute(v)
+    return DRV.write_layer_deck(deck, case, system, workdir, "LIGGGHTS data file (benchmark)", v)
+
+
+def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dict:
+    """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...).
+    output "dumps": the crosscheck's deck (per-atom and per-contact dumps for the trace file);
+    "layers": the benchmark's (render_layers)."""
+    if output == "layers":
+        return render_layers(case, system, workdir)
+    facts = DRV.run_facts(case, system)
+    dt, nsteps, every = facts["dt"], facts["nsteps"], facts["every"]
+    if facts["model"] == "chain":
+        m = np.asarray(system["mass"], float)
+        r = np.asarray(system["radius"], float)
+        pos = np.asarray(system["position"], float)
         lay = T.chain_layout(system)
-        e = np.asarray(system["youngs_modulus"], float)
-        nu = np.asarray(system["poisson_ratio"], float)
-        keys = []
-        types = np.zeros(n, int)
-        for k in range(n):
-            key = (float(e[k]), float(nu[k]))
-            if key not in keys:
-                keys.append(key)
-            types[k] = keys.index(key) + 1
+        keys, types = DRV.material_types(np.asarray(system["youngs_modulus"], float),
+                                         np.asarray(system["poisson_ratio"], float))
         ym = [k[0] for k in keys]
         pr = [k[1] for k in keys]
         wall_line = "# free end: no wall"
@@ -103,51 +91,22 @@ def render(case: dict, system: dict, workdir: str) -> dict:
         hi = [float((lay["wall_x"] if lay["has_wall"] else pos[:, 0].max()) + 3 * rmax),
               float(pos[:, 1].max() + 3 * rmax), float(pos[:, 2].max() + 3 * rmax)]
         _data_file(os.path.join(workdir, "data.system"), nt, (lo, hi), types, r, m, pos)
-        v = np.asarray(system["velocity"], float)
-        vel = "\n".join("set             atom %d vx %s vy %s vz %s" % (k + 1, _g(v[k, 0]), _g(v[k, 1]), _g(v[k, 2]))
-                        for k in range(n) if np.any(v[k] != 0))
         deck = _template("chain.in.tmpl").substitute(
             case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.5 * float(r.min())),
             youngs=" ".join(map(_g, ym)), poissons=" ".join(map(_g, pr)), ntypes=nt,
             restitution=" ".join(["1.0"] * nt * nt), friction=" ".join(["0.0"] * nt * nt),
-            wall_line=wall_line, dt=_g(dt), velocity_line=vel, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10),
-            nsteps=nsteps)
+            wall_line=wall_line, dt=_g(dt), velocity_line=DRV.velocity_lines(np.asarray(system["velocity"], float)),
+            atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps)
         facts.update(has_wall=lay["has_wall"])
     else:
-        c = T.contact_params(case)
-        ex = T.excitation(case)
-        lay = T.crystal_layout(system)
-        fixed = np.asarray(system["fixed"], int).astype(bool)
-        layer = lay["layer"]
-        # types: 1 free, 2 fixed (top, and for a velocity drive the wall below the source), 3 the source
-        types = np.where(T.source_mask(fixed, layer, lay["fixed_layers"], ex["drive"]), 3, np.where(fixed, 2, 1))
-        zmin, zmax = float(pos[:, 2].min()), float(pos[:, 2].max())
-        rmax = float(r.max())
-        # x, y periodic with the system's lengths (the packing starts at x = y = 0, images by minimum image)
-        lo = [0.0, 0.0, zmin - 3 * rmax]
-        hi = [lay["box_x"], lay["box_y"], zmax + 3 * rmax]
-        p = pos.copy()
-        p[:, 0] = np.mod(p[:, 0] - lo[0], lay["box_x"]) + lo[0]
-        p[:, 1] = np.mod(p[:, 1] - lo[1], lay["box_y"]) + lo[1]
-        _data_file(os.path.join(workdir, "data.system"), 3, (lo, hi), types, r, m, p)
+        x = DRV.crystal(case, system)
+        c = x.c
+        DRV.crystal_atoms(x, workdir, "LIGGGHTS data file (atom_style granular)", "Atoms")
         if c["mu_static"] != c["mu_dynamic"]:
             sys.stderr.write("liggghts_case: LIGGGHTS has one coefficientFriction; using mu_static=%g "
                              "(mu_dynamic=%g ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
-        nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
-        axis = (0, 0, 1) if ex["mode"] == "P" else (1, 0, 0)
-        if ex["drive"] == "displacement":
-            s = float(ex["amplitude"]) * lay["d"]
-            exl = "displace_atoms  source move %s %s %s units box" % tuple(_g(s * a) for a in axis)
-        else:
-            # granwave's velocity drive: the source layer becomes free particles with an initial
-            # velocity (integrated, between the fixed wall layer and the crystal), not moved at a
-            # constant velocity.
-            vv = float(ex["amplitude"])
-            exl = "velocity        source set %s %s %s units box" % tuple(_g(vv * a) for a in axis)
-        vdrive = ex["drive"] != "displacement"
-        # pairs of two fixed particles; with a velocity drive the source (3) feels the wall (2)
-        exclude = "exclude type 2 2" if vdrive else "exclude type 2 2 exclude type 2 3 exclude type 3 3"
-        free_types = "1 3" if vdrive else "1"
+        src = DRV.crystal_source(x)
+        exclude = src["exclude"]
         limit_force = "on" if c["normal_tension"] == "clip" else "off"
         contact_lines, with_history = L.law_of(c).liggghts_lines(c, limit_force)  # xclib.linear / hertz_mindlin
         ncol = 9 if with_history else 6   # id1 id2 flag f(3) [shear history(3)]
@@ -162,12 +121,13 @@ def render(case: dict, system: dict, workdir: str) -> dict:
             # are unchanged; the neighbour list reaches 1 % further. (${exclude} is the neigh_modify tail.)
             exclude = "contact_distance_factor %s %s" % (_g(CONTACT_DISTANCE_FACTOR), exclude)
         deck = _template("crystal.in.tmpl").substitute(
-            case_name=case["case"]["name"], mass_lines=_masses(m), skin=_g(0.2 * float(r.min())),
-            contact_lines=contact_lines, exclude=exclude, free_types=free_types,
-            dt=_g(dt), excitation_line=exl, atom_format="%d" + " %.17g" * 9, every=every, thermo=max(1, nsteps // 10), nsteps=nsteps,
+            case_name=case["case"]["name"], mass_lines=_masses(x.m), skin=_g(0.2 * float(x.r.min())),
+            contact_lines=contact_lines, exclude=exclude, free_types=src["free_types"],
+            dt=_g(dt), excitation_line=src["excitation_line"], atom_format="%d" + " %.17g" * 9, every=every,
+            thermo=max(1, nsteps // 10), nsteps=nsteps,
             history=" history" if with_history else "", pair_columns=" ".join("c_cpl[%d]" % k for k in range(1, ncol + 1)),
             pair_format=" ".join(["%.17g"] * ncol))
-        facts.update(lay={k: v for k, v in lay.items() if k != "layer"})
+        facts.update(lay={k: v for k, v in x.lay.items() if k != "layer"})
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
     return facts
@@ -252,44 +212,32 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             x = rows[:, cols.index("x")]
             v = rows[:, [cols.index("vx"), cols.index("vy"), cols.index("vz")]]
             ke.append(0.5 * float(np.sum(m * np.sum(v * v, axis=1))))
-            dl = r[:-1] + r[1:] - np.diff(x)
             if lay["has_wall"]:
-                dl = np.append(dl, r[-1] - (lay["wall_x"] - x[-1]))
                 # primitive wall: R* = R, its force from the same Hertz law LIGGGHTS applied
-                cf[n - 1] = a[-1] * max(dl[-1], 0.0) ** 1.5
-            pe.append(float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5)))
+                cf[n - 1] = a[-1] * max(r[-1] - (lay["wall_x"] - x[-1]), 0.0) ** 1.5
+            pe.append(DRV.chain_potential(a, r, x, lay))
             if len(pr):
                 i, j, f = _pairs_on_first(pr)
                 ok = j == i + 1
                 # force on the striker-side bead points back (-x) when compressed
                 cf[i[ok]] = -f[ok, 0]
             cf_rows.append(cf)
-        cf = np.array(cf_rows).reshape(len(steps), nc)
-        data = {"/chain/contact_force": cf, "/chain/bead_force": T.bead_force_from_contacts(cf, n, lay["has_wall"]),
-                "/energy/kinetic": np.array(ke), "/energy/potential": np.array(pe)}
+        data = DRV.chain_datasets(np.array(cf_rows).reshape(len(steps), nc), ke, pe, n, lay["has_wall"])
     else:
-        lay = T.crystal_layout(system)
+        x = DRV.crystal(case, system)
+        lay, layer, fixed, mass = x.lay, x.layer, x.fixed, x.m
         nl = lay["nlayers"]
-        fixed = np.asarray(system["fixed"], int).astype(bool)
-        layer = lay["layer"]
-        x0 = np.asarray(system["position"], float)
-        mass = np.asarray(system["mass"], float)
-        cp = T.contact_params(case)
+        cp = x.c
         clip = cp["normal_tension"] == "clip"
         # the law's parameters of the dashpot correction (Hertz-Mindlin: per contact; xclib.laws)
         dl = L.law_of(cp).liggghts_dump(cp, r, lay)
         gamma_n, gamma_t, kt, kn, hertz = dl["gamma_n"], dl["gamma_t"], dl["kt"], dl["kn"], dl["hertz"]
-        mobile = ~fixed
-        if T.excitation(case)["drive"] != "displacement":     # the source layers are integrated
-            mobile = mobile | T.source_mask(fixed, layer, lay["fixed_layers"], "velocity")
-        out_rows = {k: [] for k in ("szz", "szx", "uz", "ux", "vz", "vx")}
+        mobile = DRV.mobile(case, x)
+        layers = DRV.LayerRows(lay, x.pos)
         for s, cols, rows, pr in frames:
             steps.append(s)
             p = rows[:, [cols.index("x"), cols.index("y"), cols.index("z")]]
             v = rows[:, [cols.index("vx"), cols.index("vy"), cols.index("vz")]]
-            du = p - x0
-            du[:, 0] -= lay["box_x"] * np.round(du[:, 0] / lay["box_x"])
-            du[:, 1] -= lay["box_y"] * np.round(du[:, 1] / lay["box_y"])
             correct = None
             if gamma_n > 0.0 and s > 0:   # step 0: the setup force already saw v(0), as the dump does
                 fa = rows[:, [cols.index("fx"), cols.index("fy"), cols.index("fz")]]
@@ -302,16 +250,8 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
                                                 lay["box_x"], lay["box_y"], kn, clip, hertz)
             i, j, f = _pairs_on_first(pr, correct) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
             szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
-            out_rows["szz"].append(szz)
-            out_rows["szx"].append(szx)
-            out_rows["uz"].append(T.layer_mean(du[:, 2], layer, nl))
-            out_rows["ux"].append(T.layer_mean(du[:, 0], layer, nl))
-            out_rows["vz"].append(T.layer_mean(v[:, 2], layer, nl))
-            out_rows["vx"].append(T.layer_mean(v[:, 0], layer, nl))
-        data = {"/crystal/layer_z": lay["layer_z"]}
-        for key, name in (("szz", "layer_stress_zz"), ("szx", "layer_stress_zx"), ("uz", "layer_displacement_z"),
-                          ("ux", "layer_displacement_x"), ("vz", "layer_velocity_z"), ("vx", "layer_velocity_x")):
-            data["/crystal/" + name] = np.array(out_rows[key]).reshape(len(steps), nl)
+            layers.add(p, v, layer, szz, szx)
+        data = layers.datasets(len(steps))
     times = np.array(steps, float) * dt
     extra = {"dt": dt, "deck": open(os.path.join(workdir, "in.case")).read()}
     if "/crystal/layer_z" in data:
@@ -329,86 +269,14 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
                   extra_attrs=extra)
 
 
-def liggghts_version(log: str) -> str:
-    for ln in log.splitlines():
-        if ln.startswith("LIGGGHTS"):
-            return ln.strip()
-    return "LIGGGHTS"
+# refused: a law LIGGGHTS cannot express (damping_ratio beyond its hertz damping)
+DRIVER = DRV.DeckDriver(name="liggghts_case", code="liggghts", title="LIGGGHTS", package="liggghts",
+                        exe_option="liggghts", exe_default="liggghts", version_prefix="LIGGGHTS", refused=(ValueError,),
+                        render=render, convert=convert, doc=__doc__)
 
 
 def main(argv) -> int:
-    import argparse
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case")
-    ap.add_argument("system")
-    ap.add_argument("out")
-    ap.add_argument("--workdir", help="where the deck, data file and dumps go (default: OUT's name + .liggghts)")
-    ap.add_argument("--timeout", type=float, default=1800)
-    ap.add_argument("--render-only", action="store_true")
-    ap.add_argument("--liggghts", default="liggghts")
-    ap.add_argument("--keep-dumps", action="store_true", help="keep dump.atoms / dump.pairs after the conversion")
-    ap.add_argument("--convert-only", action="store_true", help="convert the dumps already in --workdir (kept with "
-                    "--keep-dumps) without running LIGGGHTS")
-    a = ap.parse_args(argv)
-    if os.path.exists(a.out):
-        print("liggghts_case: %s exists: nothing is overwritten" % a.out, file=sys.stderr)
-        return 2
-    work = a.workdir or (a.out + ".liggghts")
-    case, text = T.load_case(a.case)
-    system = T.read_system(a.system)
-    if a.convert_only:
-        import tempfile
-        facts = render(case, system, tempfile.mkdtemp(prefix="liggghts_render_"))
-        t = time.time()
-        try:
-            convert(work, case, text, a.system, a.out, facts, "LIGGGHTS (converted from kept dumps)")
-        except (ValueError, KeyError, OSError) as e:   # a malformed dump (xclib.dumps.DumpError) among them
-            print("liggghts_case: the dumps could not be converted: %s" % e, file=sys.stderr)
-            return 1
-        print("XC_SUMMARY " + json.dumps(dict(code="liggghts", case=case["case"]["name"], convert_s=time.time() - t,
-                                              trace=a.out)))
-        return 0
-    os.makedirs(work, exist_ok=False)
-    try:
-        facts = render(case, system, work)
-    except ValueError as e:      # a law LIGGGHTS cannot express (damping_ratio beyond its hertz damping)
-        print("liggghts_case: %s: %s" % (a.case, e), file=sys.stderr)
-        return 2
-    if a.render_only:
-        print("rendered %s" % work)
-        return 0
-    exe = shutil.which(a.liggghts)
-    if exe is None:
-        print("liggghts_case: %s not found" % a.liggghts, file=sys.stderr)
-        return 127
-    t = time.time()
-    with open(os.path.join(work, "log.stdout"), "w") as lo:
-        p = subprocess.run([exe, "-in", "in.case"], cwd=work, stdout=lo, stderr=subprocess.STDOUT, timeout=a.timeout)
-    wall = time.time() - t
-    log = open(os.path.join(work, "log.stdout")).read()
-    if p.returncode != 0 or "ERROR" in log:
-        err = [ln for ln in log.splitlines() if "ERROR" in ln]
-        print("liggghts_case: LIGGGHTS failed (%d): %s" % (p.returncode, "; ".join(err[-3:])), file=sys.stderr)
-        return 1
-    # the solver's own time: LIGGGHTS' "Loop time" of the main run
-    loops = [float(ln.split()[3]) for ln in log.splitlines() if ln.startswith("Loop time of")]
-    try:
-        convert(work, case, text, a.system, a.out, facts, liggghts_version(log))
-    except (ValueError, KeyError, OSError) as e:   # a malformed dump (xclib.dumps.DumpError) among them
-        print("liggghts_case: the dumps could not be converted: %s" % e, file=sys.stderr)
-        return 1
-    if not a.keep_dumps:   # the trace file holds what they carried (paper crystals: 2.4 GB of text)
-        for name in ("dump.atoms", "dump.pairs"):
-            try:
-                os.remove(os.path.join(work, name))
-            except OSError:
-                pass
-    solver = loops[-1] if loops else wall
-    print("XC_SUMMARY " + json.dumps(dict(code="liggghts", case=case["case"]["name"], dt=facts["dt"],
-                                          steps=facts["nsteps"], wall_s=wall, solver_s=solver, particles=facts["n"],
-                                          particle_steps_per_s=facts["n"] * facts["nsteps"] / max(solver, 1e-9),
-                                          trace=a.out)))
-    return 0
+    return DRIVER.main(argv)
 
 
 if __name__ == "__main__":

@@ -24,7 +24,6 @@ the deck's), so each force is a closed form of seed 002 eqs. (1)-(8):
 """
 from __future__ import annotations
 
-import json
 import os
 import shutil
 import subprocess
@@ -32,6 +31,10 @@ import sys
 import tempfile
 
 import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
+from xclib import driver as DRV  # noqa: E402
 
 A1, A2, DELTA, K, MU, DT = 1e-3, 1.004e-3, 1e-6, 1e5, 0.5, 1e-8
 
@@ -157,23 +160,13 @@ def probe(exe: str) -> dict:
         shutil.rmtree(work, ignore_errors=True)
 
 
+def _show(res):
+    for k, v in res.items():
+        print("%-22s %s" % (k, v))
+
+
 def main(argv) -> int:
-    import argparse
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--liggghts", default="liggghts")
-    ap.add_argument("--json", action="store_true")
-    a = ap.parse_args(argv)
-    exe = shutil.which(a.liggghts)
-    if not exe:
-        print("probe_linear: %s not found" % a.liggghts, file=sys.stderr)
-        return 127
-    res = probe(exe)
-    if a.json:
-        print(json.dumps(res, indent=1, default=float))
-    else:
-        for k, v in res.items():
-            print("%-22s %s" % (k, v))
-    return 0
+    return DRV.probe_main(argv, __doc__, "probe_linear", "liggghts", "liggghts", probe, _show)
 
 
 if __name__ == "__main__":

@@ -21,7 +21,6 @@
 #    dashpots (ViscEl) see the velocity half a step behind the force, as granwave and LIGGGHTS.
 #  * Crystal shear increments: Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False) (the default
 #    scales the translational part by (r1+r2)/(r1+r2-delta): kt 1e-3 too stiff here).
-import json
 import math
 from itertools import repeat
 from operator import attrgetter, itemgetter
@@ -35,6 +34,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 
 import numpy as np  # noqa: E402
 
+from xclib import driver as DRV  # noqa: E402
 from xclib import laws as L  # noqa: E402
 from xclib import traces as T  # noqa: E402
 
@@ -210,16 +210,8 @@ def run_chain(case, system, dt, nsteps, every):
     ke = np.array([row[1] for row in sampler.rows])
     # potential energy from the synchronous positions (Hertz: 2/5 A delta^5/2)
     a = np.asarray(system["hertz_constant"], float)
-    pe = []
-    for row in sampler.rows:
-        p = row[2]
-        dl = r[:-1] + r[1:] - (p[1:, 0] - p[:-1, 0])
-        if lay["has_wall"]:
-            dl = np.append(dl, r[-1] - (lay["wall_x"] - p[-1, 0]))
-        pe.append(float(np.sum(0.4 * a * np.clip(dl, 0, None) ** 2.5)))
-    data = {"/chain/contact_force": cf,
-            "/chain/bead_force": T.bead_force_from_contacts(cf, n, lay["has_wall"]),
-            "/energy/kinetic": ke, "/energy/potential": np.array(pe)}
+    pe = [DRV.chain_potential(a, r, row[2][:, 0], lay) for row in sampler.rows]
+    data = DRV.chain_datasets(cf, ke, pe, n, lay["has_wall"])
     return np.array(sampler.times), data, wall, n, sampler.cost
 
 
@@ -293,15 +285,9 @@ class CrystalContacts:
 
 
 def run_crystal(case, system, dt, nsteps, every):
-    c = T.contact_params(case)
-    ex = T.excitation(case)
-    lay = T.crystal_layout(system)
-    pos = np.asarray(system["position"], float)
-    r = np.asarray(system["radius"], float)
-    m = np.asarray(system["mass"], float)
+    x = DRV.crystal(case, system)
+    c, ex, lay, pos, r, m, fixed, layer = x.c, x.ex, x.lay, x.pos, x.r, x.m, x.fixed, x.layer
     inertia = np.asarray(system["inertia"], float)
-    fixed = np.asarray(system["fixed"], int).astype(bool)
-    layer = lay["layer"]
     n = len(m)
     # The source. A displacement drive moves all bottom fixed layers by a held step; a velocity drive
     # (granwave: set_mobile) makes the innermost bottom fixed layer free particles with an initial
@@ -336,9 +322,9 @@ def run_crystal(case, system, dt, nsteps, every):
         ids.append(O.bodies.append(b))
     O.dt = dt
     newton = NewtonIntegrator(damping=0.0, gravity=(0, 0, 0))
-    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
     nl = lay["nlayers"]
     x0 = pos.copy()
+    layers = DRV.LayerRows(lay, x0)
 
     states = [O.bodies[i].state for i in ids]   # kept: they live as long as the bodies
     dyn_fixed_mask = np.zeros(n, bool) | dyn_fixed
@@ -352,9 +338,7 @@ def run_crystal(case, system, dt, nsteps, every):
         # positions of id2 across the periodic boundary: layer_stress takes the minimum image in x, y
         szz, szx = T.layer_stress(p, r, layer, fixed, contacts.ii, contacts.jj, ff, lay["box_x"], lay["box_y"],
                                   lay["l0"], nl)
-        du = p - x0
-        return (szz, szx, T.layer_mean(du[:, 2], layer, nl), T.layer_mean(du[:, 0], layer, nl),
-                T.layer_mean(v[:, 2], layer, nl), T.layer_mean(v[:, 0], layer, nl))
+        layers.add(p, v, layer, szz, szx, periodic=False)
 
     sampler = Sampler(every, record, ids, dt)
     runner = PyRunner(command="__import__('builtins').xc_sampler()", iterPeriod=1)
@@ -409,13 +393,7 @@ def run_crystal(case, system, dt, nsteps, every):
     sys.stderr.write("run_case.py: crystal sampling %.1f ms per sample, contact set read %d times\n"
                      % (1e3 * sampler.cost / max(len(sampler.times), 1), contacts.rereads))
     law.yade_after_run(c, contacts.rereads)
-    rows = sampler.rows
-    keys = ("layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
-            "layer_velocity_z", "layer_velocity_x")
-    data = {"/crystal/layer_z": lay["layer_z"]}
-    for q, key in enumerate(keys):
-        data["/crystal/" + key] = np.array([row[q] for row in rows])
-    return np.array(sampler.times), data, wall, n, nreal, sampler.cost
+    return np.array(sampler.times), layers.datasets(len(sampler.times)), wall, n, nreal, sampler.cost
 
 
 def main(argv):
@@ -430,8 +408,8 @@ def main(argv):
     model = case["case"]["model"]
     if system["attrs"].get("model", model) != model:
         fail("system file is a %s, case is a %s" % (system["attrs"].get("model"), model))
-    dt = T.timestep(case, system)
-    nsteps, every = T.sampling(case, dt)
+    facts = DRV.run_facts(case, system)
+    dt, nsteps, every = facts["dt"], facts["nsteps"], facts["every"]
     summary = {"code": "yade", "case": case["case"]["name"], "dt": dt, "steps": nsteps}
     if model == "chain":
         times, data, wall, n, cost = run_chain(case, system, dt, nsteps, every)
@@ -461,8 +439,7 @@ def main(argv):
     summary.update(wall_s=wall, sampling_s=cost, solver_s=solver, particles=n,
                    particle_steps_per_s=n * nsteps / solver,
                    trace=out_path)
-    print("XC_SUMMARY " + json.dumps(summary))
-    sys.stdout.flush()
+    DRV.summary_line(**summary)
 
 
 main(sys.argv[1:])

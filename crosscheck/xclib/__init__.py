@@ -6,6 +6,8 @@ Modules (each imports only those listed before it, so there is no import cycle):
   linear      -- the linear law of a case in YADE's, LIGGGHTS' and LAMMPS' parameters (one mapping module per law)
   hertz_mindlin -- the Hertz-Mindlin law of a case in YADE's, LIGGGHTS' and LAMMPS' parameters (measured maps)
   laws        -- the registry of those modules: law_of(contact) (drivers never branch on the law's name)
+  driver      -- what the three drivers share: the command line of a deck driver (render, run, convert),
+                 running the code, the LAMMPS-family data file and crystal lines, the trace datasets
   dumps       -- LIGGGHTS/LAMMPS text dumps read frame by frame; the dumped forces put back to the step's
   sysbuild    -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
   compare     -- comparison maths (max |diff|/peak, relative L2, measures) on traces

@@ -97,6 +97,17 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
             return lim, "FAIL", "not measurable in one of the codes; " + why
         return lim, ("PASS" if value <= lim else "FAIL"), why
 
+    def peak_rows(what, a, b, unit):
+        """The first peak of one contact or layer in the pair being compared: its size and its time."""
+        v = C.rel_diff(a["peak"], b["peak"])
+        lim, st, why = judge(v, "peak_rel")
+        rows.append(dict(pair=pair, quantity="peak_rel", what="%s first peak" % what, value=v, tol=lim, status=st,
+                         why=why, extra="%.6g %s / %.6g %s" % (a["peak"], unit, b["peak"], unit)))
+        d = abs(a["peak_time"] - b["peak_time"])
+        lim, st, why = judge(d, "arrival_abs")
+        rows.append(dict(pair=pair, quantity="arrival_abs", what="%s first-peak time" % what, value=d, tol=lim,
+                         status=st, why=why, extra="%.7g s / %.7g s" % (a["peak_time"], b["peak_time"])))
+
     for c in codes:
         if c not in measures:
             rows.append(dict(pair=c, quantity="ruler", what="granwave analyze --json", value=None, tol=None,
@@ -131,15 +142,7 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
                 if j not in C.choose_contacts(len(traces[ca]["/chain/contact_force"][0]),
                                               str(traces[ca].get("system_attrs", {}).get("wall", "free")) != "free"):
                     continue
-                lim, st, why = judge(C.rel_diff(ka[j]["peak"], kb[j]["peak"]), "peak_rel")
-                rows.append(dict(pair=pair, quantity="peak_rel", what="contact %d first peak" % j,
-                                 value=C.rel_diff(ka[j]["peak"], kb[j]["peak"]), tol=lim, status=st, why=why,
-                                 extra="%.6g N / %.6g N" % (ka[j]["peak"], kb[j]["peak"])))
-                d = abs(ka[j]["peak_time"] - kb[j]["peak_time"])
-                lim, st, why = judge(d, "arrival_abs")
-                rows.append(dict(pair=pair, quantity="arrival_abs", what="contact %d first-peak time" % j,
-                                 value=d, tol=lim, status=st, why=why,
-                                 extra="%.7g s / %.7g s" % (ka[j]["peak_time"], kb[j]["peak_time"])))
+                peak_rows("contact %d" % j, ka[j], kb[j], "N")
             spd = [("front_speed", "front speed (contacts/s, first-peak times)")]
         else:
             la, lb = ma["layers"], mb["layers"]
@@ -152,16 +155,7 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
             z = traces[ca]["/crystal/layer_z"]
             for k in C.choose_layers(z, float(sa_["l0"]), len(z), int(sa_.get("fixed_layers", 2))):
                 if k in la and k in lb:
-                    v = C.rel_diff(la[k]["peak"], lb[k]["peak"])
-                    lim, st, why = judge(v, "peak_rel")
-                    rows.append(dict(pair=pair, quantity="peak_rel", what="layer %d first peak" % k, value=v,
-                                     tol=lim, status=st, why=why,
-                                     extra="%.6g Pa / %.6g Pa" % (la[k]["peak"], lb[k]["peak"])))
-                    d = abs(la[k]["peak_time"] - lb[k]["peak_time"])
-                    lim, st, why = judge(d, "arrival_abs")
-                    rows.append(dict(pair=pair, quantity="arrival_abs", what="layer %d first-peak time" % k,
-                                     value=d, tol=lim, status=st, why=why,
-                                     extra="%.7g s / %.7g s" % (la[k]["peak_time"], lb[k]["peak_time"])))
+                    peak_rows("layer %d" % k, la[k], lb[k], "Pa")
         for key, what in spd:
             va, vb = ma.get(key), mb.get(key)
             v = C.rel_diff(va, vb) if (va is not None and vb is not None) else None

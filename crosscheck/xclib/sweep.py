@@ -182,6 +182,22 @@ def judge(value, lim, pair, tsec):
     return "PASS" if value <= lim else "FAIL"
 
 
+def _sweep_point(a, report_dir, name, template, ch, size, codes, granwave, ruler_args):
+    """(case path, results) of one point: the template with the changes `ch` (and the size's t_end), run by
+    every code in its own directory (resumable)."""
+    if size["t_end"]:
+        ch[("integrator", "t_end")] = size["t_end"]
+    casedir = RN.work_dir(os.path.join(report_dir, name), a.resume)
+    cp = make_case(template, name, ch, casedir)
+    return cp, run_point(cp, casedir, codes, granwave, a.timeout, a.fixture_system, ruler_args, a.resume)
+
+
+def _report_head(tol, sweep, quantity, title, text):
+    """(tolerance section, limit, why, the report's first lines) of a sweep."""
+    tsec = sweep_tolerances(tol, sweep)
+    return tsec, tsec.get(quantity), tsec.get(quantity + "_why", "no tolerance set"), [title, "", text, ""]
+
+
 # ------------------------------------------------------------------------------------------ damping
 def damping(a, report_dir, granwave, tol) -> int:
     size = SIZES[a.size]
@@ -194,21 +210,17 @@ def damping(a, report_dir, granwave, tol) -> int:
         # normal_tension: "clip", the one convention with a dashpot every code has (SCHEMA.md; LAMMPS: limit_damping)
         ch = {("contact", "gamma_n"): g, ("contact", "kt"): 0.0, ("contact", "normal_tension"): "clip",
               ("excitation", "mode"): "P"}
-        if size["t_end"]:
-            ch[("integrator", "t_end")] = size["t_end"]
-        casedir = RN.work_dir(os.path.join(report_dir, name), a.resume)
-        cp = make_case(os.path.join(RN.REPO, size["template_P"]), name, ch, casedir)
-        res = run_point(cp, casedir, codes, granwave, a.timeout, a.fixture_system, ruler_args, a.resume)
+        cp, res = _sweep_point(a, report_dir, name, os.path.join(RN.REPO, size["template_P"]), ch, size, codes,
+                               granwave, ruler_args)
         peaks = {c: (M.peaks_at(M.layer_table(r["raw"]), size["positions"]) if "raw" in r else {})
                  for c, r in res.items()}
         points.append(dict(gamma=g, case=cp, runs={c: {k: v for k, v in r.items() if k != "raw"} for c, r in res.items()},
                            peaks=peaks, pairs={"%s-%s" % k: v for k, v in point_pairs(cp, res).items()}))
-    tsec = sweep_tolerances(tol, "damping")
-    lim, why = tsec.get("peak_rel"), tsec.get("peak_rel_why", "no tolerance set")
-    md = ["# crosscheck sweep damping (%s)" % a.size, "",
-          "First-peak amplitude of sigma_zz - sigma_zz(0) (Pa) at z/l0 = %s, P step, kt = 0, over gamma_0 "
-          "(kg/s); ruler `granwave analyze --json`%s. d(a-b) = |a - b| / max(|a|, |b|)."
-          % (", ".join(map(str, size["positions"])), (" " + " ".join(ruler_args)) if ruler_args else ""), ""]
+    tsec, lim, why, md = _report_head(
+        tol, "damping", "peak_rel", "# crosscheck sweep damping (%s)" % a.size,
+        "First-peak amplitude of sigma_zz - sigma_zz(0) (Pa) at z/l0 = %s, P step, kt = 0, over gamma_0 "
+        "(kg/s); ruler `granwave analyze --json`%s. d(a-b) = |a - b| / max(|a|, |b|)."
+        % (", ".join(map(str, size["positions"])), (" " + " ".join(ruler_args)) if ruler_args else ""))
 
     cols, pairs = columns_of(points, codes)
 
@@ -263,11 +275,7 @@ def friction(a, report_dir, granwave, tol) -> int:
             # gran/hooke/history takes the radius and is judged against granwave run with it (a twin).
             ch = {("contact", "kt"): r * kn, ("contact", "gamma_n"): 0.0, ("contact", "mu_static"): 0.5,
                   ("contact", "mu_dynamic"): 0.5, ("contact", "lever_arm"): "contact_point", ("excitation", "mode"): mode}
-            if size["t_end"]:
-                ch[("integrator", "t_end")] = size["t_end"]
-            casedir = RN.work_dir(os.path.join(report_dir, name), a.resume)
-            cp = make_case(tmpl, name, ch, casedir)
-            res = run_point(cp, casedir, codes, granwave, a.timeout, a.fixture_system, ruler_args, a.resume)
+            cp, res = _sweep_point(a, report_dir, name, tmpl, ch, size, codes, granwave, ruler_args)
             vp, vs = theory_speeds(cp, granwave)
             speeds = {}
             for c, rr in res.items():
@@ -278,13 +286,12 @@ def friction(a, report_dir, granwave, tol) -> int:
             points.append(dict(mode=mode, kt_over_k=r, case=cp, theory=vp if mode == "P" else vs,
                                runs={c: {k: v for k, v in rr.items() if k != "raw"} for c, rr in res.items()},
                                speeds=speeds, pairs={"%s-%s" % k: v for k, v in point_pairs(cp, res).items()}))
-    tsec = sweep_tolerances(tol, "friction")
-    lim, why = tsec.get("speed_rel"), tsec.get("speed_rel_why", "no tolerance set")
-    md = ["# crosscheck sweep friction (%s)" % a.size, "",
-          "Front speeds (m/s; ruler `granwave analyze --json`%s: least squares over the first-peak and the "
-          "half-peak arrival times) over kt/k with mu = 0.5, gamma = 0; theory = `granwave theory --json` "
-          "(eq. 10 with the affine kt term: V_pz for P, V_sz for S). d(a-b) = |a - b| / max(|a|, |b|)."
-          % ((" " + " ".join(ruler_args)) if ruler_args else ""), ""]
+    tsec, lim, why, md = _report_head(
+        tol, "friction", "speed_rel", "# crosscheck sweep friction (%s)" % a.size,
+        "Front speeds (m/s; ruler `granwave analyze --json`%s: least squares over the first-peak and the "
+        "half-peak arrival times) over kt/k with mu = 0.5, gamma = 0; theory = `granwave theory --json` "
+        "(eq. 10 with the affine kt term: V_pz for P, V_sz for S). d(a-b) = |a - b| / max(|a|, |b|)."
+        % ((" " + " ".join(ruler_args)) if ruler_args else ""))
     cols, pairs = columns_of(points, codes)
     for which, lab in (("peak", "first-peak speed"), ("half", "half-peak speed")):
         def rows(pts, which=which):

@@ -86,7 +86,7 @@ def test_case_texts():
 def test_lammps_deck_frictionless(tmp_path, cases_dir):
     case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
     f = S.render_lammps(case, system, str(tmp_path))
-    deck = (tmp_path / "in.lammps").read_text()
+    deck = (tmp_path / "in.case").read_text()
     assert f["nsteps"] == 1000 and f["every"] == 5 and f["n"] == 640
     assert "pair_style      gran/hooke 100000.0 0.0 0.0 0.0 0.5 0" in deck      # no history, no dashpots
     assert "fix             integr free nve\n" in deck                          # no torque: no rotation
@@ -108,12 +108,12 @@ def test_lammps_and_liggghts_decks_with_friction(tmp_path, cases_dir):
     case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
     case["contact"].update(kt=1e5, mu_static=0.001, mu_dynamic=0.001, lever_arm="contact_point")
     S.render_lammps(case, system, str(tmp_path))
-    deck = (tmp_path / "in.lammps").read_text()
+    deck = (tmp_path / "in.case").read_text()
     c = T.contact_params(case)
     assert "pair_style      gran/hooke/history 100000.0 %r 0.0 0.0 %r 0" % (float(c["kt"]), float(c["mu_static"])) in deck
     assert "fix             integr free nve/sphere" in deck
     S.render_liggghts(case, system, str(tmp_path))
-    lig = (tmp_path / "in.liggghts").read_text()
+    lig = (tmp_path / "in.case").read_text()
     assert "tangential history absolute_damping on limitForce off" in lig
     assert "newton          off" in lig          # LIGGGHTS refuses shear history with newton on
     assert "fix             integr free nve/sphere" in lig
@@ -132,12 +132,12 @@ def test_hertz_decks(tmp_path, cases_dir):
     case["contact"] = dict(law="hertz_mindlin", youngs_modulus=63e9, poisson_ratio=0.23, mu_static=0.5,
                            mu_dynamic=0.5)
     S.render_lammps(case, system, str(tmp_path))
-    deck = (tmp_path / "in.lammps").read_text()
+    deck = (tmp_path / "in.case").read_text()
     assert "pair_style      granular\n" in deck
     assert "pair_coeff      * * hertz/material 63000000000.0 0.0 0.23 tangential mindlin NULL 0.0 0.5\n" in deck
     assert "fix             integr free nve/sphere" in deck and "$" not in deck
     S.render_liggghts(case, system, str(tmp_path))
-    lig = (tmp_path / "in.liggghts").read_text()
+    lig = (tmp_path / "in.case").read_text()
     assert "hard_particles  yes" in lig and "pair_style      gran model hertz tangential history\n" in lig
     assert "youngsModulus peratomtype 63000000000.0 63000000000.0 63000000000.0" in lig
     assert "coefficientRestitution peratomtypepair 3 " + " ".join(["1.0"] * 9) in lig
@@ -151,7 +151,7 @@ def test_hertz_decks(tmp_path, cases_dir):
 def test_liggghts_deck_frictionless(tmp_path, cases_dir):
     case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
     S.render_liggghts(case, system, str(tmp_path))
-    lig = (tmp_path / "in.liggghts").read_text()
+    lig = (tmp_path / "in.case").read_text()
     assert "tangential no_history" in lig and "newton          on" in lig
     assert "fix             integr free nve\n" in lig
     assert "compute         sa all stress/atom pair" in lig

@@ -1,0 +1,71 @@
+"""The benchmark's cases and their decks. The decks are the drivers' (`render(..., output="layers")` of
+lammps_inputs/lammps_case.py and liggghts_inputs/liggghts_case.py): per-layer output by each code,
+no dumps."""
+from __future__ import annotations
+
+import os
+import re
+import sys
+
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REPO = os.path.dirname(HERE)
+for _d in ("crosscheck", "lammps_inputs", "liggghts_inputs"):
+    sys.path.insert(0, os.path.join(REPO, _d))
+import lammps_case  # noqa: E402
+import liggghts_case  # noqa: E402
+from xclib.codefacts import Unsupported  # noqa: E402
+
+CODES = ("granwave", "lammps", "liggghts")
+CODE_TITLES = {"lammps": "LAMMPS", "liggghts": "LIGGGHTS"}
+
+# name -> (base case file, replacements in its text, analyze layer range or None for the default)
+CASES = {
+    "frictionless": ("data/cases/crystal_p.toml", {}, None),
+    "friction": ("data/cases/crystal_kt10.toml", {}, None),
+    "friction_radius": ("data/cases/crystal_kt10.toml", {"lever_arm": '"radius"'}, None),
+    "long": ("data/cases/crystal_p.toml", {"cells": "[4, 4, 20000]", "t_end": "4e-5"}, "1:4"),
+    # issue #14: Hertz normal + Mindlin tangential, the same 4 x 4 x 200 crystal (glass beads at
+    # delta_0 = 1e-4 d), 6000 steps of dt = 1.7e-7 s (t_c/52), output every 5 steps as above
+    "hertz": ("data/cases/crystal_hertz.toml",
+              {"dt_over_tc": ("dt", "1.7e-7"), "t_end": "1.02e-3", "interval": "8.5e-7"}, None),
+    # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
+    "small": ("data/cases/crystal40.toml", {}, None),
+}
+DEFAULT_CASES = ("frictionless", "friction", "friction_radius", "hertz", "long")
+# The codes that run the same physics as granwave in a case (default: all of CODES).
+CASE_CODES = {"friction_radius": ("granwave", "lammps")}
+
+
+class BenchError(Exception):
+    """Bad input or a missing code: exit 2 with this message."""
+
+
+def case_text(name: str) -> str:
+    """The TOML text of a benchmark case: its base case file with the case's replacements."""
+    base, repl, _ = CASES[name]
+    with open(os.path.join(REPO, base)) as f:
+        text = f.read()
+    text = re.sub(r'(?m)^name = ".*"$', 'name = "bench_%s"' % name, text, count=1)
+    for key, val in repl.items():
+        new_key, val = val if isinstance(val, tuple) else (key, val)  # (key, value): the line takes another key
+        text, n = re.subn(r"(?m)^%s = .*$" % re.escape(key), "%s = %s" % (new_key, val), text, count=1)
+        if n != 1:
+            raise BenchError("%s: no key %s to replace for case %s" % (base, key, name))
+    return text
+
+
+def _render(driver, case: dict, system: dict, workdir: str) -> dict:
+    try:
+        return driver.render(case, system, workdir, output="layers")
+    except Unsupported as e:
+        raise BenchError("side_by_side: %s" % e) from None
+
+
+def render_lammps(case: dict, system: dict, workdir: str) -> dict:
+    """in.case and data.system of the LAMMPS run (lammps_case.render_layers); BenchError beyond its crystals."""
+    return _render(lammps_case, case, system, workdir)
+
+
+def render_liggghts(case: dict, system: dict, workdir: str) -> dict:
+    """in.case and data.system of the LIGGGHTS run (liggghts_case.render_layers)."""
+    return _render(liggghts_case, case, system, workdir)

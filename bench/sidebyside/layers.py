@@ -1,0 +1,108 @@
+"""The physics check: LAMMPS' and LIGGGHTS' per-layer output turned into trace files, measured by the
+one ruler (`granwave analyze --json`) and compared with granwave's trace."""
+from __future__ import annotations
+
+import json
+import subprocess
+
+import numpy as np
+
+from xclib import traces as T
+
+
+def read_layer_file(path: str):
+    """(steps [nt], coord [nbins], count [nt, nbins], values [nt, nbins, nv]) of a LAMMPS `fix ave/chunk`
+    or LIGGGHTS `fix ave/spatial` file: per block a header "step nrows [total]" then rows
+    "index coord count v1 v2 ...". Raises ValueError on a truncated block."""
+    steps, blocks = [], []
+    with open(path) as f:
+        lines = [ln for ln in f if ln.strip() and not ln.startswith("#")]
+    i = 0
+    while i < len(lines):
+        head = lines[i].split()
+        step, nrows = int(head[0]), int(head[1])
+        body = lines[i + 1:i + 1 + nrows]
+        if len(body) != nrows:
+            raise ValueError("%s: step %d has %d of %d rows" % (path, step, len(body), nrows))
+        blocks.append(np.loadtxt(body, ndmin=2))
+        steps.append(step)
+        i += 1 + nrows
+    if not blocks:
+        raise ValueError("%s: no output" % path)
+    a = np.array(blocks)
+    return np.array(steps), a[0, :, 1], a[:, :, 2], a[:, :, 3:]
+
+
+def layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str, code: str, version: str) -> None:
+    """A trace file (SCHEMA.md §3) from the per-layer output of the decks above: values are per-atom
+    means of c_sa[3] c_sa[5] vz vx c_dsp[3] c_dsp[1]. stress/atom is minus the virial per atom,
+    (1/2) sum over the atom's contacts of (x_i - x_j) (x) f_i, so the layer's contact stress in
+    granwave's convention (compression positive) is -count * mean / (l_x l_y l0). Its component 5
+    is LAMMPS' xz (x of the branch, z of the force), the transpose of granwave's zx: the P-wave
+    check uses zz only."""
+    case, text = T.load_case(case_path)
+    system = T.read_system(system_path)
+    lay = T.crystal_layout(system)
+    steps, coord, count, vals = read_layer_file(layer_file)
+    dt = T.timestep(case, system)
+    z0 = float(np.min(np.asarray(system["position"], float)[lay["layer"] == 0, 2]))
+    idx = np.rint((coord - z0) / lay["l0"]).astype(int)
+    keep = (idx >= 0) & (idx < lay["nlayers"])
+    if sorted(idx[keep].tolist()) != list(range(lay["nlayers"])):
+        raise ValueError("%s: the bins do not map one to one onto the %d layers" % (layer_file, lay["nlayers"]))
+    order = np.argsort(idx[keep])
+    cnt = count[:, keep][:, order]
+    v = vals[:, keep, :][:, order, :]
+    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
+    data = {"/crystal/layer_z": lay["layer_z"],
+            "/crystal/layer_stress_zz": -cnt * v[:, :, 0] / vol, "/crystal/layer_stress_zx": -cnt * v[:, :, 1] / vol,
+            "/crystal/layer_velocity_z": v[:, :, 2], "/crystal/layer_velocity_x": v[:, :, 3],
+            "/crystal/layer_displacement_z": v[:, :, 4], "/crystal/layer_displacement_x": v[:, :, 5]}
+    T.write_trace(out, code=code, code_version=version, case_text=text, case_name=case["case"]["name"],
+                  system_path=system_path, time_convention="synchronous: per-layer output after a whole step",
+                  time=steps * dt, datasets=data, extra_attrs={"note": "bench/side_by_side.py layer output"})
+
+
+def analyze_speed(granwave: str, trace: str, layers: str | None) -> dict:
+    cmd = [granwave, "analyze", trace, "--json"] + (["--layers", layers] if layers else [])
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        return dict(error=p.stderr.strip()[-300:])
+    d = json.loads(p.stdout)
+    v = d.get("v_half_peak") or {}
+    return dict(v_half=v.get("value"), v_half_err=v.get("error"), z_over_l0=v.get("z_over_l0"))
+
+
+# Significant digits of each code's layer file: LAMMPS `fix ave/chunk ... format " %.10g"` (the deck above);
+# LIGGGHTS 3.8's `fix ave/spatial` has no format keyword and prints "%g", 6 digits.
+PRINTED_DIGITS = {"lammps": 10, "liggghts": 6}
+
+
+def stress_resolution(ref_trace: str, layer_file: str, system_path: str, digits: int) -> float | None:
+    """What the layer file's printed digits alone allow: max over samples and layers of half a unit in
+    the last printed digit of the per-atom mean c_sa[3], turned into sigma_zz as layers_to_trace does
+    (count / (l_x l_y l0)), relative to granwave's peak stress change. A wave small against the
+    prestress (the `hertz` case: 1e-7 d on a 1e-4 d overlap) sits in the last digits of %g."""
+    import h5py
+    with h5py.File(ref_trace, "r") as a:
+        s0 = a["/crystal/layer_stress_zz"][()]
+    lay = T.crystal_layout(T.read_system(system_path))
+    _, _, count, vals = read_layer_file(layer_file)
+    mean = np.abs(vals[:, :, 0])
+    safe = np.where(mean > 0, mean, 1.0)
+    ulp = np.where(mean > 0, 10.0 ** (np.floor(np.log10(safe)) - (digits - 1)), 0.0)
+    peak = float(np.max(np.abs(s0 - s0[0])))
+    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
+    return None if peak <= 0 else float(np.max(0.5 * count * ulp)) / vol / peak
+
+
+def stress_deviation(ref_trace: str, trace: str) -> float | None:
+    """max |sigma_zz - sigma_zz(granwave)| over all samples and layers / max |sigma_zz(granwave) - its t = 0|."""
+    import h5py
+    with h5py.File(ref_trace, "r") as a, h5py.File(trace, "r") as b:
+        s0, s1 = a["/crystal/layer_stress_zz"][()], b["/crystal/layer_stress_zz"][()]
+        t0, t1 = a["/time"][()], b["/time"][()]
+    if s0.shape != s1.shape or not np.allclose(t0, t1, rtol=0, atol=1e-12):
+        return None
+    peak = float(np.max(np.abs(s0 - s0[0])))
+    return float(np.max(np.abs(s1 - s0))) / peak if peak > 0 else None
