@@ -112,8 +112,8 @@ def read_system(path: str) -> dict:
 
 
 def timestep(case: dict, system: dict) -> float:
-    """dt of the run. `dt` is taken as written; `dt_over_tc` needs the shortest contact time, which
-    only granwave resolves for chains: a system attribute `dt` (when granwave writes one) wins."""
+    """dt of the run. A system attribute `dt` (granwave's build writes the resolved one) wins; then
+    `dt` as written; `dt_over_tc` of a linear crystal from the two-body contact time."""
     integ = case.get("integrator", {})
     if "dt" in system["attrs"]:
         return float(system["attrs"]["dt"])
@@ -121,6 +121,9 @@ def timestep(case: dict, system: dict) -> float:
         return float(integ["dt"])
     if "dt_over_tc" in integ and case["case"]["model"] == "crystal":
         c = contact_params(case)
+        if not c["kn"] > 0:
+            raise ValueError("dt_over_tc of a %s crystal needs the system file's resolved `dt` (write it with "
+                             "`granwave build`)" % c["law"])
         m = float(np.min(system["mass"]))
         mstar = m / 2.0
         eta = c["gamma_n"] / (2 * mstar)

@@ -93,6 +93,8 @@ void build(const config::Case& c, const std::string& system_path) {
   io::H5Writer w(system_path);
   io::write_provenance(w);
   write_system(w, p, c.name);
+  // The resolved time step, so that the other codes' drivers need not linearise the law for dt_over_tc.
+  w.attr("/", "dt", derive(c).dt);
   w.commit();
 }
 

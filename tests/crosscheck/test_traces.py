@@ -80,3 +80,19 @@ def test_chain_fixture_hertz_constant(tmp_path, cases_dir):
     k = 4 / 3 * (e / (2 * (1 - nu ** 2))) * math.sqrt(r / 2)
     assert abs(k - 6.8978e9) / 6.8978e9 < 1e-4
     assert len(s["hertz_constant"]) == 41 and s["attrs"]["wall"] == "brass"
+
+
+def test_timestep_of_a_hertz_crystal_comes_from_the_system_file():
+    """dt_over_tc of Hertz-Mindlin: only granwave linearises the law, so the driver takes the system's
+    resolved dt, and without it says so instead of dividing by the linear law's kn = 0."""
+    case = {"case": {"model": "crystal"}, "contact": {"law": "hertz_mindlin"},
+            "integrator": {"dt_over_tc": 0.02}}
+    system = {"attrs": {"dt": 1.7628153481680138e-07}, "mass": np.array([1e-5])}
+    assert T.timestep(case, system) == 1.7628153481680138e-07
+    system["attrs"] = {}
+    try:
+        T.timestep(case, system)
+    except ValueError as e:
+        assert "hertz_mindlin" in str(e) and "granwave build" in str(e)
+    else:
+        raise AssertionError("no error for a Hertz crystal's dt_over_tc without the system's dt")
