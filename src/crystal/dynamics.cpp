@@ -365,7 +365,7 @@ void Dynamics::particle_pass(double h) {
   auto one = [&](std::int64_t p) __attribute__((always_inline)) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
-    // Both spheres feel -a n x f^t (contact::tangential_torque); j gets -f (s + (-f) is s - f).
+    // Both spheres feel -a n x f^t; j gets -f (s + (-f) is s - f).
     auto add = [&](std::int32_t c, auto as_j) __attribute__((always_inline)) {
       if constexpr (decltype(as_j)::value) {
         sx -= cfx[c];
@@ -512,14 +512,12 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
 }
 
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
-  sum_rows_ = 0;
-  model_->contact_pass(*this, inc, dashpots);
-  finish_forces(kick);
+  finish_forces(model_->contact_pass(*this, {inc, dashpots, false, true}), kick);
 }
 
-void Dynamics::finish_forces(bool kick) {
+void Dynamics::finish_forces(const ContactSums& sums, bool kick) {
   const double h = kick ? 0.5 * dt_ : 0.0;
-  switch (sum_rows_) {  // the contact pass made the sums (one thread)
+  switch (sums.rows) {  // the contact pass made the sums (one thread)
     case 1: return kick ? finish_pass<true, 1>(h) : finish_pass<false, 1>(h);
     case 2: return kick ? finish_pass<true, 2>(h) : finish_pass<false, 2>(h);
     case 3: return kick ? finish_pass<true, 3>(h) : finish_pass<false, 3>(h);
@@ -546,7 +544,7 @@ void Dynamics::finish_forces(bool kick) {
 // with AVX2 as well; the loop it replaces was scalar (GCC 12: not vectorized) and went through
 // an OpenMP call even on one thread: 7 % of crystal_kt10's time with the radius arm (perf).
 template <bool Torques, bool Threaded>
-bool Dynamics::kick_drift(std::int64_t from) {
+Drift Dynamics::kick_drift(std::int64_t from) {
   using contact::select;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
@@ -634,11 +632,8 @@ bool Dynamics::kick_drift(std::int64_t from) {
     }
     far = range(p, p1);
     far |= far4[0] | far4[1] | far4[2] | far4[3];
-    if (rows) {
-      kernel::fill_rows(*this, rows, p, p1);
-      rows_fresh_ = true;
-    }
-    return far != 0;
+    if (rows) kernel::fill_rows(*this, rows, p, p1);
+    return {far != 0, rows != nullptr};
   }
 #endif
   if constexpr (Threaded) {
@@ -649,7 +644,7 @@ bool Dynamics::kick_drift(std::int64_t from) {
   } else {
     far = range(p0, p1);
   }
-  return far != 0;
+  return {far != 0, false};
 }
 
 // Dynamics::advance's pass: finish_pass<true, Rows> (the second half kick of the step before)
@@ -657,7 +652,7 @@ bool Dynamics::kick_drift(std::int64_t from) {
 // time, F and the torques kept in registers (fx..tz are not stored: the step's last finish
 // writes them); the last n % 4 particles through the two passes as they are.
 template <int Rows>
-bool Dynamics::finish_kick_drift() {
+Drift Dynamics::finish_kick_drift() {
 #ifdef GRANWAVE_GATHER_VECTORS
   constexpr bool Torques = Rows >= 2;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
@@ -684,61 +679,64 @@ bool Dynamics::finish_kick_drift() {
     far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
     if (rows) kernel::fill_rows(*this, rows, p, p + 4);
   }
-  bool far = (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+  Drift drift{(far4[0] | far4[1] | far4[2] | far4[3]) != 0, rows != nullptr};
   if (p < n) {
     finish_pass<true, Rows>(h, p);
-    far |= kick_drift<Torques, false>(p);
-  } else if (rows) {
-    rows_fresh_ = true;
+    const Drift tail = kick_drift<Torques, false>(p);
+    drift = {drift.far || tail.far, tail.rows_fresh};
   }
-  return far;
+  return drift;
 #else
   finish_pass<true, Rows>(0.5 * dt_);
   return kick_drift<Rows >= 2, false>();
 #endif
 }
 
-void Dynamics::advance(long k) {
-  if (slab_ || threaded()) {
-    for (long s = 1; s <= k; ++s) step();
-    return;
+Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
+  switch (waiting.rows) {
+    case 1: return finish_kick_drift<1>();
+    case 2: return finish_kick_drift<2>();
+    case 3: return finish_kick_drift<3>();
+    default: break;
   }
-  const bool keep = store_contact_forces;
-  bool pending = false;  // the last contact pass's sums wait for their finish
-  for (long s = 1; s <= k; ++s) {
-    store_contact_forces = s == k && keep;
-    bool far = false;
-    switch (pending ? sum_rows_ : 0) {
-      case 1: far = finish_kick_drift<1>(); break;
-      case 2: far = finish_kick_drift<2>(); break;
-      case 3: far = finish_kick_drift<3>(); break;
-      default: far = torques_ ? kick_drift<true, false>() : kick_drift<false, false>(); break;
-    }
-    time += dt_;
-    ++steps;
-    if (far) rebuild();
-    sum_rows_ = 0;
-    model_->contact_pass(*this, dt_, true);
-    pending = s < k && sum_rows_ != 0;
-    if (!pending) finish_forces(true);
-  }
-  store_contact_forces = keep;
+  // The halo is not integrated here: its owner does it, and exchange_halo copies it.
+  const bool threads = threaded();
+  return torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
+                  : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
 }
 
-void Dynamics::step() {
-  // First half kick and drift, with the rebuild test. The halo is not integrated here: its
-  // owner does it, and exchange_halo copies it.
-  const bool threads = threaded();
-  bool far = torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
-                       : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
-  time += dt_;
-  ++steps;
-  if (slab_) {
-    exchange_halo();  // positions at t + dt, velocities at t + dt/2: what the contact pass reads
-    far = slab_->comm->max(far ? 1.0 : 0.0) > 0.0;  // every rank rebuilds on the same step
+void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
+  auto lap = [clock](PhaseTimes::Phase phase) {
+    if (clock) clock->lap(phase);
+  };
+  ContactSums waiting;  // the step before's sums, when their finish joins this step's drift
+  for (long s = 1; s <= k; ++s) {
+    const bool last = s == k;
+    // Half kick and drift: velocities at t + dt/2, positions at t + dt.
+    const Drift drift = half_kick_drift(waiting);
+    time += dt_;
+    ++steps;
+    lap(PhaseTimes::kick_drift);
+    // Slab: the neighbours' boundary layers, as the contact pass reads them.
+    if (slab_) {
+      exchange_halo();
+      lap(PhaseTimes::halo);
+    }
+    // Contact-list upkeep: a rebuild when a particle left its skin (every rank on the same step).
+    const bool far = slab_ ? slab_->comm->max(drift.far ? 1.0 : 0.0) > 0.0 : drift.far;
+    if (far) rebuild();
+    lap(PhaseTimes::list_upkeep);
+    // Contact pass: forces at t + dt.
+    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces});
+    lap(PhaseTimes::contact_pass);
+    // Forces finished and the second half kick; one thread, no slab: joined to the next drift.
+    const bool joins_next = !last && !slab_ && sums.rows != 0;
+    waiting = joins_next ? sums : ContactSums{};
+    if (!joins_next) {
+      finish_forces(sums, true);
+      lap(PhaseTimes::finish);
+    }
   }
-  if (far) rebuild();
-  compute_forces(dt_, true, true);  // forces at t + dt and the second half kick
 }
 
 void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double dy, double dz) {

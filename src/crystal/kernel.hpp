@@ -323,7 +323,8 @@ template <int K>
 // more than they save (AVX-512 build 2.4 -> 2.6 ns per contact; AVX2 2.5 -> 2.6 even with this
 // same loop written around the gather's columns).
 template <class Law, bool Dissipative>
-void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
+ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
+  const double inc = plan.increment_time;
   using History = typename Law::History;
   static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
   constexpr std::size_t NH = contact::history_columns<History>;
@@ -418,9 +419,10 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
   };
   // One thread: the forces go straight into the particles' rows (scatter, above).
   double* sum_rows = nullptr;
+  int rows = 0;
   const std::int64_t np = static_cast<std::int64_t>(d.size());
 #ifdef GRANWAVE_GATHER_VECTORS
-  if (!d.threaded()) sum_rows = d.begin_contact_sums(1);
+  if (!d.threaded()) sum_rows = d.begin_contact_sums(rows = 1);
 #endif
   auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
@@ -450,6 +452,7 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
 #endif
   };
   in_blocks(nc, d.threaded(), range);
+  return {rows};
 }
 
 
@@ -464,7 +467,8 @@ constexpr int scatter_mode_of(contact::LeverArm arm) {
 
 // The contact pass of a law with torques, from gathered columns (above).
 template <class Law, bool Dissipative>
-void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
+ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
+  const double inc = plan.increment_time;
   using History = typename Law::History;
   static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
   constexpr std::size_t NH = contact::history_columns<History>;
@@ -480,7 +484,7 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
   // The particle rows the gather reads (x, y, z, a | v | w), refreshed from the SoA state.
-  if (!d.take_fresh_rows()) {
+  if (!plan.rows_fresh) {
     d.gather_rows.resize(12 * d.size());
     fill_rows(d, d.gather_rows.data());
   }
@@ -492,7 +496,7 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   const std::int64_t np = static_cast<std::int64_t>(d.size());
   int scatter_mode = 0;
   double* sum_rows = nullptr;
-  const bool keep_forces = d.store_contact_forces;
+  const bool keep_forces = plan.store_forces;
 #ifdef GRANWAVE_GATHER_VECTORS
   if (!d.threaded()) {
     scatter_mode = scatter_mode_of(law.lever_arm());
@@ -636,16 +640,17 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
     range(0, nc, std::true_type{});
   else
     in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
+  return {scatter_mode == 0 ? 0 : scatter_mode + 1};
 }
 
 // The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law
 // dissipates) the dissipated energy. `inc` is the time the springs advance by.
 template <class Law, bool Dissipative>
-void contact_pass(Dynamics& d, const Law& law, double inc) {
+ContactSums contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
   if constexpr (Law::torques)
-    gathered_contact_pass<Law, Dissipative>(d, law, inc);
+    return gathered_contact_pass<Law, Dissipative>(d, law, plan);
   else
-    direct_contact_pass<Law, Dissipative>(d, law, inc);
+    return direct_contact_pass<Law, Dissipative>(d, law, plan);
 }
 
 // A law as the dynamics sees it. `rates = false` evaluates the law without its rate terms
@@ -657,12 +662,8 @@ class LawModel final : public ContactModel {
   std::size_t history_columns() const override { return contact::history_columns<typename Law::History>; }
   bool torques() const override { return Law::torques; }
   contact::LeverArm lever_arm() const override { return law_.lever_arm(); }
-  bool dissipates() const override { return law_.dissipates(); }
-  void contact_pass(Dynamics& d, double inc, bool rates) const override {
-    if (rates)
-      run(d, law_, inc);
-    else
-      run(d, law_.without_rates(), inc);
+  ContactSums contact_pass(Dynamics& d, const ContactPassPlan& plan) const override {
+    return plan.rates ? run(d, law_, plan) : run(d, law_.without_rates(), plan);
   }
   void add_stored_energy(double* per_layer, const ContactList& C, std::size_t first, const int* layer,
                          const double* radius) const override {
@@ -701,15 +702,10 @@ class LawModel final : public ContactModel {
       acc[0] = delta[c] <= 0.0 ? acc[0] : e;  // as `if (delta <= 0) continue` (NaN adds)
     });
   }
-  const Law& law() const { return law_; }
-
  private:
   template <class L>
-  static void run(Dynamics& d, const L& law, double inc) {
-    if (law.dissipates())
-      kernel::contact_pass<L, true>(d, law, inc);
-    else
-      kernel::contact_pass<L, false>(d, law, inc);
+  static ContactSums run(Dynamics& d, const L& law, const ContactPassPlan& plan) {
+    return law.dissipates() ? kernel::contact_pass<L, true>(d, law, plan) : kernel::contact_pass<L, false>(d, law, plan);
   }
   Law law_;
 };
