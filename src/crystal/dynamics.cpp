@@ -324,6 +324,43 @@ void ContactList::j_lists(std::size_t n) const {
   for (std::size_t c = 0; c < nc; ++c) j_contacts[fill[j[c]]++] = static_cast<std::int32_t>(c);
 }
 
+namespace {
+// Pass 2's particle arrays: what it writes (forces, torques, velocities) and reads (radii,
+// inverse masses and inertias, mobile flags). store() ends one particle's pass: its force and
+// torque, then with Kick the half kick (with Spin, of the angular velocity too).
+struct ParticleOut {
+  double *fx, *fy, *fz, *tx, *ty, *tz, *vx, *vy, *vz, *wx, *wy, *wz;
+  const double *a, *im, *ii;
+  const std::uint8_t* on;
+  explicit ParticleOut(Dynamics& d)
+      : fx(d.fx.data()), fy(d.fy.data()), fz(d.fz.data()), tx(d.tx.data()), ty(d.ty.data()), tz(d.tz.data()),
+        vx(d.vx.data()), vy(d.vy.data()), vz(d.vz.data()), wx(d.wx.data()), wy(d.wy.data()), wz(d.wz.data()),
+        a(d.radius.data()), im(d.inv_mass.data()), ii(d.inv_inertia.data()), on(d.mobile.data()) {}
+  template <bool Kick, bool StoreTorque, bool Spin>
+  [[gnu::always_inline]] void store(std::int64_t p, double h, double sx, double sy, double sz, double tqx, double tqy,
+                                    double tqz) const {
+    fx[p] = sx;
+    fy[p] = sy;
+    fz[p] = sz;
+    if constexpr (StoreTorque) {
+      tx[p] = tqx;
+      ty[p] = tqy;
+      tz[p] = tqz;
+    }
+    if (Kick && on[p]) {
+      vx[p] += h * sx * im[p];
+      vy[p] += h * sy * im[p];
+      vz[p] += h * sz * im[p];
+      if constexpr (Spin) {
+        wx[p] += h * tqx * ii[p];
+        wy[p] += h * tqy * ii[p];
+        wz[p] += h * tqz * ii[p];
+      }
+    }
+  }
+};
+}  // namespace
+
 // Sum of each particle's contact forces and torques in contact order; with Kick, the half
 // kick of velocity Verlet follows at once (the forces are then still in cache). The torque of
 // contact c on p is -arm n x f^t with arm = a_p (eq. (4)), or a_p - delta_c/2 with
@@ -346,22 +383,8 @@ void Dynamics::particle_pass(double h) {
   const double* __restrict cny = C.nf_y.data();
   const double* __restrict cnz = C.nf_z.data();
   const double* __restrict cdelta = C.delta.data();
-  double* __restrict pfx = fx.data();
-  double* __restrict pfy = fy.data();
-  double* __restrict pfz = fz.data();
-  double* __restrict ptx = tx.data();
-  double* __restrict pty = ty.data();
-  double* __restrict ptz = tz.data();
-  double* __restrict pvx = vx.data();
-  double* __restrict pvy = vy.data();
-  double* __restrict pvz = vz.data();
-  double* __restrict pwx = wx.data();
-  double* __restrict pwy = wy.data();
-  double* __restrict pwz = wz.data();
   const double* __restrict a = radius.data();
-  const double* __restrict im = inv_mass.data();
-  const double* __restrict ii = inv_inertia.data();
-  const std::uint8_t* __restrict on = mobile.data();
+  const ParticleOut out(*this);
   auto one = [&](std::int64_t p) __attribute__((always_inline)) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
@@ -389,28 +412,10 @@ void Dynamics::particle_pass(double h) {
     };
     for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});
     for (std::int32_t c = i_first[p]; c < i_first[p + 1]; ++c) add(c, std::false_type{});
-    pfx[p] = sx;
-    pfy[p] = sy;
-    pfz[p] = sz;
-    if constexpr (ContactPointArm) {
-      ptx[p] = -a[p] * nx + 0.5 * dnx;
-      pty[p] = -a[p] * ny + 0.5 * dny;
-      ptz[p] = -a[p] * nz + 0.5 * dnz;
-    } else {
-      ptx[p] = -a[p] * nx;
-      pty[p] = -a[p] * ny;
-      ptz[p] = -a[p] * nz;
-    }
-    if (Kick && on[p]) {
-      pvx[p] += h * sx * im[p];
-      pvy[p] += h * sy * im[p];
-      pvz[p] += h * sz * im[p];
-      if constexpr (fr) {
-        pwx[p] += h * ptx[p] * ii[p];
-        pwy[p] += h * pty[p] * ii[p];
-        pwz[p] += h * ptz[p] * ii[p];
-      }
-    }
+    if constexpr (ContactPointArm)
+      out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx + 0.5 * dnx, -a[p] * ny + 0.5 * dny, -a[p] * nz + 0.5 * dnz);
+    else
+      out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx, -a[p] * ny, -a[p] * nz);
   };
   if constexpr (Threaded) {
 #pragma omp parallel for schedule(static)
@@ -431,22 +436,8 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
   double* __restrict rf = contact_sums.data();
   double* __restrict rn = rf + 4 * n;
   double* __restrict rd = rf + 8 * n;
-  double* __restrict pfx = fx.data();
-  double* __restrict pfy = fy.data();
-  double* __restrict pfz = fz.data();
-  double* __restrict ptx = tx.data();
-  double* __restrict pty = ty.data();
-  double* __restrict ptz = tz.data();
-  double* __restrict pvx = vx.data();
-  double* __restrict pvy = vy.data();
-  double* __restrict pvz = vz.data();
-  double* __restrict pwx = wx.data();
-  double* __restrict pwy = wy.data();
-  double* __restrict pwz = wz.data();
-  const double* __restrict a = radius.data();
-  const double* __restrict im = inv_mass.data();
-  const double* __restrict ii = inv_inertia.data();
-  const std::uint8_t* __restrict on = mobile.data();
+  const ParticleOut out(*this);
+  const double* __restrict a = out.a;
   std::int64_t p = std::max(p0, from);
 #ifdef GRANWAVE_GATHER_VECTORS
   // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
@@ -457,16 +448,16 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
       V4 sx, sy, sz, tqx, tqy, tqz;
       take_rows(rf + 4 * p, sx, sy, sz);
       torques_of_rows<Rows>(rn, rd, a, p, tqx, tqy, tqz);
-      store4(pfx + p, sx), store4(pfy + p, sy), store4(pfz + p, sz);
-      if constexpr (Rows >= 2) store4(ptx + p, tqx), store4(pty + p, tqy), store4(ptz + p, tqz);
+      store4(out.fx + p, sx), store4(out.fy + p, sy), store4(out.fz + p, sz);
+      if constexpr (Rows >= 2) store4(out.tx + p, tqx), store4(out.ty + p, tqy), store4(out.tz + p, tqz);
       if constexpr (Kick) {
-        const V4m m = mobile4(on, p);
-        const V4 imv = load4(im + p);
-        for (auto [v, f] : {std::pair{pvx, sx}, std::pair{pvy, sy}, std::pair{pvz, sz}})
+        const V4m m = mobile4(out.on, p);
+        const V4 imv = load4(out.im + p);
+        for (auto [v, f] : {std::pair{out.vx, sx}, std::pair{out.vy, sy}, std::pair{out.vz, sz}})
           store4(v + p, kicked4<1>(load4(v + p), f, m, hv, imv));
         if constexpr (Rows >= 2) {
-          const V4 iiv = load4(ii + p);
-          for (auto [w, t] : {std::pair{pwx, tqx}, std::pair{pwy, tqy}, std::pair{pwz, tqz}})
+          const V4 iiv = load4(out.ii + p);
+          for (auto [w, t] : {std::pair{out.wx, tqx}, std::pair{out.wy, tqy}, std::pair{out.wz, tqz}})
             store4(w + p, kicked4<1>(load4(w + p), t, m, hv, iiv));
         }
       }
@@ -476,9 +467,6 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
   const std::int64_t zeroed = p;  // rows [p0, zeroed) are zero again
   for (; p < p1; ++p) {
     const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
-    pfx[p] = sx;
-    pfy[p] = sy;
-    pfz[p] = sz;
     double tqx = 0.0, tqy = 0.0, tqz = 0.0;
     if constexpr (Rows == 3) {
       tqx = -a[p] * rn[4 * p] + 0.5 * rd[4 * p];
@@ -489,21 +477,7 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
       tqy = -a[p] * rn[4 * p + 1];
       tqz = -a[p] * rn[4 * p + 2];
     }
-    if constexpr (Rows >= 2) {
-      ptx[p] = tqx;
-      pty[p] = tqy;
-      ptz[p] = tqz;
-    }
-    if (Kick && on[p]) {
-      pvx[p] += h * sx * im[p];
-      pvy[p] += h * sy * im[p];
-      pvz[p] += h * sz * im[p];
-      if constexpr (Rows >= 2) {
-        pwx[p] += h * tqx * ii[p];
-        pwy[p] += h * tqy * ii[p];
-        pwz[p] += h * tqz * ii[p];
-      }
-    }
+    out.store<Kick, Rows >= 2, Rows >= 2>(p, h, sx, sy, sz, tqx, tqy, tqz);
   }
   for (int k = 0; k < Rows; ++k) {  // the others (the halo's sums are incomplete and never used)
     std::fill(rf + 4 * (k * n), rf + 4 * (k * n + p0), 0.0);
