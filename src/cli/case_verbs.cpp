@@ -43,9 +43,11 @@ class RunProgress {
   void tick(long done, long total) {
     if (!line_) {
       if (sweep::wall_seconds() - start_ < kQuietSeconds) return;
-      line_.emplace(static_cast<std::size_t>(total), 0, true, "steps");
+      first_ = done;  // the steps before the line count as done before it (rate and ETA: since it)
+      line_.emplace(static_cast<std::size_t>(total), static_cast<std::size_t>(first_), true, "steps");
+      if (done < total) return;  // the first line at the next sample: a rate to show
     }
-    line_->tick(static_cast<std::size_t>(done));
+    line_->tick(static_cast<std::size_t>(done - first_));
     if (done >= total) finish();  // the line ends before the summary
   }
   void finish() {
@@ -57,6 +59,7 @@ class RunProgress {
  private:
   double start_ = sweep::wall_seconds();
   std::optional<sweep::Progress> line_;
+  long first_ = 0;
   bool finished_ = false;
 };
 
