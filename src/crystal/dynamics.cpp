@@ -679,6 +679,17 @@ Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
                   : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
 }
 
+void Dynamics::upkeep_list(const Drift& drift) {
+  const bool far = slab_ ? slab_->comm->max(drift.far ? 1.0 : 0.0) > 0.0 : drift.far;  // every rank alike
+  if (far) rebuild();
+}
+
+ContactSums Dynamics::finish_step(const ContactSums& sums, bool last) {
+  if (!last && !slab_ && sums.rows != 0) return sums;  // one thread: joined to the next drift
+  finish_forces(sums, true);
+  return {};
+}
+
 void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
   auto lap = [clock](PhaseTimes::Phase phase) {
     if (clock) clock->lap(phase);
@@ -686,30 +697,20 @@ void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
   ContactSums waiting;  // the step before's sums, when their finish joins this step's drift
   for (long s = 1; s <= k; ++s) {
     const bool last = s == k;
-    // Half kick and drift: velocities at t + dt/2, positions at t + dt.
-    const Drift drift = half_kick_drift(waiting);
+    const Drift drift = half_kick_drift(waiting);  // v(t + dt/2), x(t + dt)
     time += dt_;
     ++steps;
     lap(PhaseTimes::kick_drift);
-    // Slab: the neighbours' boundary layers, as the contact pass reads them.
     if (slab_) {
-      exchange_halo();
+      exchange_halo();  // the neighbours' boundary layers at t + dt
       lap(PhaseTimes::halo);
     }
-    // Contact-list upkeep: a rebuild when a particle left its skin (every rank on the same step).
-    const bool far = slab_ ? slab_->comm->max(drift.far ? 1.0 : 0.0) > 0.0 : drift.far;
-    if (far) rebuild();
+    upkeep_list(drift);  // a rebuild when a particle left its skin
     lap(PhaseTimes::list_upkeep);
-    // Contact pass: forces at t + dt.
     const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces});
     lap(PhaseTimes::contact_pass);
-    // Forces finished and the second half kick; one thread, no slab: joined to the next drift.
-    const bool joins_next = !last && !slab_ && sums.rows != 0;
-    waiting = joins_next ? sums : ContactSums{};
-    if (!joins_next) {
-      finish_forces(sums, true);
-      lap(PhaseTimes::finish);
-    }
+    waiting = finish_step(sums, last);  // F(t + dt) and the second half kick, v(t + dt)
+    lap(PhaseTimes::finish);
   }
 }
 

@@ -240,10 +240,11 @@ class Dynamics {
   // One velocity-Verlet step of translation and rotation (store_forces: ContactPassPlan's).
   void step(bool store_forces = true) { advance(1, store_forces); }
   // k steps, the same as k calls of step(), bit for bit; the last one stores the contact forces
-  // when `store_forces`. On one thread without a slab, the finish and second half kick of each
-  // step but the last and the first half kick and drift of the next are one pass over the
-  // particles (finish_kick_drift): forces and torques fx..tz are current only when it returns.
-  // With a clock, each phase's wall time is booked to it.
+  // when `store_forces`. Each step's phases, in order, each booked to `clock` (if any):
+  // half_kick_drift, exchange_halo (slab), upkeep_list, the model's contact_pass, finish_step.
+  // On one thread without a slab, the finish and second half kick of each step but the last and
+  // the first half kick and drift of the next are one pass over the particles (finish_kick_drift):
+  // forces and torques fx..tz are current only when advance returns.
   void advance(long k, bool store_forces = true, PhaseClock* clock = nullptr);
 
   // OpenMP is used from this many particles on (fork/join costs more than it saves on small
@@ -290,11 +291,18 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
-  // Pass 2 after the contact pass (compute_forces' second half), from what the pass left.
+  // Pass 2 after the contact pass, from what the pass left.
   void finish_forces(const ContactSums& sums, bool kick);
   // The first half kick and drift, after the finish of the step before when its sums `waiting`
   // were left for it (one thread: finish_kick_drift).
   Drift half_kick_drift(const ContactSums& waiting);
+  // Contact-list upkeep: a rebuild when the drift took a particle out of its skin (under a slab
+  // plan, when it did on any rank).
+  void upkeep_list(const Drift& drift);
+  // The step's finish and second half kick from the contact pass's `sums`; returns them instead,
+  // left for the next step's half_kick_drift, when it can take them (one thread, no slab, not
+  // the `last` step), else an empty ContactSums.
+  ContactSums finish_step(const ContactSums& sums, bool last);
   // The first half kick and drift of the owned particles from `from` on (-1: all)
   template <bool Torques, bool Threaded>
   Drift kick_drift(std::int64_t from = -1);
