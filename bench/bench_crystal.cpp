@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
     dyn.parallel_min_particles = dyn.size() + 1;
     for (int k = 0; k < 20; ++k) dyn.step();
     const int calls = 50 * repeats;
-    const double pass = fastest(calls, [&] { dyn.model().contact_pass(dyn, dyn.dt(), true); });
+    const double pass = fastest(calls, [&] { dyn.model().contact_pass(dyn, {dyn.dt(), true, false, true}); });
     const double step = fastest(calls, [&] { dyn.step(); });
     std::printf("%-34s %9zu %14.2f %16.2f %16.2f\n", row.name, dyn.contacts.size(), 1e9 * pass / dyn.contacts.size(),
                 1e9 * step / dyn.size(), 1e9 * (step - pass) / dyn.size());

@@ -1,6 +1,7 @@
 // The entry points the command line calls for each model. src/chain/ and src/crystal/ each
 // implement their namespace; src/cli/ only parses arguments and dispatches here.
 #pragma once
+#include <functional>
 #include <iosfwd>
 #include <string>
 
@@ -14,6 +15,9 @@ struct RunRequest {
   std::string system_path;  // optional: a system file from `granwave build` to run instead of building
   bool json = false;        // print a machine-readable summary (one JSON object) on stdout
   bool quiet = false;       // no progress on stderr
+  // Called at each sample of a crystal run with the steps done and the run's steps (the CLI's
+  // progress line; rank 0 only under MPI).
+  std::function<void(long done, long total)> progress;
   ResourceLimits limits;    // refused above (--max-steps, --max-memory; core/resources.hpp)
 };
 

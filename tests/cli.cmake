@@ -116,6 +116,17 @@ add_test(NAME "cli: run --json of a Hertz-Mindlin crystal gives the lattice P sp
 /usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/hm_lattice.json')); \
 v, w = d['speed_theory'], d['speed_theory_lattice']; assert abs(w / v - 1) < 1e-3, (v, w)\"")
 set_tests_properties("cli: run --json of a Hertz-Mindlin crystal gives the lattice P speed of the linearised law" PROPERTIES LABELS "cli")
+# The time loop's phases (crystal::RunResult::phases): every name, the sum the loop's wall time
+# within 2 %, and one line of the text summary; `run --help` says what --quiet does. Bookkeeping,
+# not physics.
+add_test(NAME "cli: run --json carries the phases of the time loop, which add up to its wall time"
+  COMMAND sh -c "${GW} run ${CMAKE_SOURCE_DIR}/data/cases/crystal_small.toml -o ${CLI_TMP}/phases.h5 --json --quiet > ${CLI_TMP}/phases.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/phases.json')); p = d['phases']; \
+assert set(p) == {'kick_drift', 'halo', 'list_upkeep', 'contact_pass', 'finish', 'sample', 'other'}, p; \
+assert abs(sum(p.values()) - d['wall_seconds']) <= 0.02 * d['wall_seconds'], (p, d['wall_seconds'])\" && \
+${GW} run ${CMAKE_SOURCE_DIR}/data/cases/crystal_small.toml -o ${CLI_TMP}/phases_text.h5 | grep -q '^  phases: kick+drift .* contact pass .* other ' && \
+${GW} run --help | grep -q -- '--quiet leaves the progress line out'")
+set_tests_properties("cli: run --json carries the phases of the time loop, which add up to its wall time" PROPERTIES LABELS "cli")
 # Issue #25: a damaged trace on which the HDF5 library throws while looking a dataset up (it aborted
 # granwave before: H5::Exception is no std::exception). Exit 2, naming the file and the dataset.
 add_test(NAME "cli: analyze of a damaged trace exits 2 naming the file and the dataset"

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cli/verbs.hpp"
@@ -10,6 +11,7 @@
 #include "core/resources.hpp"
 #include "models.hpp"
 #include "sweep/distributed.hpp"
+#include "sweep/study.hpp"
 
 namespace granwave::cli {
 namespace {
@@ -32,6 +34,34 @@ config::Case load_single_case(const Args& args, const std::vector<std::string>& 
 }
 
 std::string default_trace_path(const config::Case& c) { return c.name + ".traces.h5"; }
+
+// A crystal run's progress on stderr: sweep's progress line (steps done, rate, ETA), shown only
+// when stderr is a terminal and once the run has taken longer than kQuietSeconds.
+class RunProgress {
+ public:
+  static constexpr double kQuietSeconds = 2.0;
+  void tick(long done, long total) {
+    if (!line_) {
+      if (sweep::wall_seconds() - start_ < kQuietSeconds) return;
+      first_ = done;  // the steps before the line count as done before it (rate and ETA: since it)
+      line_.emplace(static_cast<std::size_t>(total), static_cast<std::size_t>(first_), true, "steps");
+      if (done < total) return;  // the first line at the next sample: a rate to show
+    }
+    line_->tick(static_cast<std::size_t>(done - first_));
+    if (done >= total) finish();  // the line ends before the summary
+  }
+  void finish() {
+    if (line_ && !finished_) line_->finish();
+    finished_ = true;
+  }
+  ~RunProgress() { finish(); }  // a failed run
+
+ private:
+  double start_ = sweep::wall_seconds();
+  std::optional<sweep::Progress> line_;
+  long first_ = 0;
+  bool finished_ = false;
+};
 
 // --max-steps N and --max-memory SIZE (core/resources.hpp): the limits check and run refuse above.
 ResourceLimits limits_of(const Args& args) {
@@ -104,6 +134,9 @@ int cmd_run(const Args& args) {
       "  `granwave analyze TRACE` (default options): the same numbers, one ruler.\n"
       "  --json prints one JSON object (schema \"granwave-run/1\", data/SCHEMA.md §3.1): the run's\n"
       "  own numbers and, under \"analysis\", exactly what `granwave analyze TRACE --json` prints.\n"
+      "  A crystal run prints where its time loop spent its wall time (\"phases\" in the JSON, s)\n"
+      "  and, on stderr when it is a terminal, a progress line once the run takes more than 2 s;\n"
+      "  --quiet leaves the progress line out.\n"
       "  Under `mpirun -n R` a crystal run is split into slabs of whole layers (R <= layers) and\n"
       "  writes the serial run's trace file bit for bit (README \"MPI\"); a chain run is refused";
   if (wants_help(args)) {
@@ -122,10 +155,13 @@ int cmd_run(const Args& args) {
   }
   req.json = has_flag(args, "--json");
   req.quiet = has_flag(args, "--quiet");
+  RunProgress progress;
+  if (!req.quiet) req.progress = [&progress](long done, long total) { progress.tick(done, total); };
   if (c.model == config::Model::chain && sweep::world_size() > 1)
     throw InputError(c.path + ": case.model = \"chain\": a chain run is not split over MPI ranks (a crystal run is); "
                      "run it without mpirun (or with -n 1)");
-  return c.model == config::Model::chain ? chain::run(c, req, std::cout) : crystal::run(c, req, std::cout);
+  if (c.model == config::Model::chain) return chain::run(c, req, std::cout);
+  return crystal::run(c, req, std::cout);
 }
 
 }  // namespace granwave::cli

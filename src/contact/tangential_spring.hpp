@@ -83,12 +83,6 @@ inline Vec3 project_spring(const Vec3& xi_prev, const Vec3& n) {
   return select(s.needs_root, project_spring_root(xi_prev, n), s.xi);
 }
 
-// Eq. (4): relative velocity of the two surfaces at the contact, n = (r_i - r_j)/|r_i - r_j|.
-inline Vec3 relative_surface_velocity(const Vec3& vi, const Vec3& vj, const Vec3& wi, const Vec3& wj, double ai,
-                                      double aj, const Vec3& n) {
-  return vi - vj + ai * n.cross(wi) + aj * n.cross(wj);
-}
-
 // Eq. (3): the tangential part of a relative velocity.
 inline Vec3 tangential_velocity(const Vec3& vij, const Vec3& n) { return vij - n * n.dot(vij); }
 
@@ -187,9 +181,5 @@ inline TangentialResult tangential_force(const TangentialSpringParams& p, const 
   if (!test.sliding) return {test.force, xi, false, 0.0};
   return sliding_force(p, test, vt);
 }
-
-// Torques from f^t acting at the contact point: on i at -a_i n, on j (force -f^t) at +a_j n;
-// both equal -a n x f^t.
-inline Vec3 tangential_torque(double a, const Vec3& n, const Vec3& f_t) { return -a * n.cross(f_t); }
 
 }  // namespace granwave::contact

@@ -1,4 +1,5 @@
 // Entry points of the crystal model (src/models.hpp): check, build, run.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -31,6 +32,28 @@ void check_system_matches(const config::Case& c, const Packing& p, const std::st
   if (p.nx != k.cells[0] || p.ny != k.cells[1] || p.layers != k.cells[2] || p.fixed_layers != k.fixed_layers ||
       std::abs(p.d - 2.0 * k.radius) > 1e-12 * p.d)
     throw InputError(path + ": the system's packing (cells, fixed layers, radius) is not the one of " + c.path);
+}
+
+// The time loop's phases (RunResult::phases) as a JSON object {name: seconds}.
+Json phases_json(const PhaseTimes& t) {
+  Json o = Json::object();
+  for (std::size_t k = 0; k < t.seconds.size(); ++k) o[t.names[k]] = t.seconds[k];
+  return o;
+}
+
+// The same as one line: "phases: kick+drift 0.41 s (18%), ...".
+std::string phases_line(const PhaseTimes& t) {
+  const double total = std::max(t.total(), 1e-300);
+  std::ostringstream o;
+  o << "phases:";
+  for (std::size_t k = 0; k < t.seconds.size(); ++k) {
+    std::string name = t.names[k];
+    for (char& ch : name) ch = ch == '_' ? ' ' : ch;
+    if (name == "kick drift") name = "kick+drift";
+    o << (k ? ", " : " ") << name << " " << std::setprecision(3) << t.seconds[k] << " s (" << std::setprecision(2)
+      << 100.0 * t.seconds[k] / total << "%)";
+  }
+  return o.str();
 }
 
 std::string trace_path_for(const config::Case& c, const RunRequest& req) {
@@ -144,8 +167,9 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   long steps = 0, rebuilds = 0;
   std::size_t samples = 0;
   std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
+  PhaseTimes phases;
   {
-    const RunResult r = simulate(c, packing, hook, comm);
+    const RunResult r = simulate(c, packing, hook, comm, root ? ProgressHook(req.progress) : ProgressHook());
     if (vtk) vtk->finish();
     if (root) write_trace(c, packing, r, trace_path);
     if (r.failed) throw RunError(r.error + " (samples so far kept in " + trace_path + ")");  // on every rank
@@ -166,6 +190,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
     rank_message_seconds = r.rank_message_seconds;
     rank_cpu_seconds = r.rank_cpu_seconds;
     rank_message_cpu_seconds = r.rank_message_cpu_seconds;
+    phases = r.phases;
   }
   if (!root) return 0;
 
@@ -191,6 +216,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
               {"mpi_rank_cpu_seconds", rank_cpu_seconds},
               {"mpi_rank_message_cpu_seconds", rank_message_cpu_seconds},
               {"wall_seconds", seconds},
+              {"phases", phases_json(phases)},
               {"particle_steps_per_second", pss},
               {"mode", shear ? "S" : "P"},
               {"speed_theory", shear ? d.v_s : d.v_p},
@@ -208,6 +234,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
     out << std::setprecision(5);
     out << "crystal " << c.name << ": " << packing.size() << " particles, " << steps << " steps in " << seconds << " s (" << pss
         << " particle-steps/s), " << rebuilds << " contact-list builds\n";
+    out << "  " << phases_line(phases) << (ranks > 1 ? " (rank 0)" : "") << "\n";
     if (ranks > 1) {
       out << "  split over " << ranks << " MPI ranks (slabs of whole layers, docs/design.md §2.8); per rank, time loop"
           << " wall / of it in MPI calls, CPU / of it in MPI calls (s):";

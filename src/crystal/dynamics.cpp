@@ -324,6 +324,43 @@ void ContactList::j_lists(std::size_t n) const {
   for (std::size_t c = 0; c < nc; ++c) j_contacts[fill[j[c]]++] = static_cast<std::int32_t>(c);
 }
 
+namespace {
+// Pass 2's particle arrays: what it writes (forces, torques, velocities) and reads (radii,
+// inverse masses and inertias, mobile flags). store() ends one particle's pass: its force and
+// torque, then with Kick the half kick (with Spin, of the angular velocity too).
+struct ParticleOut {
+  double *fx, *fy, *fz, *tx, *ty, *tz, *vx, *vy, *vz, *wx, *wy, *wz;
+  const double *a, *im, *ii;
+  const std::uint8_t* on;
+  explicit ParticleOut(Dynamics& d)
+      : fx(d.fx.data()), fy(d.fy.data()), fz(d.fz.data()), tx(d.tx.data()), ty(d.ty.data()), tz(d.tz.data()),
+        vx(d.vx.data()), vy(d.vy.data()), vz(d.vz.data()), wx(d.wx.data()), wy(d.wy.data()), wz(d.wz.data()),
+        a(d.radius.data()), im(d.inv_mass.data()), ii(d.inv_inertia.data()), on(d.mobile.data()) {}
+  template <bool Kick, bool StoreTorque, bool Spin>
+  [[gnu::always_inline]] void store(std::int64_t p, double h, double sx, double sy, double sz, double tqx, double tqy,
+                                    double tqz) const {
+    fx[p] = sx;
+    fy[p] = sy;
+    fz[p] = sz;
+    if constexpr (StoreTorque) {
+      tx[p] = tqx;
+      ty[p] = tqy;
+      tz[p] = tqz;
+    }
+    if (Kick && on[p]) {
+      vx[p] += h * sx * im[p];
+      vy[p] += h * sy * im[p];
+      vz[p] += h * sz * im[p];
+      if constexpr (Spin) {
+        wx[p] += h * tqx * ii[p];
+        wy[p] += h * tqy * ii[p];
+        wz[p] += h * tqz * ii[p];
+      }
+    }
+  }
+};
+}  // namespace
+
 // Sum of each particle's contact forces and torques in contact order; with Kick, the half
 // kick of velocity Verlet follows at once (the forces are then still in cache). The torque of
 // contact c on p is -arm n x f^t with arm = a_p (eq. (4)), or a_p - delta_c/2 with
@@ -346,26 +383,12 @@ void Dynamics::particle_pass(double h) {
   const double* __restrict cny = C.nf_y.data();
   const double* __restrict cnz = C.nf_z.data();
   const double* __restrict cdelta = C.delta.data();
-  double* __restrict pfx = fx.data();
-  double* __restrict pfy = fy.data();
-  double* __restrict pfz = fz.data();
-  double* __restrict ptx = tx.data();
-  double* __restrict pty = ty.data();
-  double* __restrict ptz = tz.data();
-  double* __restrict pvx = vx.data();
-  double* __restrict pvy = vy.data();
-  double* __restrict pvz = vz.data();
-  double* __restrict pwx = wx.data();
-  double* __restrict pwy = wy.data();
-  double* __restrict pwz = wz.data();
   const double* __restrict a = radius.data();
-  const double* __restrict im = inv_mass.data();
-  const double* __restrict ii = inv_inertia.data();
-  const std::uint8_t* __restrict on = mobile.data();
+  const ParticleOut out(*this);
   auto one = [&](std::int64_t p) __attribute__((always_inline)) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
-    // Both spheres feel -a n x f^t (contact::tangential_torque); j gets -f (s + (-f) is s - f).
+    // Both spheres feel -a n x f^t; j gets -f (s + (-f) is s - f).
     auto add = [&](std::int32_t c, auto as_j) __attribute__((always_inline)) {
       if constexpr (decltype(as_j)::value) {
         sx -= cfx[c];
@@ -389,28 +412,10 @@ void Dynamics::particle_pass(double h) {
     };
     for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});
     for (std::int32_t c = i_first[p]; c < i_first[p + 1]; ++c) add(c, std::false_type{});
-    pfx[p] = sx;
-    pfy[p] = sy;
-    pfz[p] = sz;
-    if constexpr (ContactPointArm) {
-      ptx[p] = -a[p] * nx + 0.5 * dnx;
-      pty[p] = -a[p] * ny + 0.5 * dny;
-      ptz[p] = -a[p] * nz + 0.5 * dnz;
-    } else {
-      ptx[p] = -a[p] * nx;
-      pty[p] = -a[p] * ny;
-      ptz[p] = -a[p] * nz;
-    }
-    if (Kick && on[p]) {
-      pvx[p] += h * sx * im[p];
-      pvy[p] += h * sy * im[p];
-      pvz[p] += h * sz * im[p];
-      if constexpr (fr) {
-        pwx[p] += h * ptx[p] * ii[p];
-        pwy[p] += h * pty[p] * ii[p];
-        pwz[p] += h * ptz[p] * ii[p];
-      }
-    }
+    if constexpr (ContactPointArm)
+      out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx + 0.5 * dnx, -a[p] * ny + 0.5 * dny, -a[p] * nz + 0.5 * dnz);
+    else
+      out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx, -a[p] * ny, -a[p] * nz);
   };
   if constexpr (Threaded) {
 #pragma omp parallel for schedule(static)
@@ -431,22 +436,8 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
   double* __restrict rf = contact_sums.data();
   double* __restrict rn = rf + 4 * n;
   double* __restrict rd = rf + 8 * n;
-  double* __restrict pfx = fx.data();
-  double* __restrict pfy = fy.data();
-  double* __restrict pfz = fz.data();
-  double* __restrict ptx = tx.data();
-  double* __restrict pty = ty.data();
-  double* __restrict ptz = tz.data();
-  double* __restrict pvx = vx.data();
-  double* __restrict pvy = vy.data();
-  double* __restrict pvz = vz.data();
-  double* __restrict pwx = wx.data();
-  double* __restrict pwy = wy.data();
-  double* __restrict pwz = wz.data();
-  const double* __restrict a = radius.data();
-  const double* __restrict im = inv_mass.data();
-  const double* __restrict ii = inv_inertia.data();
-  const std::uint8_t* __restrict on = mobile.data();
+  const ParticleOut out(*this);
+  const double* __restrict a = out.a;
   std::int64_t p = std::max(p0, from);
 #ifdef GRANWAVE_GATHER_VECTORS
   // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
@@ -457,16 +448,16 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
       V4 sx, sy, sz, tqx, tqy, tqz;
       take_rows(rf + 4 * p, sx, sy, sz);
       torques_of_rows<Rows>(rn, rd, a, p, tqx, tqy, tqz);
-      store4(pfx + p, sx), store4(pfy + p, sy), store4(pfz + p, sz);
-      if constexpr (Rows >= 2) store4(ptx + p, tqx), store4(pty + p, tqy), store4(ptz + p, tqz);
+      store4(out.fx + p, sx), store4(out.fy + p, sy), store4(out.fz + p, sz);
+      if constexpr (Rows >= 2) store4(out.tx + p, tqx), store4(out.ty + p, tqy), store4(out.tz + p, tqz);
       if constexpr (Kick) {
-        const V4m m = mobile4(on, p);
-        const V4 imv = load4(im + p);
-        for (auto [v, f] : {std::pair{pvx, sx}, std::pair{pvy, sy}, std::pair{pvz, sz}})
+        const V4m m = mobile4(out.on, p);
+        const V4 imv = load4(out.im + p);
+        for (auto [v, f] : {std::pair{out.vx, sx}, std::pair{out.vy, sy}, std::pair{out.vz, sz}})
           store4(v + p, kicked4<1>(load4(v + p), f, m, hv, imv));
         if constexpr (Rows >= 2) {
-          const V4 iiv = load4(ii + p);
-          for (auto [w, t] : {std::pair{pwx, tqx}, std::pair{pwy, tqy}, std::pair{pwz, tqz}})
+          const V4 iiv = load4(out.ii + p);
+          for (auto [w, t] : {std::pair{out.wx, tqx}, std::pair{out.wy, tqy}, std::pair{out.wz, tqz}})
             store4(w + p, kicked4<1>(load4(w + p), t, m, hv, iiv));
         }
       }
@@ -476,9 +467,6 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
   const std::int64_t zeroed = p;  // rows [p0, zeroed) are zero again
   for (; p < p1; ++p) {
     const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
-    pfx[p] = sx;
-    pfy[p] = sy;
-    pfz[p] = sz;
     double tqx = 0.0, tqy = 0.0, tqz = 0.0;
     if constexpr (Rows == 3) {
       tqx = -a[p] * rn[4 * p] + 0.5 * rd[4 * p];
@@ -489,21 +477,7 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
       tqy = -a[p] * rn[4 * p + 1];
       tqz = -a[p] * rn[4 * p + 2];
     }
-    if constexpr (Rows >= 2) {
-      ptx[p] = tqx;
-      pty[p] = tqy;
-      ptz[p] = tqz;
-    }
-    if (Kick && on[p]) {
-      pvx[p] += h * sx * im[p];
-      pvy[p] += h * sy * im[p];
-      pvz[p] += h * sz * im[p];
-      if constexpr (Rows >= 2) {
-        pwx[p] += h * tqx * ii[p];
-        pwy[p] += h * tqy * ii[p];
-        pwz[p] += h * tqz * ii[p];
-      }
-    }
+    out.store<Kick, Rows >= 2, Rows >= 2>(p, h, sx, sy, sz, tqx, tqy, tqz);
   }
   for (int k = 0; k < Rows; ++k) {  // the others (the halo's sums are incomplete and never used)
     std::fill(rf + 4 * (k * n), rf + 4 * (k * n + p0), 0.0);
@@ -512,14 +486,12 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
 }
 
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
-  sum_rows_ = 0;
-  model_->contact_pass(*this, inc, dashpots);
-  finish_forces(kick);
+  finish_forces(model_->contact_pass(*this, {inc, dashpots, false, true}), kick);
 }
 
-void Dynamics::finish_forces(bool kick) {
+void Dynamics::finish_forces(const ContactSums& sums, bool kick) {
   const double h = kick ? 0.5 * dt_ : 0.0;
-  switch (sum_rows_) {  // the contact pass made the sums (one thread)
+  switch (sums.rows) {  // the contact pass made the sums (one thread)
     case 1: return kick ? finish_pass<true, 1>(h) : finish_pass<false, 1>(h);
     case 2: return kick ? finish_pass<true, 2>(h) : finish_pass<false, 2>(h);
     case 3: return kick ? finish_pass<true, 3>(h) : finish_pass<false, 3>(h);
@@ -546,7 +518,7 @@ void Dynamics::finish_forces(bool kick) {
 // with AVX2 as well; the loop it replaces was scalar (GCC 12: not vectorized) and went through
 // an OpenMP call even on one thread: 7 % of crystal_kt10's time with the radius arm (perf).
 template <bool Torques, bool Threaded>
-bool Dynamics::kick_drift(std::int64_t from) {
+Drift Dynamics::kick_drift(std::int64_t from) {
   using contact::select;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
@@ -634,11 +606,8 @@ bool Dynamics::kick_drift(std::int64_t from) {
     }
     far = range(p, p1);
     far |= far4[0] | far4[1] | far4[2] | far4[3];
-    if (rows) {
-      kernel::fill_rows(*this, rows, p, p1);
-      rows_fresh_ = true;
-    }
-    return far != 0;
+    if (rows) kernel::fill_rows(*this, rows, p, p1);
+    return {far != 0, rows != nullptr};
   }
 #endif
   if constexpr (Threaded) {
@@ -649,7 +618,7 @@ bool Dynamics::kick_drift(std::int64_t from) {
   } else {
     far = range(p0, p1);
   }
-  return far != 0;
+  return {far != 0, false};
 }
 
 // Dynamics::advance's pass: finish_pass<true, Rows> (the second half kick of the step before)
@@ -657,7 +626,7 @@ bool Dynamics::kick_drift(std::int64_t from) {
 // time, F and the torques kept in registers (fx..tz are not stored: the step's last finish
 // writes them); the last n % 4 particles through the two passes as they are.
 template <int Rows>
-bool Dynamics::finish_kick_drift() {
+Drift Dynamics::finish_kick_drift() {
 #ifdef GRANWAVE_GATHER_VECTORS
   constexpr bool Torques = Rows >= 2;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
@@ -684,61 +653,65 @@ bool Dynamics::finish_kick_drift() {
     far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
     if (rows) kernel::fill_rows(*this, rows, p, p + 4);
   }
-  bool far = (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+  Drift drift{(far4[0] | far4[1] | far4[2] | far4[3]) != 0, rows != nullptr};
   if (p < n) {
     finish_pass<true, Rows>(h, p);
-    far |= kick_drift<Torques, false>(p);
-  } else if (rows) {
-    rows_fresh_ = true;
+    const Drift tail = kick_drift<Torques, false>(p);
+    drift = {drift.far || tail.far, tail.rows_fresh};
   }
-  return far;
+  return drift;
 #else
   finish_pass<true, Rows>(0.5 * dt_);
   return kick_drift<Rows >= 2, false>();
 #endif
 }
 
-void Dynamics::advance(long k) {
-  if (slab_ || threaded()) {
-    for (long s = 1; s <= k; ++s) step();
-    return;
+Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
+  switch (waiting.rows) {
+    case 1: return finish_kick_drift<1>();
+    case 2: return finish_kick_drift<2>();
+    case 3: return finish_kick_drift<3>();
+    default: break;
   }
-  const bool keep = store_contact_forces;
-  bool pending = false;  // the last contact pass's sums wait for their finish
-  for (long s = 1; s <= k; ++s) {
-    store_contact_forces = s == k && keep;
-    bool far = false;
-    switch (pending ? sum_rows_ : 0) {
-      case 1: far = finish_kick_drift<1>(); break;
-      case 2: far = finish_kick_drift<2>(); break;
-      case 3: far = finish_kick_drift<3>(); break;
-      default: far = torques_ ? kick_drift<true, false>() : kick_drift<false, false>(); break;
-    }
-    time += dt_;
-    ++steps;
-    if (far) rebuild();
-    sum_rows_ = 0;
-    model_->contact_pass(*this, dt_, true);
-    pending = s < k && sum_rows_ != 0;
-    if (!pending) finish_forces(true);
-  }
-  store_contact_forces = keep;
+  // The halo is not integrated here: its owner does it, and exchange_halo copies it.
+  const bool threads = threaded();
+  return torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
+                  : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
 }
 
-void Dynamics::step() {
-  // First half kick and drift, with the rebuild test. The halo is not integrated here: its
-  // owner does it, and exchange_halo copies it.
-  const bool threads = threaded();
-  bool far = torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
-                       : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
-  time += dt_;
-  ++steps;
-  if (slab_) {
-    exchange_halo();  // positions at t + dt, velocities at t + dt/2: what the contact pass reads
-    far = slab_->comm->max(far ? 1.0 : 0.0) > 0.0;  // every rank rebuilds on the same step
-  }
+void Dynamics::upkeep_list(const Drift& drift) {
+  const bool far = slab_ ? slab_->comm->max(drift.far ? 1.0 : 0.0) > 0.0 : drift.far;  // every rank alike
   if (far) rebuild();
-  compute_forces(dt_, true, true);  // forces at t + dt and the second half kick
+}
+
+ContactSums Dynamics::finish_step(const ContactSums& sums, bool last) {
+  if (!last && !slab_ && sums.rows != 0) return sums;  // one thread: joined to the next drift
+  finish_forces(sums, true);
+  return {};
+}
+
+void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
+  auto lap = [clock](PhaseTimes::Phase phase) {
+    if (clock) clock->lap(phase);
+  };
+  ContactSums waiting;  // the step before's sums, when their finish joins this step's drift
+  for (long s = 1; s <= k; ++s) {
+    const bool last = s == k;
+    const Drift drift = half_kick_drift(waiting);  // v(t + dt/2), x(t + dt)
+    time += dt_;
+    ++steps;
+    lap(PhaseTimes::kick_drift);
+    if (slab_) {
+      exchange_halo();  // the neighbours' boundary layers at t + dt
+      lap(PhaseTimes::halo);
+    }
+    upkeep_list(drift);  // a rebuild when a particle left its skin
+    lap(PhaseTimes::list_upkeep);
+    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces});
+    lap(PhaseTimes::contact_pass);
+    waiting = finish_step(sums, last);  // F(t + dt) and the second half kick, v(t + dt)
+    lap(PhaseTimes::finish);
+  }
 }
 
 void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double dy, double dz) {

@@ -12,6 +12,8 @@
 // On one thread pass 1 makes the sums of pass 2 itself, in the same order (kernel.hpp's scatter:
 // the same bits), and pass 2 only finishes torques and kicks (finish_pass).
 #pragma once
+#include <array>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -29,7 +31,7 @@ struct ContactList {
   std::vector<std::int32_t> i, j;
   std::vector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y (|image| <= 127)
   std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
-  std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see store_contact_forces)
+  std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see ContactPassPlan::store_forces)
   std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
                                            // threaded runs of a law with torques only (else empty)
   std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
@@ -58,6 +60,59 @@ struct ContactList {
 
 class Dynamics;
 
+// ---- One time step's phases (Dynamics::advance) and what each hands to the next ----
+
+// The half kick and drift's report.
+struct Drift {
+  bool far = false;         // a particle moved more than skin/2 since the list's build: rebuild
+  bool rows_fresh = false;  // Dynamics::gather_rows hold the drifted state (one thread, no slab)
+};
+// What the contact pass is asked to do.
+struct ContactPassPlan {
+  double increment_time = 0.0;  // the springs advance by it
+  bool rates = true;            // false: a jump of positions (no dashpots)
+  bool rows_fresh = false;      // Drift::rows_fresh: the gather rows need no refill
+  // Write ContactList::f_x, f_y, f_z and Dynamics::end_arms (the layer stress of a sample reads
+  // them); false lets a one-thread pass of a law with torques sum straight into contact_sums.
+  bool store_forces = true;
+};
+// What the contact pass leaves for the finish: the rows per particle of Dynamics::contact_sums it
+// filled (one thread: 1 f, 2 and n x f^t, 3 and delta n x f^t), 0 when the finish sums the
+// per-contact arrays (the particle pass).
+struct ContactSums {
+  int rows = 0;
+};
+
+// Where a run's time loop spends its wall time (s), phase by phase. On one thread the finish of
+// a step and the next step's half kick and drift are one pass, booked as kick_drift.
+struct PhaseTimes {
+  enum Phase { kick_drift, halo, list_upkeep, contact_pass, finish, sample, other, kPhases };
+  static constexpr std::array<const char*, kPhases> names{"kick_drift",   "halo",   "list_upkeep", "contact_pass",
+                                                          "finish",       "sample", "other"};
+  std::array<double, kPhases> seconds{};
+  double total() const {
+    double t = 0.0;
+    for (double s : seconds) t += s;
+    return t;
+  }
+};
+// One steady_clock read per phase boundary: lap(phase) books the time since the last lap.
+class PhaseClock {
+ public:
+  using Clock = std::chrono::steady_clock;
+  PhaseClock(PhaseTimes& times, Clock::time_point start) : times_(times), last_(start) {}
+  Clock::time_point lap(PhaseTimes::Phase phase) {
+    const Clock::time_point now = Clock::now();
+    times_.seconds[phase] += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return now;
+  }
+
+ private:
+  PhaseTimes& times_;
+  Clock::time_point last_;
+};
+
 // A contact law as the dynamics sees it: crystal/kernel.hpp's LawModel<Law> runs the kernel
 // for the law; model_of(law) makes one.
 class ContactModel {
@@ -66,9 +121,8 @@ class ContactModel {
   virtual std::size_t history_columns() const = 0;
   virtual bool torques() const = 0;      // tangential forces: torques and rotation
   virtual contact::LeverArm lever_arm() const = 0;  // of f^t: a_p - arm_shift(lever_arm()) delta
-  // Pass 1 at the current state; springs advance by `increment_time`; rates = false for a jump
-  // of positions (no dashpots).
-  virtual void contact_pass(Dynamics& dyn, double increment_time, bool rates) const = 0;
+  // Pass 1 at the current state, as `plan` asks.
+  virtual ContactSums contact_pass(Dynamics& dyn, const ContactPassPlan& plan) const = 0;
   // Adds the stored energy (J) of each touching contact of [first, size()) to per_layer[layer of
   // its particle i], in list order (radius: the particles' radii, for laws whose energy depends on them).
   virtual void add_stored_energy(double* per_layer, const ContactList& contacts, std::size_t first,
@@ -77,8 +131,6 @@ class ContactModel {
   // (Dynamics::LayerOrder::contacts): several layers' sums at once (layer_chains), the same bits.
   virtual void add_stored_energy(double* per_layer, const ContactList& contacts, const LayerLists& by_layer,
                                  const double* radius) const = 0;
-  // false: the law never dissipates (ContactList::dissipated stays zero, sums of it are skipped).
-  virtual bool dissipates() const { return true; }
 };
 
 // The law of a case, as its description makes it (contact/case_laws.hpp; crystal/law_models.cpp):
@@ -111,25 +163,14 @@ class Dynamics {
   std::vector<std::uint8_t> mobile;                     // 1 = integrated
   ContactList contacts;
   // The contact pass's copy of the particle state it reads, as rows of four doubles
-  // (crystal/kernel.hpp's gather), refreshed at every pass: 96 bytes per particle with a law
-  // with torques, empty otherwise.
+  // (crystal/kernel.hpp's gather), refreshed at every pass (or by the one-thread drift, then
+  // Drift::rows_fresh): 96 bytes per particle with a law with torques, empty otherwise.
   std::vector<double> gather_rows;
-  // The rows hold the current state (written by the one-thread drift of step()); the contact
-  // pass then uses them as they are, once.
-  bool take_fresh_rows() {
-    const bool fresh = rows_fresh_;
-    rows_fresh_ = false;
-    return fresh;
-  }
   // Per-particle sums of a one-thread contact pass (crystal/kernel.hpp's scatter), rows of four
   // doubles: f, and with a law with torques n x f^t, and with the contact-point arm
   // delta n x f^t (each kind a block of 4 size() doubles); read and zeroed by the particle pass.
   // 32, 64 or 96 bytes per particle; empty when threaded.
   std::vector<double> contact_sums;
-  // false: a one-thread contact pass of a law with torques may leave ContactList::f_x, f_y, f_z
-  // stale (it sums straight into contact_sums; nf_x, nf_y, nf_z are then empty); set it
-  // for the passes whose contact forces are read (the layer stress of a sample).
-  bool store_contact_forces = true;
   // The lever arms times u_z of every contact's ends, (a_i - delta/2) u_z at 2c and (a_j - delta/2)
   // u_z at 2c + 1, +0.0 for an open contact (the layer stress's terms, crystal/simulation.cpp):
   // written with the forces by a one-thread contact pass of a law with torques, while the
@@ -146,11 +187,9 @@ class Dynamics {
   static bool distance_from_overlap_exact(double delta, double reach) {
     return (delta >= -0.5 * reach) & (delta <= 0.25 * reach);
   }
-  // The contact pass announces that it fills `rows` rows per particle of contact_sums (all zero
-  // on entry); returns them.
+  // The `rows` rows per particle of contact_sums a contact pass fills (all zero on entry).
   double* begin_contact_sums(int rows) {
     contact_sums.resize(4 * static_cast<std::size_t>(rows) * size(), 0.0);
-    sum_rows_ = rows;
     return contact_sums.data();
   }
   double time = 0.0;
@@ -198,13 +237,15 @@ class Dynamics {
   // The same for a state set from outside (initial velocities): dashpots see the velocities,
   // springs are not advanced (no time has passed).
   void compute_forces_of_state() { compute_forces(0.0, true); }
-  // One velocity-Verlet step of translation and rotation.
-  void step();
-  // k steps, the same as k calls of step(), bit for bit. On one thread without a slab, the
-  // second half kick of each step but the last and the first half kick and drift of the next
-  // are one pass over the particles (finish_kick_drift): forces and torques fx..tz are current
-  // only when it returns.
-  void advance(long k);
+  // One velocity-Verlet step of translation and rotation (store_forces: ContactPassPlan's).
+  void step(bool store_forces = true) { advance(1, store_forces); }
+  // k steps, the same as k calls of step(), bit for bit; the last one stores the contact forces
+  // when `store_forces`. Each step's phases, in order, each booked to `clock` (if any):
+  // half_kick_drift, exchange_halo (slab), upkeep_list, the model's contact_pass, finish_step.
+  // On one thread without a slab, the finish and second half kick of each step but the last and
+  // the first half kick and drift of the next are one pass over the particles (finish_kick_drift):
+  // forces and torques fx..tz are current only when advance returns.
+  void advance(long k, bool store_forces = true, PhaseClock* clock = nullptr);
 
   // OpenMP is used from this many particles on (fork/join costs more than it saves on small
   // crystals, and much more on a loaded machine), and only when OpenMP may run more than one
@@ -219,7 +260,10 @@ class Dynamics {
   // layer of their particle i), then over the layers in layer order: the same bits for any
   // number of ranks (docs/design.md §2.8).
   double kinetic_energy() const;    // translational + rotational, mobile particles
-  double potential_energy() const;  // (1/2) k delta^2 + (1/2) k_t |xi|^2 over touching contacts
+  // The law's stored energy over touching contacts (ContactModel::add_stored_energy): normal,
+  // (1/2) k delta^2 for the linear law, (2/5) k delta^(5/2) for Hertz (f_n = k delta^(3/2),
+  // k = (4/3) E* sqrt(R*)); plus (1/2) k_t |xi|^2 of a tangential spring (Mindlin: k_t of delta).
+  double potential_energy() const;
   double dissipated_energy() const; // cumulative: dashpots, sliding, springs lost on opening
   // dt^2/8 sum(|F|^2/m + |T|^2/I): velocity Verlet conserves E_kin + E_pot minus this exactly
   // for linear forces (the "shadow" energy), so it separates integrator error from physics.
@@ -247,18 +291,27 @@ class Dynamics {
 
  private:
   void compute_forces(double increment_time, bool dashpots, bool kick = false);  // kick: then v += F dt/2m
-  void finish_forces(bool kick);  // pass 2 after the contact pass (compute_forces' second half)
+  // Pass 2 after the contact pass, from what the pass left.
+  void finish_forces(const ContactSums& sums, bool kick);
+  // The first half kick and drift, after the finish of the step before when its sums `waiting`
+  // were left for it (one thread: finish_kick_drift).
+  Drift half_kick_drift(const ContactSums& waiting);
+  // Contact-list upkeep: a rebuild when the drift took a particle out of its skin (under a slab
+  // plan, when it did on any rank).
+  void upkeep_list(const Drift& drift);
+  // The step's finish and second half kick from the contact pass's `sums`; returns them instead,
+  // left for the next step's half_kick_drift, when it can take them (one thread, no slab, not
+  // the `last` step), else an empty ContactSums.
+  ContactSums finish_step(const ContactSums& sums, bool last);
   // The first half kick and drift of the owned particles from `from` on (-1: all)
   template <bool Torques, bool Threaded>
-  bool kick_drift(std::int64_t from = -1);
+  Drift kick_drift(std::int64_t from = -1);
   template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   template <bool Kick, int Rows>
   void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (one thread), from `from` on
   template <int Rows>
-  bool finish_kick_drift();  // finish_pass<true, Rows>, then kick_drift, four particles at a time
-  bool rows_fresh_ = false;    // gather_rows hold the state kick_drift left
-  int sum_rows_ = 0;           // rows per particle the last contact pass filled in contact_sums (0: none)
+  Drift finish_kick_drift();  // finish_pass<true, Rows>, then kick_drift, four particles at a time
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   // Kinetic and/or Verlet (nullptr: not wanted), through layer_order().
   void add_particle_energies(double* kinetic, double* verlet) const;

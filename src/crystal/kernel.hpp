@@ -318,23 +318,115 @@ template <int K>
 }
 #endif
 
+// ---- Shared by both contact passes ----
+
+// A pass's view of the contact list: its size, who touches whom, j's images, and the per-contact
+// columns it writes (overlap, force, n x f^t, dissipated energy, the law's history). Taken apart
+// into locals (structured bindings), which the passes' lambdas capture by value.
+template <std::size_t NH>
+struct ListColumns {
+  explicit ListColumns(ContactList& C)
+      : nc(static_cast<std::int64_t>(C.size())), ci(C.i.data()), cj(C.j.data()), imx(C.image_x.data()),
+        imy(C.image_y.data()), cdelta(C.delta.data()), cfx(C.f_x.data()), cfy(C.f_y.data()), cfz(C.f_z.data()),
+        cnx(C.nf_x.data()), cny(C.nf_y.data()), cnz(C.nf_z.data()), diss(C.dissipated.data()) {
+    for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
+  }
+  std::int64_t nc;
+  const std::int32_t *ci, *cj;
+  const std::int8_t *imx, *imy;
+  double *cdelta, *cfx, *cfy, *cfz, *cnx, *cny, *cnz, *diss;
+  std::array<double*, NH> hist{};
+};
+
+// One contact c: its geometry from r_j - r_i = b (j at its image), the radii, v_i - v_j and (a law
+// with torques) the spins; the law's response (Vector: the Deferrable evaluation of a law that
+// defers, contact::DefersContacts); its history written back (kept for a deferred contact, which
+// the exact sweep evaluates again from it; lost on opening), its loss added, its overlap stored.
+// Quiet (a contact::LosslessSweep law's vector sweep): the losses are left alone and an opening
+// contact that loses stored energy is deferred. Returns whether the contact was deferred; `res`
+// and `open` (no force) are the caller's (a returned struct is not vectorised).
+template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
+[[gnu::always_inline]] inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
+                                                    double* cdelta, std::int64_t c, double bx, double by, double bz,
+                                                    double reach, double a_i, double a_j, const contact::Vec3& dv,
+                                                    const contact::Vec3& w_i, const contact::Vec3& w_j, double inc,
+                                                    contact::Response& res, bool& open) {
+  using History = typename Law::History;
+  static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
+  constexpr bool Defers = contact::DefersContacts<Law>;
+  const double r2 = bx * bx + by * by + bz * bz;
+  const double r = std::sqrt(r2);
+  const double delta = reach - r;
+  open = r >= reach;  // no force; the history is lost
+  const double inv_r = 1.0 / r;
+  contact::Contact k;
+  k.n = contact::Vec3(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
+  k.delta = delta;
+  k.dv = dv;
+  k.delta_dot = -(k.n.x() * k.dv.x() + k.n.y() * k.dv.y() + k.n.z() * k.dv.z());
+  if constexpr (Law::torques) {
+    k.w_i = w_i;
+    k.w_j = w_j;
+  }
+  k.a_i = a_i;
+  k.a_j = a_j;
+  k.dt = inc;
+  std::array<double, NH> h0;
+  for_columns<NH>([&](std::size_t q) { h0[q] = hist[q][c]; });
+  History h = contact::history_from<History>(h0);
+  if constexpr (Vector && Defers)
+    res = law.evaluate(k, h, contact::Deferrable{});
+  else
+    res = law.evaluate(k, h);
+  using contact::select;
+  bool deferred = Vector && Defers && res.deferred;
+  if constexpr (Quiet)  // bitwise: no branch in the vector loop
+    deferred = deferred | (open & (law.opening_loss(contact::history_from<History>(h0)) != 0.0));
+  const std::array<double, NH> h1 = contact::history_to(h);
+  for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
+  if constexpr (Dissipative && !Quiet) {
+    const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
+    diss[c] = select(deferred, diss[c], diss[c] + lost);
+  }
+  cdelta[c] = delta;
+  return deferred;
+}
+
+// one(c, vector_sweep) over the contacts [c0, c1) (at most N): with a law that defers contacts,
+// the vector sweep, then (after on_deferred()) the exact sweep over those it deferred.
+template <bool Defers, std::int64_t N, class One, class OnDeferred>
+[[gnu::always_inline]] inline void sweep_contacts(std::int64_t c0, std::int64_t c1, const One& one,
+                                                  const OnDeferred& on_deferred) {
+  if constexpr (Defers) {
+    std::int32_t deferred[N];
+    std::int32_t any = 0;
+#pragma GCC ivdep
+    for (std::int64_t c = c0; c < c1; ++c) {
+      deferred[c - c0] = one(c, std::true_type{});
+      any |= deferred[c - c0];
+    }
+    if (any) {
+      on_deferred();
+      for (std::int64_t c = c0; c < c1; ++c)
+        if (deferred[c - c0]) one(c, std::false_type{});
+    }
+  } else {
+#pragma GCC ivdep
+    for (std::int64_t c = c0; c < c1; ++c) one(c, std::true_type{});
+  }
+}
+
 // The contact pass of a law without torques: it reads half the particle values of a frictional
 // law (positions, radii, velocities), loaded directly from the particle arrays; rows would cost
 // more than they save (AVX-512 build 2.4 -> 2.6 ns per contact; AVX2 2.5 -> 2.6 even with this
 // same loop written around the gather's columns).
 template <class Law, bool Dissipative>
-void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
-  using History = typename Law::History;
-  static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
-  constexpr std::size_t NH = contact::history_columns<History>;
-  constexpr bool Torques = Law::torques;
-  constexpr bool Defers = contact::DefersContacts<Law>;
+ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
+  static_assert(!Law::torques, "a law with torques reads gathered columns");
+  const double inc = plan.increment_time;
+  constexpr std::size_t NH = contact::history_columns<typename Law::History>;
   ContactList& C = d.contacts;
-  const std::int64_t nc = static_cast<std::int64_t>(C.size());
-  const std::int32_t* ci = C.i.data();
-  const std::int32_t* cj = C.j.data();
-  const std::int8_t* imx = C.image_x.data();
-  const std::int8_t* imy = C.image_y.data();
+  const auto [nc, ci, cj, imx, imy, cdelta, cfx, cfy, cfz, cnx, cny, cnz, diss, hist] = ListColumns<NH>(C);
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
   const double* px = d.x.data();
   const double* py = d.y.data();
@@ -342,26 +434,11 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
   const double* pvx = d.vx.data();
   const double* pvy = d.vy.data();
   const double* pvz = d.vz.data();
-  const double* pwx = d.wx.data();
-  const double* pwy = d.wy.data();
-  const double* pwz = d.wz.data();
   const double* pa = d.radius.data();
-  double* cdelta = C.delta.data();
-  double* cfx = C.f_x.data();
-  double* cfy = C.f_y.data();
-  double* cfz = C.f_z.data();
-  double* cnx = C.nf_x.data();
-  double* cny = C.nf_y.data();
-  double* cnz = C.nf_z.data();
-  double* diss = C.dissipated.data();
   if constexpr (Dissipative) C.losses_booked = true;  // both sweeps add to diss
   d.end_arms_stored = false;
-  std::array<double*, NH> hist{};
-  for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
-  // One contact. In the vector sweep (Deferrable) a contact the law defers is left untouched
-  // and reported; the exact sweep evaluates it again from the same history. Pointers and the
-  // law are captured by value (OpenMP would share them by reference, which the vectoriser
-  // cannot see through).
+  // One contact (evaluate_contact). Pointers and the law are captured by value (OpenMP would
+  // share them by reference, which the vectoriser cannot see through).
   // shx[u], shy[u]: the image offsets of j (m) of contact c = c0 + u of the block.
   auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, auto vector_sweep)
                  __attribute__((always_inline)) -> bool {
@@ -370,47 +447,13 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
     const double bx = px[j] + shx[u] - px[i];  // image_x box_x, as the neighbour search takes it
     const double by = py[j] + shy[u] - py[i];
     const double bz = pz[j] - pz[i];
-    const double r2 = bx * bx + by * by + bz * bz;
-    const double reach = pa[i] + pa[j];
-    const double r = std::sqrt(r2);
-    const double delta = reach - r;
-    const bool open = r >= reach;  // no force; the history is lost
-    const double inv_r = 1.0 / r;
-    contact::Contact k;
-    k.n = contact::Vec3(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
-    k.delta = delta;
-    k.dv = contact::Vec3(pvx[i] - pvx[j], pvy[i] - pvy[j], pvz[i] - pvz[j]);
-    k.delta_dot = -(k.n.x() * k.dv.x() + k.n.y() * k.dv.y() + k.n.z() * k.dv.z());
-    if constexpr (Torques) {
-      k.w_i = contact::Vec3(pwx[i], pwy[i], pwz[i]);
-      k.w_j = contact::Vec3(pwx[j], pwy[j], pwz[j]);
-    }
-    k.a_i = pa[i];
-    k.a_j = pa[j];
-    k.dt = inc;
-    std::array<double, NH> h0;
-    for_columns<NH>([&](std::size_t q) { h0[q] = hist[q][c]; });
-    History h = contact::history_from<History>(h0);
+    const contact::Vec3 dv(pvx[i] - pvx[j], pvy[i] - pvy[j], pvz[i] - pvz[j]);
     contact::Response res;
-    if constexpr (Vector && Defers)
-      res = law.evaluate(k, h, contact::Deferrable{});
-    else
-      res = law.evaluate(k, h);
-    const bool deferred = Vector && Defers && res.deferred;
-    // History: kept for a deferred contact (the exact sweep starts from it again), lost on opening.
-    const std::array<double, NH> h1 = contact::history_to(h);
+    bool open;
+    const bool deferred = evaluate_contact<Law, Vector, Dissipative, false>(
+        law, hist, diss, cdelta, c, bx, by, bz, pa[i] + pa[j], pa[i], pa[j], dv, contact::Vec3::Zero(),
+        contact::Vec3::Zero(), inc, res, open);
     using contact::select;
-    for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
-    if constexpr (Torques) {
-      cnx[c] = select(open, 0.0, res.nf.x());
-      cny[c] = select(open, 0.0, res.nf.y());
-      cnz[c] = select(open, 0.0, res.nf.z());
-    }
-    if constexpr (Dissipative) {
-      const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
-      diss[c] = select(deferred, diss[c], diss[c] + lost);
-    }
-    cdelta[c] = delta;
     cfx[c] = select(open, 0.0, res.force.x());
     cfy[c] = select(open, 0.0, res.force.y());
     cfz[c] = select(open, 0.0, res.force.z());
@@ -418,9 +461,10 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
   };
   // One thread: the forces go straight into the particles' rows (scatter, above).
   double* sum_rows = nullptr;
+  int rows = 0;
   const std::int64_t np = static_cast<std::int64_t>(d.size());
 #ifdef GRANWAVE_GATHER_VECTORS
-  if (!d.threaded()) sum_rows = d.begin_contact_sums(1);
+  if (!d.threaded()) sum_rows = d.begin_contact_sums(rows = 1);
 #endif
   auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
@@ -428,21 +472,12 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
       shx[c - c0] = imx[c] * box_x;
       shy[c - c0] = imy[c] * box_y;
     }
-    if constexpr (Defers) {
-      std::int32_t deferred[kBlock];
-      std::int32_t any = 0;
-#pragma GCC ivdep
-      for (std::int64_t c = c0; c < c1; ++c) {
-        deferred[c - c0] = one(c, c - c0, shx, shy, std::true_type{});
-        any |= deferred[c - c0];
-      }
-      if (any)
-        for (std::int64_t c = c0; c < c1; ++c)
-          if (deferred[c - c0]) one(c, c - c0, shx, shy, std::false_type{});
-    } else {
-#pragma GCC ivdep
-      for (std::int64_t c = c0; c < c1; ++c) one(c, c - c0, shx, shy, std::true_type{});
-    }
+    sweep_contacts<contact::DefersContacts<Law>, kBlock>(
+        c0, c1,
+        [&](std::int64_t c, auto vector_sweep) __attribute__((always_inline)) {
+          return one(c, c - c0, shx, shy, vector_sweep);
+        },
+        [] {});
 #ifdef GRANWAVE_GATHER_VECTORS
     if (sum_rows)
       scatter<1>(sum_rows, np, c1 - c0, ci + c0, cj + c0, cfx + c0, cfy + c0, cfz + c0, nullptr, nullptr, nullptr,
@@ -450,8 +485,8 @@ void direct_contact_pass(Dynamics& d, const Law& law, double inc) {
 #endif
   };
   in_blocks(nc, d.threaded(), range);
+  return {rows};
 }
-
 
 // The one-thread scatter's mode for a lever arm: 1 (the rows f | n x f^t), 2 (and delta n x f^t).
 constexpr int scatter_mode_of(contact::LeverArm arm) {
@@ -464,23 +499,16 @@ constexpr int scatter_mode_of(contact::LeverArm arm) {
 
 // The contact pass of a law with torques, from gathered columns (above).
 template <class Law, bool Dissipative>
-void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
-  using History = typename Law::History;
-  static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
-  constexpr std::size_t NH = contact::history_columns<History>;
-  constexpr bool Torques = Law::torques;
+ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
+  static_assert(Law::torques, "the gathered columns hold w_i and w_j");
+  const double inc = plan.increment_time;
+  constexpr std::size_t NH = contact::history_columns<typename Law::History>;
   constexpr bool Defers = contact::DefersContacts<Law>;
   ContactList& C = d.contacts;
-  const std::int64_t nc = static_cast<std::int64_t>(C.size());
-  const std::int32_t* ci = C.i.data();
-  const std::int32_t* cj = C.j.data();
-  const std::int8_t* imx = C.image_x.data();
-  const std::int8_t* imy = C.image_y.data();
-  static_assert(Torques, "the gathered columns hold w_i and w_j");
   using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
   // The particle rows the gather reads (x, y, z, a | v | w), refreshed from the SoA state.
-  if (!d.take_fresh_rows()) {
+  if (!plan.rows_fresh) {
     d.gather_rows.resize(12 * d.size());
     fill_rows(d, d.gather_rows.data());
   }
@@ -492,7 +520,7 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   const std::int64_t np = static_cast<std::int64_t>(d.size());
   int scatter_mode = 0;
   double* sum_rows = nullptr;
-  const bool keep_forces = d.store_contact_forces;
+  const bool keep_forces = plan.store_forces;
 #ifdef GRANWAVE_GATHER_VECTORS
   if (!d.threaded()) {
     scatter_mode = scatter_mode_of(law.lever_arm());
@@ -507,71 +535,29 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   // at the list's build: 24 bytes per contact a one-thread run does not need).
   if (scatter_mode == 0)
     for (auto* v : {&C.nf_x, &C.nf_y, &C.nf_z}) v->resize(C.size());
-  double* cdelta = C.delta.data();
-  double* cfx = C.f_x.data();
-  double* cfy = C.f_y.data();
-  double* cfz = C.f_z.data();
-  double* cnx = C.nf_x.data();
-  double* cny = C.nf_y.data();
-  double* cnz = C.nf_z.data();
-  double* diss = C.dissipated.data();
+  const auto [nc, ci, cj, imx, imy, cdelta, cfx, cfy, cfz, cnx, cny, cnz, diss, hist] = ListColumns<NH>(C);
   // The vector sweep adds to diss unless the law's is lossless (contact::LosslessSweep); the exact
   // sweep always does, and books it where it runs (below).
   constexpr bool QuietSweep = Defers && Dissipative && contact::LosslessSweep<Law>;
   if constexpr (Dissipative && !QuietSweep) C.losses_booked = true;
   bool* losses_booked = &C.losses_booked;
-  std::array<double*, NH> hist{};
-  for_columns<NH>([&](std::size_t q) { hist[q] = C.history_column(q); });
-  // One contact: g's entry u is contact c. In the vector sweep (Deferrable) a contact the law
-  // defers is left untouched and reported; the exact sweep evaluates it again from the same
-  // history. Pointers and the law are captured by value (OpenMP would share them by reference,
-  // which the vectoriser cannot see through).
+  // One contact (evaluate_contact): g's entry u is contact c. Pointers and the law are captured
+  // by value (OpenMP would share them by reference, which the vectoriser cannot see through).
   auto one = [=](std::int64_t c, std::int64_t u, const G& g, Sums& o, auto vector_sweep, auto scatter_sweep)
                  __attribute__((always_inline)) -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     constexpr bool Scatter = decltype(scatter_sweep)::value;
-    // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j
-    const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
-    const double reach = g.col[G::reach][u], a_i = g.col[G::a_i][u], a_j = g.col[G::a_j][u];
+    // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j, the spins
     const contact::Vec3 dv(g.col[G::dvx][u], g.col[G::dvy][u], g.col[G::dvz][u]);
-    const double r2 = bx * bx + by * by + bz * bz;
-    const double r = std::sqrt(r2);
-    const double delta = reach - r;
-    const bool open = r >= reach;  // no force; the history is lost
-    const double inv_r = 1.0 / r;
-    contact::Contact k;
-    k.n = contact::Vec3(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
-    k.delta = delta;
-    k.dv = dv;
-    k.delta_dot = -(k.n.x() * k.dv.x() + k.n.y() * k.dv.y() + k.n.z() * k.dv.z());
-    k.w_i = contact::Vec3(g.col[G::wix][u], g.col[G::wiy][u], g.col[G::wiz][u]);
-    k.w_j = contact::Vec3(g.col[G::wjx][u], g.col[G::wjy][u], g.col[G::wjz][u]);
-    k.a_i = a_i;
-    k.a_j = a_j;
-    k.dt = inc;
-    std::array<double, NH> h0;
-    for_columns<NH>([&](std::size_t q) { h0[q] = hist[q][c]; });
-    History h = contact::history_from<History>(h0);
+    const contact::Vec3 w_i(g.col[G::wix][u], g.col[G::wiy][u], g.col[G::wiz][u]);
+    const contact::Vec3 w_j(g.col[G::wjx][u], g.col[G::wjy][u], g.col[G::wjz][u]);
+    constexpr bool Quiet = Vector && QuietSweep;
     contact::Response res;
-    if constexpr (Vector && Defers)
-      res = law.evaluate(k, h, contact::Deferrable{});
-    else
-      res = law.evaluate(k, h);
-    // A law whose vector evaluation never dissipates (contact::LosslessSweep): that sweep leaves
-    // the dissipated energy alone and defers an opening contact that loses stored energy.
-    constexpr bool Quiet = Vector && Defers && Dissipative && contact::LosslessSweep<Law>;
+    bool open;
+    const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
+        law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::reach][u],
+        g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
     using contact::select;
-    bool deferred = Vector && Defers && res.deferred;
-    if constexpr (Quiet)  // bitwise: no branch in the vector loop
-      deferred = deferred | (open & (law.opening_loss(contact::history_from<History>(h0)) != 0.0));
-    // History: kept for a deferred contact (the exact sweep starts from it again), lost on opening.
-    const std::array<double, NH> h1 = contact::history_to(h);
-    for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
-    if constexpr (Dissipative && !Quiet) {
-      const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
-      diss[c] = select(deferred, diss[c], diss[c] + lost);
-    }
-    cdelta[c] = delta;
     const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
                           select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
                           select(open, 0.0, res.nf.y()), select(open, 0.0, res.nf.z())};
@@ -588,23 +574,14 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
   auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) __attribute__((always_inline)) {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
     auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Sums& o) __attribute__((always_inline)) {
-      if constexpr (Defers) {
-        std::int32_t deferred[kChunk];
-        std::int32_t any = 0;
-#pragma GCC ivdep
-        for (std::int64_t c = s0; c < s1; ++c) {
-          deferred[c - s0] = one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
-          any |= deferred[c - s0];
-        }
-        if (any) {
-          if constexpr (QuietSweep) std::atomic_ref<bool>(*losses_booked).store(true, std::memory_order_relaxed);
-          for (std::int64_t c = s0; c < s1; ++c)
-            if (deferred[c - s0]) one(c, c - s0, g, o, std::false_type{}, scatter_sweep);
-        }
-      } else {
-#pragma GCC ivdep
-        for (std::int64_t c = s0; c < s1; ++c) one(c, c - s0, g, o, std::true_type{}, scatter_sweep);
-      }
+      sweep_contacts<Defers, kChunk>(
+          s0, s1,
+          [&](std::int64_t c, auto vector_sweep) __attribute__((always_inline)) {
+            return one(c, c - s0, g, o, vector_sweep, scatter_sweep);
+          },
+          [=] {
+            if constexpr (QuietSweep) std::atomic_ref<bool>(*losses_booked).store(true, std::memory_order_relaxed);
+          });
     };
     G g;
     Sums o;
@@ -636,16 +613,17 @@ void gathered_contact_pass(Dynamics& d, const Law& law, double inc) {
     range(0, nc, std::true_type{});
   else
     in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
+  return {scatter_mode == 0 ? 0 : scatter_mode + 1};
 }
 
 // The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law
 // dissipates) the dissipated energy. `inc` is the time the springs advance by.
 template <class Law, bool Dissipative>
-void contact_pass(Dynamics& d, const Law& law, double inc) {
+ContactSums contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
   if constexpr (Law::torques)
-    gathered_contact_pass<Law, Dissipative>(d, law, inc);
+    return gathered_contact_pass<Law, Dissipative>(d, law, plan);
   else
-    direct_contact_pass<Law, Dissipative>(d, law, inc);
+    return direct_contact_pass<Law, Dissipative>(d, law, plan);
 }
 
 // A law as the dynamics sees it. `rates = false` evaluates the law without its rate terms
@@ -657,12 +635,8 @@ class LawModel final : public ContactModel {
   std::size_t history_columns() const override { return contact::history_columns<typename Law::History>; }
   bool torques() const override { return Law::torques; }
   contact::LeverArm lever_arm() const override { return law_.lever_arm(); }
-  bool dissipates() const override { return law_.dissipates(); }
-  void contact_pass(Dynamics& d, double inc, bool rates) const override {
-    if (rates)
-      run(d, law_, inc);
-    else
-      run(d, law_.without_rates(), inc);
+  ContactSums contact_pass(Dynamics& d, const ContactPassPlan& plan) const override {
+    return plan.rates ? run(d, law_, plan) : run(d, law_.without_rates(), plan);
   }
   void add_stored_energy(double* per_layer, const ContactList& C, std::size_t first, const int* layer,
                          const double* radius) const override {
@@ -701,15 +675,10 @@ class LawModel final : public ContactModel {
       acc[0] = delta[c] <= 0.0 ? acc[0] : e;  // as `if (delta <= 0) continue` (NaN adds)
     });
   }
-  const Law& law() const { return law_; }
-
  private:
   template <class L>
-  static void run(Dynamics& d, const L& law, double inc) {
-    if (law.dissipates())
-      kernel::contact_pass<L, true>(d, law, inc);
-    else
-      kernel::contact_pass<L, false>(d, law, inc);
+  static ContactSums run(Dynamics& d, const L& law, const ContactPassPlan& plan) {
+    return law.dissipates() ? kernel::contact_pass<L, true>(d, law, plan) : kernel::contact_pass<L, false>(d, law, plan);
   }
   Law law_;
 };

@@ -349,7 +349,7 @@ std::array<double, 4> culprit(const Dynamics& dyn) {
 }  // namespace
 
 RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook,
-                   std::shared_ptr<SlabComm> comm) {
+                   std::shared_ptr<SlabComm> comm, const ProgressHook& progress) {
   const Derived d = derive(c);
   std::optional<SlabPlan> plan;
   if (comm && comm->ranks() > 1) {
@@ -418,16 +418,19 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   }
   sample(dyn, tr);
   if (hook) hook(dyn, 0);
-  const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = process_cpu_seconds();
   const double msg0 = comm ? comm->message_seconds : 0.0, msg_cpu0 = comm ? comm->message_cpu_seconds : 0.0;
+  const auto t0 = std::chrono::steady_clock::now();
+  PhaseClock clock(res.phases, t0);
   for (long s = 0; s < d.steps;) {
     const long k = std::min(d.sample_every - s % d.sample_every, d.steps - s);  // steps to the next sample
     s += k;
-    dyn.store_contact_forces = s % d.sample_every == 0;  // only a sample reads them (layer stress)
-    dyn.advance(k);
-    if (s % d.sample_every != 0) continue;
+    const bool sampled = s % d.sample_every == 0;
+    dyn.advance(k, sampled, &clock);  // only a sample reads the contact forces (layer stress)
+    if (!sampled) continue;
     sample(dyn, tr);
+    clock.lap(PhaseTimes::sample);
+    if (progress) progress(s, d.steps);
     const double e = tr.kinetic.back() + tr.potential.back();
     // Energy can only leave (dashpots, friction); growth beyond the budget is an instability.
     if (!std::isfinite(e) || e > 1.5 * budget + 1e-30) {
@@ -441,10 +444,13 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
       res.error = msg.str();
       break;
     }
-    if (hook) hook(dyn, tr.samples() - 1);
+    clock.lap(PhaseTimes::other);
+    if (hook) {
+      hook(dyn, tr.samples() - 1);
+      clock.lap(PhaseTimes::sample);
+    }
   }
-  dyn.store_contact_forces = true;
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.seconds = std::chrono::duration<double>(clock.lap(PhaseTimes::other) - t0).count();
   res.steps = dyn.steps;
   res.rebuilds = dyn.rebuilds;
   {  // how the work split: every rank's times, to rank 0 (serial: the one process's)

@@ -82,10 +82,15 @@ struct RunResult {
   // Per rank (serial: one), on rank 0 only: the time loop's wall time and CPU time, and the parts
   // of each spent in MPI calls (halo exchanges, rebuild triggers, the samples' gathers) (s).
   std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
+  // `seconds` split by phase (Dynamics::advance; sample: the observers and the sample hook;
+  // other: the rest of the loop). This rank's own: under MPI, rank 0's is reported.
+  PhaseTimes phases;
 };
 
 // Called at each sample with the dynamics and the sample index (e.g. VTK snapshots).
 using SampleHook = std::function<void(const Dynamics&, std::size_t sample)>;
+// Called at each sample with the steps done and the run's steps (e.g. a progress line).
+using ProgressHook = std::function<void(long done, long total)>;
 
 // Excite and integrate to t_end. A NaN or an energy that grows beyond the available budget
 // stops the run: failed = true, traces hold the samples before the failure.
@@ -94,7 +99,7 @@ using SampleHook = std::function<void(const Dynamics&, std::size_t sample)>;
 // run's, bit for bit, the other ranks' hold only the global series (time, coordination,
 // energies). Throws InputError (crystal.cells[2]) when the ranks cannot split the crystal.
 RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {},
-                   std::shared_ptr<SlabComm> comm = nullptr);
+                   std::shared_ptr<SlabComm> comm = nullptr, const ProgressHook& progress = {});
 
 // The trace file of SCHEMA.md §3 (with /system, provenance, case_toml, time_convention
 // "synchronous", root attribute status = "complete" or "failed: ..."), written via NAME.tmp.

@@ -215,11 +215,8 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
         // fast spins: surfaces slide past each other at ~0.3 m/s, so contacts slip
         d->wx[q] = 300 * base.w[3 * q], d->wy[q] = 300 * base.w[3 * q + 1], d->wz[q] = 300 * base.w[3 * q + 2];
       }
-      d->store_contact_forces = false;  // the scatter does not need them; the last step stores them
-      for (int s = 0; s < 100; ++s) {
-        if (s == 99) d->store_contact_forces = true;
-        d->step();
-      }
+      // the scatter does not need the contact forces; the last step stores them
+      for (int s = 0; s < 100; ++s) d->step(s == 99);
     }
     CHECK(!one.threaded());  // the routes really differ
     CHECK(two.threaded());

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <barrier>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <thread>
@@ -190,4 +191,17 @@ TEST_CASE("slab ranks as threads rebuild on the same steps as the serial run", "
   const crystal::RunResult slab = on_ranks(c, p, 3);
   CHECK(slab.rebuilds == serial.rebuilds);
   same_traces(slab.traces, serial.traces);
+}
+
+TEST_CASE("slab ranks as threads: rank 0's phases, the halo exchange one of them, add up to its wall time",
+          "[crystal][slab][phases]") {
+  // A unit test of the bookkeeping (crystal::RunResult::phases), not physics.
+  config::Case c = small_case();
+  c.integrator.t_end = 4e-5;
+  const crystal::RunResult r = on_ranks(c, crystal::make_packing(c), 2);
+  REQUIRE_FALSE(r.failed);
+  REQUIRE(r.seconds > 0.0);
+  CHECK(r.phases.seconds[crystal::PhaseTimes::halo] > 0.0);
+  CHECK(r.phases.seconds[crystal::PhaseTimes::contact_pass] > 0.0);
+  CHECK(std::abs(r.phases.total() - r.seconds) <= 0.02 * r.seconds);
 }
