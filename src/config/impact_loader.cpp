@@ -22,24 +22,22 @@ Triple triple(const TomlReader& r, const toml::table& t, const std::string& path
   return {v[0], v[1], v[2]};
 }
 
-const Material* find(const std::vector<Material>& mats, const std::string& name) {
-  for (const auto& m : mats)
-    if (m.name == name) return &m;
-  return nullptr;
-}
-
-std::string names(const std::vector<Material>& mats) {
-  std::string s;
-  for (const auto& m : mats) s += (s.empty() ? "" : ", ") + m.name;
-  return s;
+// Refuses `name` unless it is a material of the case, naming the key and the defined materials.
+void require_material(const TomlReader& r, const std::vector<Material>& mats, const std::string& key, const std::string& name,
+                      const toml::node* where) {
+  std::string defined;
+  for (const auto& m : mats) {
+    if (m.name == name) return;
+    defined += (defined.empty() ? "" : ", ") + m.name;
+  }
+  r.fail(key, "unknown material \"" + name + "\" (defined: " + defined + "; a wall may also be \"rigid\")", where);
 }
 
 ImpactBody read_body(const TomlReader& r, const toml::table& t, const std::string& path, const std::vector<Material>& mats) {
   r.allow_only(t, path, {"material", "radius", "position", "velocity", "angular_velocity"});
   ImpactBody b;
   b.material = *r.string(t, path, "material", true);
-  if (!find(mats, b.material))
-    r.fail(path + ".material", "unknown material \"" + b.material + "\" (defined: " + names(mats) + ")", t.get("material"));
+  require_material(r, mats, path + ".material", b.material, t.get("material"));
   b.radius = *r.number_in(t, path, "radius", true, [](double v) { return v > 0 && v < 1e3; }, "in (0, 1000) (m)");
   b.position = triple(r, t, path, "position", true);
   b.velocity = triple(r, t, path, "velocity", true);
@@ -92,9 +90,7 @@ ImpactCase read_impact(const TomlReader& r, const toml::table& root, const std::
     r.allow_only(*w, "impact.wall", {"material", "normal", "point"});
     ImpactWall wall;
     wall.material = r.string(*w, "impact.wall", "material", false).value_or("rigid");
-    if (!wall.rigid() && !find(mats, wall.material))
-      r.fail("impact.wall.material", "must be \"rigid\" or a material name (defined: " + names(mats) + "), got \"" +
-             wall.material + "\"", w->get("material"));
+    if (!wall.rigid()) require_material(r, mats, "impact.wall.material", wall.material, w->get("material"));
     wall.normal = triple(r, *w, "impact.wall", "normal", false, {0.0, 0.0, 1.0});
     const double n = norm(wall.normal);
     if (!(n > 0.0)) r.fail("impact.wall.normal", "must not be zero", w->get("normal"));
@@ -131,9 +127,9 @@ toml::table impact_contact_table(const TomlReader& r, const toml::table& root, C
                                                                          : std::string(laws.front());
   // A law whose constants are E and nu: its reader checks body1's (the impact derives the pair's E*, G*).
   if (contact_law_owners("youngs_modulus").find("\"" + law + "\"") != std::string::npos) {
-    const Material* m = find(c.materials, c.impact->body1.material);
-    t.insert("youngs_modulus", m->youngs_modulus);
-    t.insert("poisson_ratio", m->poisson_ratio);
+    const Material& m = c.material(c.impact->body1.material);
+    t.insert("youngs_modulus", m.youngs_modulus);
+    t.insert("poisson_ratio", m.poisson_ratio);
   }
   return t;
 }

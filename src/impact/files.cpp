@@ -42,17 +42,21 @@ Trace trace_of(const Setup& s, Series series) {
 void write_trace(const config::Case& c, const Setup& s, const Series& t, const std::string& path) {
   io::H5Writer w(path);
   io::write_provenance(w);
-  w.attr("/", "case_name", c.name);
-  w.attr("/", "case_toml", c.toml_text);
-  w.attr("/", "time_convention", std::string("synchronous"));
-  w.attr("/", "lever_arm", std::string(contact::lever_arm_name(c.contact.lever_arm)));
-  w.attr("/", "normal_tension", std::string(c.contact.normal_tension == config::NormalTension::clip ? "clip" : "allow"));
-  w.attr("/", "coulomb_normal",
-         std::string(c.contact.coulomb_normal == config::CoulombNormal::magnitude ? "magnitude" : "compressive"));
+  // The case and the contact-law conventions the run used (data/SCHEMA.md §3, §7.2).
   const config::ContactLawInfo& law = config::law_of(c.contact);
-  w.attr("/", "contact_law", std::string(law.name));
-  w.attr("/", "tangential_history", std::string(law.history_name(c.contact)));
-  w.attr("/", "status", std::string("complete"));
+  const bool clip = c.contact.normal_tension == config::NormalTension::clip;
+  const bool magnitude = c.contact.coulomb_normal == config::CoulombNormal::magnitude;
+  for (const auto& [name, value] : std::initializer_list<std::pair<const char*, std::string>>{
+           {"case_name", c.name},
+           {"case_toml", c.toml_text},
+           {"time_convention", "synchronous"},
+           {"lever_arm", contact::lever_arm_name(c.contact.lever_arm)},
+           {"normal_tension", clip ? "clip" : "allow"},
+           {"coulomb_normal", magnitude ? "magnitude" : "compressive"},
+           {"contact_law", law.name},
+           {"tangential_history", law.history_name(c.contact)},
+           {"status", "complete"}})
+    w.attr("/", name, value);
   const std::size_t nt = t.size();
   w.write("/time", t.time);
   w.write("/impact/overlap", t.overlap);
