@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """Runs impact cases (data/impact, data/SCHEMA.md §7) with granwave and prints, per case, the measured
-rebound next to `granwave theory`'s closed forms.
+rebound next to `granwave theory`'s closed forms: peaks and contact time against elastic Hertz (the
+judge where e = 1), restitution against the case's, the oblique rebound against Coulomb's rigid-body
+values (the judge in the sliding regime only).
 usage: /usr/bin/python3 scripts/impact_suite.py GRANWAVE [CASE.toml | DIR ...] [--json OUT]"""
 import glob
 import json
@@ -50,7 +52,7 @@ def main():
         f = lambda x: "" if x is None else f"{x:8.4f}"
         g = lambda x: "" if x is None else f"{x:9.3f}"
         print(f"{r['case']:28s} {rel(m['peak_force'], h.get('peak_force')):>13s} {rel(m['peak_overlap'], h.get('peak_overlap')):>13s}"
-              f" {rel(m['contact_time'], t.get('contact_time_damped')):>11s} {f(m['normal_restitution']):>8s} {f(t.get('restitution')):>8s}"
+              f" {rel(m['contact_time'], h.get('contact_time')):>11s} {f(m['normal_restitution']):>8s} {f(t.get('restitution')):>8s}"
               f" {f(m['tangential_restitution']):>8s} {f(ob.get('tangential_restitution')):>8s} {f(m['rebound_angle_deg']):>8s}"
               f" {f(ob.get('rebound_angle_deg')):>8s} {g(m['spin_after']):>9s} {g(ob.get('spin_after')):>9s}")
     if out:
