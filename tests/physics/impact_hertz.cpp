@@ -9,7 +9,7 @@
 
 using namespace granwave;
 
-TEST_CASE("physics/impact: T1 and T2 peaks and contact time converge to Hertz's closed forms as dt^2") {
+TEST_CASE("T1 and T2 peaks and contact time converge to Hertz's closed forms as dt^2", "[impact]") {
   for (const char* file : {"t1/t1_glass.toml", "t1/t1_limestone.toml", "t2/t2_al_alloy_t2.toml", "t2/t2_mg_alloy.toml"}) {
     CAPTURE(file);
     const impact::Setup s = impact_test::setup_of(file);
@@ -34,7 +34,7 @@ TEST_CASE("physics/impact: T1 and T2 peaks and contact time converge to Hertz's 
   }
 }
 
-TEST_CASE("physics/impact: T1 elastic impact conserves energy to O(dt^2)") {
+TEST_CASE("T1 elastic impact conserves energy to O(dt^2)", "[impact]") {
   const impact::Setup s = impact_test::setup_of("t1/t1_glass.toml");
   const double coarse = impact_test::energy_residual(impact_test::run_at(s, 0.004).series);
   const double fine = impact_test::energy_residual(impact_test::run_at(s, 0.002).series);

@@ -38,7 +38,7 @@ dt_over_tc = 0.002
 
 }  // namespace
 
-TEST_CASE("physics/impact: the linear law's restitution and contact time are its closed form's") {
+TEST_CASE("the linear law's restitution and contact time are its closed form's", "[impact]") {
   const std::string text = kSphereOnWall + "[impact.wall]\n[contact]\nlaw = \"linear\"\nkn = 1e6\nrestitution = 0.5\n";
   const impact::Setup s = impact::resolve(config::parse_case(text, "linear.toml"));
   const theory::ContactTime ct = theory::linear_contact_time(s.contact.kn, s.contact.gamma_n, s.b1.mass, false);
@@ -57,7 +57,7 @@ TEST_CASE("physics/impact: the linear law's restitution and contact time are its
   CHECK(err_t[0] / err_t[1] == Approx(2.0).margin(0.2));
 }
 
-TEST_CASE("physics/impact: a sphere on an elastic wall of another material is Hertz's with the pair's E*") {
+TEST_CASE("a sphere on an elastic wall of another material is Hertz's with the pair's E*", "[impact]") {
   const std::string text = kSphereOnWall + "[impact.wall]\nmaterial = \"granite\"\n[contact]\nlaw = \"hertz_mindlin\"\ntangential = \"none\"\n";
   const impact::Setup s = impact::resolve(config::parse_case(text, "granite.toml"));
   const double e_star = 1.0 / ((1.0 - 0.29 * 0.29) / 210e9 + (1.0 - 0.2 * 0.2) / 50e9);
@@ -74,7 +74,7 @@ TEST_CASE("physics/impact: a sphere on an elastic wall of another material is He
   CHECK(o.rebound.contact_time == Approx(h.contact_time).epsilon(5e-6));
 }
 
-TEST_CASE("physics/impact: a rigid wall is the like-sphere law with 2 E and the sphere's nu") {
+TEST_CASE("a rigid wall is the like-sphere law with 2 E and the sphere's nu", "[impact]") {
   const std::string text = kSphereOnWall + "[impact.wall]\n[contact]\nlaw = \"hertz_mindlin\"\n";
   const impact::Setup s = impact::resolve(config::parse_case(text, "rigid.toml"));
   CHECK(s.e_star == Approx(210e9 / (1.0 - 0.29 * 0.29)).epsilon(1e-15));

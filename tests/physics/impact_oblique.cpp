@@ -23,7 +23,7 @@ theory::ObliqueImpact coulomb(const impact_test::Outcome& o) {
 
 }  // namespace
 
-TEST_CASE("physics/impact: T4 sliding regime: tangential restitution, spin and rebound angle are Coulomb's") {
+TEST_CASE("T4 sliding regime: tangential restitution, spin and rebound angle are Coulomb's", "[impact]") {
   for (const char* material : {"alumina", "al_alloy"}) {
     for (const char* angle : {"40", "60", "85"}) {
       const std::string file = std::string("t4/t4_") + material + "_" + angle + "deg.toml";
@@ -40,7 +40,7 @@ TEST_CASE("physics/impact: T4 sliding regime: tangential restitution, spin and r
   }
 }
 
-TEST_CASE("physics/impact: T4 below the sliding boundary the friction impulse stays under Coulomb's limit") {
+TEST_CASE("T4 below the sliding boundary the friction impulse stays under Coulomb's limit", "[impact]") {
   for (const char* angle : {"05", "15", "25"}) {
     const std::string file = std::string("t4/t4_alumina_") + angle + "deg.toml";
     CAPTURE(file);

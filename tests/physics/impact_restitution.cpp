@@ -10,7 +10,7 @@
 
 using namespace granwave;
 
-TEST_CASE("physics/impact: T3 restitution out equals the restitution in, to O(dt)") {
+TEST_CASE("T3 restitution out equals the restitution in, to O(dt)", "[impact]") {
   for (const char* material : {"alumina", "cast_iron"}) {
     for (const char* e_in : {"02", "06", "10"}) {
       const std::string file = std::string("t3/t3_") + material + "_e" + e_in + ".toml";
@@ -35,7 +35,7 @@ TEST_CASE("physics/impact: T3 restitution out equals the restitution in, to O(dt
   }
 }
 
-TEST_CASE("physics/impact: T3 damped impact: kinetic + stored + dissipated energy closes to O(dt)") {
+TEST_CASE("T3 damped impact: kinetic + stored + dissipated energy closes to O(dt)", "[impact]") {
   const impact::Setup s = impact_test::setup_of("t3/t3_alumina_e06.toml");
   const impact_test::Outcome coarse = impact_test::run_at(s, 0.002), fine = impact_test::run_at(s, 0.001);
   const double a = impact_test::energy_residual(coarse.series), b = impact_test::energy_residual(fine.series);
