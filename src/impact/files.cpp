@@ -93,8 +93,12 @@ void write_trace(const config::Case& c, const Setup& s, const Series& t, const s
 }
 
 bool is_impact_trace(const std::string& path) {
-  const io::H5Reader r(path);
-  return r.has("/impact/overlap");
+  try {
+    const io::H5Reader r(path);
+    return r.has("/impact/overlap");
+  } catch (const InputError&) {
+    return false;  // unreadable or damaged: the wave traces' reader names what is wrong
+  }
 }
 
 Trace read_trace(const std::string& path) {
