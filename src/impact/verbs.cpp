@@ -123,7 +123,7 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
       << " N, contact time " << fmt(h.contact_time) << " s\n";
     o << "  damping_ratio " << fmt(s.contact.damping_ratio) << " (normal_tension " << (clip ? "clip" : "allow")
       << "): restitution " << fmt(e) << ", contact time " << fmt(h.contact_time * d.time_ratio) << " s\n";
-    if (e < 1.0) {
+    if (s.contact.damping_ratio > 0.0) {
       const double beta = theory::mapped_damping_ratio(e);
       const double e_mapped = theory::damped_hertz_impact(beta, clip).restitution;
       j["mapped_damping_ratio"] = beta;
