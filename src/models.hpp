@@ -1,4 +1,4 @@
-// The entry points the command line calls for each model. src/chain/ and src/crystal/ each
+// The entry points the command line calls for each model. src/chain/, src/crystal/ and src/impact/ each
 // implement their namespace; src/cli/ only parses arguments and dispatches here.
 #pragma once
 #include <functional>
@@ -37,5 +37,11 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
 void build(const config::Case& c, const std::string& system_path);
 int run(const config::Case& c, const RunRequest& request, std::ostream& out);
 }  // namespace crystal
+
+namespace impact {
+void check(const config::Case& c, std::ostream& out, const ResourceLimits& limits = {});
+void build(const config::Case& c, const std::string& system_path);  // refused: an impact case has no system file
+int run(const config::Case& c, const RunRequest& request, std::ostream& out);
+}  // namespace impact
 
 }  // namespace granwave

@@ -10,6 +10,7 @@
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
 #include "crystal/case_lattice.hpp"
+#include "impact/impact.hpp"
 
 namespace granwave::cli {
 namespace {
@@ -125,6 +126,10 @@ int cmd_analyze(const Args& args) {
   const bool json = has_flag(args, "--json");
   int lo = -1, hi = -1;
   if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_layers(s, "integers", &lo, &hi);
+  if (impact::is_impact_trace(pos[0])) {  // the rebound of an impact trace (data/SCHEMA.md §7.3)
+    impact::print_analysis(impact::read_trace(pos[0]), json, std::cout);
+    return 0;
+  }
   const auto file = analysis::read_trace(pos[0]);
 
   if (file.model == "chain") {

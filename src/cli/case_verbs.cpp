@@ -96,7 +96,9 @@ int cmd_check(const Args& args) {
   const ResourceLimits limits = limits_of(args);
   // Printed only once the whole check passed: a refused case prints nothing on stdout.
   std::ostringstream out;
-  if (c.model == config::Model::chain) {
+  if (c.model == config::Model::impact) {
+    impact::check(c, out, limits);
+  } else if (c.model == config::Model::chain) {
     chain::check(c, out, limits);
   } else {
     crystal::check(c, out, limits);
@@ -116,7 +118,9 @@ int cmd_build(const Args& args) {
   config::Case c = load_single_case(args, {"-o", "--output"}, {}, usage);
   std::string out = option_value(args, "-o", "--output");
   if (out.empty()) out = c.name + ".system.h5";
-  if (c.model == config::Model::chain) {
+  if (c.model == config::Model::impact) {
+    impact::build(c, out);
+  } else if (c.model == config::Model::chain) {
     chain::build(c, out);
   } else {
     crystal::build(c, out);
@@ -160,6 +164,10 @@ int cmd_run(const Args& args) {
   if (c.model == config::Model::chain && sweep::world_size() > 1)
     throw InputError(c.path + ": case.model = \"chain\": a chain run is not split over MPI ranks (a crystal run is); "
                      "run it without mpirun (or with -n 1)");
+  if (c.model == config::Model::impact) {
+    if (sweep::world_size() > 1) throw InputError(c.path + ": case.model = \"impact\": an impact run is not split over MPI ranks");
+    return impact::run(c, req, std::cout);
+  }
   if (c.model == config::Model::chain) return chain::run(c, req, std::cout);
   return crystal::run(c, req, std::cout);
 }

@@ -19,6 +19,7 @@
 #include "core/resources.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
+#include "impact/impact.hpp"
 #include "theory/hertz.hpp"
 #include "theory/crystal_theory.hpp"
 #include "theory/lattice_dynamics.hpp"
@@ -189,6 +190,10 @@ int cmd_theory(const Args& args) {
   int nk = 65;
   if (const auto s = option_value(args, "", "--nk"); !s.empty()) nk = parse_nk(s);
   const config::Case c = config::load_case(pos[0]);
+  if (c.model == config::Model::impact) {  // Hertz, the damping's restitution, Coulomb's oblique impact
+    impact::print_theory(c, json, std::cout);
+    return 0;
+  }
   if (c.model != config::Model::crystal || !c.crystal)
     throw InputError(pos[0] + ": granwave theory covers crystal cases (eq. (10)); for a chain's Hertz numbers use granwave check");
   const auto& cr = *c.crystal;

@@ -8,11 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "config/impact_case.hpp"
 #include "contact/lever_arm.hpp"
 
 namespace granwave::config {
 
-enum class Model { chain, crystal };
+enum class Model { chain, crystal, impact };
 
 // A material of the case. Beads need mass (given, or density * 4/3 pi R^3) and radius;
 // a wall material needs only E and nu.
@@ -127,7 +128,7 @@ struct Integrator {
   Scheme scheme = Scheme::verlet;
   std::optional<double> dt;          // s
   std::optional<double> dt_over_tc;  // dt as a fraction of the shortest contact time
-  double t_end = 0.0;                // s
+  double t_end = 0.0;                // s (impact: 0 = until separation + margin)
 };
 
 // Early stop (ensembles): end a chain run once the leading front has passed `after_bead`
@@ -166,7 +167,8 @@ struct Case {
   std::vector<Material> materials;  // in file order
   std::optional<ChainCase> chain;
   std::optional<CrystalCase> crystal;
-  ContactParams contact;  // crystal only
+  std::optional<ImpactCase> impact;
+  ContactParams contact;  // crystal and impact
   Excitation excitation;  // crystal only
   Integrator integrator;
   StopRule stop;          // chain only

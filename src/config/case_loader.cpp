@@ -8,6 +8,7 @@
 
 #include "config/case.hpp"
 #include "config/contact_law_keys.hpp"
+#include "config/impact_loader.hpp"
 #include "config/toml_reader.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -270,8 +271,8 @@ const Material& Case::material(const std::string& n) const {
 Case parse_case(const std::string& toml_text, const std::string& origin) {
   const TomlReader r(origin);
   const toml::table root = parse_toml(toml_text, origin);
-  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "contact", "excitation", "integrator", "stop", "output",
-                      "analysis"});
+  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "impact", "contact", "excitation", "integrator", "stop",
+                      "output", "analysis"});
 
   Case c;
   c.path = origin;
@@ -280,9 +281,19 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
   r.allow_only(*head, "case", {"name", "model"});
   c.name = *r.string(*head, "case", "name", true);
   if (c.name.empty()) r.fail("case.name", "must not be empty", head->get("name"));
-  c.model = r.choice(*head, "case", "model", {"chain", "crystal"}) == "crystal" ? Model::crystal : Model::chain;
+  const std::string model = r.choice(*head, "case", "model", {"chain", "crystal", "impact"});
+  c.model = model == "crystal" ? Model::crystal : model == "impact" ? Model::impact : Model::chain;
+  if (c.model != Model::impact && root.contains("impact"))
+    r.fail("impact", "belongs to impact cases (model = \"impact\")", root.get("impact"));
 
-  if (c.model == Model::chain) {
+  if (c.model == Model::impact) {
+    for (const char* k : {"chain", "crystal", "excitation", "stop", "analysis"}) {
+      if (root.contains(k)) r.fail(k, "not used by impact cases (model = \"impact\")", root.get(k));
+    }
+    c.materials = read_impact_materials(r, root);
+    c.impact = read_impact(r, root, c.materials);
+    c.contact = read_contact(r, impact_contact_table(r, root, c));
+  } else if (c.model == Model::chain) {
     for (const char* k : {"crystal", "contact", "excitation"}) {
       if (root.contains(k)) r.fail(k, "belongs to crystal cases; this case has model = \"chain\"", root.get(k));
     }
@@ -312,15 +323,16 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
   const toml::table* integ = r.table(root, "", "integrator", true);
   r.allow_only(*integ, "integrator", {"scheme", "dt", "dt_over_tc", "t_end"});
   c.integrator.scheme = r.choice(*integ, "integrator", "scheme", {"verlet", "rk4"}, "verlet") == "rk4" ? Scheme::rk4 : Scheme::verlet;
-  if (c.integrator.scheme == Scheme::rk4 && c.model == Model::crystal) {
-    r.fail("integrator.scheme", "\"rk4\" is for chains only; crystals use \"verlet\"", integ->get("scheme"));
+  if (c.integrator.scheme == Scheme::rk4 && c.model != Model::chain) {
+    r.fail("integrator.scheme", "\"rk4\" is for chains only; crystals and impacts use \"verlet\"", integ->get("scheme"));
   }
   c.integrator.dt = r.number_in(*integ, "integrator", "dt", false, [](double v) { return v > 0; }, "> 0 (s)");
   c.integrator.dt_over_tc = r.number_in(*integ, "integrator", "dt_over_tc", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)");
   if (c.integrator.dt && c.integrator.dt_over_tc) r.fail("integrator", "give 'dt' or 'dt_over_tc', not both", integ);
   if (!c.integrator.dt && !c.integrator.dt_over_tc) r.fail("integrator.dt", "missing (give 'dt' in s or 'dt_over_tc')");
-  c.integrator.t_end = *r.number_in(*integ, "integrator", "t_end", true, [](double v) { return v > 0; }, "> 0 (s)");
-  if (c.integrator.dt && c.integrator.t_end < *c.integrator.dt) {
+  c.integrator.t_end = r.number_in(*integ, "integrator", "t_end", c.model != Model::impact, [](double v) { return v > 0; },
+                                   "> 0 (s)").value_or(0.0);  // impact: 0 = until separation + margin
+  if (c.integrator.dt && c.integrator.t_end > 0.0 && c.integrator.t_end < *c.integrator.dt) {
     std::ostringstream s;
     s << "must be >= dt (" << *c.integrator.dt << " s; got " << c.integrator.t_end << ")";
     r.fail("integrator.t_end", s.str(), integ->get("t_end"));
@@ -345,14 +357,15 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
   if (const toml::table* out = r.table(root, "", "output", false)) {
     r.allow_only(*out, "output", {"interval", "fields", "full_rate_beads", "vtk_every"});
     c.output.interval = r.number_in(*out, "output", "interval", false, [](double v) { return v >= 0; }, ">= 0 (s)").value_or(0.0);
-    if (c.integrator.dt && c.output.interval > c.integrator.t_end) {
+    if (c.integrator.dt && c.integrator.t_end > 0.0 && c.output.interval > c.integrator.t_end) {
       r.fail("output.interval", "must not exceed integrator.t_end", out->get("interval"));
     }
     c.output.fields = r.strings(*out, "output", "fields", false);
     const std::set<std::string> chain_fields{"bead_force", "contact_force", "energy"};
     const std::set<std::string> crystal_fields{"layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
                                                "layer_velocity_z", "layer_velocity_x", "coordination", "energy"};
-    const auto& allowed = c.model == Model::chain ? chain_fields : crystal_fields;
+    const std::set<std::string> impact_fields{};  // an impact trace holds every series (data/SCHEMA.md §7)
+    const auto& allowed = c.model == Model::chain ? chain_fields : c.model == Model::crystal ? crystal_fields : impact_fields;
     for (const auto& f : c.output.fields) {
       if (!allowed.count(f)) {
         std::string list;
