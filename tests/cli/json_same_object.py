@@ -20,8 +20,8 @@ import sys
 
 TIMING = {"wall_seconds", "bead_steps_per_second", "particle_steps_per_second", "mpi_rank_seconds",
           "mpi_rank_message_seconds", "mpi_rank_cpu_seconds", "mpi_rank_message_cpu_seconds"}
-# keys the new binary adds (issue #27 item 4: which dispersion model was fitted)
-ADDED = {"dispersion_model", "long_wave"}
+# keys the new binary adds: which dispersion model was fitted; the time loop's phases (timings)
+ADDED = {"dispersion_model", "long_wave", "phases"}
 
 
 def same(new, ref, path, diffs, added):
