@@ -10,7 +10,8 @@
 
 namespace granwave::crystal {
 
-void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::string& case_toml, const std::string& origin) {
+void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::string& case_toml, const std::string& origin,
+                      LatticeNeed need) {
   options.lattice.reset();
   if (case_toml.empty()) {
     options.no_lattice = "the trace has no case text (case_toml): the lattice's branches are unknown";
@@ -25,6 +26,18 @@ void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::stri
   }
   if (c.model != config::Model::crystal || !c.crystal) {
     options.no_lattice = "the trace's case is not a crystal";
+    return;
+  }
+  bool turns_particles = false;
+  try {
+    turns_particles = c.excitation.mode == config::Excitation::Mode::S && derive(c).kt > 0.0;
+  } catch (const std::exception&) {
+    options.no_lattice = "the trace's case has no linearised contact: the lattice's branches are unknown";
+    return;
+  }
+  if (need == LatticeNeed::when_not_sine && !turns_particles) {
+    options.no_lattice = "the wave turns no particle (a P wave, or an S wave without tangential springs): its lattice "
+                         "branch is the sine";
     return;
   }
   if (c.crystal->polydispersity > 0.0) {

@@ -8,10 +8,17 @@
 
 namespace granwave::crystal {
 
+// Which branches to build: only those a sine cannot stand for (when_not_sine), or always.
+enum class LatticeNeed { when_not_sine, always };
+
 // Sets options.lattice from the case's monodisperse packing (lattice_packing, the contact network
 // of the case's law at its static overlap, theory::lattice_dispersion along z); otherwise leaves it
 // unset and says why in options.no_lattice (no case text, a case that does not parse, a chain, a
-// polydisperse packing, no Bravais cell).
-void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::string& case_toml, const std::string& origin);
+// polydisperse packing, no Bravais cell). With when_not_sine, a wave that turns no particle -- a P
+// wave along z, or an S wave without tangential springs -- keeps its sine, whose branch it is
+// (tests/physics/crystal_long_wave.cpp), and nothing is built: the lattice costs a run's analysis
+// more than its measures do.
+void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::string& case_toml, const std::string& origin,
+                      LatticeNeed need = LatticeNeed::when_not_sine);
 
 }  // namespace granwave::crystal

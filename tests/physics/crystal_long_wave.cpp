@@ -102,7 +102,7 @@ TEST_CASE("S wave with rotations: V(k->0) from the lattice branch scaled to the 
 
 TEST_CASE("P wave along z: the lattice branch is the sine omega_0 sin(k l0/2), the sine fit stays", "[crystal][wave]") {
   analysis::CrystalAnalysisOptions o;
-  crystal::add_case_lattice(o, hm_case("P"), "hm_long_wave_p");
+  crystal::add_case_lattice(o, hm_case("P"), "hm_long_wave_p", crystal::LatticeNeed::always);
   REQUIRE(o.lattice);
   analysis::DispersionResult d;  // the sine fit's numbers, whatever they are, are passed through
   d.v_k0 = 1000.0;
@@ -114,4 +114,9 @@ TEST_CASE("P wave along z: the lattice branch is the sine omega_0 sin(k l0/2), t
   CHECK(w.sine_deviation < analysis::kSineTolerance);
   CHECK(w.value == 1000.0);
   CHECK(w.error == 1.0);
+  // So the analysis builds no lattice for a P wave, and says why.
+  analysis::CrystalAnalysisOptions skipped;
+  crystal::add_case_lattice(skipped, hm_case("P"), "hm_long_wave_p");
+  CHECK_FALSE(skipped.lattice);
+  CHECK(skipped.no_lattice.find("lattice branch is the sine") != std::string::npos);
 }
