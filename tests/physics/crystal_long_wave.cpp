@@ -10,6 +10,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "analysis/long_wave.hpp"
@@ -22,38 +24,20 @@ using namespace granwave;
 
 namespace {
 
+// crystal_hm_s.toml itself, on 2 x 2 x 200 cells, as an S or a P wave.
 std::string hm_case(const char* mode) {
-  char text[2048];
-  std::snprintf(text, sizeof text, R"(
-[case]
-name = "hm_long_wave"
-model = "crystal"
-[crystal]
-cells = [2, 2, 200]
-radius = 1e-3
-density = 2000
-overlap = 1e-3
-[contact]
-law = "hertz_mindlin"
-youngs_modulus = 63e9
-poisson_ratio = 0.23
-mu_static = 0.5
-mu_dynamic = 0.5
-tangential = "mindlin"
-tangential_history = "displacement"
-lever_arm = "contact_point"
-[excitation]
-mode = "%s"
-drive = "displacement"
-amplitude = 1e-4
-[integrator]
-dt = 4e-8
-t_end = 3e-4
-[output]
-interval = 2e-7
-)",
-                mode);
-  return text;
+  std::ifstream in(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_hm_s.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  auto replace = [&s](const std::string& from, const std::string& to) {
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    s.replace(at, from.size(), to);
+  };
+  replace("cells = [4, 4, 200]", "cells = [2, 2, 200]");
+  replace("mode = \"S\"", std::string("mode = \"") + mode + "\"");
+  return s;
 }
 
 }  // namespace
