@@ -142,7 +142,7 @@ int cmd_run(const Args& args) {
       "  and, on stderr when it is a terminal, a progress line once the run takes more than 2 s;\n"
       "  --quiet leaves the progress line out.\n"
       "  Under `mpirun -n R` a crystal run is split into slabs of whole layers (R <= layers) and\n"
-      "  writes the serial run's trace file bit for bit (README \"MPI\"); a chain run is refused";
+      "  writes the serial run's trace file bit for bit (docs/mpi.md); a chain run is refused";
   if (wants_help(args)) {
     std::cout << usage << "\n" << kLimitsHelp << "\n";
     return 0;

@@ -34,7 +34,7 @@ Before any run, every member passes the guards of `granwave check` (granwave che
 steps, memory, stability limit, overlap bound and finite derived numbers; a refusal exits 2.
 
 Under `mpirun -n R` the members are spread over R ranks (OpenMP threads inside each); the study
-file is the same for any R (README "MPI"). Rank 0 alone prints and writes.
+file is the same for any R (docs/mpi.md). Rank 0 alone prints and writes.
 
 Finished runs are committed in batches under FILE.parts/ (each batch written to a temporary name
 and renamed); after a crash or kill, the same command computes only what is missing. Once FILE is
