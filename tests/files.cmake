@@ -47,5 +47,8 @@ endfunction()
 granwave_damaged_trace(trace_huge_extent "claims .* values")
 granwave_damaged_trace(trace_vlen_heap_crash "(damaged|checksum mismatch)")
 # From the 10 000 traces of the issue's "done when" (fuzz_files.py --seed 1, an h5py-format trace):
-# a damaged version-1 object header on which H5Aexists_by_name crashed (SIGSEGV in a memcpy).
-granwave_damaged_trace(trace_attr_header_crash "damaged file: the HDF5 library crashed reading ./system/@")
+# a damaged version-1 object header on which H5Aexists_by_name crashed (SIGSEGV in a memcpy). Such a
+# header has no checksum: whether the library crashes on it (the crash guard's message) or decodes
+# garbage (then refused by the measures, naming the file) depends on the heap's layout, which changes
+# with the binary and even the path's length; either way exit 2 naming the file.
+granwave_damaged_trace(trace_attr_header_crash "(damaged file: the HDF5 library crashed reading ./system/@|: analyze: the fit range)")

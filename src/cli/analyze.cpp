@@ -114,6 +114,17 @@ for the trace it writes: the same code, the same numbers.
                      one_percent_time, duration, leading_max}
 )";
 
+// A trace that reads but cannot be measured (a file from elsewhere, perhaps damaged where no
+// checksum guards it) is refused naming the file.
+template <class Measure>
+auto measured(const std::string& path, Measure&& measure) {
+  try {
+    return measure();
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 int cmd_analyze(const Args& args) {
@@ -137,7 +148,7 @@ int cmd_analyze(const Args& args) {
       throw InputError(pos[0] + ": --period is for crystal traces (the wavelength of seed 002 sec. 3.4)");
     if (!option_value(args, "", "--wavenumber-speed").empty())
       throw InputError(pos[0] + ": --wavenumber-speed is for crystal traces (the wavelength of seed 002 sec. 3.4)");
-    const auto a = analysis::analyze_chain(file.chain, {lo, hi});
+    const auto a = measured(pos[0], [&] { return analysis::analyze_chain(file.chain, {lo, hi}); });
     if (json) {
       std::cout << json_text(analysis::to_json(file, a));
       return 0;
@@ -166,7 +177,7 @@ int cmd_analyze(const Args& args) {
     opt.wavenumber_speed = analysis::parse_wavenumber_speed(v);
     if (!opt.wavenumber_speed) throw InputError("--wavenumber-speed " + v + ": must be displacement_peak or first_peak");
   }
-  const auto a = analysis::analyze_crystal(file.crystal, opt);
+  const auto a = measured(pos[0], [&] { return analysis::analyze_crystal(file.crystal, opt); });
   if (json) {
     std::cout << json_text(analysis::to_json(file, a));
     return 0;
