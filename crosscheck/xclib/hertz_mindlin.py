@@ -352,3 +352,105 @@ def yade_after_run(c: dict, rereads: int) -> None:
     if dashpot(c) and rereads > 1:
         sys.stderr.write("run_case.py: the contact set changed during the run: a new contact between a fixed and a "
                          "free particle has YADE's m* = m_free in its dashpot (betan not rescaled)\n")
+
+
+# ------------------------------------------------------------------- impact cases (data/SCHEMA.md §7)
+# s: xclib.impact.setup(...). Every code runs granwave's damping_ratio zeta through its own constant
+# (not the case's e through the code's e -> damping map, which does not realise e with Hertz's
+# stiffness: `granwave theory` prints that map's mapped_restitution).
+LIGGGHTS_RIGID_WALL_FACTOR = 1e15   # the wall type's E / E1: 1/E* and 1/G* within 1e-15 of the rigid limit
+
+
+def _impact_attrs(s, arm: str, history: str) -> dict:
+    return dict(contact_law="hertz_mindlin", lever_arm=arm, coulomb_normal="magnitude",
+                normal_tension="clip" if (s.clip or s.zeta == 0.0) else "allow",
+                tangential_history=history if s.friction else "none", damping_ratio=s.zeta)
+
+
+# LAMMPS 29 Sep 2021 (Debian): fix wall/gran granular hertz/material takes E* = E/(2 (1 - nu)), not
+# E/(2 (1 - nu^2)) (measured: the rigid-wall T3 cases with 2 E1 are (1 + nu) too stiff; its source
+# reads Emod/(2*(1-poiss))): the rigid limit E1/(1 - nu1^2) needs E = 2 E1/(1 + nu1).
+LAMMPS_WALL_E_FACTOR = lambda nu: 2.0 / (1.0 + nu)  # noqa: E731
+
+
+def lammps_impact(s) -> tuple[str, dict]:
+    """pair granular hertz/material between the spheres (E*, G* mixed by LAMMPS from each type's E, nu),
+    or `fix wall/gran granular` whose wall is a half-space of the fix's own material (E* = E/(2 (1 -
+    nu^2)), G* = E/(4 (2 - nu)(1 + nu))): the rigid limit is 2 E1, nu1. Damping: tsuji with e such that
+    alpha(e) = sqrt(6) zeta (zeta <= 0.5196; Debian's LAMMPS of Sep 2021 has no coeff_restitution)."""
+    from xclib.codefacts import MIXED_ARM, Unsupported
+    if s.zeta > 0.0:
+        try:
+            damp, model = _g(lammps_tsuji_restitution(s.zeta)), "tsuji"
+        except ValueError as e:
+            raise Unsupported(str(e)) from None
+    else:
+        damp, model = "0.0", "velocity"
+    limit = " limit_damping" if s.clip and s.zeta > 0 else ""
+
+    def coeff(E, nu, kt="NULL"):
+        tang = ("tangential mindlin %s 0.0 %s" % (kt, _g(s.mu))) if s.friction else "tangential linear_nohistory 0.0 0.0"
+        return "hertz/material %s %s %s %s damping %s%s" % (_g(E), damp, _g(nu), tang, model, limit)
+    lines = ["pair_style      granular"]
+    if s.b2 is not None:
+        lines += ["pair_coeff      1 1 " + coeff(s.b1.E, s.b1.nu), "pair_coeff      2 2 " + coeff(s.b2.E, s.b2.nu)]
+        wall_note = ""
+    else:
+        if not s.wall.rigid:
+            raise Unsupported("an elastic wall material (LAMMPS' wall is a half-space of one E, nu; not mapped)")
+        from xclib.impact import wall_axis
+        k, sign = wall_axis(s.wall)
+        plane = "%s %s" % ((_g(s.wall.point[k]), "NULL") if sign > 0 else ("NULL", _g(s.wall.point[k])))
+        e_wall = LAMMPS_WALL_E_FACTOR(s.b1.nu) * s.b1.E
+        lines += ["pair_coeff      * * " + coeff(s.b1.E, s.b1.nu),
+                  "fix             wall all wall/gran granular %s %splane %s" % (
+                      coeff(e_wall, s.b1.nu, _g(8.0 * s.th["effective_shear_modulus"])), "xyz"[k], plane)]
+        wall_note = ("fix wall/gran granular with E = %r E1 = 2 E1/(1 + nu1), nu1; Mindlin k_t = 8 G* a given "
+                     "(G* of the rigid wall, G1/(2 - nu1))" % LAMMPS_WALL_E_FACTOR(s.b1.nu))
+    attrs = _impact_attrs(s, MIXED_ARM, "displacement")
+    attrs.update(lammps_contact="pair granular hertz/material, tangential %s, damping %s%s" % (
+        "mindlin" if s.friction else "linear_nohistory", model, " limit_damping" if s.clip and s.zeta > 0 else ""),
+        lammps_damping_e=float(damp) if model == "tsuji" else 0.0)
+    if wall_note:
+        attrs["wall_model"] = wall_note
+    return "\n".join(lines) + "\n", attrs
+
+
+def liggghts_impact(s) -> tuple[str, dict]:
+    """gran model hertz (E*, G* mixed exactly from the types' E, nu), coefficientRestitution from
+    liggghts_restitution(zeta), no tangential dashpot, limitForce on for "clip". Types: 1 body 1, 2
+    body 2 or the wall; a rigid wall is E1 x LIGGGHTS_RIGID_WALL_FACTOR (nu1)."""
+    from xclib.codefacts import Unsupported
+    try:
+        e = liggghts_restitution(s.zeta)
+    except ValueError as err:
+        raise Unsupported(str(err)) from None
+    if s.b2 is not None:
+        E2, nu2, note = s.b2.E, s.b2.nu, ""
+    elif s.wall.rigid:
+        E2, nu2 = s.b1.E * LIGGGHTS_RIGID_WALL_FACTOR, s.b1.nu
+        note = "fix wall/gran primitive, wall type E = %g E1, nu1" % LIGGGHTS_RIGID_WALL_FACTOR
+    else:
+        E2, nu2 = s.wall.E, s.wall.nu
+        note = "fix wall/gran primitive, wall material %s" % s.wall.material
+    four = lambda x: " ".join([_g(x)] * 4)  # noqa: E731
+    model = "gran model hertz tangential %s tangential_damping off limitForce %s" % (
+        "history" if s.friction else "no_history", "on" if s.clip else "off")
+    lines = ("hard_particles  yes\n"
+             "fix             m1 all property/global youngsModulus peratomtype %s %s\n"
+             "fix             m2 all property/global poissonsRatio peratomtype %s %s\n"
+             "fix             m3 all property/global coefficientRestitution peratomtypepair 2 %s\n"
+             "fix             m4 all property/global coefficientFriction peratomtypepair 2 %s\n"
+             "pair_style      %s\npair_coeff      * *\n"
+             % (_g(s.b1.E), _g(E2), _g(s.b1.nu), _g(nu2), four(e), four(s.mu if s.friction else 0.0), model))
+    if s.b2 is None:
+        from xclib.impact import wall_axis
+        k, sign = wall_axis(s.wall)
+        if sign < 0:
+            raise Unsupported("a wall facing -%s (LIGGGHTS' primitive plane: not checked)" % "xyz"[k])
+        lines += "fix             wall all wall/%s primitive type 2 %splane %s\n" % (model, "xyz"[k], _g(s.wall.point[k]))
+    attrs = _impact_attrs(s, "contact_point", LIGGGHTS_TANGENTIAL_HISTORY)
+    attrs.update(liggghts_contact=model, liggghts_restitution=e)
+    if note:
+        attrs["wall_model"] = note
+    return lines, attrs
