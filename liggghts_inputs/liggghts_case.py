@@ -281,8 +281,12 @@ def render_impact(s, work: str) -> dict:
     from xclib import hertz_mindlin as HM
     from xclib import impact as I
     lines, attrs = HM.liggghts_impact(s)
-    deck = ("# granwave impact case %s -> LIGGGHTS (liggghts_inputs/liggghts_case.py; MAPPING.md, \"Impact\")\n" % s.name +
-            I.deck_head(s, "granular", "communicate     single vel yes", 2) + lines + I.deck_run(s, I.velocity_lines(s)))
+    I.data_file(s, os.path.join(work, "data.system"), "Atoms")
+    masses = "\n".join("set             atom %d mass %r" % (k + 1, b.mass) for k, b in enumerate([s.b1, s.b2]) if b)
+    deck = ("# granwave impact case %s -> LIGGGHTS (liggghts_inputs/liggghts_case.py; MAPPING.md, \"Impact\")\n"
+            "units           si\natom_style      granular\natom_modify     map array\nboundary        f f f\n"
+            "newton          off\ncommunicate     single vel yes\nread_data       data.system\n%s\n" % (s.name, masses)
+            + lines + I.deck_run(s, "", "format"))
     with open(os.path.join(work, "in.case"), "w") as f:
         f.write(deck)
     attrs["deck"] = deck

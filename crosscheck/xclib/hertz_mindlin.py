@@ -448,7 +448,9 @@ def liggghts_impact(s) -> tuple[str, dict]:
         k, sign = wall_axis(s.wall)
         if sign < 0:
             raise Unsupported("a wall facing -%s (LIGGGHTS' primitive plane: not checked)" % "xyz"[k])
-        lines += "fix             wall all wall/%s primitive type 2 %splane %s\n" % (model, "xyz"[k], _g(s.wall.point[k]))
+        # the model's options come after the primitive in fix wall/gran (LIGGGHTS 3.8 refuses them before)
+        lines += "fix             wall all wall/gran model hertz tangential %s primitive type 2 %splane %s %s\n" % (
+            "history" if s.friction else "no_history", "xyz"[k], _g(s.wall.point[k]), model.split(" ", 5)[5])
     attrs = _impact_attrs(s, "contact_point", LIGGGHTS_TANGENTIAL_HISTORY)
     attrs.update(liggghts_contact=model, liggghts_restitution=e)
     if note:

@@ -192,14 +192,31 @@ def deck_head(s, atom_style: str, comm: str, ntypes: int, types=(1, 2)) -> str:
     return "\n".join(out) + "\n"
 
 
-def deck_run(s, vel_lines: str) -> str:
+def data_file(s, path: str, atoms: str, ntypes: int = 2, types=(1, 2)) -> None:
+    """The bodies as a data file with their velocities and spins (LIGGGHTS' `set` takes no omega):
+    Atoms `id type diameter density x y z`, Velocities `id vx vy vz wx wy wz`."""
+    from .driver import data_file as df
+    bodies = [s.b1] + ([s.b2] if s.b2 else [])
+    lo, hi = box(s)
+    df(path, s.name, atoms, ntypes, (lo, hi), list(types[:len(bodies)]), np.array([b.radius for b in bodies]),
+       np.array([b.mass for b in bodies]), np.array([b.x for b in bodies]))
+    g = lambda x: repr(float(x))  # noqa: E731
+    with open(path, "a") as f:
+        f.write("\nVelocities\n\n")
+        for k, b in enumerate(bodies):
+            f.write("%d %s\n" % (k + 1, " ".join(g(x) for x in (*b.v, *b.w))))
+
+
+def deck_run(s, vel_lines: str, format_keyword: str = "format line") -> str:
+    """Neighbours, dt, integrator, the dump of every step at full precision and the run (LIGGGHTS'
+    dump_modify takes `format`, LAMMPS' `format line`)."""
     skin = 0.5 * min(s.b1.radius, s.b2.radius if s.b2 else s.b1.radius)
     return ("neighbor        %r bin\nneigh_modify    delay 0 every 1 check yes\n"
             "timestep        %r\nfix             integr all nve/sphere\n%s\n"
             "dump            dat all custom 1 dump.atoms %s\n"
-            "dump_modify     dat sort id format line \"%%d%s\"\n"
+            "dump_modify     dat sort id %s \"%%d%s\"\n"
             "thermo          100000\nrun             %d\n" % (float(skin), float(s.dt), vel_lines, DUMP_COLUMNS,
-                                                             " %.17g" * 12, s.nsteps))
+                                                             format_keyword, " %.17g" * 12, s.nsteps))
 
 
 def velocity_lines(s, omega_keyword: str = "omega") -> str:
@@ -294,7 +311,7 @@ def main(argv, *, code: str, title: str, exe_option: str, exe_default: str, rend
     if status == "timeout":
         say("%s did not finish within %g s (killed)" % (title, a.timeout))
         return 124
-    log = open(os.path.join(work, "log.stdout")).read()
+    log = open(os.path.join(work, "log.stdout"), errors="replace").read()
     if rc != 0 or "ERROR" in log:
         err = [ln for ln in log.splitlines() if "ERROR" in ln]
         say("%s failed (exit %s): %s" % (title, rc, "; ".join(err[-3:]) or log.strip()[-300:]))
