@@ -407,7 +407,9 @@ def lammps_impact(s) -> tuple[str, dict]:
                       coeff(e_wall, s.b1.nu, _g(8.0 * s.th["effective_shear_modulus"])), "xyz"[k], plane)]
         wall_note = ("fix wall/gran granular with E = %r E1 = 2 E1/(1 + nu1), nu1; Mindlin k_t = 8 G* a given "
                      "(G* of the rigid wall, G1/(2 - nu1))" % LAMMPS_WALL_E_FACTOR(s.b1.nu))
-    attrs = _impact_attrs(s, MIXED_ARM, "displacement")
+    # the arm: pair granular takes a in the surface velocity and a - delta/2 in the torque; fix wall/gran
+    # granular takes the radius in both (measured: T4 alumina 10 deg equals granwave's "radius" to 1e-6)
+    attrs = _impact_attrs(s, MIXED_ARM if s.b2 is not None else "radius", "displacement")
     attrs.update(lammps_contact="pair granular hertz/material, tangential %s, damping %s%s" % (
         "mindlin" if s.friction else "linear_nohistory", model, " limit_damping" if s.clip and s.zeta > 0 else ""),
         lammps_damping_e=float(damp) if model == "tsuji" else 0.0)
