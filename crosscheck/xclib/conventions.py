@@ -65,10 +65,12 @@ def _params(case: dict) -> dict:
     c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n", "damping_ratio")})
     c["contact_law"] = c["law"]
     if case.get("case", {}).get("model") == "impact":
-        # an impact's dashpot is set by `restitution` (SCHEMA §7.1); mu = 0: no tangential force at all
+        # an impact's dashpot is set by `restitution` (SCHEMA §7.1); mu = 0 or a head-on impact without
+        # spin: no tangential force at all
         if float(c.get("restitution", 1.0)) < 1.0:
             c["damping_ratio"] = max(c["damping_ratio"], 1.0)
-        if float(c["mu_static"]) == 0.0:
+        from .impact import tangential_motion
+        if float(c["mu_static"]) == 0.0 or not tangential_motion(case):
             c["tangential"] = "none"
     return c
 

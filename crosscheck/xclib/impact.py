@@ -331,6 +331,21 @@ def main(argv, *, code: str, title: str, exe_option: str, exe_default: str, rend
     return 0
 
 
+def tangential_motion(case: dict) -> bool:
+    """Does the contact point slide or spin at t = 0 (T4-T7)? Head-on without spin (T1-T3) it does
+    not, and no tangential convention can matter."""
+    imp = case["impact"]
+    b1, b2 = imp["body1"], imp.get("body2")
+    w = [np.asarray(b.get("angular_velocity", [0.0, 0.0, 0.0]), float) for b in (b1, b2) if b]
+    if any(np.any(x != 0) for x in w):
+        return True
+    v = np.asarray(b1["velocity"], float) - (np.asarray(b2["velocity"], float) if b2 else 0.0)
+    n = (_unit(np.asarray(b1["position"], float) - np.asarray(b2["position"], float)) if b2
+         else _unit(imp.get("wall", {}).get("normal", [0.0, 0.0, 1.0])))
+    vt = v - (v @ n) * n
+    return bool(np.linalg.norm(vt) > 1e-12 * max(np.linalg.norm(v), 1e-300))
+
+
 def is_impact(case_path: str) -> bool:
     try:
         case, _ = T.load_case(case_path)
