@@ -16,19 +16,9 @@ from . import ruler as R
 from . import runners as RN
 from . import traces as T
 from .sweep import main_sweep
-from .runners import CODES, REPO, XC_DIR, build_system, find_granwave, fresh_dir, load_tolerances, run_code  # noqa: F401
+from .runners import CODES, REPO, XC_DIR, build_system, find_granwave, fresh_dir, load_tolerances, run_code, tolerance  # noqa: F401
 
 # ------------------------------------------------------------------------------ tolerances
-def tolerance(tol: dict, model: str, case_name: str, quantity: str):
-    """(value, why) for a quantity; a case table overrides the model default."""
-    case = tol.get("case", {}).get(case_name, {})
-    base = tol.get("default", {}).get(model, {})
-    for t in (case, base):
-        if quantity in t:
-            return float(t[quantity]), t.get(quantity + "_why", "")
-    return None, "no tolerance set"
-
-
 def expected_disagreement(tol: dict, case_name: str, pair: str | None = None) -> str | None:
     """The documented reason when this case (or, with `expected_pairs` in its table, this pair of
     codes in it) is an expected disagreement; None otherwise."""

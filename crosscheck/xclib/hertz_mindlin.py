@@ -402,7 +402,7 @@ def lammps_impact(s) -> tuple[str, dict]:
     else:
         if not s.wall.rigid:
             raise Unsupported("an elastic wall material (LAMMPS' wall is a half-space of one E, nu; not mapped)")
-        from xclib.impact import wall_axis
+        from xclib.codefacts import wall_axis
         k, sign = wall_axis(s.wall)
         plane = "%s %s" % ((_g(s.wall.point[k]), "NULL") if sign > 0 else ("NULL", _g(s.wall.point[k])))
         e_wall = LAMMPS_WALL_E_FACTOR(s.b1.nu) * s.b1.E
@@ -450,7 +450,7 @@ def liggghts_impact(s) -> tuple[str, dict]:
              "pair_style      %s\npair_coeff      * *\n"
              % (_g(s.b1.E), _g(E2), _g(s.b1.nu), _g(nu2), four(e), four(s.mu if s.friction else 0.0), model))
     if s.b2 is None:
-        from xclib.impact import wall_axis
+        from xclib.codefacts import wall_axis
         k, sign = wall_axis(s.wall)
         if sign < 0:
             raise Unsupported("a wall facing -%s (LIGGGHTS' primitive plane: not checked)" % "xyz"[k])

@@ -19,7 +19,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import traces as T
-from .codefacts import Unsupported
+from .codefacts import Unsupported, wall_axis  # noqa: F401 (wall_axis: the drivers' name for it)
 
 # The drivers' run: every step is written (the peaks are parabola-refined over three samples) until
 # this many closed-form contact times after first touch; the run then ends in free flight.
@@ -100,15 +100,6 @@ def setup(case: dict, case_path: str, granwave: str | None = None) -> SimpleName
                            clip=(c["normal_tension"] == "clip"), mu=float(c["mu_static"]),
                            friction=(c.get("tangential", "mindlin") == "mindlin" and float(c["mu_static"]) > 0),
                            dt=dt, nsteps=int(math.ceil(t_end / dt)), name=case["case"]["name"])
-
-
-def wall_axis(wall) -> tuple[int, float]:
-    """(axis 0..2, sign) of an axis-aligned wall normal; Unsupported otherwise (the codes' primitive
-    planes are xplane, yplane, zplane)."""
-    k = int(np.argmax(np.abs(wall.normal)))
-    if abs(abs(wall.normal[k]) - 1.0) > 1e-15:
-        raise Unsupported("wall normal %s is not along x, y or z" % list(wall.normal))
-    return k, float(np.sign(wall.normal[k]))
 
 
 def box(s, margin: float = 4.0):

@@ -71,8 +71,7 @@ def deviation(a, b, how: str):
 
 
 def _tol(tol: dict, case_name: str, key: str):
-    from .harness import tolerance
-    return tolerance(tol, "impact", case_name, key)
+    return RN.tolerance(tol, "impact", case_name, key)
 
 
 def theory_rows(code: str, rb: dict, th: dict, case: dict, tol: dict) -> list:

@@ -50,6 +50,16 @@ def load_tolerances(path: str | None = None) -> dict:
         return tomllib.load(f)
 
 
+def tolerance(tol: dict, model: str, case_name: str, quantity: str):
+    """(value, why) for a quantity; a case table overrides the model default."""
+    case = tol.get("case", {}).get(case_name, {})
+    base = tol.get("default", {}).get(model, {})
+    for t in (case, base):
+        if quantity in t:
+            return float(t[quantity]), t.get(quantity + "_why", "")
+    return None, "no tolerance set"
+
+
 def find_granwave(explicit: str | None) -> str | None:
     cands = [explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave",
                                           os.path.join(REPO, "build", "granwave"), os.path.join(REPO, "build-xc", "granwave")]
