@@ -27,9 +27,10 @@ RUN_AFTER_TOUCH = 1.3
 
 
 def find_granwave(explicit: str | None = None) -> str | None:
-    here = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    for c in ([explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave",
-                                           os.path.join(here, "build", "granwave")]):
+    """granwave: EXPLICIT, else $GRANWAVE, PATH, build/, build-xc/ (the harness's and the drivers' search)."""
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    for c in ([explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave", os.path.join(repo, "build", "granwave"),
+                                           os.path.join(repo, "build-xc", "granwave")]):
         if not c:
             continue
         p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)

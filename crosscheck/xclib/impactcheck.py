@@ -74,6 +74,17 @@ def _tol(tol: dict, case_name: str, key: str):
     return RN.tolerance(tol, "impact", case_name, key)
 
 
+def _status(d, lim, why, override=None):
+    """(status, reason) of a deviation d against tolerance lim; override: (status, reason) that applies."""
+    if override:
+        return override
+    if lim is None:
+        return "INFO", why
+    if d is None:
+        return "FAIL", why
+    return ("PASS" if d <= lim else "FAIL"), why
+
+
 def theory_rows(code: str, rb: dict, th: dict, case: dict, tol: dict) -> list:
     """The code's deviations from the closed forms that apply to this case."""
     rows = []
@@ -86,15 +97,10 @@ def theory_rows(code: str, rb: dict, th: dict, case: dict, tol: dict) -> list:
             continue        # no closed form of this measure here (T6, T7: no centre velocity along the wall)
         d = deviation(v, ref, how)
         lim, why = _tol(tol, case["case"]["name"], "theory_" + q)
-        if q in dict((o[0], 1) for o in OBLIQUE) and not th["oblique"].get("sliding"):
-            st, why = "INFO", ("rigid-body stick: Coulomb's rigid-body value does not hold where Mindlin's compliance "
-                               "acts (Maw, Barber & Fawcett's regime, not computed)")
-        elif lim is None:
-            st = "INFO"
-        elif d is None:
-            st = "FAIL"
-        else:
-            st = "PASS" if d <= lim else "FAIL"
+        stick = q in dict((o[0], 1) for o in OBLIQUE) and not th["oblique"].get("sliding")
+        st, why = _status(d, lim, why, ("INFO", "rigid-body stick: Coulomb's rigid-body value does not hold where "
+                                            "Mindlin's compliance acts (Maw, Barber & Fawcett's regime, not computed)")
+                          if stick else None)
         rows.append(dict(code=code, reference="closed form", quantity=q, measured=v, expected=ref, how=how, unit=unit,
                          dev=d, tol=lim, status=st, why=why))
     return rows
@@ -108,14 +114,7 @@ def code_rows(code: str, ref_name: str, rb: dict, rb_ref: dict, case: dict, tol:
             continue
         d = deviation(v, ref, how)
         lim, why = _tol(tol, case["case"]["name"], "code_" + q)
-        if convention:
-            st, why = "EXPECTED-DIFF", convention
-        elif lim is None:
-            st = "INFO"
-        elif d is None:
-            st = "FAIL"
-        else:
-            st = "PASS" if d <= lim else "FAIL"
+        st, why = _status(d, lim, why, ("EXPECTED-DIFF", convention) if convention else None)
         rows.append(dict(code=code, reference=ref_name, quantity=q, measured=v, expected=ref, how=how, unit=unit,
                          dev=d, tol=lim, status=st, why=why))
     return rows
@@ -183,11 +182,7 @@ def run(cases, report_dir, codes, timeout, granwave, resume, tol) -> list:
 
 # ------------------------------------------------------------------------------ report
 def _f(v):
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return "%.4g" % v
-    return str(v)
+    return "-" if v is None else ("%.4g" % v if isinstance(v, float) else str(v))
 
 
 def test_of(name: str) -> str:

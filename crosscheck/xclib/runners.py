@@ -25,6 +25,7 @@ import time
 import tomllib
 
 from . import conventions as CV
+from .impact import find_granwave  # noqa: F401 (the harness's name for it)
 from . import traces as T
 
 XC_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))      # crosscheck/
@@ -58,18 +59,6 @@ def tolerance(tol: dict, model: str, case_name: str, quantity: str):
         if quantity in t:
             return float(t[quantity]), t.get(quantity + "_why", "")
     return None, "no tolerance set"
-
-
-def find_granwave(explicit: str | None) -> str | None:
-    cands = [explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave",
-                                          os.path.join(REPO, "build", "granwave"), os.path.join(REPO, "build-xc", "granwave")]
-    for c in cands:
-        if not c:
-            continue
-        p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)
-        if p:
-            return os.path.abspath(p)
-    return None
 
 
 def find_lammps() -> str | None:
