@@ -266,6 +266,14 @@ CODE_STYLE = {"granwave": ("k", "-", "o"), "yade": ("tab:blue", "--", "s"), "lig
               "lammps": ("tab:green", "-.", "v")}
 
 
+def _angle(res) -> float:
+    """The incident angle of the contact point, atan(v_ct/v_n) (deg), from granwave's (or any) rebound:
+    T4, T5 the centre's, T6, T7 the spin's."""
+    rb = res["rebounds"].get("granwave") or next(iter(res["rebounds"].values()), {})
+    i = rb.get("in", {})
+    return math.degrees(math.atan2(abs(i.get("vct", 0.0)), i.get("vn", 1.0)))
+
+
 def figures(report_dir: str, results) -> list:
     try:
         import matplotlib
@@ -333,19 +341,22 @@ def figures(report_dir: str, results) -> list:
             for res in rs:
                 mat = res["case_name"].rsplit("_", 1)[0]
                 groups.setdefault(mat, []).append(res)
-            for mat, g in groups.items():
-                g = sorted(g, key=lambda r: r["theory"]["oblique"]["incident_angle_deg"])
-                ang = [r["theory"]["oblique"]["incident_angle_deg"] for r in g]
-                ang = [r["theory"]["oblique"]["incident_angle_deg"] or math.degrees(math.atan2(
-                    r["rebounds"].get("granwave", {}).get("in", {}).get("vct", 0.0),
-                    r["rebounds"].get("granwave", {}).get("in", {}).get("vn", 1.0))) for r in g]
-                ax.plot(ang, [_get(r["theory"], path) for r in g], color="0.6", lw=2, label="Coulomb rigid body")
+            if all(_get(r["theory"], path) is None for r in rs):
+                ax.axis("off")
+                ax.text(0.5, 0.5, "%s: no closed form here\n(no centre velocity along the wall)" % q.replace("_", " "),
+                        ha="center", transform=ax.transAxes)
+                continue
+            for m, (mat, g) in enumerate(groups.items()):
+                g = sorted(g, key=_angle)
+                ang = [_angle(r) for r in g]
+                ax.plot(ang, [_get(r["theory"], path) for r in g], color="0.6", lw=2, ls=("-", "--", ":")[m % 3],
+                        label="Coulomb rigid body, %s" % mat)
                 for code in CODE_STYLE:
                     pts = [(a, r["rebounds"][code].get(key)) for a, r in zip(ang, g)
                            if code in r["rebounds"] and r["rebounds"][code].get(key) is not None]
                     if pts:
                         c, _, mk = CODE_STYLE[code]
-                        ax.plot(*zip(*pts), mk, color=c, mfc="none", label=code)
+                        ax.plot(*zip(*pts), mk, color=c, mfc="none" if m == 0 else c, ms=5, label="%s, %s" % (code, mat))
             ax.set_xlabel("incident angle of the contact point, atan(v_ct/v_n) (deg)")
             ax.set_ylabel("%s%s" % (q.replace("_", " "), " (%s)" % unit if unit else ""))
             h, lab = ax.get_legend_handles_labels()
