@@ -431,6 +431,8 @@ def liggghts_impact(s) -> tuple[str, dict]:
         e = liggghts_restitution(s.zeta)
     except ValueError as err:
         raise Unsupported(str(err)) from None
+    if e <= 0.05:    # LIGGGHTS: "0.05 < coefficientRestitution <= 1 required" (T3 e = 0.2: zeta 0.668 needs 0.034)
+        raise Unsupported("damping_ratio = %g needs coefficientRestitution %g; LIGGGHTS takes (0.05, 1]" % (s.zeta, e))
     if s.b2 is not None:
         E2, nu2, note = s.b2.E, s.b2.nu, ""
     elif s.wall.rigid:

@@ -22,8 +22,9 @@ from . import traces as T
 from .codefacts import Unsupported, wall_axis  # noqa: F401 (wall_axis: the drivers' name for it)
 
 # The drivers' run: every step is written (the peaks are parabola-refined over three samples) until
-# this many closed-form contact times after first touch; the run then ends in free flight.
-RUN_AFTER_TOUCH = 1.3
+# this many closed-form contact times after first touch, and the flight out of the peak overlap at e v:
+# the run ends in free flight.
+RUN_AFTER_TOUCH = 1.1
 
 
 def find_granwave(explicit: str | None = None) -> str | None:
@@ -96,7 +97,11 @@ def setup(case: dict, case_path: str, granwave: str | None = None) -> SimpleName
     # first touch: the gap closed at the approach speed (the cases start touching: 0)
     ov0 = overlap(b1.x[None, :], b2.x[None, :] if b2 else None, b1.radius, b2.radius if b2 else None, wall)[0]
     t_touch = max(0.0, -ov0) / float(th["approach_speed"])
-    t_end = float(it["t_end"]) if "t_end" in it else t_touch + RUN_AFTER_TOUCH * max(tc, th["hertz"]["contact_time"])
+    # after the force ends (with "clip" before the overlap's zero, at the latest at the peak overlap) the body
+    # leaves at e times the approach speed: the run covers that flight too
+    v_out = max(float(th.get("restitution", 1.0)), 0.05) * float(th["approach_speed"])
+    t_end = (float(it["t_end"]) if "t_end" in it else
+             t_touch + RUN_AFTER_TOUCH * max(tc, th["hertz"]["contact_time"]) + 1.2 * th["hertz"]["peak_overlap"] / v_out)
     return SimpleNamespace(case=case, b1=b1, b2=b2, wall=wall, c=c, zeta=zeta, th=th,
                            clip=(c["normal_tension"] == "clip"), mu=float(c["mu_static"]),
                            friction=(c.get("tangential", "mindlin") == "mindlin" and float(c["mu_static"]) > 0),

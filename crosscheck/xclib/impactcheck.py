@@ -62,6 +62,17 @@ def oblique(th: dict) -> bool:
     return o.get("tangential_restitution") is not None or o.get("contact_point_restitution") is not None
 
 
+def gross_sliding(th: dict) -> bool:
+    """Coulomb's rigid-body rebound is judged well inside gross sliding only: rigid-body sliding and
+    psi1 >= 2 (4 chi - 1), twice Maw, Barber & Fawcett's boundary of sliding throughout an elastic impact.
+    Measured (crosscheck --suite contact): nearer the boundary every code, granwave included, leaves the
+    rigid-body value by up to 3.6 deg (T6, T7 65 deg: psi1 = 4.3, the dashpot holds the contact at first
+    touch), and the contact-point arm's delta/(2R) of the spin grows to 0.23 deg where the rebound angle
+    is near 0 (T5 65 deg)."""
+    o = th.get("oblique") or {}
+    return bool(o.get("sliding")) and o.get("mbf_psi1", 0.0) >= 2.0 * (4.0 * o.get("mbf_chi", 0.0) - 1.0)
+
+
 def deviation(a, b, how: str):
     if a is None or b is None:
         return None
@@ -97,9 +108,10 @@ def theory_rows(code: str, rb: dict, th: dict, case: dict, tol: dict) -> list:
             continue        # no closed form of this measure here (T6, T7: no centre velocity along the wall)
         d = deviation(v, ref, how)
         lim, why = _tol(tol, case["case"]["name"], "theory_" + q)
-        stick = q in dict((o[0], 1) for o in OBLIQUE) and not th["oblique"].get("sliding")
-        st, why = _status(d, lim, why, ("INFO", "rigid-body stick: Coulomb's rigid-body value does not hold where "
-                                            "Mindlin's compliance acts (Maw, Barber & Fawcett's regime, not computed)")
+        stick = q in dict((o[0], 1) for o in OBLIQUE) and not gross_sliding(th)
+        st, why = _status(d, lim, why, ("INFO", "not well inside gross sliding (psi1 < 2 (4 chi - 1)): Coulomb's "
+                                            "rigid-body value does not hold where Mindlin's compliance (and a dashpot's "
+                                            "stick at first touch) acts; Maw, Barber & Fawcett's curve is not computed")
                           if stick else None)
         rows.append(dict(code=code, reference="closed form", quantity=q, measured=v, expected=ref, how=how, unit=unit,
                          dev=d, tol=lim, status=st, why=why))
