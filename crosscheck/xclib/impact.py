@@ -19,7 +19,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import traces as T
-from .codefacts import Unsupported, wall_axis  # noqa: F401 (wall_axis: the drivers' name for it)
+from .codefacts import Unsupported
 
 # The drivers' run: every step is written (the peaks are parabola-refined over three samples) until
 # this many closed-form contact times after first touch, and the flight out of the peak overlap at e v:
