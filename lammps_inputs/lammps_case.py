@@ -370,7 +370,26 @@ DRIVER = DRV.DeckDriver(name="lammps_case", code="lammps", title="LAMMPS", packa
                         doc=__doc__)
 
 
+def render_impact(s, work: str) -> dict:
+    """An impact deck (data/SCHEMA.md §7): the spheres as types 1, 2, their contact by xclib.hertz_mindlin
+    (lammps_impact), every step dumped at full precision (xclib.impact)."""
+    from xclib import hertz_mindlin as HM
+    from xclib import impact as I
+    lines, attrs = HM.lammps_impact(s)
+    deck = ("# granwave impact case %s -> LAMMPS (lammps_inputs/lammps_case.py; MAPPING.md, \"Impact\")\n" % s.name +
+            I.deck_head(s, "sphere", "comm_modify     vel yes", 2) + lines + I.deck_run(s, I.velocity_lines(s)))
+    with open(os.path.join(work, "in.case"), "w") as f:
+        f.write(deck)
+    attrs["deck"] = deck
+    return attrs
+
+
 def main(argv) -> int:
+    from xclib import impact as I
+    if argv and I.is_impact(argv[0]):
+        return I.main(argv, code="lammps", title="LAMMPS", exe_option="lmp", exe_default=os.environ.get("XC_LMP", "lmp"),
+                      render=render_impact, version_prefix="LAMMPS (",
+                      run_args=("-in", "in.case", "-log", "log.lammps", "-nocite"))
     return DRIVER.main(argv)
 
 

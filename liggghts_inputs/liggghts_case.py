@@ -275,7 +275,29 @@ DRIVER = DRV.DeckDriver(name="liggghts_case", code="liggghts", title="LIGGGHTS",
                         render=render, convert=convert, doc=__doc__)
 
 
+def render_impact(s, work: str) -> dict:
+    """An impact deck (data/SCHEMA.md §7): body 1 type 1, body 2 or the wall type 2, the contact by
+    xclib.hertz_mindlin (liggghts_impact), every step dumped at full precision (xclib.impact)."""
+    from xclib import hertz_mindlin as HM
+    from xclib import impact as I
+    lines, attrs = HM.liggghts_impact(s)
+    I.data_file(s, os.path.join(work, "data.system"), "Atoms")
+    masses = "\n".join("set             atom %d mass %r" % (k + 1, b.mass) for k, b in enumerate([s.b1, s.b2]) if b)
+    deck = ("# granwave impact case %s -> LIGGGHTS (liggghts_inputs/liggghts_case.py; MAPPING.md, \"Impact\")\n"
+            "units           si\natom_style      granular\natom_modify     map array\nboundary        f f f\n"
+            "newton          off\ncommunicate     single vel yes\nread_data       data.system\n%s\n" % (s.name, masses)
+            + lines + I.deck_run(s, "", "format"))
+    with open(os.path.join(work, "in.case"), "w") as f:
+        f.write(deck)
+    attrs["deck"] = deck
+    return attrs
+
+
 def main(argv) -> int:
+    from xclib import impact as I
+    if argv and I.is_impact(argv[0]):
+        return I.main(argv, code="liggghts", title="LIGGGHTS", exe_option="liggghts", exe_default="liggghts",
+                      render=render_impact, version_prefix="LIGGGHTS")
     return DRIVER.main(argv)
 
 

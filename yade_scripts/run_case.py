@@ -396,9 +396,105 @@ def run_crystal(case, system, dt, nsteps, every):
     return np.array(sampler.times), layers.datasets(len(sampler.times)), wall, n, nreal, sampler.cost
 
 
+def run_impact(case_path, out_path, case, text):
+    """An impact case (data/SCHEMA.md §7): the spheres (the wall: a fixed sphere of
+    HM.YADE_WALL_RADIUS_FACTOR radii with the material that makes YADE's mixing exact), every step
+    sampled by a PyRunner after NewtonIntegrator and made synchronous as the chain's samples."""
+    from xclib import hertz_mindlin as HM
+    from xclib import impact as I
+    from xclib.codefacts import Unsupported
+    try:
+        s = I.setup(case, case_path)
+        m1, m2, ip2 = HM.yade_impact_materials(s, yade.wrapper, math.atan(s.mu) if s.friction else 0.0)
+    except Unsupported as e:
+        fail("%s: %s" % (case_path, e))
+    O.materials.append(m1)
+    O.materials.append(m2)
+    b1 = utils.sphere(Vector3(*s.b1.x), s.b1.radius, material=m1)
+    if s.b2 is not None:
+        b2 = utils.sphere(Vector3(*s.b2.x), s.b2.radius, material=m2)
+        other = s.b2
+    else:
+        rw = s.b1.radius * HM.YADE_WALL_RADIUS_FACTOR
+        b2 = utils.sphere(Vector3(*(s.wall.point - rw * s.wall.normal)), rw, material=m2, fixed=True)
+        other = None
+    bodies = [(b1, s.b1), (b2, other)]
+    for b, spec in bodies:
+        if spec is not None:
+            b.state.mass = spec.mass
+            b.state.inertia = Vector3(spec.inertia, spec.inertia, spec.inertia)
+            b.state.vel = Vector3(*spec.v)
+            b.state.angVel = Vector3(*spec.w)
+    i1, i2 = O.bodies.append(b1), O.bodies.append(b2)
+    O.dt = s.dt
+    rows = []
+    iters = []
+    phys = []
+
+    def sample():
+        # after NewtonIntegrator: F, T of time t; x of t + dt; v, w of t + dt/2 (header)
+        row = []
+        for i, spec in ((i1, s.b1), (i2, other)):
+            if spec is None:
+                continue
+            st = O.bodies[i].state
+            f = np.array(tuple(O.forces.f(i, True)))
+            tq = np.array(tuple(O.forces.t(i, True)))
+            v = np.array(tuple(st.vel))
+            w = np.array(tuple(st.angVel))
+            row.append((np.array(tuple(st.pos)) - v * s.dt, v - f / spec.mass * (0.5 * s.dt),
+                        w - tq / spec.inertia * (0.5 * s.dt), f))
+        rows.append(row)
+        iters.append(O.iter)
+        inter = O.interactions[i1, i2] if O.interactions.has(i1, i2) else None
+        if inter is not None and inter.isReal and not phys:
+            phys.append(HM.yade_impact_check(s, inter.phys))
+
+    __import__("builtins").xc_impact_sample = sample
+    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False)], [ip2],
+                                 [Law2_ScGeom_MindlinPhys_Mindlin()]),
+                 NewtonIntegrator(damping=0.0, gravity=(0, 0, 0)),
+                 PyRunner(command="__import__('builtins').xc_impact_sample()", iterPeriod=1)]
+    t0 = _time.time()
+    # the cases start touching with F(0) = 0: the leapfrog's v(-dt/2) is v(0)
+    O.run(s.nsteps, True)
+    wall = _time.time() - t0
+    # the PyRunner first runs in step 1 (O.iter = 1: the force of x(dt)); sample 0 is the initial state
+    # (touching, F(0) = 0)
+    rows.insert(0, [(spec.x, spec.v, spec.w, np.zeros(3)) for spec in (s.b1, other) if spec is not None])
+    iters.insert(0, 0)
+    t = np.array(iters, float) * s.dt
+    col = lambda b, q: np.array([r[b][q] for r in rows])  # noqa: E731
+    kw = dict(x1=col(0, 0), v1=col(0, 1), w1=col(0, 2), f1=col(0, 3))
+    if other is not None:
+        kw.update(x2=col(1, 0), v2=col(1, 1), w2=col(1, 2))
+    attrs = dict(lever_arm=T.FIXED_LEVER_ARM, coulomb_normal="magnitude",
+                 normal_tension="clip", tangential_history=HM.YADE_TANGENTIAL_HISTORY if s.friction else "none",
+                 yade_engines="Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False) + "
+                              "Ip2_FrictMat_FrictMat_MindlinPhys(betan=damping_ratio, betas=0) + Law2_ScGeom_MindlinPhys_Mindlin",
+                 wall_model="" if other is not None else
+                 "fixed sphere of %g R1, material nu = 1, E = %g E1 (rigid in YADE's E*, G* mixing)" % (
+                     HM.YADE_WALL_RADIUS_FACTOR, HM.YADE_RIGID_WALL_FACTOR))
+    attrs.update(phys[0] if phys else {})
+    conv = ("synchronous: leapfrog from v(-dt/2) = v(0) (the bodies start touching, F(0) = 0); samples taken by a "
+            "PyRunner after NewtonIntegrator are labelled with the force time t, x(t) = x(t+dt) - v(t+dt/2) dt, "
+            "v(t) = v(t+dt/2) - F(t)/m dt/2, w(t) = w(t+dt/2) - T(t)/I dt/2")
+    I.write(out_path, s, text, code="yade", version=yade_version(), time_convention=conv, t=t, attrs=attrs, **kw)
+    DRV.summary_line(code="yade", case=s.name, dt=s.dt, steps=s.nsteps, wall_s=wall, particles=2 if other else 1,
+                     trace=out_path)
+
+
 def main(argv):
+    if len(argv) == 2 and os.path.exists(argv[0]) and T.load_case(argv[0])[0]["case"].get("model") == "impact":
+        if os.path.exists(argv[1]):
+            fail("%s exists: nothing is overwritten" % argv[1])
+        case, text = T.load_case(argv[0])
+        run_impact(argv[0], argv[1], case, text)
+        return
     if len(argv) < 3 or argv[0] in ("-h", "--help"):
-        sys.stderr.write("usage: yade -n -x yade_scripts/run_case.py CASE.toml SYSTEM.h5 OUT.h5\n")
+        sys.stderr.write("usage: yade -n -x yade_scripts/run_case.py CASE.toml SYSTEM.h5 OUT.h5\n"
+                         "       yade -n -x yade_scripts/run_case.py IMPACT_CASE.toml OUT.h5\n")
         os._exit(2)
     case_path, system_path, out_path = argv[:3]
     if os.path.exists(out_path):

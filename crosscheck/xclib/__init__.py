@@ -2,12 +2,14 @@
 
 Modules (each imports only those listed before it, so there is no import cycle):
   traces      -- case/system reading, trace writing (data/SCHEMA.md §2-3), the layer-stress definition
-  codefacts   -- facts of the other codes shared by the laws' mappings (LAMMPS pair-style conventions, Unsupported)
+  codefacts   -- facts of the other codes shared by the laws' mappings (LAMMPS pair-style conventions, Unsupported,
+                 axis-aligned walls)
   linear      -- the linear law of a case in YADE's, LIGGGHTS' and LAMMPS' parameters (one mapping module per law)
   hertz_mindlin -- the Hertz-Mindlin law of a case in YADE's, LIGGGHTS' and LAMMPS' parameters (measured maps)
   laws        -- the registry of those modules: law_of(contact) (drivers never branch on the law's name)
   driver      -- what the three drivers share: the command line of a deck driver (render, run, convert),
                  running the code, the LAMMPS-family data file and crystal lines, the trace datasets
+  impact      -- impact cases (data/SCHEMA.md §7) for the drivers: the bodies, run length, dump reader, trace
   dumps       -- LIGGGHTS/LAMMPS text dumps read frame by frame; the dumped forces put back to the step's
   sysbuild    -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
   compare     -- comparison maths (max |diff|/peak, relative L2, measures) on traces
@@ -15,6 +17,7 @@ Modules (each imports only those listed before it, so there is no import cycle):
   sweepmath   -- sweep maths and tables (derived cases, peaks at positions, pairwise differences)
   conventions -- the contact-law conventions traces record; differences; granwave's convention twins
   runners     -- running each code in a fresh directory with a timeout; results kept for resuming
+  impactcheck -- `crosscheck run` on impact cases: judged against the closed forms and granwave, report, figures
   sweep       -- `crosscheck sweep damping|friction`
   harness     -- `crosscheck run`: cases and suites, comparison, report
 """

@@ -19,3 +19,13 @@ def liggghts_properties(*rows) -> str:
     (K, NAME, STYLE, VALUES); STYLE `peratomtype` takes one value per type, `peratomtypepair 3` one
     per pair of the decks' three types (1 free, 2 fixed, 3 source)."""
     return "".join("fix             m%d all property/global %s %s %s\n" % row for row in rows)
+
+
+def wall_axis(wall) -> tuple[int, float]:
+    """(axis 0..2, sign) of an axis-aligned wall normal; Unsupported otherwise (the codes' primitive
+    planes are xplane, yplane, zplane)."""
+    import numpy as np
+    k = int(np.argmax(np.abs(wall.normal)))
+    if abs(abs(wall.normal[k]) - 1.0) > 1e-15:
+        raise Unsupported("wall normal %s is not along x, y or z" % list(wall.normal))
+    return k, float(np.sign(wall.normal[k]))

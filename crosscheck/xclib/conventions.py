@@ -57,10 +57,21 @@ GRANWAVE_RUNS = dict(lever_arm=("radius", "contact_point"), normal_tension=("all
                      tangential_history=("displacement", "displacement_rescale", "force"))
 
 
+MODELS = ("crystal", "impact")   # the models whose traces record their conventions
+
+
 def _params(case: dict) -> dict:
     c = T.contact_params(case)
     c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n", "damping_ratio")})
     c["contact_law"] = c["law"]
+    if case.get("case", {}).get("model") == "impact":
+        # an impact's dashpot is set by `restitution` (SCHEMA §7.1); mu = 0 or a head-on impact without
+        # spin: no tangential force at all
+        if float(c.get("restitution", 1.0)) < 1.0:
+            c["damping_ratio"] = max(c["damping_ratio"], 1.0)
+        from .impact import tangential_motion
+        if float(c["mu_static"]) == 0.0 or not tangential_motion(case):
+            c["tangential"] = "none"
     return c
 
 
@@ -75,7 +86,7 @@ def _matters(case: dict, *attrs: dict) -> list:
 
 def recorded(case: dict, attrs: dict) -> dict:
     """{attribute: value} of the conventions that matter for this case as this trace ran it."""
-    if case.get("case", {}).get("model") != "crystal":
+    if case.get("case", {}).get("model") not in MODELS:
         return {}
     c = _params(case)
     return {key: attrs.get(key, c[key]) for key, _ in _matters(case, attrs)}
@@ -85,7 +96,7 @@ def difference(case: dict, attrs_a: dict, attrs_b: dict) -> str | None:
     """The conventions two traces record differently where they matter for this case (no tolerance
     may cover one), as a reason; None if the two runs used the same conventions. A trace without
     the attribute ran the case's value."""
-    if case.get("case", {}).get("model") != "crystal":
+    if case.get("case", {}).get("model") not in MODELS:
         return None
     c = _params(case)
     out = []

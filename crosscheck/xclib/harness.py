@@ -16,19 +16,9 @@ from . import ruler as R
 from . import runners as RN
 from . import traces as T
 from .sweep import main_sweep
-from .runners import CODES, REPO, XC_DIR, build_system, find_granwave, fresh_dir, load_tolerances, run_code  # noqa: F401
+from .runners import CODES, REPO, XC_DIR, build_system, find_granwave, fresh_dir, load_tolerances, run_code, tolerance  # noqa: F401
 
 # ------------------------------------------------------------------------------ tolerances
-def tolerance(tol: dict, model: str, case_name: str, quantity: str):
-    """(value, why) for a quantity; a case table overrides the model default."""
-    case = tol.get("case", {}).get(case_name, {})
-    base = tol.get("default", {}).get(model, {})
-    for t in (case, base):
-        if quantity in t:
-            return float(t[quantity]), t.get(quantity + "_why", "")
-    return None, "no tolerance set"
-
-
 def expected_disagreement(tol: dict, case_name: str, pair: str | None = None) -> str | None:
     """The documented reason when this case (or, with `expected_pairs` in its table, this pair of
     codes in it) is an expected disagreement; None otherwise."""
@@ -344,11 +334,16 @@ def run(args) -> int:
         if args.suite not in suites:
             print("crosscheck: unknown suite %s (have %s)" % (args.suite, ", ".join(suites)), file=sys.stderr)
             return 2
-        cases += [os.path.join(REPO, p) for p in suites[args.suite].get("cases", [])]
+        import glob
+        for p in suites[args.suite].get("cases", []):   # a pattern (data/impact/t3/*.toml) stands for its files
+            cases += sorted(glob.glob(os.path.join(REPO, p))) if "*" in p else [os.path.join(REPO, p)]
         studies = [] if args.no_studies else list(suites[args.suite].get("studies", []))
     if not cases and not studies:
         print("crosscheck: no case given", file=sys.stderr)
         return 2
+    from . import impactcheck as IC
+    impact_cases = [cp for cp in cases if IC.is_impact(cp)]   # no system file: judged by xclib.impactcheck
+    cases = [cp for cp in cases if cp not in impact_cases]
     started = _dt.datetime.now().strftime("%Y%m%d-%H%M%S")
     report_dir = RN.work_dir(os.path.abspath(args.report or ("crosscheck-report-" + started)), args.resume)
     granwave = find_granwave(args.granwave)
@@ -395,7 +390,15 @@ def run(args) -> int:
                            measures={c: {k: v for k, v in m.items() if k != "granwave_analyze"} for c, m in measures.items()}),
                       f, indent=1, default=str)
         write_report(report_dir, results, started)   # after every case: a long suite that is stopped keeps its report
-    verdict = write_report(report_dir, results, started)
+    verdict = write_report(report_dir, results, started) if (results or not impact_cases) else []
+    if impact_cases:
+        verdict += IC.run(impact_cases, report_dir, codes, args.timeout, granwave, args.resume, tol)
+        if results:
+            with open(os.path.join(report_dir, "report.md"), "a") as f:
+                f.write("\nImpact cases (contact-level tests): [impact.md](impact.md)\n")
+        else:
+            import shutil
+            shutil.copyfile(os.path.join(report_dir, "impact.md"), os.path.join(report_dir, "report.md"))
     for st in studies:   # the suite's parameter studies (crosscheck sweep), each with its own report
         sa = argparse.Namespace(name=st["name"], size=st.get("size", "small"), values=st.get("values"),
                                 modes=st.get("modes", "P,S"),

@@ -25,6 +25,7 @@ import time
 import tomllib
 
 from . import conventions as CV
+from .impact import find_granwave  # noqa: F401 (the harness's name for it)
 from . import traces as T
 
 XC_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))      # crosscheck/
@@ -50,16 +51,14 @@ def load_tolerances(path: str | None = None) -> dict:
         return tomllib.load(f)
 
 
-def find_granwave(explicit: str | None) -> str | None:
-    cands = [explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave",
-                                          os.path.join(REPO, "build", "granwave"), os.path.join(REPO, "build-xc", "granwave")]
-    for c in cands:
-        if not c:
-            continue
-        p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)
-        if p:
-            return os.path.abspath(p)
-    return None
+def tolerance(tol: dict, model: str, case_name: str, quantity: str):
+    """(value, why) for a quantity; a case table overrides the model default."""
+    case = tol.get("case", {}).get(case_name, {})
+    base = tol.get("default", {}).get(model, {})
+    for t in (case, base):
+        if quantity in t:
+            return float(t[quantity]), t.get(quantity + "_why", "")
+    return None, "no tolerance set"
 
 
 def find_lammps() -> str | None:
@@ -100,27 +99,30 @@ def summary(stdout: str) -> dict:
 
 
 def command(code, case_path, system_path, workdir, out, timeout, granwave):
-    """(argv, None) for a code's run, or (None, why) when its executable is missing."""
+    """(argv, None) for a code's run, or (None, why) when its executable is missing. An impact case
+    (data/SCHEMA.md §7) has no system file (system_path None); its drivers ask `granwave theory`."""
+    sys_arg = [system_path] if system_path else []
+    gw_arg = ["--granwave", granwave] if (granwave and not system_path) else []
     if code == "granwave" or code.startswith("granwave" + TWIN_SEP):
         if not granwave:
             return None, "granwave executable not found (build it, or --granwave PATH)"
-        return [granwave, "run", case_path, "-o", out, "--system", system_path, "--json"], None
+        return [granwave, "run", case_path, "-o", out, "--json"] + (["--system", system_path] if system_path else []), None
     if code == "yade":
         exe = shutil.which("yade")
         if not exe:
             return None, "yade not installed (apt-get install yade)"
-        return [exe, "-n", "-x", os.path.join(REPO, "yade_scripts", "run_case.py"), case_path, system_path, out], None
+        return [exe, "-n", "-x", os.path.join(REPO, "yade_scripts", "run_case.py"), case_path] + sys_arg + [out], None
     if code == "liggghts":
         if not shutil.which("liggghts"):
             return None, "liggghts not installed (apt-get install liggghts)"
-        return ["/usr/bin/python3", os.path.join(REPO, "liggghts_inputs", "liggghts_case.py"), case_path, system_path,
-                out, "--workdir", os.path.join(workdir, "liggghts"), "--timeout", str(timeout)], None
+        return ["/usr/bin/python3", os.path.join(REPO, "liggghts_inputs", "liggghts_case.py"), case_path] + sys_arg + [
+                out, "--workdir", os.path.join(workdir, "liggghts"), "--timeout", str(timeout)] + gw_arg, None
     if code == "lammps":
         exe = find_lammps()
         if not exe:
             return None, "LAMMPS not found (%s; apt-get install lammps, or XC_LMP=PATH)" % os.environ.get("XC_LMP", "lmp")
-        return ["/usr/bin/python3", os.path.join(REPO, "lammps_inputs", "lammps_case.py"), case_path, system_path,
-                out, "--workdir", os.path.join(workdir, "lammps"), "--timeout", str(timeout), "--lmp", exe], None
+        return ["/usr/bin/python3", os.path.join(REPO, "lammps_inputs", "lammps_case.py"), case_path] + sys_arg + [
+                out, "--workdir", os.path.join(workdir, "lammps"), "--timeout", str(timeout), "--lmp", exe] + gw_arg, None
     raise ValueError("unknown code %r" % code)
 
 
@@ -156,7 +158,9 @@ def run_code(code, case_path, system_path, workdir, timeout, granwave, resume=Fa
     if cmd is None:
         res = dict(status="missing", detail=why, wall_s=None, trace=out)
     else:
-        status, rc, wall, stdout = run_cmd(cmd, workdir, timeout, "stderr.txt")
+        # the impact drivers (YADE's among them) find granwave for `granwave theory` by $GRANWAVE
+        env = dict(os.environ, GRANWAVE=granwave) if granwave else None
+        status, rc, wall, stdout = run_cmd(cmd, workdir, timeout, "stderr.txt", env=env)
         res = dict(status=status, rc=rc, wall_s=wall, command=" ".join(cmd), trace=out)
         res["summary"] = summary(stdout) if status == "ok" else {}
         if status == "ok" and not os.path.exists(out):
@@ -242,7 +246,7 @@ def run_codes(case_path, system_path, casedir, codes, timeout, granwave, resume=
     if "granwave" not in codes:
         return results
     case, text = T.load_case(case_path)
-    if case.get("case", {}).get("model") != "crystal":
+    if case.get("case", {}).get("model") not in ("crystal", "impact"):
         return results
     attrs = {c: _trace_attrs(r["trace"]) for c, r in results.items() if r["status"] == "ok"}
     for name, members, changes in CV.twins(case, attrs):

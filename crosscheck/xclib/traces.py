@@ -250,10 +250,24 @@ def create_dataset(group, name, data) -> None:
         group.create_dataset(name, data=a)
 
 
-def write_trace(path: str, *, code: str, code_version: str, case_text: str, case_name: str, system_path: str,
+def _copy_system(f, system_path: str) -> None:
+    with h5py.File(system_path, "r") as s:
+        src = s["/system"] if "system" in s and isinstance(s["system"], h5py.Group) else s
+        g = f.create_group("system")
+        for k, v in src.attrs.items():
+            set_attr(g.attrs, k, v.decode() if isinstance(v, bytes) else v)
+        for k in src:
+            if isinstance(src[k], h5py.Dataset) and src[k].dtype.kind != "O":
+                create_dataset(g, k, src[k][()])
+            else:   # variable-length text, groups: as they are
+                s.copy(src[k], g, name=k)
+
+
+def write_trace(path: str, *, code: str, code_version: str, case_text: str, case_name: str, system_path: str | None,
                 time_convention: str, time: np.ndarray, datasets: dict, extra_attrs: dict | None = None) -> None:
     """Write a trace file (SCHEMA.md §3) to PATH.tmp, then rename. `datasets` maps absolute paths
-    ("/chain/contact_force") to arrays. /system is copied verbatim from the system file."""
+    ("/chain/contact_force") to arrays. /system is copied verbatim from the system file (none for an
+    impact, system_path None: the case gives both bodies)."""
     tmp = path + ".tmp"
     with h5py.File(tmp, "w", libver=LIBVER) as f:
         a = f.attrs
@@ -264,16 +278,8 @@ def write_trace(path: str, *, code: str, code_version: str, case_text: str, case
         attrs.update(extra_attrs or {})
         for k, v in attrs.items():
             set_attr(a, k, v)
-        with h5py.File(system_path, "r") as s:
-            src = s["/system"] if "system" in s and isinstance(s["system"], h5py.Group) else s
-            g = f.create_group("system")
-            for k, v in src.attrs.items():
-                set_attr(g.attrs, k, v.decode() if isinstance(v, bytes) else v)
-            for k in src:
-                if isinstance(src[k], h5py.Dataset) and src[k].dtype.kind != "O":
-                    create_dataset(g, k, src[k][()])
-                else:   # variable-length text, groups: as they are
-                    s.copy(src[k], g, name=k)
+        if system_path:
+            _copy_system(f, system_path)
         create_dataset(f, "time", np.asarray(time, float))
         for p, v in datasets.items():
             create_dataset(f, p, v)
