@@ -3,8 +3,8 @@
 usage: json_same_object.py NEW_BIN REF_BIN OUTDIR [--cases DIR] [--reuse] [--only NAME,...]
 (--reuse: keep the reference binary's outputs already in OUTDIR/ref)
 
-For every case of data/cases: `run CASE --json` (and `build`, so that OUTDIR/new holds the system
-and trace files /work/tools-style bit-identity checks read), `analyze TRACE --json` of the
+For every case of data/cases: `run CASE --json` (and `build`, so that OUTDIR/new also holds
+every case's system and trace files for a dataset-by-dataset comparison), `analyze TRACE --json` of the
 reference binary's trace (both binaries read the same file), `theory CASE --json` (crystal cases).
 Objects are compared key by key, order-insensitive. Numbers: the reference printed 10 significant
 digits (%.10g), the new binary the shortest round-trip decimal; a number is equal when the new
