@@ -30,7 +30,9 @@ Runs ("decks", each a phase list: A spin +w, B spin -w, C open by delta and clos
   damped      rolling dashpot on, normal dashpot with a virtual approach of 0.1 m/s: the dashpot, the normal
               force in the limit, the unloading start after a damped slip
   frame       loaded 40 steps, then the pair turned rigidly by 0.5 rad about y (both spheres spinning with it)
-  torsion     A/B about n; torsion_stop (LAMMPS): spin stopped at the limit (granwave keeps the limit torque)
+  torsion     A/B about n; torsion_stop (LAMMPS): spin stopped at the limit (granwave keeps the limit torque);
+              torsion_set (LAMMPS): torsion with the spins set by `set omega` between runs (first_B: the torque
+              of the first reversed step over the limit; granwave 1 - k w dt/limit)
   (LIGGGHTS)  roll_cdf: roll with contact_distance_factor 1.01; torsion_on, damped_on, combined_on (spin
               (w, 0, w)) with `torsion on`; epsd2
   (LAMMPS)    marshall: `twisting marshall` (stiffness 0.5 k_t a^2, limit 2/3 a mu_t f_n)
@@ -82,10 +84,11 @@ PHASES = {   # deck -> [(name, steps, w_i, w_j)]: the spins of each phase
     "torsion": [("A", 150, (0, 0, W), (0, 0, 0)), ("B", 250, (0, 0, -W), (0, 0, 0))],
     "combined": [("A", 200, (W, 0, W), (0, 0, 0))],
     "epsd2": [("A", 60, (W, 0, 0), (0, 0, 0))],
+    "torsion_set": [("A", 150, (0, 0, W), (0, 0, 0)), ("B", 250, (0, 0, -W), (0, 0, 0))],
     "torsion_stop": [("A", 150, (0, 0, W), (0, 0, 0)), ("S", 5, (0, 0, 0), (0, 0, 0))],
     "marshall": [("A", 80, (0, 0, 100 * W), (0, 0, 0))],
 }
-AXIS = {"torsion_stop": 2, "roll": 0, "roll_j": 0, "damped": 0, "frame": 0, "torsion": 2, "combined": 0, "epsd2": 0, "marshall": 2}
+AXIS = {"torsion_set": 2, "torsion_stop": 2, "roll": 0, "roll_j": 0, "damped": 0, "frame": 0, "torsion": 2, "combined": 0, "epsd2": 0, "marshall": 2}
 
 
 # ------------------------------------------------------------------------ LIGGGHTS and LAMMPS decks
@@ -197,7 +200,9 @@ def render(code, deck):
             phases.append((name, steps + 1))
             continue
         for k, (grp, w, z) in enumerate((("one", wi, 0.0), ("two", wj, Z_J)), 1):
-            if any(w):     # fix move spins the sphere from the run's first step on, not in its setup
+            if deck == "torsion_set":    # `set omega` between runs: the new spin is in the run's setup
+                out.append(_OMEGA[code](k, w))
+            elif any(w):     # fix move spins the sphere from the run's first step on, not in its setup
                 ww = math.sqrt(sum(c * c for c in w))
                 out.append("fix s%d %s move rotate 0 0 %r %r %r %r %r\n" % ((k, grp, z) + tuple(c / ww for c in w) +
                                                                            (2 * math.pi / ww,)))
@@ -301,15 +306,19 @@ def sample():
 def spin(wi, wj):
     O.bodies[0].state.angVel = Vector3(*wi)
     O.bodies[1].state.angVel = Vector3(*wj)
+def step(rows, fns, vz=None):
+    if vz is not None:
+        O.bodies[1].state.vel = Vector3(0, 0, vz)
+    O.step()
+    r, fn = sample()
+    rows.append(r)
+    fns.append(fn)
+    return r
 def run(n, vz=0.0):
     rows, fns = [], []
     p0 = Vector3(O.bodies[1].state.pos)
     for _ in range(n):
-        O.bodies[1].state.vel = Vector3(0, 0, vz)
-        O.step()
-        r, fn = sample()
-        rows.append(r)
-        fns.append(fn)
+        step(rows, fns, vz)
         if vz:
             O.bodies[1].state.pos = Vector3(p0)
     return rows, fns
@@ -325,11 +334,7 @@ for deck, law, phases in P["DECKS"]:
             rows, fns = [], []
             for vz, n in ((v, 1), (0.0, P["OPEN_STEPS"]), (-v, 1), (0.0, 5)):
                 for _ in range(n):
-                    O.bodies[1].state.vel = Vector3(0, 0, vz)
-                    O.step()
-                    r, fn = sample()
-                    rows.append(r)
-                    fns.append(fn)
+                    step(rows, fns, vz)
             O.bodies[1].state.vel = Vector3(0, 0, 0)
             res["C_back"] = (rows, fns)
             continue
@@ -345,12 +350,9 @@ for deck, law, phases in P["DECKS"]:
                     b.state.pos = c + rot(w * DT * s) * p[k]
                     b.state.vel = (rot(w * DT * (s + 1)) * p[k] - rot(w * DT * s) * p[k]) / DT
                     b.state.angVel = Vector3(0, w, 0)
-                O.step()
-                r, fn = sample()
+                r = step(rows, fns)
                 for k in (0, 1):      # the positions the step's forces saw (the integrator has moved them since)
                     r[k][1:4] = list(c + rot(w * DT * s) * p[k])
-                rows.append(r)
-                fns.append(fn)
             res[name] = (rows, fns)
             continue
         spin(wi, wj)
@@ -416,7 +418,7 @@ def elastic_fit(m, dtheta, lim):
     return kk, (m[a] / (kk * dtheta) - k[a]) if kk else float("nan")
 
 
-SLIPPING = ("roll", "roll_cdf", "damped", "damped_on", "torsion", "torsion_on", "combined_on", "epsd2", "marshall",
+SLIPPING = ("torsion_set", "roll", "roll_cdf", "damped", "damped_on", "torsion", "torsion_on", "combined_on", "epsd2", "marshall",
             "mindlin_roll", "mindlin_damped", "mindlin_torsion", "torsion_stop")
 
 
@@ -445,6 +447,8 @@ def analyse(ph, axis, w=W, deck="roll", offset=None):
         a, b = sel[0], sel[-1]
         kb = (mb[a] - mb[b]) / ((b - a) * dth)
         start = mb[a] + kb * (a + 1 + r["offset"]) * dth    # the line at zero increments of phase B
+        if deck in ("roll", "roll_cdf", "torsion", "torsion_on", "torsion_set") and plateau:   # undamped, slipped
+            r["first_B"] = float(mb[0] / plateau)
         r.update(K_unload=float(kb), unload_drop=float(plateau - start) if kb else float("nan"), end_B=float(mb[-1]))
     if "S" in ph:         # the spin stopped at the limit: the torque over the plateau
         r["after_stop"] = float(_along(contact_torque(ph["S"][-1:])[0], axis)[0] / plateau)
@@ -472,7 +476,7 @@ def analyse(ph, axis, w=W, deck="roll", offset=None):
 def granwave(deck, fn=FN, c_rot=0.0):
     """granwave's law in closed form for a deck (its parameters mapped from the code's)."""
     g = dict(K=K_ANG, plateau=MU_R * fn * A_RED, antisymmetry=0.0, K_unload=K_ANG, unload_drop=2 * c_rot * W,
-             kept=0.0, after_stop=1.0, dashpot=c_rot, frame_norm=1.0, frame_n_component=0.0, frame_miss_rotated=0.0)
+             kept=0.0, after_stop=1.0, first_B=1.0 - K_ANG * W * DT / (MU_R * fn * A_RED), dashpot=c_rot, frame_norm=1.0, frame_n_component=0.0, frame_miss_rotated=0.0)
     if deck == "combined":
         g["plateau_norm"] = math.hypot(MU_R, MU_O) * fn * A_RED
     return g
@@ -492,7 +496,7 @@ def measure(codes, only=None) -> dict:
                 res[code] = _measure_yade(exe, work, only)
                 continue
             decks = ["roll", "roll_j", "damped", "frame", "torsion"]
-            decks += ["roll_cdf", "torsion_on", "damped_on", "combined_on", "epsd2"] if code == "liggghts" else ["torsion_stop", "marshall"]
+            decks += ["roll_cdf", "torsion_on", "damped_on", "combined_on", "epsd2"] if code == "liggghts" else ["torsion_stop", "torsion_set", "marshall"]
             d, raw = {}, {}
             for deck in decks:
                 if only and deck not in only:
@@ -548,7 +552,7 @@ def expectations(code, deck, q):
         res = dict(K=p["k_roll"] * A_RED ** 2, plateau=p["mu_roll"] * fn * A_RED, unload_drop=2 * c_dash * W,
                    dashpot=p["gamma_roll"] * A_RED ** 2 if c_dash else 0.0, after_stop=1.0,
                    kept=0.0, frame_n_component=0.0, antisymmetry=0.0)
-        if deck in ("torsion", "torsion_stop"):
+        if deck in ("torsion", "torsion_stop", "torsion_set"):
             res.update(K=p["k_twist"], plateau=p["mu_twist"] * FN)
         if deck == "marshall":
             a = math.sqrt(A_RED * DELTA)
@@ -595,7 +599,7 @@ def expectations(code, deck, q):
 
 
 QUANTITIES = ("K", "offset", "dashpot", "plateau", "plateau_norm", "K_unload", "unload_drop", "end_B", "antisymmetry", "perp",
-              "kept", "after_stop", "ratio_to_roll", "frame_norm", "frame_n_component", "frame_miss_rotated", "frame_miss_fixed")
+              "kept", "after_stop", "first_B", "ratio_to_roll", "frame_norm", "frame_n_component", "frame_miss_rotated", "frame_miss_fixed")
 
 
 def table(res) -> list:

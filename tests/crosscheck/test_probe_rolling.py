@@ -72,7 +72,8 @@ def test_liggghts_luding_rolling():
 
 @pytest.mark.skipif(RN.find_lammps() is None, reason="LAMMPS (lmp) not installed")
 def test_lammps_sds_rolling_and_twisting():
-    r = P.measure(["lammps"], ["roll", "damped", "frame", "torsion", "torsion_stop", "marshall"])["lammps"]
+    r = P.measure(["lammps"], ["roll", "damped", "frame", "torsion", "torsion_stop", "torsion_set",
+                                "marshall"])["lammps"]
     # rolling sds: k_roll R*^2 per radian, limit mu_roll Fn_tot R*, dashpot gamma_roll R*^2: granwave's law
     assert close(r["roll"]["K"], P.K_R * P.A_RED ** 2) and close(r["roll"]["plateau"], P.M_LIM)
     assert r["roll"]["kept"] == 0.0 and r["roll"]["antisymmetry"] < TOL
@@ -84,5 +85,8 @@ def test_lammps_sds_rolling_and_twisting():
     assert close(r["torsion"]["K"], P.K_O * P.A_RED ** 2) and close(r["torsion"]["plateau"], P.MU_O * P.FN * P.A_RED)
     # a twist spring at its limit loses everything when the twist rate is exactly 0 (sign(0) = 0)
     assert r["torsion_stop"]["after_stop"] == 0.0
+    # in one run a reversed twist unloads with k; reversed by `set omega` between runs it jumps to the opposite limit
+    # (the slip branch runs in the setup with the new rate's sign)
+    assert close(r["torsion"]["first_B"], 1 - P.K_ANG * P.W * P.DT / P.M_LIM) and r["torsion_set"]["first_B"] == -1.0
     a = math.sqrt(P.A_RED * P.DELTA)
     assert close(r["marshall"]["K"], 0.5 * P.KN * a * a) and close(r["marshall"]["plateau"], 2 / 3 * a * 0.5 * P.FN)
