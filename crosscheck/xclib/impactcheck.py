@@ -289,14 +289,16 @@ def deviation_table(results) -> list:
                 continue
             ref = "" if r["reference"] == "closed form" else " vs " + r["reference"].split(" (")[0]
             k = (test_of(res["case_name"]), r["code"], r["quantity"] + ref)
-            a = agg.setdefault(k, dict(n=0, dev=0.0, tol=r["tol"], fail=0, how=r["how"], unit=r["unit"]))
+            a = agg.setdefault(k, dict(n=0, dev=0.0, tol=r["tol"], fail=0, xd=0, how=r["how"], unit=r["unit"]))
             a["n"] += 1
             a["dev"] = max(a["dev"], r["dev"])
             a["fail"] += r["status"] == "FAIL"
+            a["xd"] += r["status"] == "EXPECTED-DIFF"
     for (t, c, q), a in sorted(agg.items()):
         unit = " (relative)" if a["how"] == "rel" else (" %s" % a["unit"] if a["unit"] else "")
-        md.append("| %s | %s | %s | %d | %s%s | %s | %s |" % (t, c, q, a["n"], _f(a["dev"]), unit, _f(a["tol"]),
-                                                          "FAIL (%d)" % a["fail"] if a["fail"] else "PASS"))
+        st = ("FAIL (%d)" % a["fail"] if a["fail"] else "EXPECTED-DIFF" if a["xd"] == a["n"] else
+              "PASS (%d expected differences)" % a["xd"] if a["xd"] else "PASS")
+        md.append("| %s | %s | %s | %d | %s%s | %s | %s |" % (t, c, q, a["n"], _f(a["dev"]), unit, _f(a["tol"]), st))
     return md + [""]
 
 
