@@ -81,6 +81,15 @@ std::string rebound_text(const Rebound& r) {
 
 using theory::TangentialCompliance;
 
+// The rebound values of a theory's ObliqueImpact, as `granwave theory --json` names them.
+json rebound_values(const theory::ObliqueImpact& ob) {
+  return {{"tangential_restitution", number(ob.tangential_restitution)},
+          {"contact_point_restitution", number(ob.contact_point_restitution)},
+          {"rebound_angle_deg", ob.rebound_angle * kDeg},
+          {"rebound_angle_centre_deg", ob.rebound_angle_centre * kDeg},
+          {"spin_after", ob.w1_after}};
+}
+
 TangentialCompliance compliance_of(config::TangentialHistory h) {
   switch (h) {
     case config::TangentialHistory::displacement: return TangentialCompliance::displacement;
@@ -117,16 +126,13 @@ void compliance_theory(const Setup& s, const theory::ImpactBodies& b, const Rebo
     const double slope = theory::mbf_rebound(chi, 1.0, c, beta, clip, true).psi2;
     const theory::ObliqueImpact ob =
         theory::oblique_from_psi2(b, {in.vn_in, in.vt_in, in.w1_in, in.w2_in}, mu, kappa, r.psi2, r.restitution);
-    curves[theory::compliance_name(c)] = {{"psi2", r.psi2},
-                                          {"sliding_boundary", theory::mbf_sliding_boundary(chi, c)},
-                                          {"stick_slope", slope},
-                                          {"slid_throughout", r.slid_throughout},
-                                          {"restitution", r.restitution},
-                                          {"tangential_restitution", number(ob.tangential_restitution)},
-                                          {"contact_point_restitution", number(ob.contact_point_restitution)},
-                                          {"rebound_angle_deg", ob.rebound_angle * kDeg},
-                                          {"rebound_angle_centre_deg", ob.rebound_angle_centre * kDeg},
-                                          {"spin_after", ob.w1_after}};
+    json curve = rebound_values(ob);
+    curve.update({{"psi2", r.psi2},
+                  {"sliding_boundary", theory::mbf_sliding_boundary(chi, c)},
+                  {"stick_slope", slope},
+                  {"slid_throughout", r.slid_throughout},
+                  {"restitution", r.restitution}});
+    curves[theory::compliance_name(c)] = curve;
     o << "    " << (c == TangentialCompliance::mindlin_deresiewicz ? "Mindlin-Deresiewicz (MBF)" : theory::compliance_name(c))
       << (c == own ? " [this case's law]" : "") << ": psi2 = " << g6(r.psi2) << " (sticking limit psi2/psi1 = " << g6(slope)
       << "), rebound angle " << g6(ob.rebound_angle * kDeg) << " deg (contact point), spin after " << g6(ob.w1_after)
@@ -198,17 +204,13 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
     const theory::ObliqueImpact ob = theory::coulomb_oblique(b, {in.vn_in, in.vt_in, in.w1_in, in.w2_in}, mu, e);
     const double nu = c.material(c.impact->body1.material).poisson_ratio;
     const double psi = theory::mbf_psi(nu, mu, in.vct_in / in.vn_in), chi = theory::mbf_chi(nu);
-    j["oblique"] = {{"mu", mu},
-                    {"incident_angle_deg", in.incident_angle * kDeg},
-                    {"sliding", ob.sliding},
-                    {"boundary_vct_over_vn", ob.boundary},
-                    {"tangential_restitution", number(ob.tangential_restitution)},
-                    {"contact_point_restitution", number(ob.contact_point_restitution)},
-                    {"rebound_angle_deg", ob.rebound_angle * kDeg},
-                    {"rebound_angle_centre_deg", ob.rebound_angle_centre * kDeg},
-                    {"spin_after", ob.w1_after},
-                    {"mbf_psi1", psi},
-                    {"mbf_chi", chi}};
+    j["oblique"] = rebound_values(ob);
+    j["oblique"].update({{"mu", mu},
+                         {"incident_angle_deg", in.incident_angle * kDeg},
+                         {"sliding", ob.sliding},
+                         {"boundary_vct_over_vn", ob.boundary},
+                         {"mbf_psi1", psi},
+                         {"mbf_chi", chi}});
     o << "  oblique, Coulomb mu = " << g6(mu) << ", rigid bodies: incident angle " << g6(in.incident_angle * kDeg)
       << " deg, v_ct/v_n = " << g6(in.vct_in / in.vn_in) << " against the sliding boundary " << g6(ob.boundary)
       << ": " << (ob.sliding ? "gross sliding" : "rigid stick (Mindlin's compliance changes this regime)") << "\n";

@@ -130,35 +130,11 @@ if p.returncode != 2 or "contact.law" not in p.stderr or '"hertz_mindlin"' not i
 # The impact model runs the laws of granwave's own registry: the test binary refuses the test law in an
 # impact case with exit 2 naming contact.law (not an internal error mid-run), in check, theory and run.
 imp = os.path.join(work, "impact_test_law.toml")
-with open(imp, "w") as f:
-    f.write("""[case]
-name = "impact_test_law"
-model = "impact"
-
-[materials.steel]
-youngs_modulus = 2e11
-poisson_ratio = 0.3
-density = 7850
-
-[impact.body1]
-material = "steel"
-radius = 0.01
-position = [0.0, 0.0, 0.01]
-velocity = [0.0, 0.0, -1.0]
-
-[impact.wall]
-material = "rigid"
-normal = [0.0, 0.0, 1.0]
-
-[contact]
-law = "test_linear_dashpot"
-kn = 1e6
-gamma_n = 0.0
-gamma_t = 0.01
-
-[integrator]
-dt_over_tc = 0.01
-""")
+with open(os.path.join(src, "data", "impact", "t2", "t2_al_alloy_t2.toml")) as f:
+    t2 = f.read()
+with open(imp, "w") as f:  # Chung & Ooi's T2 with the test law in place of its [contact]
+    f.write(t2[:t2.index("[contact]")] + '[contact]\nlaw = "test_linear_dashpot"\nkn = 1e6\ngamma_n = 0.0\n'
+            'gamma_t = 0.01\n\n[integrator]\ndt_over_tc = 0.01\n')
 for verb in ("check", "theory", "run"):
     p = run(gw_test, verb, imp, *(["-o", os.path.join(work, "impact_test_law.h5")] if verb == "run" else []))
     if p.returncode != 2 or "contact.law" not in p.stderr or "impact" not in p.stderr:
