@@ -108,3 +108,15 @@ TEST_CASE("oblique_from_psi2 of the sliding line is Coulomb's rigid-body rebound
   CHECK(m.w1_after == Approx(c.w1_after).epsilon(1e-13));
   CHECK(m.rebound_angle == Approx(c.rebound_angle).epsilon(1e-13));
 }
+
+TEST_CASE("MBF's thin disc (chi = 1.2558): psi2 < 0 at low psi1, as their Fig. 1 states", "[theory]") {
+  // Maw, Barber & Fawcett: for a diametral slice of a sphere (nu = 0.28) "psi2 is negative for low values
+  // of psi1", and gross slip throughout extends below the rigid-body boundary psi1 = 4 chi. The sign of
+  // the reflexion depends on chi (their Fig. 4): a solid sphere's chi ~ 1.5 rebounds with psi2 > 0 at psi1 -> 0.
+  for (double psi1 : {0.1, 0.3, 0.8, 2.0, 3.0}) {
+    CAPTURE(psi1);
+    CHECK(mbf_rebound(1.2558, psi1, TC::mindlin_deresiewicz).psi2 < 0.0);
+  }
+  CHECK(mbf_rebound(1.2558, 4.0 * 1.2558 - 0.9, TC::mindlin_deresiewicz).slid_throughout);
+  CHECK(mbf_rebound(kChis[0], 0.3, TC::mindlin_deresiewicz).psi2 > 0.0);
+}
