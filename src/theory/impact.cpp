@@ -132,6 +132,7 @@ MbfRebound mbf_rebound(double chi, double psi1, TangentialCompliance law, double
   // Popov & Hess, Method of Dimensionality Reduction (2015), ch. 2 and 5).
   const int n = law == TangentialCompliance::mindlin_deresiewicz ? res.strips : 0;
   std::vector<double> u(n, 0.0);
+  int reach = 0;  // strips [0, reach) are in contact
   const double dr = 1.0 / n;
   double x = 0.0, v = 1.0, psi = psi1, q = 0.0, s = 0.0, p = 0.0;
   bool slid = true, touched = false;
@@ -157,10 +158,12 @@ MbfRebound mbf_rebound(double chi, double psi1, TangentialCompliance law, double
         bool all = true;
         for (int j = 0; j < n; ++j) {
           const double r = (j + 0.5) * dr, room = x - r * r;
-          if (!(room > 0.0)) {
-            u[j] = 0.0;
-            continue;
+          if (!(room > 0.0)) {  // this strip and the ones beyond are out of contact: those that just left unload
+            for (int k = j; k < reach; ++k) u[k] = 0.0;
+            reach = j;
+            break;
           }
+          reach = std::max(reach, j + 1);
           const double c = room * share;
           double uj = u[j] + d;
           const bool over = std::abs(uj) >= c;
