@@ -93,12 +93,12 @@ def main():
               f"spin {w:.6g} rad/s", material("al_alloy") + "\n" +
               body("body1", "al_alloy", R, (0, 0, R), (0, 0, -0.2), (0, -w, 0)) + "\n" + WALL + "\n" +
               contact("mindlin", mu=0.4, restitution=0.5))
-    for a in ANGLES:  # T7: two Al alloy spheres, 0.2 m/s each, spins of the same sense (sliding 2 R w), mu 0.4, e 0.5
+    for a in ANGLES:  # T7: two Al alloy spheres, 0.2 m/s each, spins +w and -w (their surfaces move together), mu 0.4, e 0.5
         R, th = 0.1, math.radians(a)
         w = 2.0 * math.tan(th)
-        write("t7", f"t7_al_alloy_{a:02d}deg", f"Chung & Ooi T7: two Al alloy spheres, 0.2 m/s each, spins {w:.6g} rad/s",
+        write("t7", f"t7_al_alloy_{a:02d}deg", f"Chung & Ooi T7: two Al alloy spheres, 0.2 m/s each, spins +-{w:.6g} rad/s",
               material("al_alloy") + "\n" + body("body1", "al_alloy", R, (-R, 0, 0), (0.2, 0, 0), (0, 0, w)) + "\n" +
-              body("body2", "al_alloy", R, (R, 0, 0), (-0.2, 0, 0), (0, 0, w)) + "\n" +
+              body("body2", "al_alloy", R, (R, 0, 0), (-0.2, 0, 0), (0, 0, -w)) + "\n" +
               contact("mindlin", mu=0.4, restitution=0.5))
 
 

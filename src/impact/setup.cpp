@@ -3,8 +3,11 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "config/contact_laws.hpp"
+#include "contact/case_laws.hpp"
 #include "core/error.hpp"
 #include "impact/impact.hpp"
 #include "theory/crystal_theory.hpp"
@@ -42,6 +45,14 @@ theory::ImpactBodies Setup::bodies() const {
 
 Setup resolve(const config::Case& c) {
   if (!c.impact) throw InputError(c.path + ": not an impact case");
+  // The model evaluates the laws of its own build's registry (contact/case_laws.hpp, simulate.cpp): a law
+  // that only a test binary's registry lists (GRANWAVE_TEST_LAW) is refused here, not mid-run.
+  try {
+    contact::visit_law(c.contact.law, [](auto) { return 0; });
+  } catch (const std::logic_error&) {
+    throw InputError(c.path + ": key 'contact.law': \"" + std::string(config::law_of(c.contact).name) +
+                     "\" is not a law the impact model runs (model = \"impact\" runs the laws of granwave's own registry)");
+  }
   const config::ImpactCase& k = *c.impact;
   Setup s;
   s.b1 = body_of(c, k.body1);

@@ -78,6 +78,69 @@ std::string rebound_text(const Rebound& r) {
   return o.str();
 }
 
+
+using theory::TangentialCompliance;
+
+// The rebound values of a theory's ObliqueImpact, as `granwave theory --json` names them.
+json rebound_values(const theory::ObliqueImpact& ob) {
+  return {{"tangential_restitution", number(ob.tangential_restitution)},
+          {"contact_point_restitution", number(ob.contact_point_restitution)},
+          {"rebound_angle_deg", ob.rebound_angle * kDeg},
+          {"rebound_angle_centre_deg", ob.rebound_angle_centre * kDeg},
+          {"spin_after", ob.w1_after}};
+}
+
+TangentialCompliance compliance_of(config::TangentialHistory h) {
+  switch (h) {
+    case config::TangentialHistory::displacement: return TangentialCompliance::displacement;
+    case config::TangentialHistory::displacement_rescale: return TangentialCompliance::displacement_rescale;
+    case config::TangentialHistory::force: return TangentialCompliance::force;
+  }
+  return TangentialCompliance::displacement;
+}
+
+// Mindlin's compliance (theory::mbf_rebound): Maw, Barber & Fawcett's Mindlin-Deresiewicz rebound and
+// the simplified Mindlin laws' (the three tangential histories), with the case's normal damping.
+void compliance_theory(const Setup& s, const theory::ImpactBodies& b, const Rebound& in, double mu, json& j,
+                       std::ostream& o) {
+  const bool clip = s.contact.normal_tension == config::NormalTension::clip;
+  const double beta = s.contact.damping_ratio;
+  const double kappa = theory::mbf_kappa(s.e_star, s.g_star), chi = theory::mbf_chi(kappa, b);
+  const double psi1 = kappa * in.vct_in / (mu * in.vn_in);
+  const double boundary = theory::mbf_sliding_boundary(chi, TangentialCompliance::mindlin_deresiewicz);
+  const TangentialCompliance own = compliance_of(s.contact.tangential_history);
+  j["mbf_kappa"] = kappa;
+  j["mbf_chi"] = chi;
+  j["mbf_psi1"] = psi1;
+  j["mbf_regime"] = psi1 >= boundary ? "gross_sliding" : psi1 > 1.0 ? "slip_stick" : "stick_microslip";
+  j["mbf_sliding_boundary"] = boundary;
+  j["law_tangential_history"] = theory::compliance_name(own);
+  json curves = json::object();
+  o << "    kappa = 4 G*/E* = " << g6(kappa) << ", chi = (kappa/2) m* K_t = " << g6(chi) << ", psi1 = kappa v_ct/(mu v_n) = "
+    << g6(psi1) << ": " << (psi1 >= boundary ? "gross sliding" : psi1 > 1.0 ? "slip at first, then stick and microslip"
+                                                                             : "stick at first, then microslip")
+    << " (elastic boundaries psi1 = 1 and 4 chi - 1 = " << g6(boundary) << ")\n";
+  for (TangentialCompliance c : {TangentialCompliance::mindlin_deresiewicz, TangentialCompliance::force,
+                                 TangentialCompliance::displacement, TangentialCompliance::displacement_rescale}) {
+    const theory::MbfRebound r = theory::mbf_rebound(chi, psi1, c, beta, clip);
+    const double slope = theory::mbf_rebound(chi, 1.0, c, beta, clip, true).psi2;
+    const theory::ObliqueImpact ob =
+        theory::oblique_from_psi2(b, {in.vn_in, in.vt_in, in.w1_in, in.w2_in}, mu, kappa, r.psi2, r.restitution);
+    json curve = rebound_values(ob);
+    curve.update({{"psi2", r.psi2},
+                  {"sliding_boundary", theory::mbf_sliding_boundary(chi, c)},
+                  {"stick_slope", slope},
+                  {"slid_throughout", r.slid_throughout},
+                  {"restitution", r.restitution}});
+    curves[theory::compliance_name(c)] = curve;
+    o << "    " << (c == TangentialCompliance::mindlin_deresiewicz ? "Mindlin-Deresiewicz (MBF)" : theory::compliance_name(c))
+      << (c == own ? " [this case's law]" : "") << ": psi2 = " << g6(r.psi2) << " (sticking limit psi2/psi1 = " << g6(slope)
+      << "), rebound angle " << g6(ob.rebound_angle * kDeg) << " deg (contact point), spin after " << g6(ob.w1_after)
+      << " rad/s\n";
+  }
+  j["mbf_psi2"] = curves["mindlin_deresiewicz"]["psi2"];
+  j["compliance"] = curves;
+}
 }  // namespace
 
 void print_analysis(const Trace& t, bool json_out, std::ostream& out) {
@@ -141,17 +204,13 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
     const theory::ObliqueImpact ob = theory::coulomb_oblique(b, {in.vn_in, in.vt_in, in.w1_in, in.w2_in}, mu, e);
     const double nu = c.material(c.impact->body1.material).poisson_ratio;
     const double psi = theory::mbf_psi(nu, mu, in.vct_in / in.vn_in), chi = theory::mbf_chi(nu);
-    j["oblique"] = {{"mu", mu},
-                    {"incident_angle_deg", in.incident_angle * kDeg},
-                    {"sliding", ob.sliding},
-                    {"boundary_vct_over_vn", ob.boundary},
-                    {"tangential_restitution", number(ob.tangential_restitution)},
-                    {"contact_point_restitution", number(ob.contact_point_restitution)},
-                    {"rebound_angle_deg", ob.rebound_angle * kDeg},
-                    {"rebound_angle_centre_deg", ob.rebound_angle_centre * kDeg},
-                    {"spin_after", ob.w1_after},
-                    {"mbf_psi1", psi},
-                    {"mbf_chi", chi}};
+    j["oblique"] = rebound_values(ob);
+    j["oblique"].update({{"mu", mu},
+                         {"incident_angle_deg", in.incident_angle * kDeg},
+                         {"sliding", ob.sliding},
+                         {"boundary_vct_over_vn", ob.boundary},
+                         {"mbf_psi1", psi},
+                         {"mbf_chi", chi}});
     o << "  oblique, Coulomb mu = " << g6(mu) << ", rigid bodies: incident angle " << g6(in.incident_angle * kDeg)
       << " deg, v_ct/v_n = " << g6(in.vct_in / in.vn_in) << " against the sliding boundary " << g6(ob.boundary)
       << ": " << (ob.sliding ? "gross sliding" : "rigid stick (Mindlin's compliance changes this regime)") << "\n";
@@ -160,7 +219,14 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
       << " deg (contact point), " << g6(ob.rebound_angle_centre * kDeg) << " deg (centre); spin after "
       << g6(ob.w1_after) << " rad/s\n";
     o << "    Maw, Barber & Fawcett: psi1 = " << g6(psi) << ", chi = " << g6(chi) << "; rigid sliding for psi1 >= 2 chi (1 + e) = "
-      << g6(2.0 * chi * (1.0 + e)) << " (their stick/microslip curve is not computed here)\n";
+      << g6(2.0 * chi * (1.0 + e)) << "\n";
+    if (s.hertz && s.contact.mindlin && mu > 0.0) compliance_theory(s, b, in, mu, j["oblique"], o);
+  } else if (in.w1_in != 0.0 || in.w2_in != 0.0) {
+    // Spins whose contact points move together (Chung & Ooi T7's +-w): no relative tangential velocity, no
+    // tangential force, so the spins and the tangential velocities come out as they went in.
+    j["rolling"] = {{"spin_after", in.w1_in}, {"spin2_after", in.w2_in}};
+    o << "  no sliding at the contact (the contact points move together): spins " << g6(in.w1_in) << ", " << g6(in.w2_in)
+      << " rad/s kept, no tangential velocity after\n";
   }
   out << (json_out ? json_text(j) : o.str());
 }

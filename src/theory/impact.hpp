@@ -72,3 +72,56 @@ double mbf_chi(double nu);
 double mbf_psi(double nu, double mu, double vct_over_vn);
 
 }  // namespace granwave::theory
+
+namespace granwave::theory {
+
+// Oblique impact with Mindlin's tangential compliance (Maw, Barber & Fawcett, Wear 38 (1976); Johnson,
+// Contact Mechanics (1985) ch. 7, Mindlin-Deresiewicz, and ch. 11, oblique impact; derivation:
+// data/impact/README.md, "Maw, Barber & Fawcett"). Hertz normal contact (k_n = 2 E* a), Mindlin's no-slip tangential stiffness
+// k_t = 8 G* a, Coulomb friction mu. In MBF's variables
+//   kappa = k_t/k_n = 4 G*/E*                  (2 (1 - nu)/(2 - nu) for like materials or a rigid wall),
+//   chi   = (kappa/2) m* K_t                   (K_t: ImpactBodies::tangential_compliance;
+//                                               a solid sphere: m* K_t = 1 + m R^2/I = 7/2),
+//   psi   = kappa v_ct/(mu v_n)                (v_n: the incident normal speed, before and after),
+// the rebound psi2(psi1) depends on chi (and the normal damping) alone. Elastic normal history:
+// gross sliding throughout iff psi1 >= 4 chi - 1 (2 chi (1 + e) - e with restitution e, where the
+// tangential cap follows the normal force), and there psi2 = psi1 - 2 chi (1 + e); psi1 <= 1 starts
+// with no slip (the contact's initial dQ/dP = mu psi1 < mu: Johnson ch. 7, oblique forces).
+enum class TangentialCompliance {
+  mindlin_deresiewicz,  // MBF's: slip annuli with their load history (integrated by strips, below)
+  force,                // df_t = -k_t(delta) dv_t dt, capped at mu f_n (tangential_history "force", YADE)
+  displacement,         // f_t = -k_t(delta) xi, capped (tangential_history "displacement", LIGGGHTS)
+  displacement_rescale  // the same, xi scaled by a/a_old while a shrinks (LAMMPS mindlin_rescale)
+};
+const char* compliance_name(TangentialCompliance c);
+
+double mbf_kappa(double e_star, double g_star);
+double mbf_chi(double kappa, const ImpactBodies& b);
+
+// Steps of the normalised integration: time in delta_max/v_n (the elastic contact lasts 2.943),
+// strips across the largest contact radius. The defaults resolve psi2 to about 1e-5 (tests).
+struct MbfResolution {
+  double dtau = 2e-4;
+  int strips = 2000;
+};
+struct MbfRebound {
+  double psi2 = 0.0;         // kappa v_ct'/(mu v_n), v_n the incident normal speed
+  double restitution = 1.0;  // the normal history's
+  bool slid_throughout = false;  // the tangential force stood at mu f_n at every step in contact
+};
+// The normalised impact: x = delta/delta_max, x'' = -p, p = (5/4) x^(3/2) + 2 beta sqrt(15/8) x^(1/4) x'
+// (granwave's Hertz dashpot; clipped at 0 with clip_tension), psi' = -2 chi q, q the tangential force
+// over mu m v_n^2/delta_max, by the chosen compliance; no_slip: mu -> infinity (the sticking limit,
+// psi2/psi1 then independent of psi1).
+MbfRebound mbf_rebound(double chi, double psi1, TangentialCompliance law, double damping_ratio = 0.0,
+                       bool clip_tension = false, bool no_slip = false, MbfResolution res = {});
+// The sliding boundary psi1 of an elastic normal history: 4 chi - 1 (Mindlin-Deresiewicz and the force
+// history: slip lasts while psi > x'/v_n), 4 chi - 2/3 (the displacement histories: while psi > (2/3) x'/v_n,
+// since their slipping spring holds xi = mu f_n/k_t = (2/3)(mu/kappa) delta).
+double mbf_sliding_boundary(double chi, TangentialCompliance law);
+
+// The rebound of an incidence from psi2: the tangential impulse (v_ct - v_ct')/K_t as coulomb_oblique applies it.
+ObliqueImpact oblique_from_psi2(const ImpactBodies& b, const ObliqueIncidence& in, double mu, double kappa,
+                                double psi2, double restitution);
+
+}  // namespace granwave::theory

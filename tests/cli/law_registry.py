@@ -127,5 +127,17 @@ for good, what in checks:
 p = run(gw, "check", ok)
 if p.returncode != 2 or "contact.law" not in p.stderr or '"hertz_mindlin"' not in p.stderr:
     fail("granwave must refuse law = \"test_linear_dashpot\"", p)
+# The impact model runs the laws of granwave's own registry: the test binary refuses the test law in an
+# impact case with exit 2 naming contact.law (not an internal error mid-run), in check, theory and run.
+imp = os.path.join(work, "impact_test_law.toml")
+with open(os.path.join(src, "data", "impact", "t2", "t2_al_alloy_t2.toml")) as f:
+    t2 = f.read()
+with open(imp, "w") as f:  # Chung & Ooi's T2 with the test law in place of its [contact]
+    f.write(t2[:t2.index("[contact]")] + '[contact]\nlaw = "test_linear_dashpot"\nkn = 1e6\ngamma_n = 0.0\n'
+            'gamma_t = 0.01\n\n[integrator]\ndt_over_tc = 0.01\n')
+for verb in ("check", "theory", "run"):
+    p = run(gw_test, verb, imp, *(["-o", os.path.join(work, "impact_test_law.h5")] if verb == "run" else []))
+    if p.returncode != 2 or "contact.law" not in p.stderr or "impact" not in p.stderr:
+        fail("granwave_testlaw %s of an impact case with the test law: exit 2 naming contact.law" % verb, p)
 print("test law: check, guard at %.6g s, run (dissipated %.3g J), theory V_pz %.6g m/s: ok" %
       (dt_stable, e["dissipated"][-1], val(t["V_pz"])))
