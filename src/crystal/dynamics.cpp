@@ -415,16 +415,9 @@ void Dynamics::particle_pass(double h) {
           dnz += cdelta[c] * cnz[c];
         }
       }
-      if constexpr (Couples) {
-        if constexpr (decltype(as_j)::value) {
-          mx -= ccx[c];
-          my -= ccy[c];
-          mz -= ccz[c];
-        } else {
-          mx += ccx[c];
-          my += ccy[c];
-          mz += ccz[c];
-        }
+      if constexpr (Couples) {  // j gets the opposite couple
+        constexpr double sign = decltype(as_j)::value ? -1.0 : 1.0;
+        mx += sign * ccx[c], my += sign * ccy[c], mz += sign * ccz[c];
       }
     };
     for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});

@@ -28,21 +28,16 @@ constexpr double a = 1e-3, b = 1.5e-3, rho = 2000.0, kn = 1e5, delta = 2e-6;
 // Sphere 1 (radius a, free) between spheres 0 and 2 (radius b, fixed) along z.
 crystal::Packing sandwich() {
   crystal::Packing p;
-  auto mass = [](double r) { return rho * 4.0 / 3.0 * std::numbers::pi * r * r * r; };
   const double gap = a + b - delta;
-  p.x = {0.5, 0.5, 0.5};
-  p.y = {0.5, 0.5, 0.5};
-  p.z = {0.5, 0.5 + gap, 0.5 + 2 * gap};
-  p.radius = {b, a, b};
-  p.mass = {mass(b), mass(a), mass(b)};
-  p.inertia = {0.4 * mass(b) * b * b, 0.4 * mass(a) * a * a, 0.4 * mass(b) * b * b};
-  p.layer = {0, 1, 2};
-  p.fixed = {1, 0, 1};
-  p.box_x = p.box_y = 1.0;
-  p.d = p.d_prime = 2 * a;
-  p.l0 = p.d / std::numbers::sqrt2;
-  p.nx = p.ny = 1;
-  p.layers = 3;
+  for (int q = 0; q < 3; ++q) {
+    const double r = q == 1 ? a : b, m = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    p.x.push_back(0.5), p.y.push_back(0.5), p.z.push_back(0.5 + q * gap);
+    p.radius.push_back(r), p.mass.push_back(m), p.inertia.push_back(0.4 * m * r * r);
+    p.layer.push_back(q), p.fixed.push_back(q != 1);
+  }
+  p.box_x = p.box_y = 1.0;  // far larger than the spheres: no periodic image touches
+  p.d = p.d_prime = 2 * a, p.l0 = p.d / std::numbers::sqrt2;
+  p.nx = p.ny = 1, p.layers = 3;
   return p;
 }
 

@@ -8,7 +8,6 @@
 
 #include "contact/linear_luding.hpp"
 #include "contact/rolling_torsion.hpp"
-#include "core/error.hpp"
 
 using namespace granwave;
 using contact::Contact;
@@ -41,25 +40,18 @@ Contact turning(const Vec3& n, const Vec3& w_i, const Vec3& w_j) {
   c.dt = dt;
   return c;
 }
-std::string message_of(auto&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 }  // namespace
 
 TEST_CASE("rolling and torsion: a bad parameter names its case key", "[contact]") {
-  CHECK_THAT(message_of([] { Law(base(0.0), springs(-1.0, 0, 1, 0, 0, 1)); }), Catch::Contains("contact.kr"));
-  CHECK_THAT(message_of([] { Law(base(0.0), springs(1.0, -1, 1, 0, 0, 1)); }), Catch::Contains("contact.gamma_r"));
-  CHECK_THAT(message_of([] { Law(base(0.0), springs(1.0, 0, -1, 0, 0, 1)); }), Catch::Contains("contact.mu_r"));
-  CHECK_THAT(message_of([] { Law(base(0.0), springs(0, 0, 1, NAN, 0, 1)); }), Catch::Contains("contact.ko"));
-  CHECK_THAT(message_of([] { Law(base(0.0), springs(0, 0, 1, 1, HUGE_VAL, 1)); }), Catch::Contains("contact.gamma_o"));
-  CHECK_THAT(message_of([] { Law(base(0.0), springs(0, 0, 1, 1, 0, -0.5)); }), Catch::Contains("contact.mu_o"));
+  using Catch::Contains;
+  CHECK_THROWS_WITH(Law(base(0.0), springs(-1.0, 0, 1, 0, 0, 1)), Contains("contact.kr"));
+  CHECK_THROWS_WITH(Law(base(0.0), springs(1.0, -1, 1, 0, 0, 1)), Contains("contact.gamma_r"));
+  CHECK_THROWS_WITH(Law(base(0.0), springs(1.0, 0, -1, 0, 0, 1)), Contains("contact.mu_r"));
+  CHECK_THROWS_WITH(Law(base(0.0), springs(0, 0, 1, NAN, 0, 1)), Contains("contact.ko"));
+  CHECK_THROWS_WITH(Law(base(0.0), springs(0, 0, 1, 1, HUGE_VAL, 1)), Contains("contact.gamma_o"));
+  CHECK_THROWS_WITH(Law(base(0.0), springs(0, 0, 1, 1, 0, -0.5)), Contains("contact.mu_o"));
   // k = 0 with a dashpot is allowed, as for the tangential spring.
-  CHECK(message_of([] { Law(base(0.0), springs(0.0, 0.1, 1, 0.0, 0.1, 1)); }).empty());
+  CHECK_NOTHROW(Law(base(0.0), springs(0.0, 0.1, 1, 0.0, 0.1, 1)));
 }
 
 TEST_CASE("rolling and torsion: the couple a' (n x f_r + f_o n) of one step, no force", "[contact]") {
