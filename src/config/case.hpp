@@ -108,7 +108,7 @@ struct ContactParams {
   NormalTension normal_tension = NormalTension::allow;
   LeverArm lever_arm = LeverArm::radius;
   CoulombNormal coulomb_normal = CoulombNormal::compressive;
-  // Rolling and torsion resistance (contact/rolling_torsion.hpp), linear law only: springs (N/m)
+  // Rolling and torsion resistance (contact/rolling_torsion.hpp; linear, hertz_mindlin): springs (N/m)
   // and dashpots (kg/s) on the lever a', limits mu f_n (absent: no limit); all zero: off.
   double kr = 0.0, gamma_r = 0.0, mu_r = std::numeric_limits<double>::infinity();
   double ko = 0.0, gamma_o = 0.0, mu_o = std::numeric_limits<double>::infinity();

@@ -28,12 +28,7 @@ struct LinearLudingCase {
     p.gamma_n = r.number_in(t, "contact", "gamma_n", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
     p.kt = r.number_in(t, "contact", "kt", false, nonneg, ">= 0 (N/m)").value_or(0.0);
     p.gamma_t = r.number_in(t, "contact", "gamma_t", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-    p.kr = r.number_in(t, "contact", "kr", false, nonneg, ">= 0 (N/m)").value_or(0.0);
-    p.gamma_r = r.number_in(t, "contact", "gamma_r", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-    p.ko = r.number_in(t, "contact", "ko", false, nonneg, ">= 0 (N/m)").value_or(0.0);
-    p.gamma_o = r.number_in(t, "contact", "gamma_o", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-    if (const auto mu = r.number_in(t, "contact", "mu_r", false, nonneg, ">= 0")) p.mu_r = *mu;
-    if (const auto mu = r.number_in(t, "contact", "mu_o", false, nonneg, ">= 0")) p.mu_o = *mu;
+    read_rolling_torsion(r, t, p);
   }
   template <class Reader, class Table>
   static void check_case(const Reader&, const Table&, const config::Case&) {}
@@ -96,11 +91,7 @@ struct LinearLudingCase {
     std::ostringstream o;
     o << "  tangential: kt = " << p.kt << " N/m, mu_s = " << p.mu_static << ", mu_d = " << p.mu_dynamic
       << ", lever arm " << lever_arm_text(p.lever_arm) << "\n";
-    if (rolling_torsion(p).active())
-      o << "  rolling: kr = " << p.kr << " N/m, gamma_r = " << p.gamma_r << " kg/s, mu_r = " << p.mu_r
-        << "; torsion: ko = " << p.ko << " N/m, gamma_o = " << p.gamma_o << " kg/s, mu_o = " << p.mu_o
-        << " (lever a' = arm_i arm_j/(arm_i + arm_j))\n";
-    return o.str();
+    return o.str() + rolling_torsion_line(p);
   }
 
  private:
@@ -110,9 +101,7 @@ struct LinearLudingCase {
   static TangentialSpringParams tangential(const config::ContactParams& p) {
     return {p.kt, p.gamma_t, p.mu_static, p.mu_dynamic, p.coulomb_normal == config::CoulombNormal::magnitude};
   }
-  static RollingTorsionParams rolling_torsion(const config::ContactParams& p) {
-    return {p.kr, p.gamma_r, p.mu_r, p.ko, p.gamma_o, p.mu_o, p.coulomb_normal == config::CoulombNormal::magnitude};
-  }
+  static RollingTorsionParams rolling_torsion(const config::ContactParams& p) { return rolling_torsion_of(p); }
 };
 
 }  // namespace granwave::contact

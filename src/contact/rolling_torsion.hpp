@@ -47,7 +47,7 @@ struct RollingTorsionParams {
   }
 };
 
-// Base: a law with torques and a Deferrable evaluation (contact/linear_luding.hpp) that gives its
+// Base: a law with torques and a Deferrable evaluation (contact/linear_luding.hpp, hertz_mindlin.hpp) that gives its
 // normal force as normal_part(Contact). Dashpots = false: gamma_r = gamma_o = 0, without their
 // arithmetic.
 template <class Base, bool Dashpots>

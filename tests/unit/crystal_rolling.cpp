@@ -71,8 +71,15 @@ TEST_CASE("rolling and torsion keys: read, checked, off by default", "[crystal][
     CHECK_THAT(refusal(std::string(key) + " = -1"), Catch::Contains(std::string("contact.") + key));
   }
   // A law that cannot carry them refuses them by name.
-  CHECK_THAT(refusal("law = \"hertz_mindlin\"\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\nko = 1e4", false),
+  CHECK_THAT(refusal("law = \"hertz_mindlin\"\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\ntangential = \"none\"\nko = 1e4",
+                     false),
              Catch::Contains("contact.ko"));
+  // Hertz-Mindlin carries them.
+  const config::Case hm = config::parse_case(
+      case_text("law = \"hertz_mindlin\"\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\nkr = 2e4\nmu_o = 0.1", false), "test");
+  CHECK(hm.contact.kr == 2e4);
+  CHECK(hm.contact.mu_o == 0.1);
+  CHECK(crystal::case_model(hm.contact, 2000.0)->couples());
 }
 
 TEST_CASE("rolling and torsion keys reach the lattice dynamics: k_roll = kr a'^2, off = the theory without them",
