@@ -42,7 +42,7 @@ function(granwave_mpi_run_test name)
   set_tests_properties("mpi/run: ${name}" PROPERTIES LABELS mpi SKIP_RETURN_CODE 77 TIMEOUT 300)
 endfunction()
 set(MPI_SLAB ${CMAKE_SOURCE_DIR}/tests/data/mpi)
-foreach(slab_case slab_p slab_s_friction slab_sliding slab_damped slab_poly slab_velocity slab_hertz)
+foreach(slab_case slab_p slab_s_friction slab_sliding slab_damped slab_poly slab_velocity slab_hertz slab_rolling)
   foreach(ranks 2 3)
     granwave_mpi_run_test("${slab_case} on ${ranks} ranks: the serial trace file"
                           identity ${MPI_BUILT} $<TARGET_FILE:granwave> ${MPI_SLAB}/${slab_case}.toml ${MPI_TMP}/run_${slab_case}_${ranks} ${ranks})

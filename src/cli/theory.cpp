@@ -104,12 +104,10 @@ LatticePart lattice_part(const config::Case& c, const theory::ContactNetwork& ne
              " delta) is not a Bravais lattice; Bloch waves of one particle do not describe it";
     return L;
   }
-  theory::LatticeCellOptions opt;
   // Contact forces come from overlaps of positions far larger than them: at delta_0 = 1e-5 d and
   // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
   // bonds are the reference particle's either way; the tolerance only decides whether all agree.
-  opt.tolerance = 1e-6;
-  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
+  const theory::LatticeCellOptions opt = crystal::lattice_options(c, 1e-6);
   std::string why;
   const auto cell = theory::lattice_cell(net, slab, opt, &why);
   if (!cell) {
@@ -296,6 +294,8 @@ int cmd_theory(const Args& args) {
                       {"lever_arm", quantity(L.arm, "m")},
                       {"lever_arm_convention", contact::lever_arm_name(c.contact.lever_arm)},
                       {"f0", quantity(L.f0, "N")},
+                      {"k_roll", quantity(L.cell.bonds.front().k_roll, "N m/rad")},
+                      {"k_twist", quantity(L.cell.bonds.front().k_twist, "N m/rad")},
                       {"l0", quantity(L.l0, "m")},
                       {"V_pz_unstressed", quantity(L.lw_unstressed.speed_along(ez), "m/s")},
                       {"V_sz_unstressed", quantity(L.lw_unstressed.speed_along(ex), "m/s")},

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -107,6 +108,10 @@ struct ContactParams {
   NormalTension normal_tension = NormalTension::allow;
   LeverArm lever_arm = LeverArm::radius;
   CoulombNormal coulomb_normal = CoulombNormal::compressive;
+  // Rolling and torsion resistance (contact/rolling_torsion.hpp; linear, hertz_mindlin): springs (N/m)
+  // and dashpots (kg/s) on the lever a', limits mu f_n (absent: no limit); all zero: off.
+  double kr = 0.0, gamma_r = 0.0, mu_r = std::numeric_limits<double>::infinity();
+  double ko = 0.0, gamma_o = 0.0, mu_o = std::numeric_limits<double>::infinity();
   // hertz_mindlin only (the linear law refuses them; it refuses kn, kt, gamma_n, gamma_t)
   double youngs_modulus = 0.0;  // E (Pa), both spheres
   double poisson_ratio = 0.0;   // nu, in (-1, 0.5)

@@ -36,9 +36,12 @@
 //   static std::string tangential_line(const ContactParams&);
 //                                                 `granwave check`'s lines about the law ("" for none)
 #pragma once
+#include <array>
+#include <sstream>
 #include <string>
 
 #include "config/case.hpp"
+#include "contact/rolling_torsion.hpp"
 
 namespace granwave::contact {
 
@@ -72,6 +75,32 @@ struct ScaleCheck {
   double value = 0.0;
   std::string keys;
 };
+
+// Rolling and torsion resistance (contact/rolling_torsion.hpp), for a law that carries it: its
+// [contact] keys, their reading and checks, and its parameters.
+inline constexpr std::array<const char*, 6> rolling_torsion_keys{"kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o"};
+template <class Reader, class Table>
+void read_rolling_torsion(const Reader& r, const Table& t, config::ContactParams& p) {
+  auto nonneg = [](double v) { return v >= 0; };
+  p.kr = r.number_in(t, "contact", "kr", false, nonneg, ">= 0 (N/m)").value_or(0.0);
+  p.gamma_r = r.number_in(t, "contact", "gamma_r", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
+  p.ko = r.number_in(t, "contact", "ko", false, nonneg, ">= 0 (N/m)").value_or(0.0);
+  p.gamma_o = r.number_in(t, "contact", "gamma_o", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
+  if (const auto mu = r.number_in(t, "contact", "mu_r", false, nonneg, ">= 0")) p.mu_r = *mu;
+  if (const auto mu = r.number_in(t, "contact", "mu_o", false, nonneg, ">= 0")) p.mu_o = *mu;
+}
+inline RollingTorsionParams rolling_torsion_of(const config::ContactParams& p) {
+  return {p.kr, p.gamma_r, p.mu_r, p.ko, p.gamma_o, p.mu_o, p.coulomb_normal == config::CoulombNormal::magnitude};
+}
+// `granwave check`'s line about them ("" when off).
+inline std::string rolling_torsion_line(const config::ContactParams& p) {
+  if (!rolling_torsion_of(p).active()) return "";
+  std::ostringstream o;
+  o << "  rolling: kr = " << p.kr << " N/m, gamma_r = " << p.gamma_r << " kg/s, mu_r = " << p.mu_r
+    << "; torsion: ko = " << p.ko << " N/m, gamma_o = " << p.gamma_o << " kg/s, mu_o = " << p.mu_o
+    << " (lever a' = arm_i arm_j/(arm_i + arm_j))\n";
+  return o.str();
+}
 
 // f.template operator()<b...>() with the runtime flags as template arguments: the law's
 // evaluator types for each combination are instantiated here, not written out.

@@ -234,6 +234,17 @@ struct HertzMindlinLaw {
   }
   LeverArm lever_arm() const { return p.lever_arm; }
   bool dissipates() const { return Damped || H != MindlinHistory::none; }
+  // f_n as the Coulomb limit reads it (respond's, operation for operation): for the rolling and
+  // torsion limits of contact/rolling_torsion.hpp.
+  [[gnu::always_inline]] double normal_part(const Contact& c) const {
+    const double d = select(c.delta > 0.0, c.delta, 0.0);
+    const double a = std::sqrt(c.a_i * c.a_j / (c.a_i + c.a_j) * d);
+    const double f_elastic = (4.0 / 3.0) * e_star * a * d;
+    if constexpr (!Damped) return f_elastic;
+    const double m_i = mass_factor * c.a_i * c.a_i * c.a_i, m_j = mass_factor * c.a_j * c.a_j * c.a_j;
+    const double f = f_elastic + beta2 * std::sqrt(m_i * m_j / (m_i + m_j) * (2.0 * e_star * a)) * c.delta_dot;
+    return select(p.clip_tension & (f < 0.0), 0.0, f);
+  }
   HertzMindlinLaw<false, H, Hysteresis> without_rates() const { return HertzMindlinLaw<false, H, Hysteresis>(p); }
 
  private:

@@ -16,8 +16,8 @@ namespace granwave::contact {
 struct HertzMindlinCase {
   static constexpr config::ContactLaw law = config::ContactLaw::hertz_mindlin;
   static constexpr const char* name = "hertz_mindlin";
-  static constexpr std::array<const char*, 5> keys{"youngs_modulus", "poisson_ratio", "damping_ratio", "tangential",
-                                                   "tangential_history"};
+  static constexpr std::array<const char*, 11> keys{"youngs_modulus", "poisson_ratio", "damping_ratio", "tangential",
+                                                    "tangential_history", "kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o"};
   static constexpr const char* refusal_note =
       "; the Hertz-Mindlin stiffnesses come from youngs_modulus and poisson_ratio (k_n = 2 E* sqrt(R* delta), k_t = 8 "
       "G* sqrt(R* delta)), its damping from damping_ratio";
@@ -33,6 +33,13 @@ struct HertzMindlinCase {
     p.tangential_history = h == "force"                  ? config::TangentialHistory::force
                            : h == "displacement_rescale" ? config::TangentialHistory::displacement_rescale
                                                          : config::TangentialHistory::displacement;
+    read_rolling_torsion(r, t, p);
+    // The decorator needs the Mindlin spring's law (its torques and its deferral).
+    if (!p.mindlin && rolling_torsion_of(p).active())
+      for (const char* key : rolling_torsion_keys)
+        if (t.contains(key))
+          r.fail(std::string("contact.") + key, "needs contact.tangential = \"mindlin\" (rolling and torsion resistance "
+                 "on the frictionless Hertz law are not supported)", t.get(key));
   }
   // The linearised speeds, the time step and the theory are taken at the static overlap.
   template <class Reader, class Table>
@@ -106,13 +113,21 @@ struct HertzMindlinCase {
     const HertzMindlinParams p = params(cp, density);
     const bool damped = p.damping_ratio > 0.0 || p.clip_tension;
     const bool hysteresis = p.mu_static != p.mu_dynamic;
+    const RollingTorsionParams rt = rolling_torsion_of(cp);
+    rt.validate();
     auto of_history = [&]<MindlinHistory H>() {
-      if constexpr (H == MindlinHistory::none)
+      if constexpr (H == MindlinHistory::none) {
         return with_flags([&]<bool Damped>() { return make(HertzMindlinLaw<Damped, H>(p)); }, damped);
-      else
+      } else {
+        // With rolling or torsion resistance, one form per dashpot flag (any dashpot: all of them).
+        if (rt.active())
+          return with_flags([&]<bool Dashpots>() {
+            return make(WithRollingTorsion<HertzMindlinLaw<Dashpots, H>, Dashpots>(HertzMindlinLaw<Dashpots, H>(p), rt));
+          }, damped || rt.dashpots());
         return with_flags([&]<bool Damped, bool Hysteresis>() {
           return make(HertzMindlinLaw<Damped, H, Hysteresis>(p));
         }, damped, hysteresis);
+      }
     };
     if (!cp.mindlin) return of_history.template operator()<MindlinHistory::none>();
     switch (cp.tangential_history) {
@@ -151,7 +166,7 @@ struct HertzMindlinCase {
     std::ostringstream o;
     o << "  tangential: Mindlin, mu_s = " << p.mu_static << ", mu_d = " << p.mu_dynamic << ", lever arm "
       << lever_arm_text(p.lever_arm) << "\n";
-    return o.str();
+    return o.str() + rolling_torsion_line(p);
   }
 };
 

@@ -38,6 +38,12 @@
 //                                     kernel's vector sweep then skips the dissipated-energy
 //                                     bookkeeping and defers a contact that opens with a nonzero
 //                                     opening_loss to the exact sweep (the same sums: x + 0 = x).
+// and optionally, for a law with couples beyond the tangential force's torques (rolling and
+// torsion resistance, contact/rolling_torsion.hpp):
+//   static constexpr bool couples;    true: Response::couple is the torque on i beyond
+//                                     -arm_i n x f^t (j gets minus it); the kernel then sums it
+//                                     (a law without the member never has one: its instantiations
+//                                     are those of a kernel without couples)
 // Every contact writes only its own entries, so results do not depend on the sweep, the block
 // or the thread that evaluates it.
 #pragma once
@@ -69,6 +75,7 @@ struct Response {
   Vec3 nf;                // n x f^t: the torque on sphere p is -arm_p nf, arm_p = a_p - arm_shift delta
   double loss = 0.0;      // energy dissipated over this step (J)
   bool deferred = false;  // Deferrable evaluation only: evaluate again in the exact sweep
+  Vec3 couple{};          // a law with couples only: torque on i beyond -arm_i nf; j gets -couple
 };
 
 // Tag of the cheap, vectorised evaluation of a law that defers the rare expensive contacts.
@@ -83,6 +90,9 @@ template <class Law>
 concept DefersContacts = requires(const Law& law, const Contact& c, typename Law::History& h) {
   { law.evaluate(c, h, Deferrable{}) } -> std::same_as<Response>;
 };
+
+template <class Law>
+concept HasCouples = requires { requires Law::couples; };
 
 template <class Law>
 concept LosslessSweep = DefersContacts<Law> && requires { requires Law::lossless_sweep; };

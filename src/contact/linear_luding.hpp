@@ -74,12 +74,16 @@ struct LinearLudingLaw {
   bool dissipates() const { return true; }  // slip
   // A jump of positions: no dashpots (the springs see no velocity either).
   LinearLudingLaw<false, Hysteresis> without_rates() const { return {normal, tangential, arm}; }
+  // f_n of eq. (1), as the Coulomb limit reads it.
+  [[gnu::always_inline]] double normal_part(const Contact& c) const {
+    // Without a dashpot a touching contact never pulls, so clipping changes nothing.
+    return Dashpots ? normal_force(normal, c.delta, c.delta_dot) : normal.kn * c.delta;
+  }
 
  private:
   template <bool Exact>
   [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
-    // Eq. (1) text; without a dashpot a touching contact never pulls, so clipping changes nothing.
-    const double f_n = Dashpots ? normal_force(normal, c.delta, c.delta_dot) : normal.kn * c.delta;
+    const double f_n = normal_part(c);  // eq. (1) text
     // Dissipated normally: the work of (f_n - k delta) against the approach (dashpot, or a clipped pull).
     const double loss_n = Dashpots ? (f_n - normal.kn * c.delta) * c.delta_dot * c.dt : 0.0;
     // Lever arms: a - 0 * delta = a exactly for the seed's eq. (4) (the default).
@@ -105,13 +109,10 @@ struct LinearLudingLaw {
     // Dissipated tangentially: the dashpot's power (without a spring, all of -f^t . v_t), plus
     // the slip removed from the spring by eq. (7).
     double loss = 0.0;
-    if constexpr (Dashpots) {
-      const double loss_dashpot_only = -ft.dot(vt) * c.dt;
-      const double loss_spring = tangential.gamma_t * vt.squaredNorm() * c.dt + slip_loss;
-      loss = loss_n + select(tangential.kt == 0.0, loss_dashpot_only, loss_spring);
-    } else {
+    if constexpr (Dashpots)
+      loss = loss_n + spring_dashpot_loss<true>(tangential, ft, vt, c.dt, slip_loss);
+    else
       loss = slip_loss;  // + 0: no dashpot, and a spring (k_t > 0: friction without dashpots)
-    }
     return {f_n * c.n + ft, c.n.cross(ft), loss, deferred};
   }
 };

@@ -1,6 +1,7 @@
 // The case-file law "linear" (contact/case_law.hpp): seed 002's linear spring-dashpot with Luding's
 // tangential spring (contact/linear_luding.hpp), or the frictionless contact/hooke.hpp when it has
-// no tangential spring or dashpot.
+// no tangential spring or dashpot; with rolling or torsion resistance (kr, ko, their dashpots)
+// contact/rolling_torsion.hpp on top of Luding's law.
 #pragma once
 #include <array>
 #include <sstream>
@@ -9,13 +10,15 @@
 #include "contact/case_law.hpp"
 #include "contact/hooke.hpp"
 #include "contact/linear_luding.hpp"
+#include "contact/rolling_torsion.hpp"
 
 namespace granwave::contact {
 
 struct LinearLudingCase {
   static constexpr config::ContactLaw law = config::ContactLaw::linear;
   static constexpr const char* name = "linear";
-  static constexpr std::array<const char*, 4> keys{"kn", "kt", "gamma_n", "gamma_t"};
+  static constexpr std::array<const char*, 10> keys{"kn", "kt", "gamma_n", "gamma_t", "kr", "gamma_r", "mu_r",
+                                                    "ko", "gamma_o", "mu_o"};
   static constexpr const char* refusal_note = " (this case's law is \"linear\")";
 
   template <class Reader, class Table>
@@ -25,11 +28,12 @@ struct LinearLudingCase {
     p.gamma_n = r.number_in(t, "contact", "gamma_n", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
     p.kt = r.number_in(t, "contact", "kt", false, nonneg, ">= 0 (N/m)").value_or(0.0);
     p.gamma_t = r.number_in(t, "contact", "gamma_t", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
+    read_rolling_torsion(r, t, p);
   }
   template <class Reader, class Table>
   static void check_case(const Reader&, const Table&, const config::Case&) {}
 
-  static bool torques(const config::ContactParams& p) { return tangential(p).active(); }
+  static bool torques(const config::ContactParams& p) { return tangential(p).active() || rolling_torsion(p).active(); }
   static const char* history_name(const config::ContactParams&) { return "displacement"; }  // the spring xi
 
   // The law itself at any overlap.
@@ -59,6 +63,13 @@ struct LinearLudingCase {
     t.validate();
     const bool dashpots = n.gamma_n > 0.0 || t.gamma_t > 0.0;
     const bool hysteresis = t.mu_static != t.mu_dynamic;
+    const RollingTorsionParams rt = rolling_torsion(p);
+    rt.validate();
+    // With rolling or torsion resistance, one form per dashpot flag (any dashpot: all of them).
+    if (rt.active())
+      return with_flags([&]<bool Dashpots>() {
+        return make(WithRollingTorsion<LinearLudingLaw<Dashpots>, Dashpots>(LinearLudingLaw<Dashpots>(n, t, p.lever_arm), rt));
+      }, dashpots || rt.dashpots());
     if (t.active())
       return with_flags([&]<bool Dashpots, bool Hysteresis>() {
         return make(LinearLudingLaw<Dashpots, Hysteresis>(n, t, p.lever_arm));
@@ -80,7 +91,7 @@ struct LinearLudingCase {
     std::ostringstream o;
     o << "  tangential: kt = " << p.kt << " N/m, mu_s = " << p.mu_static << ", mu_d = " << p.mu_dynamic
       << ", lever arm " << lever_arm_text(p.lever_arm) << "\n";
-    return o.str();
+    return o.str() + rolling_torsion_line(p);
   }
 
  private:
@@ -90,6 +101,7 @@ struct LinearLudingCase {
   static TangentialSpringParams tangential(const config::ContactParams& p) {
     return {p.kt, p.gamma_t, p.mu_static, p.mu_dynamic, p.coulomb_normal == config::CoulombNormal::magnitude};
   }
+  static RollingTorsionParams rolling_torsion(const config::ContactParams& p) { return rolling_torsion_of(p); }
 };
 
 }  // namespace granwave::contact

@@ -173,6 +173,18 @@ inline TangentialResult sliding_force(const TangentialSpringParams& p, const Tan
   return {force, spring, true, slip_loss};
 }
 
+// Dissipated by a spring beside a dashpot over dt, its force f at the velocity v: the dashpot's
+// power gamma |v|^2 dt plus the slip (sliding_force's slip_loss); without a spring (k = 0) all of
+// -f . v dt. Dashpot = false: the slip alone.
+template <bool Dashpot>
+[[gnu::always_inline]] inline double spring_dashpot_loss(const TangentialSpringParams& p, const Vec3& f, const Vec3& v,
+                                                         double dt, double slip_loss) {
+  if constexpr (Dashpot)
+    return select(p.kt == 0.0, -f.dot(v) * dt, p.gamma_t * v.squaredNorm() * dt + slip_loss);
+  else
+    return slip_loss;
+}
+
 // Eqs. (5), (7), (8): static case (1), f^t = f_o^t with the spring kept (6), or case (2).
 template <bool Dashpot = true>
 inline TangentialResult tangential_force(const TangentialSpringParams& p, const Vec3& xi, const Vec3& vt, double f_n,

@@ -3,7 +3,6 @@
 #include <exception>
 
 #include "config/case.hpp"
-#include "contact/lever_arm.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 #include "theory/lattice_dynamics.hpp"
@@ -45,10 +44,8 @@ void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::stri
     return;
   }
   const Packing pk = lattice_packing(c);
-  theory::LatticeCellOptions lopt;
   // As `granwave theory`: bonds agree to the rounding of Hertz forces from overlaps of positions.
-  lopt.tolerance = 1e-6;
-  lopt.arm_shift = contact::arm_shift(c.contact.lever_arm);
+  const theory::LatticeCellOptions lopt = lattice_options(c, 1e-6);
   const auto cell = theory::lattice_cell(contact_network(c, pk), {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, lopt,
                                          &options.no_lattice);
   if (!cell) return;

@@ -67,8 +67,7 @@ std::string trace_path_for(const config::Case& c, const RunRequest& req) {
 double lattice_speed(const config::Case& c, const Packing& pk, bool shear) {
   // The network of the case's law, linearised at each contact's static overlap (any law).
   const theory::ContactNetwork net = contact_network(c, pk);
-  theory::LatticeCellOptions opt;
-  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
+  const theory::LatticeCellOptions opt = lattice_options(c, theory::LatticeCellOptions{}.tolerance);
   const auto cell = theory::lattice_cell(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, opt);
   if (!cell) return std::numeric_limits<double>::quiet_NaN();
   return theory::lattice_long_wave(*cell, theory::Vec3::UnitZ())

@@ -118,6 +118,7 @@ Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, doub
 Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt, const SlabPlan* slab)
     : model_(std::move(model)), dt_(dt) {
   torques_ = model_->torques();
+  couples_ = model_->couples();
   lever_arm_ = model_->lever_arm();
   if (!(dt > 0.0)) throw InputError("integrator.dt must be > 0");
   // The particles held: all, or this rank's slab and halo (a contiguous range).
@@ -367,7 +368,8 @@ struct ParticleOut {
 // ContactPointArm: then -a_p sum(n x f^t) + (1/2) sum(delta_c n x f^t). On one thread a plain
 // loop (no OpenMP call), every array through a __restrict pointer: 3 % faster end to end
 // frictionless than the loop behind `omp parallel for if (false)` that wrote through the vectors.
-template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
+// With Couples, each contact's couple is added to i's torque and subtracted from j's.
+template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded, bool Couples>
 void Dynamics::particle_pass(double h) {
   const ContactList& C = contacts;
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
@@ -383,11 +385,15 @@ void Dynamics::particle_pass(double h) {
   const double* __restrict cny = C.nf_y.data();
   const double* __restrict cnz = C.nf_z.data();
   const double* __restrict cdelta = C.delta.data();
+  const double* __restrict ccx = C.couple_x.data();
+  const double* __restrict ccy = C.couple_y.data();
+  const double* __restrict ccz = C.couple_z.data();
   const double* __restrict a = radius.data();
   const ParticleOut out(*this);
   auto one = [&](std::int64_t p) __attribute__((always_inline)) {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
+    double mx = 0.0, my = 0.0, mz = 0.0;     // sum of the couples, Couples only
     // Both spheres feel -a n x f^t; j gets -f (s + (-f) is s - f).
     auto add = [&](std::int32_t c, auto as_j) __attribute__((always_inline)) {
       if constexpr (decltype(as_j)::value) {
@@ -409,13 +415,22 @@ void Dynamics::particle_pass(double h) {
           dnz += cdelta[c] * cnz[c];
         }
       }
+      if constexpr (Couples) {  // j gets the opposite couple
+        constexpr double sign = decltype(as_j)::value ? -1.0 : 1.0;
+        mx += sign * ccx[c], my += sign * ccy[c], mz += sign * ccz[c];
+      }
     };
     for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});
     for (std::int32_t c = i_first[p]; c < i_first[p + 1]; ++c) add(c, std::false_type{});
-    if constexpr (ContactPointArm)
+    if constexpr (Couples) {
+      const double sh = ContactPointArm ? 0.5 : 0.0;
+      out.store<Kick, true, fr>(p, h, sx, sy, sz, (-a[p] * nx + sh * dnx) + mx, (-a[p] * ny + sh * dny) + my,
+                                (-a[p] * nz + sh * dnz) + mz);
+    } else if constexpr (ContactPointArm) {
       out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx + 0.5 * dnx, -a[p] * ny + 0.5 * dny, -a[p] * nz + 0.5 * dnz);
-    else
+    } else {
       out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx, -a[p] * ny, -a[p] * nz);
+    }
   };
   if constexpr (Threaded) {
 #pragma omp parallel for schedule(static)
@@ -498,17 +513,20 @@ void Dynamics::finish_forces(const ContactSums& sums, bool kick) {
     default: break;
   }
   const bool threads = threaded();
-  auto pass = [&]<bool Torques, bool ContactPointArm>() {
+  auto pass = [&]<bool Torques, bool ContactPointArm, bool Couples>() {
     if (threads)
-      kick ? particle_pass<true, Torques, ContactPointArm, true>(h) : particle_pass<false, Torques, ContactPointArm, true>(h);
+      kick ? particle_pass<true, Torques, ContactPointArm, true, Couples>(h)
+           : particle_pass<false, Torques, ContactPointArm, true, Couples>(h);
     else
-      kick ? particle_pass<true, Torques, ContactPointArm, false>(h)
-           : particle_pass<false, Torques, ContactPointArm, false>(h);
+      kick ? particle_pass<true, Torques, ContactPointArm, false, Couples>(h)
+           : particle_pass<false, Torques, ContactPointArm, false, Couples>(h);
   };
-  if (!torques_) return pass.template operator()<false, false>();
+  if (!torques_) return pass.template operator()<false, false, false>();
   switch (lever_arm_) {
-    case contact::LeverArm::radius: return pass.template operator()<true, false>();
-    case contact::LeverArm::contact_point: return pass.template operator()<true, true>();
+    case contact::LeverArm::radius:
+      return couples_ ? pass.template operator()<true, false, true>() : pass.template operator()<true, false, false>();
+    case contact::LeverArm::contact_point:
+      return couples_ ? pass.template operator()<true, true, true>() : pass.template operator()<true, true, false>();
   }
 }
 

@@ -34,6 +34,8 @@ struct ContactList {
   std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see ContactPassPlan::store_forces)
   std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
                                            // threaded runs of a law with torques only (else empty)
+  std::vector<double> couple_x, couple_y, couple_z;  // a law with couples (rolling, torsion): the torque
+                                                     // on i beyond -arm_i n x f^t, j gets minus it (else empty)
   std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
   // false: every entry of `dissipated` is still the +0.0 of the list's build, so sums of them may be
   // skipped (x + 0.0 = x). Set by a contact pass that may write one (kernel.hpp).
@@ -121,6 +123,7 @@ class ContactModel {
   virtual std::size_t history_columns() const = 0;
   virtual bool torques() const = 0;      // tangential forces: torques and rotation
   virtual contact::LeverArm lever_arm() const = 0;  // of f^t: a_p - arm_shift(lever_arm()) delta
+  virtual bool couples() const { return false; }    // ContactList::couple_x.. (contact::HasCouples)
   // Pass 1 at the current state, as `plan` asks.
   virtual ContactSums contact_pass(Dynamics& dyn, const ContactPassPlan& plan) const = 0;
   // Adds the stored energy (J) of each touching contact of [first, size()) to per_layer[layer of
@@ -306,7 +309,7 @@ class Dynamics {
   // The first half kick and drift of the owned particles from `from` on (-1: all)
   template <bool Torques, bool Threaded>
   Drift kick_drift(std::int64_t from = -1);
-  template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded>
+  template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded, bool Couples>
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   template <bool Kick, int Rows>
   void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (one thread), from `from` on
@@ -325,6 +328,7 @@ class Dynamics {
   Packing packing_;
   std::shared_ptr<const ContactModel> model_;
   bool torques_ = false;
+  bool couples_ = false;  // the model's couples(): the particle pass sums them
   contact::LeverArm lever_arm_ = contact::LeverArm::radius;
   double dt_ = 0.0;
   double skin_ = 0.0;

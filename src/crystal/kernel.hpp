@@ -504,6 +504,9 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   const double inc = plan.increment_time;
   constexpr std::size_t NH = contact::history_columns<typename Law::History>;
   constexpr bool Defers = contact::DefersContacts<Law>;
+  // A law with couples (rolling, torsion) leaves them per contact for the particle pass: the
+  // one-thread scatter has no row for them.
+  constexpr bool Couples = contact::HasCouples<Law>;
   ContactList& C = d.contacts;
   using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
@@ -522,7 +525,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   double* sum_rows = nullptr;
   const bool keep_forces = plan.store_forces;
 #ifdef GRANWAVE_GATHER_VECTORS
-  if (!d.threaded()) {
+  if (!d.threaded() && !Couples) {
     scatter_mode = scatter_mode_of(law.lever_arm());
     sum_rows = d.begin_contact_sums(scatter_mode + 1);
   }
@@ -535,6 +538,11 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   // at the list's build: 24 bytes per contact a one-thread run does not need).
   if (scatter_mode == 0)
     for (auto* v : {&C.nf_x, &C.nf_y, &C.nf_z}) v->resize(C.size());
+  if constexpr (Couples)
+    for (auto* v : {&C.couple_x, &C.couple_y, &C.couple_z}) v->resize(C.size());
+  double* ccx = C.couple_x.data();
+  double* ccy = C.couple_y.data();
+  double* ccz = C.couple_z.data();
   const auto [nc, ci, cj, imx, imy, cdelta, cfx, cfy, cfz, cnx, cny, cnz, diss, hist] = ListColumns<NH>(C);
   // The vector sweep adds to diss unless the law's is lossless (contact::LosslessSweep); the exact
   // sweep always does, and books it where it runs (below).
@@ -561,6 +569,11 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
                           select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
                           select(open, 0.0, res.nf.y()), select(open, 0.0, res.nf.z())};
+    if constexpr (Couples) {
+      ccx[c] = select(open, 0.0, res.couple.x());
+      ccy[c] = select(open, 0.0, res.couple.y());
+      ccz[c] = select(open, 0.0, res.couple.z());
+    }
     if constexpr (Scatter) {
       for (int q = 0; q < 6; ++q) o.col[q][u] = fo[q];
     } else {
@@ -634,6 +647,7 @@ class LawModel final : public ContactModel {
   explicit LawModel(const Law& law) : law_(law) {}
   std::size_t history_columns() const override { return contact::history_columns<typename Law::History>; }
   bool torques() const override { return Law::torques; }
+  bool couples() const override { return contact::HasCouples<Law>; }
   contact::LeverArm lever_arm() const override { return law_.lever_arm(); }
   ContactSums contact_pass(Dynamics& d, const ContactPassPlan& plan) const override {
     return plan.rates ? run(d, law_, plan) : run(d, law_.without_rates(), plan);

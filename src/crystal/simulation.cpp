@@ -25,6 +25,15 @@ ContactAt contact_between(const config::Case& c, double a_i, double a_j, double 
   return config::law_of(c.contact).at(c.contact, c.crystal->density, a_i, a_j, delta);
 }
 
+theory::LatticeCellOptions lattice_options(const config::Case& c, double tolerance) {
+  theory::LatticeCellOptions opt;
+  opt.tolerance = tolerance;
+  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
+  opt.kr = c.contact.kr;
+  opt.ko = c.contact.ko;
+  return opt;
+}
+
 theory::ContactNetwork contact_network(const config::Case& c, const Packing& pk) {
   const bool own_stiffness = config::law_of(c.contact).stiffness_of_overlap;
   const ContactAt k0 = contact_at(c, pk.delta);

@@ -12,6 +12,7 @@
 #include "crystal/dynamics.hpp"
 #include "crystal/packing.hpp"
 #include "theory/crystal_theory.hpp"
+#include "theory/lattice_dynamics.hpp"
 #include "crystal/slab.hpp"
 
 namespace granwave::crystal {
@@ -46,6 +47,9 @@ ContactAt contact_between(const config::Case& c, double a_i, double a_j, double 
 // with their static normal forces (the prestress), the law's stiffnesses (linear: the keys; Hertz-
 // Mindlin: each contact's own, linearised at its overlap; the network's k, kt at delta_0).
 theory::ContactNetwork contact_network(const config::Case& c, const Packing& packing);
+// The lattice dynamics' options of the case's law (theory/lattice_dynamics.hpp): its lever arm and
+// its rolling and torsion springs; bonds must agree to `tolerance`.
+theory::LatticeCellOptions lattice_options(const config::Case& c, double tolerance);
 // The static normal force of a contact of radii a_i, a_j at overlap delta (theory's prestress).
 double static_normal_force(const config::Case& c, double a_i, double a_j, double delta);
 // The trace's name of the law and of its tangential history (root attributes contact_law,

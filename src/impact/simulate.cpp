@@ -60,6 +60,10 @@ Series run_law(const Setup& s, const Law& law) {
     lost += r.loss;
     t1 = -(b1.radius - shift * delta) * r.nf;
     if (!s.wall) t2 = -(b2.radius - shift * delta) * r.nf;
+    if constexpr (contact::HasCouples<Law>) {  // rolling and torsion resistance
+      t1 = t1 + r.couple;
+      if (!s.wall) t2 = t2 - r.couple;
+    }
   };
   auto stored = [&]() {
     Vec3 n;

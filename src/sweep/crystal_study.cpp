@@ -184,12 +184,10 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
 
 std::optional<theory::LatticeCell> member_lattice_cell(const config::Case& c, const crystal::Packing& packing,
                                                        const theory::ContactNetwork& net) {
-  theory::LatticeCellOptions lopt;
   // Contact forces come from overlaps of positions far larger than them: at delta_0 = 1e-5 d and
   // z = 0.28 m the overlap's rounding (1e-16 z) is 1.5e-9 of it, a Hertz force's 2.3e-9. The cell's
   // bonds are the reference particle's either way; the tolerance only decides whether all agree.
-  lopt.tolerance = 1e-6;
-  lopt.arm_shift = contact::arm_shift(c.contact.lever_arm);
+  const theory::LatticeCellOptions lopt = crystal::lattice_options(c, 1e-6);
   const int fl = packing.fixed_layers;
   return theory::lattice_cell(net, {fl, packing.layers - 1 - fl}, lopt);
 }

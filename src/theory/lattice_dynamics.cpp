@@ -399,12 +399,14 @@ std::optional<LatticeCell> lattice_cell(const ContactNetwork& net, SlabSelection
     if (c.i < 0 || c.j < 0 || c.i >= np || c.j >= np) throw InputError("lattice dynamics: contact index out of range");
     const double l = c.branch.norm();
     const double delta = net.particles[c.i].radius + net.particles[c.j].radius - l;
+    const double arm_i = net.particles[c.i].radius - opt.arm_shift * delta;
+    const double arm_j = net.particles[c.j].radius - opt.arm_shift * delta;
+    const double lever = arm_i * arm_j / (arm_i + arm_j);  // a' of the rolling and torsion springs
+    const double k_roll = opt.k_roll + opt.kr * lever * lever, k_twist = opt.k_twist + opt.ko * lever * lever;
     if (inside(c.i))
-      bonds[c.i].push_back({c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force,
-                            net.particles[c.i].radius - opt.arm_shift * delta, opt.k_roll, opt.k_twist});
+      bonds[c.i].push_back({c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force, arm_i, k_roll, k_twist});
     if (inside(c.j))
-      bonds[c.j].push_back({-c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force,
-                            net.particles[c.j].radius - opt.arm_shift * delta, opt.k_roll, opt.k_twist});
+      bonds[c.j].push_back({-c.branch, c.k_of(net.k), c.kt_of(net.kt), c.normal_force, arm_j, k_roll, k_twist});
   }
   // Reference: the first particle of the middle layer.
   const int mid_layer = (lo + hi) / 2;

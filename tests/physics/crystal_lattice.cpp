@@ -37,8 +37,7 @@ struct Lattice {
 Lattice lattice_theory(const config::Case& c, const crystal::Packing& pk) {
   const theory::ContactNetwork net = crystal::contact_network(c, pk);
   const theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
-  theory::LatticeCellOptions opt;
-  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
+  const theory::LatticeCellOptions opt = crystal::lattice_options(c, theory::LatticeCellOptions{}.tolerance);
   std::string why;
   const auto cell = theory::lattice_cell(net, slab, opt, &why);
   INFO(why);
@@ -47,12 +46,14 @@ Lattice lattice_theory(const config::Case& c, const crystal::Packing& pk) {
 }
 
 struct Measured {
-  double v_half = 0.0, v_half_err = 0.0, v_lattice = 0.0, v_eq10 = 0.0;
+  double v_half = 0.0, v_half_err = 0.0, v_lattice = 0.0, v_eq10 = 0.0, v_group_max = 0.0;
 };
 
-Measured s_wave(double kt_over_k) {
+// kr_over_k: rolling and torsion springs kr = ko (contact/rolling_torsion.hpp).
+Measured s_wave(double kt_over_k, double kr_over_k = 0.0) {
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_kt10.toml");
   c.contact.kt = kt_over_k * c.contact.kn;
+  c.contact.kr = c.contact.ko = kr_over_k * c.contact.kn;
   c.excitation.mode = config::Excitation::Mode::S;
   c.crystal->cells[2] = 100;
   c.output.fields = {"layer_stress_zx", "layer_velocity_x"};
@@ -79,9 +80,15 @@ Measured s_wave(double kt_over_k) {
   CHECK(a.v_half_peak.lo == 10);
   CHECK(a.v_half_peak.hi == 76);
   Measured m{a.v_half_peak.speed.value, a.v_half_peak.speed.error, v, th.eq10.V_sz};
-  std::printf("S wave, kt/k = %g: half-peak %.3f +- %.3f m/s over z/l0 10..76, lattice with rotations %.3f (%+.3f %%), "
-              "eq. (10) %.3f\n",
-              kt_over_k, m.v_half, m.v_half_err, v, 100 * (m.v_half / v - 1), m.v_eq10);
+  // The S branch's largest group velocity (above the long-wave speed where the branch bends up).
+  const theory::Vec3 ez = theory::Vec3::UnitZ();
+  const auto d = theory::lattice_dispersion(th.cell, ez, theory::layer_period(th.cell, ez), 201);
+  for (int b = 0; b < 6; ++b)
+    if (d.acoustic[b] && d.dominant[b] == 0)
+      for (const auto& md : d.branches[b]) m.v_group_max = std::max(m.v_group_max, std::abs(md.group_velocity));
+  std::printf("S wave, kt/k = %g, kr/k = ko/k = %g: half-peak %.3f +- %.3f m/s over z/l0 10..76, lattice with rotations %.3f (%+.3f %%), "
+              "eq. (10) %.3f, largest group velocity %.3f\n",
+              kt_over_k, kr_over_k, m.v_half, m.v_half_err, v, 100 * (m.v_half / v - 1), m.v_eq10, m.v_group_max);
   return m;
 }
 
@@ -104,6 +111,24 @@ TEST_CASE("S wave at kt/k = 0.2 and 2: the lattice speed with rotations holds ac
   }
 }
 
+TEST_CASE("S wave at kt = k with rolling and torsion springs: the front against the lattice with the springs",
+          "[crystal][lattice][physics]") {
+  // The springs resist relative turns only: they vanish from the long waves (theory/lattice_dynamics.hpp),
+  // so the long-wave speed is that without them, and they stiffen the shorter waves by O(k^4).
+  // kr = ko = k/2: the branch still bends down (its largest group velocity is the long-wave speed)
+  // and the half-peak front keeps to it (0.5 %, as without the springs). kr = ko = 2 k (the top of
+  // the issue's range): the branch bends up, its group velocity rises to 6.8 % above the long-wave
+  // speed (232.9 against 218.1 m/s), and the front over z/l0 = 10..76 runs between the two.
+  const Measured bare = s_wave(1.0);
+  const Measured half = s_wave(1.0, 0.5), twice = s_wave(1.0, 2.0);
+  for (const Measured* m : {&half, &twice}) CHECK(m->v_lattice == Approx(bare.v_lattice).epsilon(1e-12));
+  CHECK(half.v_group_max == Approx(half.v_lattice).epsilon(1e-9));
+  CHECK(std::abs(half.v_half / half.v_lattice - 1) <= 0.005);
+  CHECK(twice.v_group_max > 1.05 * twice.v_lattice);
+  CHECK(twice.v_half > 1.005 * twice.v_lattice);
+  CHECK(twice.v_half < twice.v_group_max);
+}
+
 TEST_CASE("the dynamical matrix is the linearisation of granwave's own contact forces (finite differences)",
           "[crystal][lattice][physics]") {
   // Displace (or turn) one particle q of the middle layer by a tiny amount through the DEM force
@@ -114,10 +139,14 @@ TEST_CASE("the dynamical matrix is the linearisation of granwave's own contact f
   // prestress term and the rotation coupling all checked against the code that runs the waves.
   // Tolerance 1e-6 of each block: the finite differences carry the second-order terms, ~eps/delta
   // = 5e-7 (measured 2.3e-7), while a missing prestress term or the other lever arm is 1e-3 off.
+  // With rolling and torsion springs (contact/rolling_torsion.hpp, kr = k/2, ko = 0.3 k: about a
+  // tenth of the theta-theta block), the same check covers their angular springs kr a'^2, ko a'^2.
+  for (const bool rolling : {false, true})
   for (const auto arm : {config::LeverArm::radius, config::LeverArm::contact_point}) {
     config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_kt10.toml");
     c.contact.kt = 1.5 * c.contact.kn;
     c.contact.lever_arm = arm;
+    if (rolling) c.contact.kr = 0.5 * c.contact.kn, c.contact.ko = 0.3 * c.contact.kn;
     c.crystal->cells[2] = 8;
     const crystal::Packing pk = crystal::make_packing(c);
     const Lattice th = lattice_theory(c, pk);
@@ -167,13 +196,15 @@ TEST_CASE("the dynamical matrix is the linearisation of granwave's own contact f
         for (int bj = 0; bj < 2; ++bj) {
           const Eigen::Matrix3cd A = an.block<3, 3>(3 * bi, 3 * bj), F = fd.block<3, 3>(3 * bi, 3 * bj);
           const double scale = std::max(A.cwiseAbs().maxCoeff(), 1e-300);
-          INFO("lever arm " << (arm == config::LeverArm::radius ? "radius" : "contact point") << ", block " << bi << bj
+          INFO("lever arm " << (arm == config::LeverArm::radius ? "radius" : "contact point") << (rolling ? ", rolling" : "")
+                            << ", block " << bi << bj
                             << ", k l0 = " << kv.transpose() << "\nanalytic\n" << A << "\nfinite differences\n" << F);
           worst = std::max(worst, (A - F).cwiseAbs().maxCoeff() / scale);
           CHECK((A - F).cwiseAbs().maxCoeff() <= 1e-6 * scale);
         }
     }
-    std::printf("force constants, lever arm %s: finite differences of the DEM forces within %.1e of the derivation\n",
-                arm == config::LeverArm::radius ? "radius" : "contact point", worst);
+    std::printf("force constants, lever arm %s%s: finite differences of the DEM forces within %.1e of the derivation\n",
+                arm == config::LeverArm::radius ? "radius" : "contact point", rolling ? ", rolling and torsion" : "",
+                worst);
   }
 }
