@@ -49,12 +49,12 @@ def contact(tangential, mu=None, restitution=None):
     return s
 
 
-def write(sub, name, title, text):
+def write(sub, name, title, text, dt_over_tc=0.002):
     os.makedirs(os.path.join(OUT, sub), exist_ok=True)
     head = f'# {title}\n# Written by data/impact/generate.py; parameters: docs/research/contact_models_sources.md A.2.\n'
     with open(os.path.join(OUT, sub, name + ".toml"), "w") as f:
         f.write(head + f'[case]\nname = "{name}"\nmodel = "impact"\n\n' + text +
-                "\n[integrator]\ndt_over_tc = 0.002\n\n[output]\ninterval = 0.0\n")
+                f"\n[integrator]\ndt_over_tc = {dt_over_tc!r}\n\n[output]\ninterval = 0.0\n")
 
 
 def main():
@@ -92,7 +92,7 @@ def main():
         write("t6", f"t6_al_alloy_{a:02d}deg", f"Chung & Ooi T6: an Al alloy sphere on a rigid wall, vn = 0.2 m/s, "
               f"spin {w:.6g} rad/s", material("al_alloy") + "\n" +
               body("body1", "al_alloy", R, (0, 0, R), (0, 0, -0.2), (0, -w, 0)) + "\n" + WALL + "\n" +
-              contact("mindlin", mu=0.4, restitution=0.5))
+              contact("mindlin", mu=0.4, restitution=0.5), dt_over_tc=0.0005)  # data/impact/README.md: T6's time step
     for a in ANGLES:  # T7: two Al alloy spheres, 0.2 m/s each, spins +w and -w (their surfaces move together), mu 0.4, e 0.5
         R, th = 0.1, math.radians(a)
         w = 2.0 * math.tan(th)
