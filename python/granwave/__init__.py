@@ -86,7 +86,8 @@ class Case:
                 if not isinstance(t, dict):
                     raise ValueError(f"{key}: {name} is not a table")
             t[last] = value
-        return Case.from_dict(d, self.path)
+        # Messages name the changed case and a line of its new text, not the file's.
+        return Case.from_dict(d, self.path if self.path.endswith(" (replaced)") else f"{self.path} (replaced)")
 
     def save(self, path):
         """Write the case text to a file (what `granwave run FILE` reads)."""
@@ -171,10 +172,11 @@ def run(case, out=None, system=None, progress=None):
               a temporary one, read and removed
     system    a system file from build() to run instead of building the packing
     progress  None; True for a tqdm bar; or a callable progress(steps_done, steps_total), called
-              from the run's thread with the GIL every few milliseconds (crystal runs)
+              from the run's thread with the GIL every few milliseconds
 
-    The GIL is released while the run works; every 5 ms of a crystal run it takes the GIL back,
-    so Ctrl-C (KeyboardInterrupt) stops it within a sample, leaving neither OUT nor OUT.tmp.
+    The GIL is released while the run works; every 5 ms (at the next output sample of a crystal or
+    chain run) it takes it back, so Ctrl-C (KeyboardInterrupt) stops the run, leaving neither OUT
+    nor OUT.tmp.
     Raises ValueError for a refused case, RuntimeError for a failed run (an unstable crystal)."""
     case = _case(case)
     bar = _Bar(case.name) if progress is True else None

@@ -35,7 +35,7 @@ config::Case load_single_case(const Args& args, const std::vector<std::string>& 
 
 std::string default_trace_path(const config::Case& c) { return c.name + ".traces.h5"; }
 
-// A crystal run's progress on stderr: sweep's progress line (steps done, rate, ETA), shown only
+// A run's progress on stderr: sweep's progress line (steps done, rate, ETA), shown only
 // when stderr is a terminal and once the run has taken longer than kQuietSeconds.
 class RunProgress {
  public:
@@ -140,8 +140,8 @@ int cmd_run(const Args& args) {
       "  `granwave analyze TRACE` (default options): the same numbers, one ruler.\n"
       "  --json prints one JSON object (schema \"granwave-run/1\", data/SCHEMA.md §3.1): the run's\n"
       "  own numbers and, under \"analysis\", exactly what `granwave analyze TRACE --json` prints.\n"
-      "  A crystal run prints where its time loop spent its wall time (\"phases\" in the JSON, s)\n"
-      "  and, on stderr when it is a terminal, a progress line once the run takes more than 2 s;\n"
+      "  A crystal run prints where its time loop spent its wall time (\"phases\" in the JSON, s);\n"
+      "  on stderr when it is a terminal, a run shows a progress line once it takes more than 2 s;\n"
       "  --quiet leaves the progress line out.\n"
       "  Under `mpirun -n R` a crystal run is split into slabs of whole layers (R <= layers) and\n"
       "  writes the serial run's trace file bit for bit (docs/mpi.md); a chain run is refused";
