@@ -12,7 +12,9 @@ import numpy as np
 import pytest
 
 import granwave as g
-from conftest import BUILD, ROOT
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+BUILD = os.environ.get("GRANWAVE_BUILD", os.path.join(ROOT, "build"))
 
 PROGRAM = os.path.join(BUILD, "granwave")
 # Root attributes that differ between any two runs of the program itself.
