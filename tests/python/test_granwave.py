@@ -152,12 +152,14 @@ def test_theory_build_sweep(tmp_path):
 
 
 def test_installed_module_found_from_outside_the_repository(tmp_path):
+    """Issue #30's "done when": Debian's python3 finds the installed module from any directory."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    p = subprocess.run(["/usr/bin/python3", "-c", "import granwave, sys; print(granwave.__file__); "
-                        "print(granwave.data_path('cases/crystal40.toml'))"],
+    p = subprocess.run(["/usr/bin/python3", "-c", "import granwave as g; print(g.__file__); "
+                        "print(g.run(g.Case.load(g.data_path('cases/crystal40.toml'))).analysis['v_half_peak'])"],
                        cwd=tmp_path, env=env, capture_output=True, text=True)
     if p.returncode != 0 and "No module named 'granwave'" in p.stderr:
         pytest.skip("granwave is not installed (cmake --install build)")
     assert p.returncode == 0, p.stderr
-    where, data = p.stdout.split("\n")[:2]
-    assert not where.startswith(ROOT) and os.path.isfile(data) and not data.startswith(ROOT)
+    where, v_half_peak = p.stdout.split("\n")[:2]
+    assert not where.startswith(ROOT) and "'unit': 'm/s'" in v_half_peak
+    assert list(tmp_path.iterdir()) == []  # a run without out= leaves no file
