@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libhdf5-dev hdf5-tools catch2 libtomlplusplus-dev nlohmann-json3-dev libfftw3-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pytest
-  python3-dev python3-pybind11 pybind11-dev python3-tqdm
+  python3-dev python3-pybind11 pybind11-dev python3-tqdm python3-nbconvert python3-ipykernel
   yade liggghts lammps libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev ccache
 )

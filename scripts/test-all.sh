@@ -4,7 +4,7 @@
 #   2. the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer (with the files
 #      fuzzer, tests/files.cmake), then libFuzzer on the readers for 60 s (issue #25),
 #   3. pytest for the cross-code harness (real YADE, LIGGGHTS and LAMMPS runs) and for the Python
-#      module granwave (tests/python, against the program).
+#      module granwave (tests/python, against the program); the example notebook, executed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -40,6 +40,9 @@ PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q tests/crosscheck
 
 echo "==> pytest: the Python module granwave against the program"
 /usr/bin/python3 -m pytest -q tests/python
+echo "==> the example notebook, executed (examples/granwave.ipynb)"
+PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m nbconvert --to notebook --execute examples/granwave.ipynb \
+  --output-dir build/examples > /dev/null
 
 echo "==> ctest: every test of the Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"

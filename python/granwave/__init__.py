@@ -153,7 +153,7 @@ class _Bar:
     """progress=True: a tqdm bar of the run's steps (Debian: python3-tqdm)."""
 
     def __init__(self, name):
-        from tqdm.auto import tqdm
+        from tqdm import tqdm  # the text bar: works in a terminal and a notebook without ipywidgets
         self.bar = tqdm(desc=name, unit="steps", unit_scale=True)
 
     def __call__(self, done, total):
