@@ -11,9 +11,7 @@ Bad input raises ValueError with the program's message (the one `granwave check`
 import json
 import os
 import tempfile
-import time as _time
 
-import numpy as np
 
 from . import _granwave
 from ._config import DATA_DIR
