@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libhdf5-dev hdf5-tools catch2 libtomlplusplus-dev nlohmann-json3-dev libfftw3-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pytest
+  python3-dev python3-pybind11 pybind11-dev python3-tqdm python3-nbconvert python3-ipykernel
   yade liggghts lammps libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev ccache
 )
@@ -27,6 +28,14 @@ fi
 echo "==> building granwave (Release) in build/"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 cmake --build build -j"$(nproc)"
+
+# The program on PATH and the Python module where /usr/bin/python3 finds it (CMAKE_INSTALL_PREFIX,
+# /usr/local: bin/granwave, lib/python3.X/dist-packages/granwave, share/granwave).
+if [[ -w /usr/local/bin ]]; then
+  cmake --install build > build.install.log || { cat build.install.log; exit 1; }
+else
+  echo "==> not installing (run as root: cmake --install build)"
+fi
 
 # The cross-code harness on PATH (an executable of the repository, run by /usr/bin/python3).
 if [[ -w /usr/local/bin ]]; then

@@ -3,14 +3,15 @@
 #   1. ctest on the Release build (labels unit, physics, route, regression, cli, slow, mpi),
 #   2. the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer (with the files
 #      fuzzer, tests/files.cmake), then libFuzzer on the readers for 60 s (issue #25),
-#   3. pytest for the cross-code harness (real YADE, LIGGGHTS and LAMMPS runs).
+#   3. pytest for the cross-code harness (real YADE, LIGGGHTS and LAMMPS runs) and for the Python
+#      module granwave (tests/python, against the program); the example notebook, executed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 jobs=$(nproc)
 
 echo "==> sanitizer build (ASan + UBSan) in build-sanitize/"
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DGRANWAVE_BENCH=OFF \
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DGRANWAVE_BENCH=OFF -DGRANWAVE_PYTHON=OFF \
   -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" > build-sanitize.configure.log 2>&1 || { cat build-sanitize.configure.log; exit 1; }
 # Only what the unit label runs: the unit test executables and the binary the cli tests call.
 unit_targets=$(cmake --build build-sanitize --target help | sed -n 's/^\.\.\. \(test_unit_[a-z_]*\).*/\1/p')
@@ -25,7 +26,7 @@ echo "==> libFuzzer over the TOML and HDF5 readers (clang, ASan + UBSan) in buil
 # Issue #25: seeds are the repository's cases and studies and fresh trace, system and study files
 # (tests/fuzz/seed_corpus.sh); the first byte of an input picks the reader.
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DGRANWAVE_SANITIZE=ON -DGRANWAVE_LIBFUZZER=ON -DGRANWAVE_OPENMP=OFF -DGRANWAVE_MPI=OFF -DGRANWAVE_BENCH=OFF \
+  -DGRANWAVE_SANITIZE=ON -DGRANWAVE_LIBFUZZER=ON -DGRANWAVE_OPENMP=OFF -DGRANWAVE_MPI=OFF -DGRANWAVE_BENCH=OFF -DGRANWAVE_PYTHON=OFF \
   -DGRANWAVE_NATIVE=OFF > build-fuzz.configure.log 2>&1 || { cat build-fuzz.configure.log; exit 1; }
 cmake --build build-fuzz -j"$jobs" --target readers_fuzzer
 bash tests/fuzz/seed_corpus.sh build/granwave build-fuzz/corpus
@@ -36,6 +37,12 @@ ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:allocator_may_return_null=1:max_all
 
 echo "==> pytest: the cross-code harness, including real YADE and LIGGGHTS runs"
 PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q tests/crosscheck
+
+echo "==> pytest: the Python module granwave against the program"
+/usr/bin/python3 -m pytest -q tests/python
+echo "==> the example notebook, executed (examples/granwave.ipynb)"
+PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m nbconvert --to notebook --execute examples/granwave.ipynb \
+  --output-dir build/examples > /dev/null
 
 echo "==> ctest: every test of the Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"

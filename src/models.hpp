@@ -15,8 +15,9 @@ struct RunRequest {
   std::string system_path;  // optional: a system file from `granwave build` to run instead of building
   bool json = false;        // print a machine-readable summary (one JSON object) on stdout
   bool quiet = false;       // no progress on stderr
-  // Called at each sample of a crystal run with the steps done and the run's steps (the CLI's
-  // progress line; rank 0 only under MPI).
+  // Called at each sample of a crystal or chain run with the steps done and the run's steps (the
+  // CLI's progress line, the Python module's signals; rank 0 only under MPI). It may throw: the
+  // run stops before any file is written.
   std::function<void(long done, long total)> progress;
   ResourceLimits limits;    // refused above (--max-steps, --max-memory; core/resources.hpp)
 };

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <span>
 #include <string>
@@ -120,6 +121,8 @@ struct SimOptions {
   std::size_t peak_profile_beads = 0;
   bool store_full_rate = true;
   config::StopRule stop;
+  // Called at each output sample with the steps done and the run's steps (RunRequest::progress).
+  std::function<void(long done, long total)> progress;
 };
 // dt (dt or dt_over_tc x shortest contact time), t_end, interval rounded to whole steps, fields,
 // sensors and stop rule of the case. Throws InputError for an unknown field or bead index.

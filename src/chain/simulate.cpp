@@ -309,7 +309,10 @@ ChainTrace simulate(const ChainSystem& sys, const SimOptions& opt) {
     st.step();
     sample_full();
     const bool on_grid = k % tr.stride == 0;
-    if (on_grid) sample();
+    if (on_grid) {
+      sample();
+      if (opt.progress) opt.progress(static_cast<long>(k), static_cast<long>(nsteps));
+    }
     if (opt.stop.enabled) {
       peak0 = std::max(peak0, st.contact_force(0) - F_static);
       const double thr = opt.stop.front_threshold * peak0;

@@ -141,7 +141,8 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
   enforce(a, c.path);
   for (const auto& w : a.warnings) std::cerr << "granwave run: warning: " << w << "\n";
 
-  const SimOptions opt = sim_options(c, sys);
+  SimOptions opt = sim_options(c, sys);
+  opt.progress = request.progress;
   RunFacts f;
   {
     const auto start = std::chrono::steady_clock::now();

@@ -127,9 +127,11 @@ auto measured(const std::string& path, Measure&& measure) {
 
 }  // namespace
 
-int cmd_analyze(const Args& args) {
+int cmd_analyze(const Args& args) { return cmd_analyze(args, std::cout); }
+
+int cmd_analyze(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    std::cout << kHelp;
+    out << kHelp;
     return 0;
   }
   const auto pos = positionals(args, {"--layers", "--field", "--t-max", "--period", "--wavenumber-speed"});
@@ -138,7 +140,7 @@ int cmd_analyze(const Args& args) {
   int lo = -1, hi = -1;
   if (const auto s = option_value(args, "", "--layers"); !s.empty()) parse_layers(s, "integers", &lo, &hi);
   if (impact::is_impact_trace(pos[0])) {  // the rebound of an impact trace (data/SCHEMA.md §7.3)
-    impact::print_analysis(impact::read_trace(pos[0]), json, std::cout);
+    impact::print_analysis(impact::read_trace(pos[0]), json, out);
     return 0;
   }
   const auto file = analysis::read_trace(pos[0]);
@@ -150,10 +152,10 @@ int cmd_analyze(const Args& args) {
       throw InputError(pos[0] + ": --wavenumber-speed is for crystal traces (the wavelength of seed 002 sec. 3.4)");
     const auto a = measured(pos[0], [&] { return analysis::analyze_chain(file.chain, {lo, hi}); });
     if (json) {
-      std::cout << json_text(analysis::to_json(file, a));
+      out << json_text(analysis::to_json(file, a));
       return 0;
     }
-    std::cout << analysis::to_text(file, a);
+    out << analysis::to_text(file, a);
     return 0;
   }
 
@@ -179,10 +181,10 @@ int cmd_analyze(const Args& args) {
   }
   const auto a = measured(pos[0], [&] { return analysis::analyze_crystal(file.crystal, opt); });
   if (json) {
-    std::cout << json_text(analysis::to_json(file, a));
+    out << json_text(analysis::to_json(file, a));
     return 0;
   }
-  std::cout << analysis::to_text(file, a);
+  out << analysis::to_text(file, a);
   return 0;
 }
 

@@ -35,7 +35,7 @@ config::Case load_single_case(const Args& args, const std::vector<std::string>& 
 
 std::string default_trace_path(const config::Case& c) { return c.name + ".traces.h5"; }
 
-// A crystal run's progress on stderr: sweep's progress line (steps done, rate, ETA), shown only
+// A run's progress on stderr: sweep's progress line (steps done, rate, ETA), shown only
 // when stderr is a terminal and once the run has taken longer than kQuietSeconds.
 class RunProgress {
  public:
@@ -107,12 +107,14 @@ int cmd_check(const Args& args) {
   return 0;
 }
 
-int cmd_build(const Args& args) {
+int cmd_build(const Args& args) { return cmd_build(args, std::cout); }
+
+int cmd_build(const Args& args, std::ostream& out_text) {
   const char* usage =
       "usage: granwave build CASE.toml -o system.h5\n"
       "  resolve everything random or derived (spins, radii, relaxed packing) into a system file";
   if (wants_help(args)) {
-    std::cout << usage << "\n";
+    out_text << usage << "\n";
     return 0;
   }
   config::Case c = load_single_case(args, {"-o", "--output"}, {}, usage);
@@ -125,7 +127,7 @@ int cmd_build(const Args& args) {
   } else {
     crystal::build(c, out);
   }
-  std::cout << "system written to " << out << "\n";
+  out_text << "system written to " << out << "\n";
   return 0;
 }
 
@@ -138,8 +140,8 @@ int cmd_run(const Args& args) {
       "  `granwave analyze TRACE` (default options): the same numbers, one ruler.\n"
       "  --json prints one JSON object (schema \"granwave-run/1\", data/SCHEMA.md §3.1): the run's\n"
       "  own numbers and, under \"analysis\", exactly what `granwave analyze TRACE --json` prints.\n"
-      "  A crystal run prints where its time loop spent its wall time (\"phases\" in the JSON, s)\n"
-      "  and, on stderr when it is a terminal, a progress line once the run takes more than 2 s;\n"
+      "  A crystal run prints where its time loop spent its wall time (\"phases\" in the JSON, s);\n"
+      "  on stderr when it is a terminal, a run shows a progress line once it takes more than 2 s;\n"
       "  --quiet leaves the progress line out.\n"
       "  Under `mpirun -n R` a crystal run is split into slabs of whole layers (R <= layers) and\n"
       "  writes the serial run's trace file bit for bit (docs/mpi.md); a chain run is refused";
@@ -154,22 +156,26 @@ int cmd_run(const Args& args) {
   req.trace_path = option_value(args, "-o", "--output");
   if (req.trace_path.empty()) req.trace_path = default_trace_path(c);
   req.system_path = option_value(args, "", "--system");
-  if (!req.system_path.empty() && !std::filesystem::exists(req.system_path)) {
-    throw InputError("--system " + req.system_path + ": no such file");
-  }
   req.json = has_flag(args, "--json");
   req.quiet = has_flag(args, "--quiet");
   RunProgress progress;
   if (!req.quiet) req.progress = [&progress](long done, long total) { progress.tick(done, total); };
+  return run_case(c, req, std::cout);
+}
+
+int run_case(const config::Case& c, const RunRequest& req, std::ostream& out) {
+  if (!req.system_path.empty() && !std::filesystem::exists(req.system_path)) {
+    throw InputError("--system " + req.system_path + ": no such file");
+  }
   if (c.model == config::Model::chain && sweep::world_size() > 1)
     throw InputError(c.path + ": case.model = \"chain\": a chain run is not split over MPI ranks (a crystal run is); "
                      "run it without mpirun (or with -n 1)");
   if (c.model == config::Model::impact) {
     if (sweep::world_size() > 1) throw InputError(c.path + ": case.model = \"impact\": an impact run is not split over MPI ranks");
-    return impact::run(c, req, std::cout);
+    return impact::run(c, req, out);
   }
-  if (c.model == config::Model::chain) return chain::run(c, req, std::cout);
-  return crystal::run(c, req, std::cout);
+  if (c.model == config::Model::chain) return chain::run(c, req, out);
+  return crystal::run(c, req, out);
 }
 
 }  // namespace granwave::cli

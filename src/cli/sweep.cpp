@@ -45,9 +45,11 @@ Prints a Markdown summary and the throughput (bead-steps, bead-steps/s, wall tim
 
 }  // namespace
 
-int cmd_sweep(const Args& args) {
+int cmd_sweep(const Args& args) { return cmd_sweep(args, std::cout); }
+
+int cmd_sweep(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    std::cout << kHelp;
+    out << kHelp;
     return 0;
   }
   const std::vector<std::string> valued{"-o", "--output", "--threads", "--limit", "--max-steps", "--max-memory"};
@@ -95,7 +97,7 @@ int cmd_sweep(const Args& args) {
       co.threads = o.threads;
       co.limit = o.limit;
       co.limits = o.limits;
-      const std::size_t left = sweep::run_crystal_study(pos[0], o.output, co, std::cout);
+      const std::size_t left = sweep::run_crystal_study(pos[0], o.output, co, out);
       if (left > 0 && sweep::is_root())
         std::cerr << "sweep: stopped after --limit " << o.limit << " runs; " << left << " left, rerun to finish\n";
       return 0;
@@ -110,11 +112,11 @@ int cmd_sweep(const Args& args) {
               << " done, rerun to finish\n";
     return 0;
   }
-  std::cout << sweep::spin_study_markdown(study, r) << "\n";
+  out << sweep::spin_study_markdown(study, r) << "\n";
   char line[256];
   std::snprintf(line, sizeof line, "runs: %zu (%zu computed, %zu resumed); %.4g bead-steps in %.2f s wall: %.4g bead-steps/s\n",
                 st.total, st.computed, st.resumed, st.work, st.seconds, st.seconds > 0 ? st.work / st.seconds : 0.0);
-  std::cout << line << "wrote " << o.output << "\n";
+  out << line << "wrote " << o.output << "\n";
   return 0;
 }
 

@@ -168,9 +168,11 @@ Json dispersion_json(const LatticePart& L) {
 
 }  // namespace
 
-int cmd_theory(const Args& args) {
+int cmd_theory(const Args& args) { return cmd_theory(args, std::cout); }
+
+int cmd_theory(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    std::cout << kHelp;
+    out << kHelp;
     return 0;
   }
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -189,7 +191,7 @@ int cmd_theory(const Args& args) {
   if (const auto s = option_value(args, "", "--nk"); !s.empty()) nk = parse_nk(s);
   const config::Case c = config::load_case(pos[0]);
   if (c.model == config::Model::impact) {  // Hertz, the damping's restitution, Coulomb's oblique impact
-    impact::print_theory(c, json, std::cout);
+    impact::print_theory(c, json, out);
     return 0;
   }
   if (c.model != config::Model::crystal || !c.crystal)
@@ -315,7 +317,7 @@ int cmd_theory(const Args& args) {
       voigt.push_back(row);
     }
     o["C_voigt_sym"] = {{"unit", "Pa"}, {"order", {"xx", "yy", "zz", "yz", "xz", "xy"}}, {"values", voigt}};
-    std::cout << json_text(o);
+    out << json_text(o);
     return 0;
   }
 

@@ -2,8 +2,12 @@
 // and the verb. Verbs throw InputError for bad input (main exits 2) and RunError for a failed
 // run (exit 1); they print their own --help.
 #pragma once
+#include <iosfwd>
 #include <string>
 #include <vector>
+
+#include "config/case.hpp"
+#include "models.hpp"
 
 namespace granwave::cli {
 
@@ -16,6 +20,13 @@ int cmd_analyze(const Args& args);
 int cmd_theory(const Args& args);
 int cmd_sweep(const Args& args);
 int cmd_figures(const Args& args);
+// The same verbs printing to `out` instead of std::cout (the Python module reads their --json).
+int cmd_build(const Args& args, std::ostream& out);
+int cmd_analyze(const Args& args, std::ostream& out);
+int cmd_theory(const Args& args, std::ostream& out);
+int cmd_sweep(const Args& args, std::ostream& out);
+// `granwave run` of a loaded case: the request's checks (system file, MPI) and the model's run.
+int run_case(const config::Case& c, const RunRequest& req, std::ostream& out);
 // The crystal half of `granwave figures` (seed 002's figures), called by cmd_figures.
 int figures_crystal(const Args& args);
 

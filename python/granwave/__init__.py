@@ -1,0 +1,248 @@
+"""granwave from Python: the solver's verbs in-process, on the same code as the program.
+
+    import granwave as g
+    case = g.Case.load(g.data_path("cases/crystal40.toml"))
+    r = g.run(case.replace({"contact.kt": 1e5}))
+    r.traces["layer_stress_zz"], r.time, r.layer_z, r.units["layer_stress_zz"], r.analysis["v_half_peak"]
+
+Bad input raises ValueError with the program's message (the one `granwave check` prints after
+"error: "), a failed run RuntimeError. Every function releases the GIL while the solver works.
+"""
+import json
+import os
+import tempfile
+
+
+from . import _granwave
+from ._config import DATA_DIR
+
+__all__ = ["Case", "Result", "data_path", "run", "analyze", "theory", "build", "sweep"]
+
+# Units of the trace file's datasets (data/SCHEMA.md §3; the file says "SI").
+_UNITS = {
+    "time": "s", "layer_z": "m", "layer_stress_zz": "Pa", "layer_stress_zx": "Pa",
+    "layer_displacement_z": "m", "layer_displacement_x": "m", "layer_velocity_z": "m/s",
+    "layer_velocity_x": "m/s", "coordination": "1", "bead_force": "N", "contact_force": "N",
+    "kinetic": "J", "potential": "J", "dissipated": "J", "work_in": "J", "verlet_correction": "J",
+}
+
+
+def data_path(relative=""):
+    """The path of a paper case or study shipped with granwave, e.g. data_path("cases/crystal40.toml").
+
+    Installed: PREFIX/share/granwave/...; from a build tree: the source tree's data/.
+    Raises FileNotFoundError when there is no such file."""
+    p = os.path.join(DATA_DIR, relative)
+    if not os.path.exists(p):
+        raise FileNotFoundError(f"{relative}: not among granwave's data in {DATA_DIR}")
+    return p
+
+
+class Case:
+    """One case file's setup (data/SCHEMA.md §1), checked as the program checks it.
+
+    Case.load(path), Case.from_dict(d), case.to_dict(), case.replace({"contact.kt": 1e5});
+    case.text is the TOML text a run stores in its trace, case.path the name messages give."""
+
+    def __init__(self, text, path="<case>"):
+        self.text = text
+        self.path = path
+        self.name, self.model = _granwave.parse_case(text, path)
+
+    @classmethod
+    def load(cls, path):
+        """Read and check a case file (ValueError: the program's message naming the file and key)."""
+        path = os.fspath(path)
+        try:
+            with open(path, "rb") as f:
+                text = f.read().decode("utf-8", errors="surrogateescape")
+        except OSError:
+            raise ValueError(f"{path}: cannot open the case file") from None
+        return cls(text, path)
+
+    @classmethod
+    def from_dict(cls, d, path="<dict>"):
+        """A case from a dict of TOML tables ({"case": {...}, "crystal": {...}, ...})."""
+        return cls(_granwave.toml_text(d), path)
+
+    def to_dict(self):
+        """The case as nested dicts (what tomllib reads from its text)."""
+        import tomllib
+        return tomllib.loads(self.text)
+
+    def replace(self, changes=None, **keys):
+        """A new case with dotted keys changed: case.replace({"contact.kt": 1e5}) or
+        case.replace(contact__kt=1e5). The result is checked like a case file; ValueError names the key."""
+        d = self.to_dict()
+        items = dict(changes or {})
+        items.update({k.replace("__", "."): v for k, v in keys.items()})
+        for key, value in items.items():
+            *tables, last = key.split(".")
+            t = d
+            for name in tables:
+                t = t.setdefault(name, {})
+                if not isinstance(t, dict):
+                    raise ValueError(f"{key}: {name} is not a table")
+            t[last] = value
+        # Messages name the changed case and a line of its new text, not the file's.
+        return Case.from_dict(d, self.path if self.path.endswith(" (replaced)") else f"{self.path} (replaced)")
+
+    def save(self, path):
+        """Write the case text to a file (what `granwave run FILE` reads)."""
+        with open(path, "w", encoding="utf-8", errors="surrogateescape") as f:
+            f.write(self.text)
+        return path
+
+    def _file(self, tmp):
+        """A file holding this case: its own file when unchanged, else a copy in tmp."""
+        if os.path.isfile(self.path):
+            with open(self.path, "rb") as f:
+                if f.read().decode("utf-8", errors="surrogateescape") == self.text:
+                    return self.path
+        return self.save(os.path.join(tmp, f"{self.name}.toml"))
+
+    def __repr__(self):
+        return f"Case({self.name!r}, model={self.model!r}, path={self.path!r})"
+
+
+def _case(case):
+    return case if isinstance(case, Case) else Case.load(case)
+
+
+def _read_arrays(path):
+    """Every dataset of a trace or study file but the system's copy, as numpy arrays keyed by path."""
+    import h5py
+    out = {}
+    with h5py.File(path, "r") as f:
+        def take(name, obj):
+            if isinstance(obj, h5py.Dataset) and not name.startswith("system/"):
+                out[name] = obj[()]
+        f.visititems(take)
+    return out
+
+
+class Result:
+    """A run: traces, energies, the run's numbers and its analysis.
+
+    traces   {name: array} of /crystal or /chain (layer_stress_zz [nt, nlayers], ...)
+    time     /time [nt] (s);  layer_z  /crystal/layer_z [nlayers] (m; crystal only)
+    energy   {kinetic, potential, dissipated, work_in[, verlet_correction]: [nt] (J)}
+    units    {name: unit} of every array
+    numbers  the `granwave run --json` object without its analysis (steps, wall_seconds, ...)
+    analysis what `granwave analyze TRACE --json` gives (None when the trace cannot be measured)
+    trace    the trace file written (None when run(out=None))"""
+
+    def __init__(self, numbers, arrays, trace):
+        self.analysis = numbers.pop("analysis", None)
+        self.numbers = numbers
+        self.trace = trace
+        self.time = arrays.pop("time", None)
+        self.energy = {k.split("/", 1)[1]: v for k, v in arrays.items() if k.startswith("energy/")}
+        self.traces = {k.split("/", 1)[-1]: v for k, v in arrays.items() if not k.startswith("energy/")}
+        self.layer_z = self.traces.pop("layer_z", None)
+        self.units = {k: _UNITS.get(k.rsplit("/", 1)[-1], "SI") for k in
+                      ["time", *self.traces, *self.energy] + (["layer_z"] if self.layer_z is not None else [])}
+
+    def __repr__(self):
+        return f"Result({self.numbers.get('case')!r}, {len(self.time)} samples, traces={sorted(self.traces)})"
+
+
+class _Bar:
+    """progress=True: a tqdm bar of the run's steps (Debian: python3-tqdm)."""
+
+    def __init__(self, name):
+        from tqdm import tqdm  # the text bar: works in a terminal and a notebook without ipywidgets
+        self.bar = tqdm(desc=name, unit="steps", unit_scale=True)
+
+    def __call__(self, done, total):
+        self.bar.total = total
+        self.bar.update(done - self.bar.n)
+
+    def close(self):
+        self.bar.close()
+
+
+def run(case, out=None, system=None, progress=None):
+    """Run a case in-process, as `granwave run CASE --json -o OUT` does, and return a Result.
+
+    case      a Case or a case file's path
+    out       the trace file to write (the program's file, written as OUT.tmp and renamed); None:
+              a temporary one, read and removed
+    system    a system file from build() to run instead of building the packing
+    progress  None; True for a tqdm bar; or a callable progress(steps_done, steps_total), called
+              from the run's thread with the GIL every few milliseconds
+
+    The GIL is released while the run works; every 5 ms (at the next output sample of a crystal or
+    chain run) it takes it back, so Ctrl-C (KeyboardInterrupt) stops the run, leaving neither OUT
+    nor OUT.tmp.
+    Raises ValueError for a refused case, RuntimeError for a failed run (an unstable crystal)."""
+    case = _case(case)
+    bar = _Bar(case.name) if progress is True else None
+    callback = bar if bar else (progress or None)
+    with tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
+        path = os.fspath(out) if out is not None else os.path.join(tmp, f"{case.name}.traces.h5")
+        try:
+            text = _granwave.run(case.text, case.path, path, os.fspath(system) if system else "", callback)
+        except KeyboardInterrupt:
+            # A Ctrl-C after the time loop (while the file was written) is handled here: no file either.
+            for p in (path, path + ".tmp"):
+                if os.path.exists(p):
+                    os.remove(p)
+            raise
+        finally:
+            if bar:
+                bar.close()
+        numbers = json.loads(text)
+        arrays = _read_arrays(path)
+        return Result(numbers, arrays, path if out is not None else None)
+
+
+def _options(opts):
+    args = []
+    for k, v in opts.items():
+        if v is None or v is False:
+            continue
+        args += [f"--{k.replace('_', '-')}"] + ([] if v is True else [str(v)])
+    return args
+
+
+def analyze(trace, **options):
+    """`granwave analyze TRACE --json` of any code's trace file (or a Result written with out=).
+
+    options: layers="LO:HI", field=..., t_max=..., period="oscillation"|"pulse",
+    wavenumber_speed=...; the dict the program prints (speeds, arrivals, peaks, dispersion)."""
+    if isinstance(trace, Result):
+        if trace.trace is None:
+            raise ValueError("analyze: this Result has no trace file (run it with out=...); its .analysis is there")
+        trace = trace.trace
+    return json.loads(_granwave.analyze([os.fspath(trace), "--json", *_options(options)]))
+
+
+def theory(case, layers=None, nk=None):
+    """`granwave theory CASE --json`: eq. (10)'s tensor, the lattice dynamics with rotations and
+    prestress (long-wave speeds, dispersion), V_p, V_s, omega_0; for impact cases Hertz and Coulomb."""
+    case = _case(case)
+    with tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
+        return json.loads(_granwave.theory([case._file(tmp), "--json", *_options({"layers": layers, "nk": nk})]))
+
+
+def build(case, out=None):
+    """`granwave build CASE -o OUT`: the resolved system file (default NAME.system.h5); its path."""
+    case = _case(case)
+    out = os.fspath(out) if out is not None else f"{case.name}.system.h5"
+    with tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
+        _granwave.build([case._file(tmp), "-o", out])
+    return out
+
+
+def sweep(study, out=None, threads=None, limit=None):
+    """`granwave sweep STUDY -o OUT --threads N`: a study (resumable: the same call again finishes
+    a stopped one). Returns {"file": OUT, "tables": {path: array} of every dataset but /system,
+    "attrs": the root attributes, "text": what the program prints}."""
+    study = os.fspath(study)
+    out = os.fspath(out) if out is not None else os.path.splitext(os.path.basename(study))[0] + ".h5"
+    text = _granwave.sweep([study, "-o", out, "--quiet", *_options({"threads": threads, "limit": limit})])
+    import h5py
+    with h5py.File(out, "r") as f:
+        attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+    return {"file": out, "tables": _read_arrays(out), "attrs": attrs, "text": text}
