@@ -307,7 +307,11 @@ def run_crystal(case, system, dt, nsteps, every):
         sys.stderr.write("run_case.py: YADE has one friction coefficient; using mu_static=%g (mu_dynamic=%g "
                          "ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
     phi = math.atan(c["mu_static"])
-    mat, ip2, law2 = law.yade_interaction(c, yade.wrapper, phi)
+    from xclib.codefacts import Unsupported
+    try:
+        mat, ip2, law2 = law.yade_interaction(c, yade.wrapper, phi)
+    except Unsupported as e:
+        fail("%s: %s" % (case["case"]["name"], e))
     mat = O.materials.append(mat)
     zoff = 2 * float(np.max(r))
     lz = float(np.ptp(pos[:, 2])) + 4 * zoff + 10 * float(np.max(r))

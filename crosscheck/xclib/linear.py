@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import sys
 
-from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties
+from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties, refuse_resistance,
+                              rolling_on, torsion_on, YADE_WHY, LIGGGHTS_WHY)
 
 NAME = "linear"
 CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
@@ -36,6 +37,7 @@ def _yade_damped(c: dict) -> bool:
 
 def yade_interaction(c: dict, W, phi: float):
     """(material, Ip2, Law2) of YADE (W: yade.wrapper) for the case's contact."""
+    refuse_resistance(c, "YADE", YADE_WHY)
     if _yade_damped(c):
         # Law2_ScGeom_ViscElPhys_Basic always clips (computeForceTorqueViscEl: normalForce = 0 when
         # kn delta + cn v_n < 0, "prevent appearing of attraction forces"; checked on 2023.02a with two
@@ -73,6 +75,7 @@ def _properties(kn, kt, gamma_n, gamma_t, mu) -> str:
 
 def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
     """The contact lines of the crystal deck and whether the pair keeps a shear history."""
+    refuse_resistance(c, "LIGGGHTS", LIGGGHTS_WHY)
     lines = ("# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed, 3 source: "
              "one material)\n" + _properties(c["kn"], c["kt"], c["gamma_n"], c["gamma_t"], c["mu_static"]) +
              "pair_style      gran model hooke/stiffness tangential history absolute_damping on limitForce %s\n"
@@ -91,13 +94,15 @@ def liggghts_attrs(c: dict) -> dict:
 
 
 # -------------------------------------------------------------------------------------------- LAMMPS
-def lammps_style(c: dict, mass) -> dict:
+def lammps_style(c: dict, mass, radius=None) -> dict:
     """The pair style lines and the conventions they run (MAPPING.md, LAMMPS section)."""
     import numpy as np
     kn, kt, gn, gt = float(c["kn"]), float(c["kt"]), float(c["gamma_n"]), float(c["gamma_t"])
     if gt > 0.0:
         raise Unsupported("gamma_t > 0: the dumped tangential dashpot sees v(t) and w(t) instead of the step's "
                           "half-step velocities, which the writer cannot put back (no case uses gamma_t)")
+    if rolling_on(c) or torsion_on(c):
+        return _lammps_resisted(c, radius)
     if kt > 0.0:
         # gran/hooke/history: gamma_n per unit effective mass (damp = meff gamman v_n), one global value
         if gn > 0.0 and not np.all(mass == mass[0]):
@@ -120,6 +125,25 @@ def lammps_style(c: dict, mass) -> dict:
     comment = ("granular hooke, absolute dashpot (damping velocity)%s, no tangential force"
                % (", limit_damping (no pulling dashpot)" if clip else ""))
     return dict(lines=line, conventions=conv, tangential=False, clip=clip, comment=comment, style="granular hooke")
+
+
+def _lammps_resisted(c: dict, radius) -> dict:
+    """Rolling and torsion resistance: only pair granular has them (`rolling sds`, `twisting sds`), so
+    the linear law is hooke with an absolute dashpot (damping velocity) and tangential linear_history with
+    no tangential dashpot; its arm is MIXED_ARM (a in the surface velocity, a - delta/2 in the torque)."""
+    from xclib.codefacts import MIXED_ARM, lammps_resistance
+    kn, kt, gn = float(c["kn"]), float(c["kt"]), float(c["gamma_n"])
+    clip = c["normal_tension"] == "clip" and gn > 0.0
+    tang = ("tangential linear_history %s 0.0 %s" % (_g(kt), _g(c["mu_static"])) if kt > 0.0
+            else "tangential linear_nohistory 0 0")
+    line = ("pair_style      granular\npair_coeff      * * hooke %s %s %s damping velocity%s%s"
+            % (_g(kn), _g(gn), tang, " limit_damping" if clip else "", lammps_resistance(c, radius)))
+    conv = dict(lever_arm=MIXED_ARM if kt > 0.0 else c.get("lever_arm", "radius"), normal_tension=c["normal_tension"],
+                coulomb_normal="magnitude" if kt > 0.0 else c.get("coulomb_normal", "compressive"))
+    comment = ("granular hooke, absolute dashpot (damping velocity), %s, rolling/twisting sds (Luding)"
+               % tang.split(" ")[1])
+    return dict(lines=line, conventions=conv, tangential=kt > 0.0, clip=clip, comment=comment,
+                style="granular hooke + sds")
 
 
 def lammps_dump(c: dict) -> dict:

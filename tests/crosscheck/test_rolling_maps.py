@@ -1,0 +1,74 @@
+"""Rolling and torsion resistance in the other codes' drivers (issue #28): LAMMPS maps them onto pair
+granular's `rolling sds` / `twisting sds` (liggghts_inputs/MAPPING.md), every other driver refuses the
+case naming the key and the code: none may drop them."""
+import os
+import sys
+import tomllib
+
+import numpy as np
+import pytest
+
+from xclib import hertz_mindlin, linear
+from xclib import traces as T
+from xclib.codefacts import Unsupported
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "lammps_inputs"))
+import lammps_case as LM  # noqa: E402
+
+
+def contact(name):
+    with open(os.path.join(HERE, "cases", "crystal_small_%s.toml" % name), "rb") as f:
+        return T.contact_params(tomllib.load(f))
+
+
+MONO = np.full(4, 1e-3)
+
+
+def test_lammps_rolling_is_sds_with_granwave_numbers():
+    line = LM.crystal_style(contact("rolling"), np.ones(4), MONO)["lines"]
+    assert "rolling sds 20000.0 0.1 1e+100" in line     # k_r, gamma_r, no limit
+    assert "twisting" not in line
+
+
+def test_lammps_twisting_is_per_radian_with_a_length_limit():
+    line = LM.crystal_style(contact("rolltors_slip"), np.ones(4), MONO)["lines"]
+    arm = 0.5e-3                                         # a' = R* of equal radii 1 mm
+    assert "rolling sds 20000.0 0.1 0.01" in line
+    assert "twisting sds %r %r %r" % (2e4 * arm * arm, 0.1 * arm * arm, 0.01 * arm) in line
+
+
+def test_lammps_refuses_polydisperse_torsion_but_not_rolling():
+    r = np.array([1e-3, 1.5e-3])
+    with pytest.raises(Unsupported, match="ko = 20000.*polydisperse"):
+        LM.crystal_style(contact("torsion"), np.ones(2), r)
+    assert "rolling sds" in LM.crystal_style(contact("rolling"), np.ones(2), r)["lines"]
+
+
+def test_lammps_kt0_rolling_is_not_treated_as_frictionless():
+    c = dict(contact("rolling"), kt=0.0)
+    sty = LM.crystal_style(c, np.ones(4), MONO)
+    assert "rolling sds" in sty["lines"] and "linear_nohistory" in sty["lines"]
+
+
+def test_hertz_mindlin_lammps_carries_the_resistance():
+    c = dict(contact("rolltors"), law="hertz_mindlin", youngs_modulus=1e9, poisson_ratio=0.3)
+    line = hertz_mindlin.lammps_style(c, np.ones(4), MONO)["lines"]
+    assert line.startswith("pair_style      granular") and "rolling sds" in line and "twisting sds" in line
+
+
+@pytest.mark.parametrize("law", [linear, hertz_mindlin])
+@pytest.mark.parametrize("name,key", [("rolling", "kr = 20000"), ("torsion", "ko = 20000")])
+def test_liggghts_and_yade_refuse_with_key_and_code(law, name, key):
+    c = dict(contact(name), youngs_modulus=1e9, poisson_ratio=0.3)
+    with pytest.raises(Unsupported, match="%s.*LIGGGHTS" % key):
+        law.liggghts_lines(c, "off")
+    with pytest.raises(Unsupported, match="%s.*YADE" % key):
+        law.yade_interaction(c, None, 0.5)
+
+
+def test_without_resistance_nothing_changes():
+    c = contact("rolling")
+    for k in ("kr", "gamma_r"):
+        c.pop(k)
+    assert LM.crystal_style(c, np.ones(4), MONO)["style"] == "gran/hooke/history"
