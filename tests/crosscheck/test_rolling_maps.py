@@ -72,3 +72,11 @@ def test_without_resistance_nothing_changes():
     for k in ("kr", "gamma_r"):
         c.pop(k)
     assert LM.crystal_style(c, np.ones(4), MONO)["style"] == "gran/hooke/history"
+
+
+def test_benchmark_decks_refuse_the_resistance():
+    from xclib import driver as D
+    with open(os.path.join(HERE, "cases", "crystal_small_rolling.toml"), "rb") as f:
+        case = tomllib.load(f)
+    with pytest.raises(Unsupported, match="kr = 20000.*rolling and torsion"):
+        D.layer_deck_values(case, {"radius": [1e-3, 1e-3], "position": [[0, 0, 0], [0, 0, 1e-3]]})

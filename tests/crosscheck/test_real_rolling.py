@@ -1,0 +1,58 @@
+"""Real runs: granwave and LAMMPS on the small crystals with Luding's rolling and torsion resistance
+(issue #28; LAMMPS `rolling sds` / `twisting sds`, liggghts_inputs/MAPPING.md).
+
+LAMMPS needs pair granular for them, whose tangential arm is a in the surface velocity and a - delta/2
+in the torque: a convention granwave does not run, so the harness reports the pair as EXPECTED-DIFF
+(lever arm) and never judges it. The fixtures keep delta/a = 2e-5 so that this difference stays of
+that order: measured 2.4e-6 .. 1.72e-5 of the peak (all four fixtures; 100x less at z/l0 = 10 and 19
+with the overlap and step 100x smaller, so it is the arm). Asserted: the harness's verdict, that the
+arm is the only reason, and every compared value below 1.5 delta/a = 3e-5 (a bound on the measured
+convention difference, a regression bound, not a tolerance of the law).
+
+    /usr/bin/python3 -m pytest tests/crosscheck/test_real_rolling.py -m realcodes
+"""
+import os
+import subprocess
+
+import pytest
+
+from xclib import harness
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+XC = os.path.join(REPO, "crosscheck", "crosscheck")
+NAMES = ("rolling", "torsion", "rolltors", "rolltors_slip")
+CASES = [os.path.join(HERE, "cases", "crystal_small_%s.toml" % n) for n in NAMES]
+
+ARM_BOUND = 1.5 * 2e-5     # 1.5 delta/a of the fixtures (overlap = 1e-5 of d)
+
+pytestmark = pytest.mark.realcodes
+
+
+@pytest.mark.skipif(harness.RN.find_lammps() is None, reason="LAMMPS (lmp) not installed")
+def test_lammps_matches_granwave_with_rolling_and_torsion(tmp_path):
+    # this tree's build first: a granwave on PATH may predate the rolling keys
+    built = os.path.join(REPO, "build", "granwave")
+    gw = os.environ.get("GRANWAVE") or (built if os.access(built, os.X_OK) else harness.find_granwave(None))
+    if gw is None:
+        pytest.skip("granwave not built")
+    rep = tmp_path / "rep"
+    p = subprocess.run([XC, "run", "--codes", "granwave,lammps", "--granwave", gw, "--report", str(rep),
+                        "--timeout", "120", *CASES], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0 and "VERDICT: PASS" in p.stdout, p.stdout + p.stderr
+    for name in NAMES:   # the lever arm is the only convention the pair differs in
+        line = [ln for ln in p.stdout.splitlines() if ln.startswith("| xc_crystal_small_%s |" % name)]
+        assert len(line) == 1 and "| EXPECTED-DIFF | granwave-lammps: lever-arm convention" in line[0], p.stdout
+        assert line[0].count("convention: the traces say") == 1, line[0]
+    report = (rep / "report.md").read_text()
+    rows = [ln.split("|") for ln in report.splitlines() if ln.startswith("| granwave-lammps |")]
+    traces = [r for r in rows if r[2].strip() in ("trace_max_rel", "trace_l2_rel")]
+    assert len(traces) >= 4 * 4, report
+    for r in rows:
+        status, value, tol = r[6].strip(), r[4].strip(), r[5].strip()
+        # EXPECTED-DIFF only for the lever arm convention; each value within its tolerance
+        assert status in ("PASS", "EXPECTED-DIFF"), r
+        if status == "PASS":
+            assert float(value) <= float(tol), r
+        elif value not in ("", "-"):
+            assert float(value) <= ARM_BOUND, r
