@@ -40,7 +40,8 @@ def refuse_resistance(c: dict, code: str, why: str) -> None:
     """Unsupported naming the case's rolling/torsion keys and the code, when any resistance is on."""
     keys = resistance_keys(c)
     if keys:
-        raise Unsupported("[contact] %s: %s %s" % (", ".join(keys), code, why))
+        raise Unsupported("[contact] %s: rolling/torsion resistance is not mapped for %s %s"
+                          % (", ".join(keys), code, why))
 
 
 # mu_r, mu_o absent: no limit; LAMMPS' sds always takes one, so a limit no force reaches
@@ -72,9 +73,9 @@ def lammps_resistance(c: dict, radius) -> str:
 
 
 # What the YADE and LIGGGHTS drivers say when a case has rolling or torsion resistance (both laws).
-YADE_WHY = ("is not mapped by yade_scripts/run_case.py (its rolling law, Law2_ScGeom6D_CohFrictPhys_CohesionMoment, "
+YADE_WHY = ("by yade_scripts/run_case.py (its rolling law, Law2_ScGeom6D_CohFrictPhys_CohesionMoment, "
             "has no dashpot and levers the limit by min(a_i, a_j): liggghts_inputs/MAPPING.md)")
-LIGGGHTS_WHY = ("is not mapped by liggghts_inputs/liggghts_case.py (rolling_friction luding keeps a fixed history, "
+LIGGGHTS_WHY = ("by liggghts_inputs/liggghts_case.py (rolling_friction luding keeps a fixed history, "
                 "lumps torsion into the rolling spring and drops the rolling dashpot: liggghts_inputs/MAPPING.md)")
 
 

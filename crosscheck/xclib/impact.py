@@ -78,7 +78,7 @@ def setup(case: dict, case_path: str, granwave: str | None = None) -> SimpleName
         raise Unsupported("impact drivers run law = \"hertz_mindlin\" only (case: %s)" % c["law"])
     if c["mu_static"] != c["mu_dynamic"]:
         raise Unsupported("mu_static != mu_dynamic (one mu in LAMMPS, LIGGGHTS and YADE)")
-    refuse_resistance(c, "the impact drivers (YADE, LIGGGHTS, LAMMPS)", "do not map rolling and torsion resistance")
+    refuse_resistance(c, "YADE, LIGGGHTS or LAMMPS", "by the impact drivers (crosscheck/xclib/impact.py)")
     th = theory(case_path, granwave)
     b1 = _body(case, imp["body1"])
     b2 = _body(case, imp["body2"]) if "body2" in imp else None
