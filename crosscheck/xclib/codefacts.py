@@ -73,8 +73,8 @@ def lammps_resistance(c: dict, radius) -> str:
 
 
 # What the YADE and LIGGGHTS drivers say when a case has rolling or torsion resistance (both laws).
-YADE_WHY = ("by yade_scripts/run_case.py (its rolling law, Law2_ScGeom6D_CohFrictPhys_CohesionMoment, "
-            "has no dashpot and levers the limit by min(a_i, a_j): liggghts_inputs/MAPPING.md)")
+YADE_WHY = ("by yade_scripts/run_case.py with Hertz-Mindlin (its rolling law, Law2_ScGeom6D_CohFrictPhys_"
+            "CohesionMoment, sits on a linear contact: liggghts_inputs/MAPPING.md)")
 LIGGGHTS_WHY = ("by liggghts_inputs/liggghts_case.py (rolling_friction luding keeps a fixed history, "
                 "lumps torsion into the rolling spring and drops the rolling dashpot: liggghts_inputs/MAPPING.md)")
 

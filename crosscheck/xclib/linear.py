@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 
 from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties, refuse_resistance,
-                              rolling_on, torsion_on, YADE_WHY, LIGGGHTS_WHY)
+                              resistance_keys, rolling_on, torsion_on, LIGGGHTS_WHY)
 
 NAME = "linear"
 CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
@@ -37,7 +37,8 @@ def _yade_damped(c: dict) -> bool:
 
 def yade_interaction(c: dict, W, phi: float):
     """(material, Ip2, Law2) of YADE (W: yade.wrapper) for the case's contact."""
-    refuse_resistance(c, "YADE", YADE_WHY)
+    if rolling_on(c) or torsion_on(c):
+        return _yade_resisted(c, W, phi)
     if _yade_damped(c):
         # Law2_ScGeom_ViscElPhys_Basic always clips (computeForceTorqueViscEl: normalForce = 0 when
         # kn delta + cn v_n < 0, "prevent appearing of attraction forces"; checked on 2023.02a with two
@@ -56,6 +57,27 @@ def yade_interaction(c: dict, W, phi: float):
         return mat, W.Ip2_ViscElMat_ViscElMat_ViscElPhys(), W.Law2_ScGeom_ViscElPhys_Basic()
     mat = W.FrictMat(young=1e9, poisson=0.3, frictionAngle=phi, density=1000.0)
     return mat, W.Ip2_FrictMat_FrictMat_FrictPhys(kn=c["kn"], ks=c["kt"]), W.Law2_ScGeom_FrictPhys_CundallStrack()
+
+
+def _yade_resisted(c: dict, W, phi: float):
+    """Rolling and torsion on CohFrictPhys (MAPPING.md): Law2_ScGeom6D_CohFrictPhys_CohesionMoment,
+    incremental, moments always on, no cohesion. Equal radii a (run_case.py checks): kn = E a, ks = nu kn,
+    rolling stiffness alphaKr ks a^2 = k_r a'^2 with a' = a/2, limits etaRoll a |f_n| = mu_r a' |f_n|;
+    torsion alike. No rolling or twist dashpot, and ks > 0 carries the angular springs."""
+    bad = [k for k in ("gamma_r", "gamma_o", "gamma_n", "gamma_t") if float(c.get(k, 0.0)) > 0]
+    if bad or float(c["kt"]) <= 0:
+        raise Unsupported("[contact] %s: YADE's CohesionMoment law has no rolling, twist or normal dashpot and "
+                          "scales its angular springs by ks: %s = 0 and kt > 0 only"
+                          % (", ".join(resistance_keys(c)), ", ".join(bad) or "gamma_r, gamma_o"))
+    kn, kt = float(c["kn"]), float(c["kt"])
+    eta = lambda mu: 0.5 * float(mu) if mu is not None else -1.0  # noqa: E731  (-1: no limit)
+    # young is set per radius by run_case.py (kn = E a); here the ratios, which do not depend on a
+    mat = W.CohFrictMat(young=1.0, poisson=kt / kn, frictionAngle=phi, density=1000.0, isCohesive=False,
+                        momentRotationLaw=True, alphaKr=float(c.get("kr", 0.0)) / (4.0 * kt),
+                        alphaKtw=float(c.get("ko", 0.0)) / (4.0 * kt), etaRoll=eta(c.get("mu_r")),
+                        etaTwist=eta(c.get("mu_o")), normalCohesion=0.0, shearCohesion=0.0)
+    law2 = W.Law2_ScGeom6D_CohFrictPhys_CohesionMoment(useIncrementalForm=True, always_use_moment_law=True)
+    return mat, W.Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(), law2
 
 
 def yade_attrs(c: dict) -> dict:

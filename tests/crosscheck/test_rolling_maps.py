@@ -80,3 +80,19 @@ def test_benchmark_decks_refuse_the_resistance():
         case = tomllib.load(f)
     with pytest.raises(Unsupported, match="kr = 20000.*rolling and torsion"):
         D.layer_deck_values(case, {"radius": [1e-3, 1e-3], "position": [[0, 0, 0], [0, 0, 1e-3]]})
+
+
+def test_yade_cohesion_moment_map_without_dashpots():
+    """kn = E a, ks = nu kn; alphaKr ks a^2 = k_r a'^2 (a' = a/2): alphaKr = k_r/(4 kt); etaRoll a = mu_r a'."""
+    from types import SimpleNamespace
+    W = SimpleNamespace(CohFrictMat=dict, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys=lambda: "ip2",
+                        Law2_ScGeom6D_CohFrictPhys_CohesionMoment=dict)
+    c = dict(contact("rolltors_slip"), gamma_r=0.0, gamma_o=0.0)
+    mat, ip2, law2 = linear.yade_interaction(c, W, 0.5)
+    assert mat["poisson"] == 1.0 and mat["alphaKr"] == 2e4 / 4e5 and mat["alphaKtw"] == 2e4 / 4e5
+    assert mat["etaRoll"] == 0.005 and mat["etaTwist"] == 0.005 and mat["momentRotationLaw"]
+    assert law2 == dict(useIncrementalForm=True, always_use_moment_law=True)
+    c.pop("mu_r")
+    assert linear.yade_interaction(c, W, 0.5)[0]["etaRoll"] == -1.0      # no limit
+    with pytest.raises(Unsupported, match="gamma_r"):
+        linear.yade_interaction(dict(c, gamma_r=0.1), W, 0.5)
