@@ -161,16 +161,16 @@ def render_chain(case: dict, system: dict, workdir: str, facts: dict) -> str:
 
 
 # ---------------------------------------------------------------------------------------- crystal
-def crystal_style(c: dict, mass: np.ndarray) -> dict:
+def crystal_style(c: dict, mass: np.ndarray, radius=None) -> dict:
     """The pair style lines and the conventions it runs (MAPPING.md, LAMMPS section): the law's
     mapping module's (xclib.linear, xclib.hertz_mindlin)."""
-    return L.law_of(c).lammps_style(c, mass)
+    return L.law_of(c).lammps_style(c, mass, radius)
 
 
 def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
     x = DRV.crystal(case, system)
     c = x.c
-    sty = crystal_style(c, x.m)
+    sty = crystal_style(c, x.m, x.r)
     for key, used in sty["conventions"].items():
         asked = c.get(key)
         law = L.law_of(c)

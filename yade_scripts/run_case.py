@@ -41,7 +41,8 @@ from xclib import traces as T  # noqa: E402
 from yade import O, utils  # noqa: E402
 import yade.wrapper  # noqa: E402  (the crystal's contact classes: xclib.linear, xclib.hertz_mindlin)
 from yade.wrapper import (  # noqa: E402
-    ForceResetter, InsertionSortCollider, Bo1_Sphere_Aabb, InteractionLoop, Ig2_Sphere_Sphere_ScGeom,
+    ForceResetter, InsertionSortCollider, Bo1_Sphere_Aabb, InteractionLoop, Ig2_Sphere_Sphere_ScGeom, Ig2_Sphere_Sphere_ScGeom6D,
+    Law2_ScGeom6D_CohFrictPhys_CohesionMoment,
     Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, NewtonIntegrator, PyRunner, FrictMat)
 from yade.minieigenHP import Vector3  # noqa: E402
 
@@ -307,7 +308,17 @@ def run_crystal(case, system, dt, nsteps, every):
         sys.stderr.write("run_case.py: YADE has one friction coefficient; using mu_static=%g (mu_dynamic=%g "
                          "ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
     phi = math.atan(c["mu_static"])
-    mat, ip2, law2 = law.yade_interaction(c, yade.wrapper, phi)
+    from xclib.codefacts import Unsupported
+    try:
+        mat, ip2, law2 = law.yade_interaction(c, yade.wrapper, phi)
+    except Unsupported as e:
+        fail("%s: %s" % (case["case"]["name"], e))
+    six_d = isinstance(law2, Law2_ScGeom6D_CohFrictPhys_CohesionMoment)   # rolling and torsion
+    if six_d:
+        if float(np.max(r)) != float(np.min(r)):
+            fail("%s: rolling/torsion resistance is mapped for YADE for equal radii only (CohesionMoment's "
+                 "stiffness a_i a_j and limit lever min(a_i, a_j))" % case["case"]["name"])
+        mat.young = c["kn"] / float(r[0])    # Ip2_CohFrict: kn = 2 E a_i a_j/(a_i + a_j) = E a
     mat = O.materials.append(mat)
     zoff = 2 * float(np.max(r))
     lz = float(np.ptp(pos[:, 2])) + 4 * zoff + 10 * float(np.max(r))
@@ -348,7 +359,8 @@ def run_crystal(case, system, dt, nsteps, every):
     # delta) = 1/(1 - 1e-3) here, which makes CundallStrack's effective kt 1e-3 stiffer (measured: P speed
     # 2.6e-4 faster than LIGGGHTS with kt = k). ViscEl computes its own contact-point velocity (no alpha).
     O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
-                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False)], [ip2], [law2]),
+                 InteractionLoop([(Ig2_Sphere_Sphere_ScGeom6D if six_d else Ig2_Sphere_Sphere_ScGeom)(
+                     avoidGranularRatcheting=False)], [ip2], [law2]),
                  newton, runner]
     # contacts are made in the undisplaced packing (tangential springs start from zero there) ...
     newton.dead = True

@@ -14,6 +14,71 @@ class Unsupported(ValueError):
     """A case a code cannot run with the same law (the drivers exit 2, said on stderr)."""
 
 
+# Luding's rolling and torsion resistance ([contact] keys, data/SCHEMA.md; MAPPING.md "Rolling and torsion
+# resistance"): a driver maps them or refuses the case, never drops them.
+ROLLING_KEYS = ("kr", "gamma_r", "mu_r")
+TORSION_KEYS = ("ko", "gamma_o", "mu_o")
+
+
+def rolling_on(c: dict) -> bool:
+    """A rolling spring or dashpot: kr > 0 or gamma_r > 0."""
+    return float(c.get("kr", 0.0)) > 0 or float(c.get("gamma_r", 0.0)) > 0
+
+
+def torsion_on(c: dict) -> bool:
+    """A torsion spring or dashpot: ko > 0 or gamma_o > 0."""
+    return float(c.get("ko", 0.0)) > 0 or float(c.get("gamma_o", 0.0)) > 0
+
+
+def resistance_keys(c: dict) -> list:
+    """The rolling and torsion keys the case sets ("kr = 2e4", ...), of the resistances that are on."""
+    keys = (ROLLING_KEYS if rolling_on(c) else ()) + (TORSION_KEYS if torsion_on(c) else ())
+    return ["%s = %g" % (k, float(c[k])) for k in keys if k in c]
+
+
+def refuse_resistance(c: dict, code: str, why: str) -> None:
+    """Unsupported naming the case's rolling/torsion keys and the code, when any resistance is on."""
+    keys = resistance_keys(c)
+    if keys:
+        raise Unsupported("[contact] %s: rolling/torsion resistance is not mapped for %s %s"
+                          % (", ".join(keys), code, why))
+
+
+# mu_r, mu_o absent: no limit; LAMMPS' sds always takes one, so a limit no force reaches
+NO_LIMIT = 1e100
+
+
+def lammps_resistance(c: dict, radius) -> str:
+    """The `rolling sds` / `twisting sds` options of a `pair granular` pair_coeff for the case's rolling and
+    torsion (MAPPING.md; granwave's law in every measured row): k_roll = k_r, gamma_roll = gamma_r, mu_roll =
+    mu_r; twisting is per radian: k_twist = k_o a'^2, gamma_twist = gamma_o a'^2, mu_twist = mu_o a' (a length)
+    with a' = R*, one value for all pairs, so torsion needs equal radii (Unsupported otherwise: the decks'
+    atom types are the particles' roles, not their radii). "" without rolling and torsion."""
+    import numpy as np
+    g = lambda x: repr(float(x))  # noqa: E731
+    out = ""
+    if rolling_on(c):
+        out += " rolling sds %s %s %s" % (g(c.get("kr", 0.0)), g(c.get("gamma_r", 0.0)), g(c.get("mu_r", NO_LIMIT)))
+    if torsion_on(c):
+        r = np.asarray(radius, float)
+        if r.max() != r.min():
+            raise Unsupported("[contact] %s: LAMMPS' twisting sds takes one k_twist = k_o a'^2 and mu_twist = mu_o a' "
+                              "for all pairs, and a' = a_i a_j/(a_i + a_j) differs per pair in this polydisperse "
+                              "packing" % ", ".join(resistance_keys(c)))
+        arm = 0.5 * float(r[0])
+        mu = float(c["mu_o"]) * arm if "mu_o" in c else NO_LIMIT
+        out += " twisting sds %s %s %s" % (g(float(c.get("ko", 0.0)) * arm * arm),
+                                           g(float(c.get("gamma_o", 0.0)) * arm * arm), g(mu))
+    return out
+
+
+# What the YADE and LIGGGHTS drivers say when a case has rolling or torsion resistance (both laws).
+YADE_WHY = ("by yade_scripts/run_case.py with Hertz-Mindlin (its rolling law, Law2_ScGeom6D_CohFrictPhys_"
+            "CohesionMoment, sits on a linear contact: liggghts_inputs/MAPPING.md)")
+LIGGGHTS_WHY = ("by liggghts_inputs/liggghts_case.py (rolling_friction luding keeps a fixed history, "
+                "lumps torsion into the rolling spring and drops the rolling dashpot: liggghts_inputs/MAPPING.md)")
+
+
 def liggghts_properties(*rows) -> str:
     """LIGGGHTS' material properties, one `fix mK all property/global NAME STYLE VALUES` line per row
     (K, NAME, STYLE, VALUES); STYLE `peratomtype` takes one value per type, `peratomtypepair 3` one

@@ -23,7 +23,7 @@ import numpy as np
 
 from . import laws as L
 from . import traces as T
-from .codefacts import Unsupported
+from .codefacts import Unsupported, resistance_keys
 
 
 def g(x: float) -> str:
@@ -137,6 +137,9 @@ def layer_deck_values(case: dict, system: dict) -> dict:
     ex = T.excitation(case)
     law = L.law_of(c)
     bad = list(law.bench_refusals(c))   # what the law's decks cannot render (xclib.laws)
+    if resistance_keys(c):
+        bad.append("%s: rolling and torsion resistance (the per-layer decks of LAMMPS and LIGGGHTS have none)"
+                   % ", ".join(resistance_keys(c)))
     if case["case"]["model"] != "crystal":
         bad.append("model = %r (crystal only)" % case["case"]["model"])
     if c["gamma_n"] != 0 or c["gamma_t"] != 0:

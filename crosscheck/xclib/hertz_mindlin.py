@@ -175,6 +175,8 @@ def yade_interaction(c: dict, W, phi: float):
     c_n = 2 betan sqrt(m* kn) that never pulls ("clip"): betan = damping_ratio exactly (two spheres: the
     restitution equals LIGGGHTS' and LAMMPS' to 4e-15). betas defaults to betan: set to 0 (no tangential
     dashpot). tangential = "none": frictionAngle = 0 (the shear force is capped to 0)."""
+    from xclib.codefacts import YADE_WHY, refuse_resistance
+    refuse_resistance(c, "YADE", YADE_WHY)
     import sys
     p = params(c)
     damped = p["zeta"] > 0
@@ -212,6 +214,8 @@ def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
     (liggghts_restitution: identical restitution to LAMMPS' tsuji map, 4e-16). No tangential dashpot
     (`tangential_damping off`). tangential = "none": coefficientFriction 0 and `tangential no_history`.
     Returns the lines and whether the pair keeps a shear history."""
+    from xclib.codefacts import LIGGGHTS_WHY, refuse_resistance
+    refuse_resistance(c, "LIGGGHTS", LIGGGHTS_WHY)
     p = params(c)
     friction = p["tangential"] == "mindlin"
     lines = ("# Hertz-Mindlin (granwave law = \"hertz_mindlin\"); one material for the three types (1 free, 2 fixed "
@@ -236,7 +240,7 @@ def liggghts_attrs(c: dict) -> dict:
     return {"tangential_history": history_used(c, LIGGGHTS_TANGENTIAL_HISTORY, "LIGGGHTS")}
 
 
-def lammps_style(c: dict, mass) -> dict:
+def lammps_style(c: dict, mass, radius=None) -> dict:
     """Hertz-Mindlin in LAMMPS (MAPPING.md, "Hertz-Mindlin", every map measured by
     crosscheck/probe_hertz_mindlin.py):
       frictionless: pair granular hertz/material E e nu, tangential linear_nohistory 0 0, damping velocity 0
@@ -245,9 +249,10 @@ def lammps_style(c: dict, mass) -> dict:
         delta, k_t = Kt sqrt(R* delta), f_t = -k_t(delta) xi, lever arm a (as gran/hooke/history);
       friction otherwise: pair granular with tangential mindlin / mindlin_rescale / mindlin/force (k_t from
         the material, no tangential dashpot), whose arm is MIXED_ARM."""
-    from xclib.codefacts import MIXED_ARM, Unsupported
+    from xclib.codefacts import MIXED_ARM, Unsupported, lammps_resistance, resistance_keys
     p = params(c)
     clip = c["normal_tension"] == "clip" and p["zeta"] > 0.0
+    rolling = lammps_resistance(c, radius)
     if p["zeta"] > 0.0:
         try:
             lammps_tsuji_restitution(p["zeta"])
@@ -257,17 +262,18 @@ def lammps_style(c: dict, mass) -> dict:
                 coulomb_normal=c.get("coulomb_normal", "compressive"), tangential_history=p["history"])
     if p["tangential"] != "mindlin":
         line = lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip, tangential=False)
+        line = line.rstrip("\n") + rolling
         return dict(lines=line.rstrip("\n"), conventions=base, tangential=False, clip=clip, style="granular hertz/material",
                     comment="granular hertz/material, %s, no tangential force" % (
                         "tsuji damping" + (", limit_damping" if clip else "") if p["zeta"] > 0 else "undamped"))
-    if p["zeta"] == 0.0 and p["history"] == "displacement":
+    if p["zeta"] == 0.0 and p["history"] == "displacement" and not resistance_keys(c):
         kn, kt = 4.0 / 3.0 * e_star(p["E"], p["nu"]), 8.0 * g_star(p["E"], p["nu"])
         line = "pair_style      gran/hertz/history %s %s 0.0 0.0 %s 0\npair_coeff      * *" % (_g(kn), _g(kt), _g(p["mu"]))
         conv = dict(base, lever_arm="radius", normal_tension="allow", coulomb_normal="magnitude")
         return dict(lines=line, conventions=conv, tangential=True, clip=False, style="gran/hertz/history",
                     comment="gran/hertz/history: Hertz-Mindlin with Kn = 4/3 E*, Kt = 8 G*, tangential displacement, "
                             "lever arm a (seed 002 eq. 4)")
-    line = lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip)
+    line = lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip).rstrip("\n") + rolling
     # Coulomb limit: pair granular takes mu |F_n| with the dashpot included (not measured separately
     # here: with "clip" F_n >= 0 and both rules agree; the cases use "clip" with a dashpot)
     conv = dict(base, lever_arm=MIXED_ARM, normal_tension="clip" if clip else "allow", coulomb_normal="magnitude")

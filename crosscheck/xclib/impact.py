@@ -19,7 +19,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import traces as T
-from .codefacts import Unsupported
+from .codefacts import Unsupported, refuse_resistance
 
 # The drivers' run: every step is written (the peaks are parabola-refined over three samples) until
 # this many closed-form contact times after first touch, and the flight out of the peak overlap at e v:
@@ -78,6 +78,7 @@ def setup(case: dict, case_path: str, granwave: str | None = None) -> SimpleName
         raise Unsupported("impact drivers run law = \"hertz_mindlin\" only (case: %s)" % c["law"])
     if c["mu_static"] != c["mu_dynamic"]:
         raise Unsupported("mu_static != mu_dynamic (one mu in LAMMPS, LIGGGHTS and YADE)")
+    refuse_resistance(c, "YADE, LIGGGHTS or LAMMPS", "by the impact drivers (crosscheck/xclib/impact.py)")
     th = theory(case_path, granwave)
     b1 = _body(case, imp["body1"])
     b2 = _body(case, imp["body2"]) if "body2" in imp else None

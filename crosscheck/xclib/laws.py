@@ -5,7 +5,7 @@ C++ side is src/contact/case_laws.hpp). A new law is a new module listed in LAWS
 
 Every module has: NAME; tangential(c), dashpot(c); yade_interaction(c, W, phi, note), YADE_ENGINES,
 yade_attrs(c); liggghts_lines(c, limit_force), liggghts_dump(c, r, lay), liggghts_attrs(c);
-lammps_style(c, mass), lammps_dump(c); bench_refusals(c), bench_lammps(v), bench_liggghts(v).
+lammps_style(c, mass, radius), lammps_dump(c); bench_refusals(c), bench_lammps(v), bench_liggghts(v).
 Only the standard library and numpy at import (the YADE script imports these too)."""
 from __future__ import annotations
 

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import sys
 
-from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties
+from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties, refuse_resistance,
+                              resistance_keys, rolling_on, torsion_on, LIGGGHTS_WHY)
 
 NAME = "linear"
 CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
@@ -36,6 +37,8 @@ def _yade_damped(c: dict) -> bool:
 
 def yade_interaction(c: dict, W, phi: float):
     """(material, Ip2, Law2) of YADE (W: yade.wrapper) for the case's contact."""
+    if rolling_on(c) or torsion_on(c):
+        return _yade_resisted(c, W, phi)
     if _yade_damped(c):
         # Law2_ScGeom_ViscElPhys_Basic always clips (computeForceTorqueViscEl: normalForce = 0 when
         # kn delta + cn v_n < 0, "prevent appearing of attraction forces"; checked on 2023.02a with two
@@ -56,6 +59,27 @@ def yade_interaction(c: dict, W, phi: float):
     return mat, W.Ip2_FrictMat_FrictMat_FrictPhys(kn=c["kn"], ks=c["kt"]), W.Law2_ScGeom_FrictPhys_CundallStrack()
 
 
+def _yade_resisted(c: dict, W, phi: float):
+    """Rolling and torsion on CohFrictPhys (MAPPING.md): Law2_ScGeom6D_CohFrictPhys_CohesionMoment,
+    incremental, moments always on, no cohesion. Equal radii a (run_case.py checks): kn = E a, ks = nu kn,
+    rolling stiffness alphaKr ks a^2 = k_r a'^2 with a' = a/2, limits etaRoll a |f_n| = mu_r a' |f_n|;
+    torsion alike. No rolling or twist dashpot, and ks > 0 carries the angular springs."""
+    bad = [k for k in ("gamma_r", "gamma_o", "gamma_n", "gamma_t") if float(c.get(k, 0.0)) > 0]
+    if bad or float(c["kt"]) <= 0:
+        raise Unsupported("[contact] %s: YADE's CohesionMoment law has no rolling, twist or normal dashpot and "
+                          "scales its angular springs by ks: %s = 0 and kt > 0 only"
+                          % (", ".join(resistance_keys(c)), ", ".join(bad) or "gamma_r, gamma_o"))
+    kn, kt = float(c["kn"]), float(c["kt"])
+    eta = lambda mu: 0.5 * float(mu) if mu is not None else -1.0  # noqa: E731  (-1: no limit)
+    # young is set per radius by run_case.py (kn = E a); here the ratios, which do not depend on a
+    mat = W.CohFrictMat(young=1.0, poisson=kt / kn, frictionAngle=phi, density=1000.0, isCohesive=False,
+                        momentRotationLaw=True, alphaKr=float(c.get("kr", 0.0)) / (4.0 * kt),
+                        alphaKtw=float(c.get("ko", 0.0)) / (4.0 * kt), etaRoll=eta(c.get("mu_r")),
+                        etaTwist=eta(c.get("mu_o")), normalCohesion=0.0, shearCohesion=0.0)
+    law2 = W.Law2_ScGeom6D_CohFrictPhys_CohesionMoment(useIncrementalForm=True, always_use_moment_law=True)
+    return mat, W.Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(), law2
+
+
 def yade_attrs(c: dict) -> dict:
     """What the YADE trace records of the law: ViscEl (any dashpot) clips; without a dashpot the normal
     force cannot pull, so both conventions are the same law."""
@@ -73,6 +97,7 @@ def _properties(kn, kt, gamma_n, gamma_t, mu) -> str:
 
 def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
     """The contact lines of the crystal deck and whether the pair keeps a shear history."""
+    refuse_resistance(c, "LIGGGHTS", LIGGGHTS_WHY)
     lines = ("# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed, 3 source: "
              "one material)\n" + _properties(c["kn"], c["kt"], c["gamma_n"], c["gamma_t"], c["mu_static"]) +
              "pair_style      gran model hooke/stiffness tangential history absolute_damping on limitForce %s\n"
@@ -91,13 +116,15 @@ def liggghts_attrs(c: dict) -> dict:
 
 
 # -------------------------------------------------------------------------------------------- LAMMPS
-def lammps_style(c: dict, mass) -> dict:
+def lammps_style(c: dict, mass, radius=None) -> dict:
     """The pair style lines and the conventions they run (MAPPING.md, LAMMPS section)."""
     import numpy as np
     kn, kt, gn, gt = float(c["kn"]), float(c["kt"]), float(c["gamma_n"]), float(c["gamma_t"])
     if gt > 0.0:
         raise Unsupported("gamma_t > 0: the dumped tangential dashpot sees v(t) and w(t) instead of the step's "
                           "half-step velocities, which the writer cannot put back (no case uses gamma_t)")
+    if rolling_on(c) or torsion_on(c):
+        return _lammps_resisted(c, radius)
     if kt > 0.0:
         # gran/hooke/history: gamma_n per unit effective mass (damp = meff gamman v_n), one global value
         if gn > 0.0 and not np.all(mass == mass[0]):
@@ -120,6 +147,25 @@ def lammps_style(c: dict, mass) -> dict:
     comment = ("granular hooke, absolute dashpot (damping velocity)%s, no tangential force"
                % (", limit_damping (no pulling dashpot)" if clip else ""))
     return dict(lines=line, conventions=conv, tangential=False, clip=clip, comment=comment, style="granular hooke")
+
+
+def _lammps_resisted(c: dict, radius) -> dict:
+    """Rolling and torsion resistance: only pair granular has them (`rolling sds`, `twisting sds`), so
+    the linear law is hooke with an absolute dashpot (damping velocity) and tangential linear_history with
+    no tangential dashpot; its arm is MIXED_ARM (a in the surface velocity, a - delta/2 in the torque)."""
+    from xclib.codefacts import MIXED_ARM, lammps_resistance
+    kn, kt, gn = float(c["kn"]), float(c["kt"]), float(c["gamma_n"])
+    clip = c["normal_tension"] == "clip" and gn > 0.0
+    tang = ("tangential linear_history %s 0.0 %s" % (_g(kt), _g(c["mu_static"])) if kt > 0.0
+            else "tangential linear_nohistory 0 0")
+    line = ("pair_style      granular\npair_coeff      * * hooke %s %s %s damping velocity%s%s"
+            % (_g(kn), _g(gn), tang, " limit_damping" if clip else "", lammps_resistance(c, radius)))
+    conv = dict(lever_arm=MIXED_ARM if kt > 0.0 else c.get("lever_arm", "radius"), normal_tension=c["normal_tension"],
+                coulomb_normal="magnitude" if kt > 0.0 else c.get("coulomb_normal", "compressive"))
+    comment = ("granular hooke, absolute dashpot (damping velocity), %s, rolling/twisting sds (Luding)"
+               % tang.split(" ")[1])
+    return dict(lines=line, conventions=conv, tangential=kt > 0.0, clip=clip, comment=comment,
+                style="granular hooke + sds")
 
 
 def lammps_dump(c: dict) -> dict:

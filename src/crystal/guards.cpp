@@ -66,6 +66,25 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits) {
                          " s of velocity Verlet for this crystal (2/omega_max, omega_max^2 <= 2 z (k + 3.5 k_t)/m_min, z = 12" +
                          law.stability_note(d.delta_max) +
                          "); change " + keys_dt);
+  {  // The rolling and torsion springs turn the spheres: per contact an angular spring (k_r + k_o) a'^2
+     // against I = 2/5 m a^2; the same Gershgorin bound omega^2 <= 2 z K/I_min, with a' <= a_max/2.
+    const config::ContactParams& p = c.contact;
+    const double spring = p.kr + p.ko, dashpot = p.gamma_r + p.gamma_o;
+    if (spring > 0.0 || dashpot > 0.0) {
+      const double delta0 = k.overlap * 2.0 * k.radius;
+      const double a_lo = k.radius - k.polydispersity * delta0, a_hi = k.radius + k.polydispersity * delta0;
+      const double inertia = 0.4 * k.density * 4.0 / 3.0 * std::numbers::pi * std::pow(a_lo, 5);
+      const double arm2 = 0.25 * a_hi * a_hi, z = 12.0;
+      const double omega = std::sqrt(2.0 * z * spring * arm2 / inertia), eta = z * dashpot * arm2 / (2.0 * inertia);
+      const double dt_turn = omega > 0.0 ? 2.0 / omega * (std::sqrt(1.0 + (eta / omega) * (eta / omega)) - eta / omega)
+                                         : 1.0 / eta;
+      if (d.dt > dt_turn)
+        a.refusals.push_back("integrator.dt = " + fmt("%.4g", d.dt) + " s is above the stability limit " +
+                             fmt("%.4g", dt_turn) + " s of the rolling and torsion springs (2/omega, omega^2 <= 2 z (k_r + k_o) a'^2/I_min, " +
+                             "a' = a/2, I = 2/5 m a^2, z = 12, with their dashpots); change " + keys_dt +
+                             " or contact.kr, contact.ko");
+    }
+  }
   if (d.dt > d.t_c / 50.0 * (1.0 + 1e-12))  // dt_over_tc = 0.02 gives t_c/50 up to a rounding
     a.warnings.push_back("dt = " + fmt("%.4g", d.dt) + " s exceeds t_c/50 = " + fmt("%.4g", d.t_c / 50.0) +
                          " s, the accuracy rule of seed 002 sec. 2.2");

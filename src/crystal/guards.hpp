@@ -3,7 +3,8 @@
 //   resources: particles = nx ny layers, steps = t_end/dt, samples, memory and output;
 //   refused: a derived number that is not finite; dt above the velocity-Verlet limit
 //     Derived::dt_stable (simulation.cpp: 2/omega_max with omega_max^2 <= 2 z (k + 3.5 k_t)/m_min,
-//     Gershgorin on the 12-contact FCC network with the smallest particle); an overlap that
+//     Gershgorin on the 12-contact FCC network with the smallest particle); dt above the rolling
+//     and torsion springs' own limit (2 z (k_r + k_o) a'^2/I_min); an overlap that
 //     reaches the smallest radius;
 //   warned: dt above t_c/50 (seed 002 sec. 2.2), an overlap above kOverlapWarnFraction of the
 //     radius.

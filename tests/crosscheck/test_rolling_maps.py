@@ -1,0 +1,98 @@
+"""Rolling and torsion resistance in the other codes' drivers (issue #28): LAMMPS maps them onto pair
+granular's `rolling sds` / `twisting sds` (liggghts_inputs/MAPPING.md), every other driver refuses the
+case naming the key and the code: none may drop them."""
+import os
+import sys
+import tomllib
+
+import numpy as np
+import pytest
+
+from xclib import hertz_mindlin, linear
+from xclib import traces as T
+from xclib.codefacts import Unsupported
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "lammps_inputs"))
+import lammps_case as LM  # noqa: E402
+
+
+def contact(name):
+    with open(os.path.join(HERE, "cases", "crystal_small_%s.toml" % name), "rb") as f:
+        return T.contact_params(tomllib.load(f))
+
+
+MONO = np.full(4, 1e-3)
+
+
+def test_lammps_rolling_is_sds_with_granwave_numbers():
+    line = LM.crystal_style(contact("rolling"), np.ones(4), MONO)["lines"]
+    assert "rolling sds 20000.0 0.1 1e+100" in line     # k_r, gamma_r, no limit
+    assert "twisting" not in line
+
+
+def test_lammps_twisting_is_per_radian_with_a_length_limit():
+    line = LM.crystal_style(contact("rolltors_slip"), np.ones(4), MONO)["lines"]
+    arm = 0.5e-3                                         # a' = R* of equal radii 1 mm
+    assert "rolling sds 20000.0 0.1 0.01" in line
+    assert "twisting sds %r %r %r" % (2e4 * arm * arm, 0.1 * arm * arm, 0.01 * arm) in line
+
+
+def test_lammps_refuses_polydisperse_torsion_but_not_rolling():
+    r = np.array([1e-3, 1.5e-3])
+    with pytest.raises(Unsupported, match="ko = 20000.*polydisperse"):
+        LM.crystal_style(contact("torsion"), np.ones(2), r)
+    assert "rolling sds" in LM.crystal_style(contact("rolling"), np.ones(2), r)["lines"]
+
+
+def test_lammps_kt0_rolling_is_not_treated_as_frictionless():
+    c = dict(contact("rolling"), kt=0.0)
+    sty = LM.crystal_style(c, np.ones(4), MONO)
+    assert "rolling sds" in sty["lines"] and "linear_nohistory" in sty["lines"]
+
+
+def test_hertz_mindlin_lammps_carries_the_resistance():
+    c = dict(contact("rolltors"), law="hertz_mindlin", youngs_modulus=1e9, poisson_ratio=0.3)
+    line = hertz_mindlin.lammps_style(c, np.ones(4), MONO)["lines"]
+    assert line.startswith("pair_style      granular") and "rolling sds" in line and "twisting sds" in line
+
+
+@pytest.mark.parametrize("law", [linear, hertz_mindlin])
+@pytest.mark.parametrize("name,key", [("rolling", "kr = 20000"), ("torsion", "ko = 20000")])
+def test_liggghts_and_yade_refuse_with_key_and_code(law, name, key):
+    c = dict(contact(name), youngs_modulus=1e9, poisson_ratio=0.3)
+    with pytest.raises(Unsupported, match="%s.*LIGGGHTS" % key):
+        law.liggghts_lines(c, "off")
+    with pytest.raises(Unsupported, match="%s.*YADE" % key):
+        law.yade_interaction(c, None, 0.5)
+
+
+def test_without_resistance_nothing_changes():
+    c = contact("rolling")
+    for k in ("kr", "gamma_r"):
+        c.pop(k)
+    assert LM.crystal_style(c, np.ones(4), MONO)["style"] == "gran/hooke/history"
+
+
+def test_benchmark_decks_refuse_the_resistance():
+    from xclib import driver as D
+    with open(os.path.join(HERE, "cases", "crystal_small_rolling.toml"), "rb") as f:
+        case = tomllib.load(f)
+    with pytest.raises(Unsupported, match="kr = 20000.*rolling and torsion"):
+        D.layer_deck_values(case, {"radius": [1e-3, 1e-3], "position": [[0, 0, 0], [0, 0, 1e-3]]})
+
+
+def test_yade_cohesion_moment_map_without_dashpots():
+    """kn = E a, ks = nu kn; alphaKr ks a^2 = k_r a'^2 (a' = a/2): alphaKr = k_r/(4 kt); etaRoll a = mu_r a'."""
+    from types import SimpleNamespace
+    W = SimpleNamespace(CohFrictMat=dict, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys=lambda: "ip2",
+                        Law2_ScGeom6D_CohFrictPhys_CohesionMoment=dict)
+    c = dict(contact("rolltors_slip"), gamma_r=0.0, gamma_o=0.0)
+    mat, ip2, law2 = linear.yade_interaction(c, W, 0.5)
+    assert mat["poisson"] == 1.0 and mat["alphaKr"] == 2e4 / 4e5 and mat["alphaKtw"] == 2e4 / 4e5
+    assert mat["etaRoll"] == 0.005 and mat["etaTwist"] == 0.005 and mat["momentRotationLaw"]
+    assert law2 == dict(useIncrementalForm=True, always_use_moment_law=True)
+    c.pop("mu_r")
+    assert linear.yade_interaction(c, W, 0.5)[0]["etaRoll"] == -1.0      # no limit
+    with pytest.raises(Unsupported, match="gamma_r"):
+        linear.yade_interaction(dict(c, gamma_r=0.1), W, 0.5)
