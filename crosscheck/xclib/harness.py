@@ -2,9 +2,11 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import datetime as _dt
 import json
 import os
+import re
 import sys
 import tomllib
 
@@ -316,50 +318,98 @@ def write_report(report_dir, results, started):
     return verdict
 
 
-def run(args) -> int:
-    tol = load_tolerances(args.tolerances)
+class BadInput(ValueError):
+    """Input `crosscheck run` refuses before running anything (exit 2): an unknown code or suite, no case."""
+
+
+@dataclasses.dataclass
+class Verdict:
+    """What a cross-code check found: `status` PASS or FAIL, `rows` the verdict table as
+    (case, status, detail) tuples, `failing` one line per failing comparison, `report` the path of
+    report.md (`report_dir` its directory), `results` each case's runs, measures and compared rows."""
+    status: str
+    rows: list
+    failing: list
+    report: str
+    report_dir: str
+    results: list = dataclasses.field(default_factory=list, repr=False)
+
+    @property
+    def passed(self) -> bool:
+        return self.status == "PASS"
+
+    def table(self) -> str:
+        """The verdict table as `crosscheck run` prints it (Markdown)."""
+        return "\n".join(["| case | status | detail |", "|---|---|---|"] + ["| %s | %s | %s |" % v for v in self.rows])
+
+    def __repr__(self):
+        return "\n".join([self.table()] + ["FAILING: " + f for f in self.failing]
+                         + ["report: %s" % self.report, "VERDICT: %s" % self.status])
+
+
+def _case_file(case, report_dir: str) -> str:
+    """A case's path: a path as given; a case object (granwave.Case: .name, .text) written to
+    REPORT_DIR/NAME.toml first, so that the report keeps what was run."""
+    if not hasattr(case, "text"):
+        return os.fspath(case)
+    name = re.sub(r"[^A-Za-z0-9_.-]", "_", str(getattr(case, "name", "") or "case"))
+    path, k = os.path.join(report_dir, name + ".toml"), 0
+    while os.path.exists(path):
+        k += 1
+        path = os.path.join(report_dir, "%s.%d.toml" % (name, k))
+    with open(path, "w", encoding="utf-8", errors="surrogateescape") as f:
+        f.write(case.text)
+    return path
+
+
+def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=None, tolerances=None, timeout=900.0,
+          resume=False, suites=None, no_studies=False, fixture_system=False) -> Verdict:
+    """`crosscheck run` as a function: run each code on each case (paths, or objects with .name and
+    .text such as granwave.Case) and on SUITE's cases and studies, compare, write the report in
+    REPORT (default crosscheck-report-DATE, never overwritten unless RESUME) and return the Verdict.
+    CODES: a comma-separated string or a sequence of names. BadInput (a ValueError): an unknown code
+    or suite, RESUME without REPORT, no case. Progress goes to stderr."""
+    tol = load_tolerances(tolerances)
+    codes_text = codes if isinstance(codes, str) else ",".join(codes)
     try:
-        codes = RN.parse_codes(args.codes)
+        codes = RN.parse_codes(codes_text)
     except ValueError as e:
-        print("crosscheck: %s" % e, file=sys.stderr)
-        return 2
-    if args.resume and not args.report:
-        print("crosscheck: --resume needs --report DIR (the report directory of the run to finish)", file=sys.stderr)
-        return 2
-    cases = list(args.cases)
+        raise BadInput(str(e)) from None
+    if resume and not report:
+        raise BadInput("--resume needs --report DIR (the report directory of the run to finish)")
+    cases = list(cases)
     studies = []
-    if args.suite:
-        with open(args.suites or os.path.join(XC_DIR, "suites.toml"), "rb") as f:
-            suites = tomllib.load(f)
-        if args.suite not in suites:
-            print("crosscheck: unknown suite %s (have %s)" % (args.suite, ", ".join(suites)), file=sys.stderr)
-            return 2
+    if suite:
+        with open(suites or os.path.join(XC_DIR, "suites.toml"), "rb") as f:
+            suite_table = tomllib.load(f)
+        if suite not in suite_table:
+            raise BadInput("unknown suite %s (have %s)" % (suite, ", ".join(suite_table)))
         import glob
-        for p in suites[args.suite].get("cases", []):   # a pattern (data/impact/t3/*.toml) stands for its files
-            cases += sorted(glob.glob(os.path.join(REPO, p))) if "*" in p else [os.path.join(REPO, p)]
-        studies = [] if args.no_studies else list(suites[args.suite].get("studies", []))
+        for p in suite_table[suite].get("cases", []):   # a pattern (data/impact/t3/*.toml) stands for its files
+            cases += sorted(glob.glob(RN.repo_path(p))) if "*" in p else [RN.repo_path(p)]
+        studies = [] if no_studies else list(suite_table[suite].get("studies", []))
     if not cases and not studies:
-        print("crosscheck: no case given", file=sys.stderr)
-        return 2
+        raise BadInput("no case given")
+    started = _dt.datetime.now().strftime("%Y%m%d-%H%M%S")
+    report_dir = RN.work_dir(os.path.abspath(report or ("crosscheck-report-" + started)), resume)
+    cases = [_case_file(c, report_dir) for c in cases]
     from . import impactcheck as IC
     impact_cases = [cp for cp in cases if IC.is_impact(cp)]   # no system file: judged by xclib.impactcheck
     cases = [cp for cp in cases if cp not in impact_cases]
-    started = _dt.datetime.now().strftime("%Y%m%d-%H%M%S")
-    report_dir = RN.work_dir(os.path.abspath(args.report or ("crosscheck-report-" + started)), args.resume)
-    granwave = find_granwave(args.granwave)
+    granwave_exe = find_granwave(granwave)
     results = []
     for cp in cases:
         cp = os.path.abspath(cp)
         stem = os.path.splitext(os.path.basename(cp))[0]
-        casedir = RN.work_dir(os.path.join(report_dir, stem), args.resume)
+        casedir = RN.work_dir(os.path.join(report_dir, stem), resume)
         res = dict(case_path=cp, case_name=stem, runs={}, rows=[], tol=tol)
         results.append(res)
         try:
             case, _ = T.load_case(cp)
             res["case_name"] = case["case"]["name"]
             model = case["case"]["model"]
-            res["system"], res["system_source"] = build_system(cp, casedir, granwave, args.fixture_system, args.timeout,
-                                                               args.resume)
+            res["system"], res["system_source"] = build_system(cp, casedir, granwave_exe, fixture_system, timeout,
+                                                               resume)
         except Exception as e:  # noqa: BLE001 -- reported in the table
             res["error"] = str(e)
             continue
@@ -367,14 +417,14 @@ def run(args) -> int:
         def log(msg, name=res["case_name"]):
             print("crosscheck: %s: %s" % (name, msg), file=sys.stderr, flush=True)
 
-        res["runs"] = RN.run_codes(cp, res["system"], casedir, codes, args.timeout, granwave, args.resume, log)
+        res["runs"] = RN.run_codes(cp, res["system"], casedir, codes, timeout, granwave_exe, resume, log)
         traces, measures = {}, {}
         for code, r in res["runs"].items():
             if r["status"] != "ok":
                 continue
             try:
                 traces[code] = T.read_trace(r["trace"])
-                measures[code] = R.measure(r["trace"], granwave or "granwave")
+                measures[code] = R.measure(r["trace"], granwave_exe or "granwave")
             except R.RulerError as e:
                 # the traces are still compared; the missing measures are FAIL rows (compare_case)
                 r["detail"] = "not measurable: %s" % e
@@ -392,7 +442,7 @@ def run(args) -> int:
         write_report(report_dir, results, started)   # after every case: a long suite that is stopped keeps its report
     verdict = write_report(report_dir, results, started) if (results or not impact_cases) else []
     if impact_cases:
-        verdict += IC.run(impact_cases, report_dir, codes, args.timeout, granwave, args.resume, tol)
+        verdict += IC.run(impact_cases, report_dir, codes, timeout, granwave_exe, resume, tol)
         if results:
             with open(os.path.join(report_dir, "report.md"), "a") as f:
                 f.write("\nImpact cases (contact-level tests): [impact.md](impact.md)\n")
@@ -402,9 +452,9 @@ def run(args) -> int:
     for st in studies:   # the suite's parameter studies (crosscheck sweep), each with its own report
         sa = argparse.Namespace(name=st["name"], size=st.get("size", "small"), values=st.get("values"),
                                 modes=st.get("modes", "P,S"),
-                                codes=args.codes, report=os.path.join(report_dir, "sweep_%s" % st["name"]),
-                                timeout=args.timeout, granwave=args.granwave, tolerances=args.tolerances,
-                                fixture_system=args.fixture_system, resume=args.resume)
+                                codes=codes_text, report=os.path.join(report_dir, "sweep_%s" % st["name"]),
+                                timeout=timeout, granwave=granwave, tolerances=tolerances,
+                                fixture_system=fixture_system, resume=resume)
         print("crosscheck: study: sweep %s --size %s ..." % (sa.name, sa.size), file=sys.stderr, flush=True)
         rc = main_sweep(sa)
         verdict.append(("sweep %s (%s)" % (sa.name, sa.size), "FAIL" if rc else "PASS",
@@ -412,19 +462,29 @@ def run(args) -> int:
         with open(os.path.join(report_dir, "report.md"), "a") as f:
             f.write("| sweep %s (%s) | %s | sweep_%s/sweep_%s.md |\n" % (sa.name, sa.size, "FAIL" if rc else "PASS",
                                                                     sa.name, sa.name))
-    print("\n| case | status | detail |\n|---|---|---|")
-    for v in verdict:
-        print("| %s | %s | %s |" % v)
-    for res in results:
-        for r in res["rows"]:
-            if r["status"] in ("PASS", "EXPECTED-DIFF"):
-                continue
-            print("FAILING: %s %s %s %s = %s (tolerance %s)" % (res["case_name"], r["pair"], r["quantity"], r["what"],
-                                                                 _fmt(r["value"]), _fmt(r["tol"])))
+    failing = ["%s %s %s %s = %s (tolerance %s)" % (res["case_name"], r["pair"], r["quantity"], r["what"],
+                                                   _fmt(r["value"]), _fmt(r["tol"]))
+               for res in results for r in res["rows"] if r["status"] not in ("PASS", "EXPECTED-DIFF")]
     failed = [v for v in verdict if v[1] not in ("EXPECTED-DIFF", "PASS")]
-    print("\nreport: %s" % os.path.join(report_dir, "report.md"))
-    print("VERDICT: %s" % ("FAIL" if failed else "PASS"))
-    return 1 if failed else 0
+    return Verdict(status="FAIL" if failed else "PASS", rows=[tuple(v) for v in verdict], failing=failing,
+                   report=os.path.join(report_dir, "report.md"), report_dir=report_dir, results=results)
+
+
+def run(args) -> int:
+    """`crosscheck run`: check(), then the verdict table on stdout; exit 0 PASS, 1 FAIL, 2 bad input."""
+    try:
+        v = check(args.cases, args.codes, suite=args.suite, report=args.report, granwave=args.granwave,
+                  tolerances=args.tolerances, timeout=args.timeout, resume=args.resume, suites=args.suites,
+                  no_studies=args.no_studies, fixture_system=args.fixture_system)
+    except BadInput as e:
+        print("crosscheck: %s" % e, file=sys.stderr)
+        return 2
+    print("\n" + v.table())
+    for f in v.failing:
+        print("FAILING: " + f)
+    print("\nreport: %s" % v.report)
+    print("VERDICT: %s" % v.status)
+    return 0 if v.passed else 1
 
 
 def main(argv=None) -> int:

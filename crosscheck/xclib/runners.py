@@ -35,6 +35,14 @@ DEFAULT_CODES = ",".join(CODES)
 TWIN_SEP = CV.TWIN_SEP   # "granwave~lammps": granwave run with LAMMPS' conventions
 
 
+def repo_path(rel: str) -> str:
+    """A path relative to the repository root (suites.toml, the sweeps' templates). Installed
+    (PREFIX/share/granwave, with crosscheck/ and the drivers), data/'s contents are that directory itself."""
+    if rel.startswith("data/") and not os.path.isdir(os.path.join(REPO, "data")):
+        return os.path.join(REPO, rel[len("data/"):])
+    return os.path.join(REPO, rel)
+
+
 def parse_codes(text: str) -> list[str]:
     """The codes of a --codes list, in the order given; ValueError names an unknown one."""
     codes = [c.strip() for c in text.split(",") if c.strip()]

@@ -210,7 +210,7 @@ def damping(a, report_dir, granwave, tol) -> int:
         # normal_tension: "clip", the one convention with a dashpot every code has (SCHEMA.md; LAMMPS: limit_damping)
         ch = {("contact", "gamma_n"): g, ("contact", "kt"): 0.0, ("contact", "normal_tension"): "clip",
               ("excitation", "mode"): "P"}
-        cp, res = _sweep_point(a, report_dir, name, os.path.join(RN.REPO, size["template_P"]), ch, size, codes,
+        cp, res = _sweep_point(a, report_dir, name, RN.repo_path(size["template_P"]), ch, size, codes,
                                granwave, ruler_args)
         peaks = {c: (M.peaks_at(M.layer_table(r["raw"]), size["positions"]) if "raw" in r else {})
                  for c, r in res.items()}
@@ -268,7 +268,7 @@ def friction(a, report_dir, granwave, tol) -> int:
     for mode in modes:
         for r in kts:
             name = "sweep_friction_%s_%s_kt%s" % (a.size, mode, ("%g" % r).replace(".", "p"))
-            tmpl = os.path.join(RN.REPO, size["template_" + mode])
+            tmpl = RN.repo_path(size["template_" + mode])
             with open(tmpl, "rb") as f:
                 kn = float(tomllib.load(f)["contact"]["kn"])
             # lever_arm: the contact point, the convention YADE and LIGGGHTS can run (SCHEMA.md); LAMMPS'
