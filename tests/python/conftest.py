@@ -6,3 +6,16 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BUILD = os.environ.get("GRANWAVE_BUILD", os.path.join(ROOT, "build"))
 sys.path.insert(0, os.path.join(BUILD, "python"))
+
+try:   # granwave.crosscheck of this source tree when the build's package predates it (pure Python)
+    import granwave
+    _src = os.path.join(ROOT, "python", "granwave")
+    if _src not in granwave.__path__:
+        granwave.__path__.append(_src)
+except ImportError:
+    pass
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "realcodes: runs real codes (granwave, LAMMPS) through the crosscheck; "
+                            "select with -m realcodes, skip with -m 'not realcodes'")
