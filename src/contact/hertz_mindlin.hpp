@@ -153,21 +153,29 @@ struct HertzMindlinLaw {
   }
 
  private:
-  template <bool Exact>
-  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
+  // The normal part: the contact radius a, Hertz's elastic force and f_n with the dashpot (clipped
+  // with clip_tension).
+  struct Normal {
+    double a, f_elastic, f_n;
+  };
+  [[gnu::always_inline]] Normal normal_of(const Contact& c) const {
     const double d = select(c.delta > 0.0, c.delta, 0.0);
     const double r_eff = c.a_i * c.a_j / (c.a_i + c.a_j);
     const double a = std::sqrt(r_eff * d);  // contact radius
     const double f_elastic = (4.0 / 3.0) * e_star * a * d;
-    double f_n = f_elastic, loss = 0.0;
-    if constexpr (Damped) {
-      const double m_i = mass_factor * c.a_i * c.a_i * c.a_i, m_j = mass_factor * c.a_j * c.a_j * c.a_j;
-      const double m_eff = m_i * m_j / (m_i + m_j);
-      const double gamma_n = beta2 * std::sqrt(m_eff * (2.0 * e_star * a));
-      const double f = f_elastic + gamma_n * c.delta_dot;
-      f_n = select(p.clip_tension & (f < 0.0), 0.0, f);
-      loss = (f_n - f_elastic) * c.delta_dot * c.dt;  // the dashpot's work (or a clipped pull's)
-    }
+    if constexpr (!Damped) return {a, f_elastic, f_elastic};
+    const double m_i = mass_factor * c.a_i * c.a_i * c.a_i, m_j = mass_factor * c.a_j * c.a_j * c.a_j;
+    const double m_eff = m_i * m_j / (m_i + m_j);
+    const double gamma_n = beta2 * std::sqrt(m_eff * (2.0 * e_star * a));
+    const double f = f_elastic + gamma_n * c.delta_dot;
+    return {a, f_elastic, select(p.clip_tension & (f < 0.0), 0.0, f)};
+  }
+
+  template <bool Exact>
+  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
+    const auto [a, f_elastic, f_n] = normal_of(c);
+    // The dashpot's work (or a clipped pull's).
+    double loss = Damped ? (f_n - f_elastic) * c.delta_dot * c.dt : 0.0;
     if constexpr (H == MindlinHistory::none) {
       return {f_n * c.n, Vec3{}, loss};
     } else {
@@ -234,17 +242,8 @@ struct HertzMindlinLaw {
   }
   LeverArm lever_arm() const { return p.lever_arm; }
   bool dissipates() const { return Damped || H != MindlinHistory::none; }
-  // f_n as the Coulomb limit reads it (respond's, operation for operation): for the rolling and
-  // torsion limits of contact/rolling_torsion.hpp.
-  [[gnu::always_inline]] double normal_part(const Contact& c) const {
-    const double d = select(c.delta > 0.0, c.delta, 0.0);
-    const double a = std::sqrt(c.a_i * c.a_j / (c.a_i + c.a_j) * d);
-    const double f_elastic = (4.0 / 3.0) * e_star * a * d;
-    if constexpr (!Damped) return f_elastic;
-    const double m_i = mass_factor * c.a_i * c.a_i * c.a_i, m_j = mass_factor * c.a_j * c.a_j * c.a_j;
-    const double f = f_elastic + beta2 * std::sqrt(m_i * m_j / (m_i + m_j) * (2.0 * e_star * a)) * c.delta_dot;
-    return select(p.clip_tension & (f < 0.0), 0.0, f);
-  }
+  // f_n as the Coulomb limit reads it: for the rolling and torsion limits of contact/rolling_torsion.hpp.
+  [[gnu::always_inline]] double normal_part(const Contact& c) const { return normal_of(c).f_n; }
   HertzMindlinLaw<false, H, Hysteresis> without_rates() const { return HertzMindlinLaw<false, H, Hysteresis>(p); }
 
  private:

@@ -33,7 +33,7 @@ struct LinearLudingCase {
   template <class Reader, class Table>
   static void check_case(const Reader&, const Table&, const config::Case&) {}
 
-  static bool torques(const config::ContactParams& p) { return tangential(p).active() || rolling_torsion(p).active(); }
+  static bool torques(const config::ContactParams& p) { return tangential(p).active() || rolling_torsion_of(p).active(); }
   static const char* history_name(const config::ContactParams&) { return "displacement"; }  // the spring xi
 
   // The law itself at any overlap.
@@ -63,7 +63,7 @@ struct LinearLudingCase {
     t.validate();
     const bool dashpots = n.gamma_n > 0.0 || t.gamma_t > 0.0;
     const bool hysteresis = t.mu_static != t.mu_dynamic;
-    const RollingTorsionParams rt = rolling_torsion(p);
+    const RollingTorsionParams rt = rolling_torsion_of(p);
     rt.validate();
     // With rolling or torsion resistance, one form per dashpot flag (any dashpot: all of them).
     if (rt.active())
@@ -101,7 +101,6 @@ struct LinearLudingCase {
   static TangentialSpringParams tangential(const config::ContactParams& p) {
     return {p.kt, p.gamma_t, p.mu_static, p.mu_dynamic, p.coulomb_normal == config::CoulombNormal::magnitude};
   }
-  static RollingTorsionParams rolling_torsion(const config::ContactParams& p) { return rolling_torsion_of(p); }
 };
 
 }  // namespace granwave::contact
