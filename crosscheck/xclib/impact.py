@@ -28,10 +28,11 @@ RUN_AFTER_TOUCH = 1.1
 
 
 def find_granwave(explicit: str | None = None) -> str | None:
-    """granwave: EXPLICIT, else $GRANWAVE, PATH, build/, build-xc/ (the harness's and the drivers' search)."""
+    """granwave: EXPLICIT, else $GRANWAVE, this checkout's build/ and build-xc/, then PATH (the harness's and the
+    drivers' search; a checkout judges its own build, never an older installed program)."""
     repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    for c in ([explicit] if explicit else [os.environ.get("GRANWAVE", ""), "granwave", os.path.join(repo, "build", "granwave"),
-                                           os.path.join(repo, "build-xc", "granwave")]):
+    for c in ([explicit] if explicit else [os.environ.get("GRANWAVE", ""), os.path.join(repo, "build", "granwave"),
+                                           os.path.join(repo, "build-xc", "granwave"), "granwave"]):
         if not c:
             continue
         p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)
@@ -44,7 +45,7 @@ def theory(case_path: str, granwave: str | None = None) -> dict:
     """`granwave theory CASE --json` (schema granwave-theory-impact/1)."""
     exe = find_granwave(granwave)
     if exe is None:
-        raise RuntimeError("granwave not found (--granwave, $GRANWAVE, PATH or build/): the impact drivers take "
+        raise RuntimeError("granwave not found (--granwave, $GRANWAVE, build/ or PATH): the impact drivers take "
                            "damping_ratio and the contact time from `granwave theory CASE --json`")
     out = subprocess.run([exe, "theory", case_path, "--json"], capture_output=True, text=True, check=True).stdout
     return json.loads(out)

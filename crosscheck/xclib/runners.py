@@ -3,8 +3,8 @@ the system file, report directories, and each run's result kept for resuming. Us
 (`crosscheck run`) and the sweeps (`crosscheck sweep`) alike; it imports neither.
 
 Codes (CODES): granwave, yade (yade_scripts/run_case.py), liggghts (liggghts_inputs/liggghts_case.py),
-lammps (lammps_inputs/lammps_case.py). Executables: granwave from --granwave, $GRANWAVE, PATH or
-build/; `yade`, `liggghts` from PATH; LAMMPS from $XC_LMP or `lmp` on PATH.
+lammps (lammps_inputs/lammps_case.py). Executables: granwave from --granwave, $GRANWAVE, this checkout's
+build/ or PATH; `yade`, `liggghts` from PATH; LAMMPS from $XC_LMP or `lmp` on PATH.
 
 A code's directory ends with `result.json` (status, wall time, summary, trace) once its run is over.
 With `resume`, a directory whose result says "ok" and whose trace file is there is not run again: a

@@ -151,3 +151,20 @@ def test_a_killed_group_leaves_no_child(tmp_path):
     st, rc, wall, _ = RN.run_cmd([str(script)], str(tmp_path), 2, "log.txt")
     assert st == "timeout" and wall < 30
     assert not _alive(int((tmp_path / "child").read_text()))
+
+
+def test_find_granwave_prefers_the_checkouts_build_over_path(tmp_path, monkeypatch):
+    """A checkout judges its own build: a `granwave` earlier on PATH (an older installed program) is
+    not taken while build/granwave exists; $GRANWAVE and an explicit path still win."""
+    built = os.path.join(REPO, "build", "granwave")
+    if not os.access(built, os.X_OK):
+        pytest.skip("build/granwave not built")
+    fake = tmp_path / "granwave"
+    fake.write_text("#!/bin/sh\nexit 99\n")
+    fake.chmod(0o755)
+    monkeypatch.setenv("PATH", "%s:%s" % (tmp_path, os.environ.get("PATH", "")))
+    monkeypatch.delenv("GRANWAVE", raising=False)
+    assert RN.find_granwave(None) == os.path.abspath(built)
+    monkeypatch.setenv("GRANWAVE", str(fake))
+    assert RN.find_granwave(None) == str(fake)
+    assert RN.find_granwave(str(fake)) == str(fake)
