@@ -1,12 +1,19 @@
 // granwave._granwave: the command line's verbs in-process, for the Python package python/granwave/.
 // Each function runs the program's own code (src/cli/, src/models.hpp) and returns what the verb
-// prints with --json; the package reads the files they write. The GIL is released while they run.
+// prints with --json; run also the run's series as numpy arrays over the run's own buffers. The
+// GIL is released while they run.
 #include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <pybind11/functional.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <toml++/toml.h>
@@ -16,25 +23,33 @@
 #include "core/error.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
+#include "sweep/study.hpp"
 
 namespace py = pybind11;
 using namespace granwave;
 
 namespace {
 
-// Runs `f` without the GIL; an HDF5 failure that escapes io/ is bad input, as in main.cpp.
+// Rethrows `e`; an HDF5 failure that escapes io/ is bad input, as in main.cpp.
+[[noreturn]] void rethrow(std::exception_ptr e) {
+  try {
+    std::rethrow_exception(e);
+  } catch (const std::exception&) {  // py::error_already_set too
+    throw;
+  } catch (...) {
+    if (const std::string why = io::hdf5_exception_message(); !why.empty()) throw InputError("HDF5: " + why);
+    throw;
+  }
+}
+
+// Runs `f` without the GIL.
 template <class F>
 auto released(F&& f) {
   py::gil_scoped_release release;
   try {
     return f();
-  } catch (const py::error_already_set&) {
-    throw;
-  } catch (const std::exception&) {
-    throw;
   } catch (...) {
-    if (const std::string why = io::hdf5_exception_message(); !why.empty()) throw InputError("HDF5: " + why);
-    throw;
+    rethrow(std::current_exception());
   }
 }
 
@@ -99,6 +114,75 @@ struct Stepper {
   }
 };
 
+// The kept series as numpy arrays keyed by their path without the leading "/": views of the
+// series' own buffers, which one capsule (the arrays' base) frees with the last of them.
+py::dict arrays_of(std::unique_ptr<TraceSeries> kept) {
+  py::dict out;
+  if (kept->datasets.empty()) return out;
+  TraceSeries* owner = kept.release();
+  const py::capsule base(owner, [](void* p) { delete static_cast<TraceSeries*>(p); });
+  for (auto& d : owner->datasets) {
+    const std::vector<py::ssize_t> shape(d.shape.begin(), d.shape.end());
+    if (!d.counts.empty())
+      out[py::str(d.path.substr(1))] = py::array_t<std::int64_t>(shape, d.counts.data(), base);
+    else
+      out[py::str(d.path.substr(1))] = py::array_t<double>(shape, d.values.data(), base);
+  }
+  return out;
+}
+
+// A study on a thread of its own while the calling thread, every `check_seconds`, takes the GIL,
+// lets Python handle its signals and calls callback(done, total) (members). KeyboardInterrupt
+// (or the callback's exception) asks the study to stop, waits for it (members end at their next
+// output sample) and is raised; the study's own rules leave no partial file (sweep/study.hpp).
+std::string supervised_sweep(const std::vector<std::string>& args, const py::object& callback, double check_seconds) {
+  sweep::StudyControl control;
+  std::mutex m;
+  std::condition_variable cv;
+  bool finished = false;
+  std::string text;
+  std::exception_ptr error;
+  std::thread worker([&] {
+    try {
+      std::ostringstream out;
+      cli::cmd_sweep(args, out, &control);
+      text = out.str();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(m);
+    finished = true;
+    cv.notify_all();
+  });
+  const auto interval = std::chrono::duration<double>(check_seconds);
+  std::exception_ptr raised;  // KeyboardInterrupt, or what the callback raised
+  for (;;) {
+    bool done;
+    {
+      py::gil_scoped_release release;
+      std::unique_lock<std::mutex> lock(m);
+      done = cv.wait_for(lock, interval, [&] { return finished; });
+    }
+    if (done) break;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!callback.is_none()) callback(control.done.load(), control.total.load());
+    } catch (...) {
+      raised = std::current_exception();
+      control.stop = true;
+      break;
+    }
+  }
+  {
+    py::gil_scoped_release release;
+    worker.join();
+  }
+  if (raised) std::rethrow_exception(raised);
+  if (error) rethrow(error);
+  if (!callback.is_none()) callback(control.done.load(), control.total.load());
+  return text;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_granwave, m) {
@@ -133,29 +217,41 @@ PYBIND11_MODULE(_granwave, m) {
   m.def(
       "run",
       [](const std::string& text, const std::string& origin, const std::string& trace_path, const std::string& system_path,
-         py::object callback, double check_seconds) {
+         py::object callback, double check_seconds, bool in_memory) {
         const config::Case c = config::parse_case(text, origin);
         RunRequest req;
         req.trace_path = trace_path;
         req.system_path = system_path;
         req.json = true;
         req.quiet = true;
+        req.in_memory = in_memory;
+        auto kept = std::make_unique<TraceSeries>();
+        req.keep = [&kept](TraceSeries&& s) { *kept = std::move(s); };
         Stepper step{std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(check_seconds)),
                      std::move(callback)};
         req.progress = [&step](long done, long total) { step(done, total); };
-        return released([&] {
+        if (in_memory && c.model == config::Model::impact)
+          throw InputError(origin + ": an impact run is not kept in memory (give it a trace file)");
+        std::string json = released([&] {
           std::ostringstream out;
           cli::run_case(c, req, out);
           return out.str();
         });
+        return py::make_tuple(json, arrays_of(std::move(kept)));
       },
       py::arg("text"), py::arg("origin"), py::arg("trace_path"), py::arg("system_path") = "", py::arg("callback") = py::none(),
-      py::arg("check_seconds") = 0.005,
-      "`granwave run CASE --json -o TRACE` of a case text; the JSON it prints. Every check_seconds the run\n"
-      "takes the GIL, handles signals (KeyboardInterrupt stops it, no file written) and calls callback(done, total).");
+      py::arg("check_seconds") = 0.005, py::arg("in_memory") = false,
+      "`granwave run CASE --json -o TRACE` of a case text: (the JSON it prints, {dataset path: array}).\n"
+      "The arrays are the run's own series (no copy; chain and crystal runs, else {}), the trace file's\n"
+      "datasets but /system. in_memory: the trace file is built and measured in memory only, TRACE only\n"
+      "names it (chain and crystal cases). Every check_seconds the run takes the GIL, handles signals\n"
+      "(KeyboardInterrupt stops it, no file written) and calls callback(done, total).");
 
   m.def("analyze", [](const std::vector<std::string>& a) { return verb(cli::cmd_analyze, a); }, "`granwave analyze ARGS`'s output");
   m.def("theory", [](const std::vector<std::string>& a) { return verb(cli::cmd_theory, a); }, "`granwave theory ARGS`'s output");
   m.def("build", [](const std::vector<std::string>& a) { return verb(cli::cmd_build, a); }, "`granwave build ARGS`'s output");
-  m.def("sweep", [](const std::vector<std::string>& a) { return verb(cli::cmd_sweep, a); }, "`granwave sweep ARGS`'s output");
+  m.def("sweep", &supervised_sweep, py::arg("args"), py::arg("callback") = py::none(), py::arg("check_seconds") = 0.005,
+        "`granwave sweep ARGS`'s output. The study runs on a thread of its own; every check_seconds this\n"
+        "one handles signals and calls callback(members_done, members_total). KeyboardInterrupt stops the\n"
+        "study (each running member at its next output sample) and is raised once it has stopped.");
 }

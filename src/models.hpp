@@ -1,14 +1,28 @@
 // The entry points the command line calls for each model. src/chain/, src/crystal/ and src/impact/ each
 // implement their namespace; src/cli/ only parses arguments and dispatches here.
 #pragma once
+#include <cstdint>
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "config/case.hpp"
 #include "core/resources.hpp"
 
 namespace granwave {
+
+// A run's trace datasets as the run holds them in memory: each under its path in the trace file
+// ("/time", "/crystal/layer_stress_zz", ...; not /system), with the file's shape and values.
+struct TraceSeries {
+  struct Dataset {
+    std::string path;
+    std::vector<std::size_t> shape;
+    std::vector<double> values;        // a float64 dataset, or
+    std::vector<std::int64_t> counts;  // an int64 one (/chain/full_rate/beads)
+  };
+  std::vector<Dataset> datasets;
+};
 
 struct RunRequest {
   std::string trace_path;   // where the trace file goes (written via NAME.tmp, renamed when done)
@@ -20,6 +34,11 @@ struct RunRequest {
   // run stops before any file is written.
   std::function<void(long done, long total)> progress;
   ResourceLimits limits;    // refused above (--max-steps, --max-memory; core/resources.hpp)
+  // The Python module's run. in_memory: the trace file is built in memory only and measured there
+  // (trace_path names it; nothing is written to disk, no VTK snapshots). keep: a crystal or chain
+  // run hands its trace's series over (moved, not copied) once the file is written.
+  bool in_memory = false;
+  std::function<void(TraceSeries&&)> keep;
 };
 
 namespace chain {

@@ -6,11 +6,14 @@
     r.traces["layer_stress_zz"], r.time, r.layer_z, r.units["layer_stress_zz"], r.analysis["v_half_peak"]
 
 Bad input raises ValueError with the program's message (the one `granwave check` prints after
-"error: "), a failed run RuntimeError. Every function releases the GIL while the solver works.
+"error: "), a failed run RuntimeError. Every function releases the GIL while the solver works;
+run and sweep handle Ctrl-C (KeyboardInterrupt) within a fraction of a second and report progress.
+A run's arrays are its own series in memory (no copies); run(out=None) writes no file at all.
 """
 import json
 import os
 import tempfile
+from contextlib import nullcontext
 
 
 from . import _granwave
@@ -129,13 +132,25 @@ class Result:
     energy   {kinetic, potential, dissipated, work_in[, verlet_correction]: [nt] (J)}
     units    {name: unit} of every array
     numbers  the `granwave run --json` object without its analysis (steps, wall_seconds, ...)
-    analysis what `granwave analyze TRACE --json` gives (None when the trace cannot be measured)
-    trace    the trace file written (None when run(out=None))"""
+    analysis what `granwave analyze TRACE --json` gives (None when the trace cannot be measured);
+             with out=None its "file" is None
+    trace    the trace file written (None when run(out=None))
+
+    The arrays of a chain or crystal run are the run's own series, not copies: numpy views of the
+    buffers the solver filled (flags.owndata is False; their base holds the buffers), bit for bit
+    the datasets of the trace file. Two were made for the file rather than filled by the run and
+    are held the same way: a chain's energy "dissipated" (zeros: the chain is conservative) and
+    traces["full_rate/beads"] (bead indices as int64). An impact run's arrays are read back from
+    its trace file."""
 
     def __init__(self, numbers, arrays, trace):
         self.analysis = numbers.pop("analysis", None)
         self.numbers = numbers
         self.trace = trace
+        if trace is None:
+            self.numbers["trace"] = None
+            if self.analysis is not None:
+                self.analysis["file"] = None
         self.time = arrays.pop("time", None)
         self.energy = {k.split("/", 1)[1]: v for k, v in arrays.items() if k.startswith("energy/")}
         self.traces = {k.split("/", 1)[-1]: v for k, v in arrays.items() if not k.startswith("energy/")}
@@ -148,11 +163,11 @@ class Result:
 
 
 class _Bar:
-    """progress=True: a tqdm bar of the run's steps (Debian: python3-tqdm)."""
+    """progress=True: a tqdm bar of a run's steps or a study's runs (Debian: python3-tqdm)."""
 
-    def __init__(self, name):
+    def __init__(self, name, unit="steps"):
         from tqdm import tqdm  # the text bar: works in a terminal and a notebook without ipywidgets
-        self.bar = tqdm(desc=name, unit="steps", unit_scale=True)
+        self.bar = tqdm(desc=name, unit=unit, unit_scale=True)
 
     def __call__(self, done, total):
         self.bar.total = total
@@ -162,30 +177,44 @@ class _Bar:
         self.bar.close()
 
 
+def _progress(progress, name, unit):
+    """The callback of progress= (None, True for a bar, or a callable) and the bar to close."""
+    bar = _Bar(name, unit) if progress is True else None
+    return (bar if bar else (progress or None)), bar
+
+
 def run(case, out=None, system=None, progress=None):
     """Run a case in-process, as `granwave run CASE --json -o OUT` does, and return a Result.
 
     case      a Case or a case file's path
-    out       the trace file to write (the program's file, written as OUT.tmp and renamed); None:
-              a temporary one, read and removed
+    out       the trace file to write (the program's file, written as OUT.tmp and renamed, bit
+              for bit the program's); None: no file at all -- the trace is built and measured in
+              memory (an impact case: in a temporary file, removed; no VTK snapshots either)
     system    a system file from build() to run instead of building the packing
     progress  None; True for a tqdm bar; or a callable progress(steps_done, steps_total), called
               from the run's thread with the GIL every few milliseconds
 
+    The arrays are the run's own series (see Result), not read back from the file.
     The GIL is released while the run works; every 5 ms (at the next output sample of a crystal or
     chain run) it takes it back, so Ctrl-C (KeyboardInterrupt) stops the run, leaving neither OUT
     nor OUT.tmp.
     Raises ValueError for a refused case, RuntimeError for a failed run (an unstable crystal)."""
     case = _case(case)
-    bar = _Bar(case.name) if progress is True else None
-    callback = bar if bar else (progress or None)
-    with tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
-        path = os.fspath(out) if out is not None else os.path.join(tmp, f"{case.name}.traces.h5")
+    callback, bar = _progress(progress, case.name, "steps")
+    in_memory = out is None and case.model != "impact"
+    with tempfile.TemporaryDirectory(prefix="granwave-") if out is None and not in_memory else nullcontext() as tmp:
+        if out is not None:
+            path = os.fspath(out)
+        elif in_memory:
+            path = f"{case.name}.traces.h5 (not written)"  # names the trace in messages only
+        else:
+            path = os.path.join(tmp, f"{case.name}.traces.h5")
         try:
-            text = _granwave.run(case.text, case.path, path, os.fspath(system) if system else "", callback)
+            text, arrays = _granwave.run(case.text, case.path, path, os.fspath(system) if system else "", callback,
+                                         in_memory=in_memory)
         except KeyboardInterrupt:
             # A Ctrl-C after the time loop (while the file was written) is handled here: no file either.
-            for p in (path, path + ".tmp"):
+            for p in (path, path + ".tmp") if not in_memory else ():
                 if os.path.exists(p):
                     os.remove(p)
             raise
@@ -193,7 +222,8 @@ def run(case, out=None, system=None, progress=None):
             if bar:
                 bar.close()
         numbers = json.loads(text)
-        arrays = _read_arrays(path)
+        if not arrays:  # an impact run: its arrays are the file's
+            arrays = _read_arrays(path)
         return Result(numbers, arrays, path if out is not None else None)
 
 
@@ -235,13 +265,28 @@ def build(case, out=None):
     return out
 
 
-def sweep(study, out=None, threads=None, limit=None):
+def sweep(study, out=None, threads=None, limit=None, progress=None):
     """`granwave sweep STUDY -o OUT --threads N`: a study (resumable: the same call again finishes
     a stopped one). Returns {"file": OUT, "tables": {path: array} of every dataset but /system,
-    "attrs": the root attributes, "text": what the program prints}."""
+    "attrs": the root attributes, "text": what the program prints}.
+
+    progress  None; True for a tqdm bar; or a callable progress(runs_done, runs_total), called from
+              this thread with the GIL every few milliseconds
+
+    The study runs on a thread of its own (its members on `threads` OpenMP threads) without the
+    GIL; this thread handles signals meanwhile, so Ctrl-C (KeyboardInterrupt) stops it within a
+    fraction of a second: each running member ends at its next output sample. What it leaves is what
+    the program leaves after a kill: neither OUT nor OUT.tmp, the finished runs committed under
+    OUT.parts/ (no temporary file there either), which the same call again resumes from. A Ctrl-C
+    once every run is done lets the study file be written, then raises."""
     study = os.fspath(study)
     out = os.fspath(out) if out is not None else os.path.splitext(os.path.basename(study))[0] + ".h5"
-    text = _granwave.sweep([study, "-o", out, "--quiet", *_options({"threads": threads, "limit": limit})])
+    callback, bar = _progress(progress, os.path.basename(study), "runs")
+    try:
+        text = _granwave.sweep([study, "-o", out, "--quiet", *_options({"threads": threads, "limit": limit})], callback)
+    finally:
+        if bar:
+            bar.close()
     import h5py
     with h5py.File(out, "r") as f:
         attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}

@@ -3,12 +3,18 @@
 #include "analysis/trace_json.hpp"
 #include "analysis/trace_text.hpp"
 #include "core/error.hpp"
+#include "io/h5.hpp"
 
 namespace granwave::analysis {
 
 FileReport report_file(const std::string& path, const CrystalAnalysisOptions& options) {
+  return report_file(io::H5Reader(path), options);
+}
+
+FileReport report_file(const io::H5Reader& file, const CrystalAnalysisOptions& options) {
   FileReport r;
-  const TraceFile f = read_trace(path);
+  const TraceFile f = read_trace(file);
+  const std::string& path = file.path();
   try {
     if (f.model == "chain") {
       const ChainAnalysis a = analyze_chain(f.chain);

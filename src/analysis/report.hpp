@@ -6,6 +6,10 @@
 #include "analysis/trace_analysis.hpp"
 #include "core/json.hpp"
 
+namespace granwave::io {
+class H5Reader;
+}
+
 namespace granwave::analysis {
 
 // `text` is the summary without the table; `error` says why the trace cannot be measured (the
@@ -16,5 +20,7 @@ struct FileReport {
   Json json;
 };
 FileReport report_file(const std::string& path, const CrystalAnalysisOptions& options = {});
+// The same of an open file: a run's trace built in memory (io::H5Writer::Storage::memory).
+FileReport report_file(const io::H5Reader& r, const CrystalAnalysisOptions& options = {});
 
 }  // namespace granwave::analysis

@@ -59,8 +59,10 @@ double max_abs_change(const std::vector<double>& f, std::size_t nt, std::size_t 
 
 }  // namespace
 
-TraceFile read_trace(const std::string& path) {
-  io::H5Reader r(path);
+TraceFile read_trace(const std::string& path) { return read_trace(io::H5Reader(path)); }
+
+TraceFile read_trace(const io::H5Reader& r) {
+  const std::string& path = r.path();
   TraceFile f;
   f.path = path;
   f.code = root_attr(r, "code");

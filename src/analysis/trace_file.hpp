@@ -10,6 +10,10 @@
 
 #include "analysis/measures.hpp"
 
+namespace granwave::io {
+class H5Reader;
+}
+
 namespace granwave::analysis {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -46,5 +50,6 @@ struct TraceFile {
   ChainTrace chain;
 };
 TraceFile read_trace(const std::string& path);  // throws InputError
+TraceFile read_trace(const io::H5Reader& r);    // the same, of an open file (or an image in memory)
 
 }  // namespace granwave::analysis

@@ -28,6 +28,7 @@
 
 #include "config/case.hpp"
 #include "contact/hertz.hpp"
+#include "models.hpp"
 
 namespace granwave::io {
 class H5Writer;
@@ -219,5 +220,7 @@ class Stepper {
 void write_system(io::H5Writer& w, const ChainSystem& sys, const std::string& group);
 ChainSystem read_system(const io::H5Reader& r, const std::string& group);
 void write_trace(io::H5Writer& w, const ChainTrace& tr);
+// The same datasets but /system, their series moved out of `tr` (RunRequest::keep).
+TraceSeries take_series(ChainTrace&& tr);
 
 }  // namespace granwave::chain

@@ -135,27 +135,60 @@ ChainSystem read_system(const io::H5Reader& r, const std::string& group) {
   return s;
 }
 
-void write_trace(io::H5Writer& w, const ChainTrace& tr) {
-  const std::size_t nt = tr.nt();
-  w.write("/time", tr.time);
-  if (!tr.bead_force.empty()) w.write("/chain/bead_force", tr.bead_force, {nt, tr.nbeads});
-  if (!tr.contact_force.empty()) w.write("/chain/contact_force", tr.contact_force, {nt, tr.ncontacts});
-  if (!tr.full_rate_beads.empty()) {
-    w.write("/chain/full_rate/time", tr.full_rate_time);
-    w.write("/chain/full_rate/bead_force", tr.full_rate_bead_force, {tr.full_rate_time.size(), tr.full_rate_beads.size()});
-    w.write("/chain/full_rate/beads", to_i64(tr.full_rate_beads));
+namespace {
+// A dataset of the trace: a series of the run, or values made for the file (the conservative
+// model's zero dissipation, the sensors' bead indices as int64).
+struct TraceItem {
+  std::string path;
+  std::vector<std::size_t> shape;
+  std::vector<double> ChainTrace::*series = nullptr;
+  std::vector<double> values;
+  std::vector<std::int64_t> counts;
+};
+
+// The trace's datasets but /system, in the file's order.
+std::vector<TraceItem> trace_items(const ChainTrace& tr) {
+  const std::size_t nt = tr.nt(), nft = tr.full_rate_time.size(), ns = tr.full_rate_beads.size();
+  std::vector<TraceItem> out;
+  auto series = [&](const char* path, std::vector<double> ChainTrace::*s, std::vector<std::size_t> shape = {}) {
+    if (shape.empty()) shape = {(tr.*s).size()};
+    out.push_back({path, std::move(shape), s, {}, {}});
+  };
+  series("/time", &ChainTrace::time);
+  if (!tr.bead_force.empty()) series("/chain/bead_force", &ChainTrace::bead_force, {nt, tr.nbeads});
+  if (!tr.contact_force.empty()) series("/chain/contact_force", &ChainTrace::contact_force, {nt, tr.ncontacts});
+  if (ns) {
+    series("/chain/full_rate/time", &ChainTrace::full_rate_time);
+    series("/chain/full_rate/bead_force", &ChainTrace::full_rate_bead_force, {nft, ns});
+    out.push_back({"/chain/full_rate/beads", {ns}, nullptr, {}, to_i64(tr.full_rate_beads)});
   }
   if (!tr.kinetic.empty()) {
-    w.write("/energy/kinetic", tr.kinetic);
-    w.write("/energy/potential", tr.potential);
+    series("/energy/kinetic", &ChainTrace::kinetic);
+    series("/energy/potential", &ChainTrace::potential);
     // Conservative model: nothing dissipated; work_in is the static load's work (precompression).
-    w.write("/energy/dissipated", std::vector<double>(nt, 0.0));
-    w.write("/energy/work_in", tr.work_in);
+    out.push_back({"/energy/dissipated", {nt}, nullptr, std::vector<double>(nt, 0.0), {}});
+    series("/energy/work_in", &ChainTrace::work_in);
+  }
+  return out;
+}
+}  // namespace
+
+void write_trace(io::H5Writer& w, const ChainTrace& tr) {
+  for (const auto& d : trace_items(tr)) {
+    if (!d.counts.empty()) w.write(d.path, d.counts, d.shape);
+    else w.write(d.path, d.series ? tr.*d.series : d.values, d.shape);
   }
   w.attr("/", "time_convention", std::string("synchronous"));
   w.attr("/", "dt", tr.dt);
   w.attr("/", "steps", static_cast<std::int64_t>(tr.steps));
   w.attr("/", "stopped_early", static_cast<std::int64_t>(tr.stopped_early));
+}
+
+TraceSeries take_series(ChainTrace&& tr) {
+  TraceSeries out;
+  for (auto& d : trace_items(tr))
+    out.datasets.push_back({d.path, d.shape, d.series ? std::move(tr.*d.series) : std::move(d.values), std::move(d.counts)});
+  return out;
 }
 
 }  // namespace granwave::chain

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
@@ -137,23 +138,25 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
     assess_physics(sys, resolve_dt(c, sys), given, c.integrator.dt ? "integrator.dt" : "integrator.dt_over_tc");
     for (auto& x : given.refusals) a.refusals.push_back(request.system_path + ": " + x);
   }
-  check_output_space(a, path);
+  if (!request.in_memory) check_output_space(a, path);
   enforce(a, c.path);
   for (const auto& w : a.warnings) std::cerr << "granwave run: warning: " << w << "\n";
 
   SimOptions opt = sim_options(c, sys);
   opt.progress = request.progress;
   RunFacts f;
+  std::unique_ptr<io::H5Reader> kept_trace;  // the trace, when it lives in memory only
   {
     const auto start = std::chrono::steady_clock::now();
-    const ChainTrace tr = simulate(sys, opt);
+    ChainTrace tr = simulate(sys, opt);
     f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    io::H5Writer w(path);
+    io::H5Writer w(path, request.in_memory ? io::H5Writer::Storage::memory : io::H5Writer::Storage::disk);
     io::write_provenance(w);
     w.attr("/", "case_toml", c.toml_text);
     w.attr("/", "case_name", c.name);
     write_system(w, sys, "/system");
     write_trace(w, tr);
+    if (request.in_memory) kept_trace = std::make_unique<io::H5Reader>(w);
     w.commit();
     f.nbeads = tr.nbeads;
     f.ncontacts = tr.ncontacts;
@@ -161,10 +164,12 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
     f.dt = tr.dt;
     f.stopped_early = tr.stopped_early;
     f.energy_error = tr.energy_error();
-  }  // the series are freed before the analysis reads them back
+    if (request.keep) request.keep(take_series(std::move(tr)));
+  }  // the series are freed (or kept by the caller) before the analysis reads them back
 
   // The measures: `granwave analyze` of the trace just written (one ruler, src/analysis).
-  const analysis::FileReport rep = analysis::report_file(path);
+  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace)
+                                                     : analysis::report_file(path);
   const double t_run = static_cast<double>(f.steps) * f.dt;
   const double bead_steps_per_second = static_cast<double>(f.nbeads) * f.steps / std::max(f.seconds, 1e-12);
   if (request.json) {

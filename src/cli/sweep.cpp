@@ -47,7 +47,9 @@ Prints a Markdown summary and the throughput (bead-steps, bead-steps/s, wall tim
 
 int cmd_sweep(const Args& args) { return cmd_sweep(args, std::cout); }
 
-int cmd_sweep(const Args& args, std::ostream& out) {
+int cmd_sweep(const Args& args, std::ostream& out) { return cmd_sweep(args, out, nullptr); }
+
+int cmd_sweep(const Args& args, std::ostream& out, sweep::StudyControl* control) {
   if (wants_help(args)) {
     out << kHelp;
     return 0;
@@ -83,6 +85,7 @@ int cmd_sweep(const Args& args, std::ostream& out) {
   o.limit = static_cast<std::size_t>(int_option("--limit"));
   o.progress = !has_flag(args, "--quiet");
   o.stop = !has_flag(args, "--no-stop");
+  o.control = control;
   if (const auto v = option_value(args, "", "--max-steps"); !v.empty()) o.limits.max_steps = parse_count("--max-steps", v);
   if (const auto v = option_value(args, "", "--max-memory"); !v.empty()) o.limits.max_memory = parse_bytes("--max-memory", v);
 
@@ -97,6 +100,7 @@ int cmd_sweep(const Args& args, std::ostream& out) {
       co.threads = o.threads;
       co.limit = o.limit;
       co.limits = o.limits;
+      co.control = control;
       const std::size_t left = sweep::run_crystal_study(pos[0], o.output, co, out);
       if (left > 0 && sweep::is_root())
         std::cerr << "sweep: stopped after --limit " << o.limit << " runs; " << left << " left, rerun to finish\n";

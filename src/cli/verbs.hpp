@@ -9,6 +9,10 @@
 #include "config/case.hpp"
 #include "models.hpp"
 
+namespace granwave::sweep {
+struct StudyControl;
+}
+
 namespace granwave::cli {
 
 using Args = std::vector<std::string>;
@@ -25,6 +29,8 @@ int cmd_build(const Args& args, std::ostream& out);
 int cmd_analyze(const Args& args, std::ostream& out);
 int cmd_theory(const Args& args, std::ostream& out);
 int cmd_sweep(const Args& args, std::ostream& out);
+// The same with a caller's hold on the study (stop it from another thread, count its members).
+int cmd_sweep(const Args& args, std::ostream& out, sweep::StudyControl* control);
 // `granwave run` of a loaded case: the request's checks (system file, MPI) and the model's run.
 int run_case(const config::Case& c, const RunRequest& req, std::ostream& out);
 // The crystal half of `granwave figures` (seed 002's figures), called by cmd_figures.

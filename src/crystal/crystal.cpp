@@ -141,7 +141,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
                        ": VTK snapshots are not written by a run split over MPI ranks (set 0, or run without mpirun)");
   }
   Assessment a = assess(c, req.limits);  // the refusals of `granwave check`, before anything is allocated
-  check_output_space(a, trace_path);
+  if (!req.in_memory) check_output_space(a, trace_path);
   enforce(a, c.path);
   for (const auto& w : a.warnings) err << "granwave run: warning: " << w << "\n";
   Packing packing;
@@ -153,7 +153,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   }
   std::unique_ptr<VtkSeries> vtk;
   SampleHook hook;
-  if (c.output.vtk_every > 0) {
+  if (c.output.vtk_every > 0 && !req.in_memory) {
     const auto dot = trace_path.rfind(".h5");
     vtk = std::make_unique<VtkSeries>(dot == std::string::npos ? trace_path : trace_path.substr(0, dot));
     hook = [&](const Dynamics& dyn, std::size_t sample) {
@@ -167,11 +167,18 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   std::size_t samples = 0;
   std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
   PhaseTimes phases;
+  std::unique_ptr<io::H5Reader> kept_trace;  // the trace, when it lives in memory only
   {
-    const RunResult r = simulate(c, packing, hook, comm, root ? ProgressHook(req.progress) : ProgressHook());
+    RunResult r = simulate(c, packing, hook, comm, root ? ProgressHook(req.progress) : ProgressHook());
     if (vtk) vtk->finish();
-    if (root) write_trace(c, packing, r, trace_path);
-    if (r.failed) throw RunError(r.error + " (samples so far kept in " + trace_path + ")");  // on every rank
+    if (root) {
+      io::H5Writer w(trace_path, req.in_memory ? io::H5Writer::Storage::memory : io::H5Writer::Storage::disk);
+      write_trace(c, packing, r, w);
+      if (req.in_memory) kept_trace = std::make_unique<io::H5Reader>(w);
+      w.commit();
+    }
+    if (r.failed)  // on every rank
+      throw RunError(r.error + (req.in_memory ? std::string() : " (samples so far kept in " + trace_path + ")"));
     const Traces& t = r.traces;
     const std::size_t last = t.samples() - 1;
     auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
@@ -190,13 +197,15 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
     rank_cpu_seconds = r.rank_cpu_seconds;
     rank_message_cpu_seconds = r.rank_message_cpu_seconds;
     phases = r.phases;
+    if (root && req.keep) req.keep(take_series(c, std::move(r.traces)));
   }
   if (!root) return 0;
 
   // The measures: `granwave analyze` of the trace just written (one ruler, src/analysis).
   analysis::CrystalAnalysisOptions measure;
   add_case_lattice(measure, c.toml_text, trace_path + ":/case_toml");
-  const analysis::FileReport rep = analysis::report_file(trace_path, measure);
+  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, measure)
+                                                 : analysis::report_file(trace_path, measure);
   const Derived d = derive(c);
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;
   const double pss = static_cast<double>(packing.size()) * steps / std::max(seconds, 1e-12);

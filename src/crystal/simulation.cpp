@@ -504,10 +504,38 @@ bool wants(const config::Case& c, const std::string& field) {
     if (f == field) return true;
   return false;
 }
+
+// A dataset of the trace: its path and series, [nt, nlayers] or one-dimensional.
+struct TraceField {
+  std::string path;
+  std::vector<double> Traces::*series;
+  bool per_layer;
+};
+
+// The datasets of the case's trace but /system, in the file's order.
+std::vector<TraceField> trace_fields(const config::Case& c) {
+  std::vector<TraceField> out = {{"/time", &Traces::time, false}, {"/crystal/layer_z", &Traces::layer_z, false}};
+  const std::pair<const char*, std::vector<double> Traces::*> fields[] = {
+      {"layer_stress_zz", &Traces::stress_zz},         {"layer_stress_zx", &Traces::stress_zx},
+      {"layer_displacement_z", &Traces::displacement_z}, {"layer_displacement_x", &Traces::displacement_x},
+      {"layer_velocity_z", &Traces::velocity_z},       {"layer_velocity_x", &Traces::velocity_x}};
+  for (const auto& [name, series] : fields)
+    if (wants(c, name)) out.push_back({std::string("/crystal/") + name, series, true});
+  if (wants(c, "coordination")) out.push_back({"/crystal/coordination", &Traces::coordination, false});
+  if (wants(c, "energy"))
+    for (const auto& [name, series] : {std::pair{"kinetic", &Traces::kinetic}, {"potential", &Traces::potential},
+                                       {"dissipated", &Traces::dissipated}, {"work_in", &Traces::work_in},
+                                       {"verlet_correction", &Traces::verlet_correction}})
+      out.push_back({std::string("/energy/") + name, series, false});
+  return out;
+}
+
+std::vector<std::size_t> shape_of(const TraceField& f, const Traces& t) {
+  return f.per_layer ? std::vector<std::size_t>{t.samples(), t.nlayers} : std::vector<std::size_t>{(t.*f.series).size()};
+}
 }  // namespace
 
-void write_trace(const config::Case& c, const Packing& p, const RunResult& r, const std::string& path) {
-  io::H5Writer w(path);
+void write_trace(const config::Case& c, const Packing& p, const RunResult& r, io::H5Writer& w) {
   io::write_provenance(w);
   w.attr("/", "case_name", c.name);
   w.attr("/", "case_toml", c.toml_text);
@@ -521,25 +549,15 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, co
   w.attr("/", "tangential_history", tangential_history_name(c.contact));
   w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
   write_system(w, p, c.name, "/system");
-  const Traces& t = r.traces;
-  const std::size_t nt = t.samples(), nl = t.nlayers;
-  w.write("/time", t.time);
-  w.write("/crystal/layer_z", t.layer_z);
-  const std::pair<const char*, const std::vector<double>*> fields[] = {
-      {"layer_stress_zz", &t.stress_zz},         {"layer_stress_zx", &t.stress_zx},
-      {"layer_displacement_z", &t.displacement_z}, {"layer_displacement_x", &t.displacement_x},
-      {"layer_velocity_z", &t.velocity_z},       {"layer_velocity_x", &t.velocity_x}};
-  for (const auto& [name, data] : fields)
-    if (wants(c, name)) w.write(std::string("/crystal/") + name, *data, {nt, nl});
-  if (wants(c, "coordination")) w.write("/crystal/coordination", t.coordination);
-  if (wants(c, "energy")) {
-    w.write("/energy/kinetic", t.kinetic);
-    w.write("/energy/potential", t.potential);
-    w.write("/energy/dissipated", t.dissipated);
-    w.write("/energy/work_in", t.work_in);
-    w.write("/energy/verlet_correction", t.verlet_correction);
-  }
-  w.commit();
+  for (const auto& f : trace_fields(c)) w.write(f.path, r.traces.*f.series, shape_of(f, r.traces));
+}
+
+TraceSeries take_series(const config::Case& c, Traces&& t) {
+  TraceSeries out;
+  const auto fields = trace_fields(c);
+  for (const auto& f : fields) out.datasets.push_back({f.path, shape_of(f, t), {}, {}});  // before /time moves
+  for (std::size_t k = 0; k < fields.size(); ++k) out.datasets[k].values = std::move(t.*fields[k].series);
+  return out;
 }
 
 }  // namespace granwave::crystal

@@ -14,6 +14,11 @@
 #include "theory/crystal_theory.hpp"
 #include "theory/lattice_dynamics.hpp"
 #include "crystal/slab.hpp"
+#include "models.hpp"
+
+namespace granwave::io {
+class H5Writer;
+}
 
 namespace granwave::crystal {
 
@@ -106,8 +111,11 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
                    std::shared_ptr<SlabComm> comm = nullptr, const ProgressHook& progress = {});
 
 // The trace file of SCHEMA.md §3 (with /system, provenance, case_toml, time_convention
-// "synchronous", root attribute status = "complete" or "failed: ..."), written via NAME.tmp.
-void write_trace(const config::Case& c, const Packing& packing, const RunResult& result, const std::string& path);
+// "synchronous", root attribute status = "complete" or "failed: ..."), written into `w`; the
+// caller commits it.
+void write_trace(const config::Case& c, const Packing& packing, const RunResult& result, io::H5Writer& w);
+// The same datasets but /system, their series moved out of `traces` (RunRequest::keep).
+TraceSeries take_series(const config::Case& c, Traces&& traces);
 
 // The in-memory traces as `granwave analyze` reads them from the trace file (l0, fixed layers
 // and mode of the packing and case), for analysis::analyze_crystal: the one ruler of speeds.

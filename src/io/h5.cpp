@@ -119,22 +119,33 @@ bool exists(H5::H5File& file, const std::string& tmp_path, const std::string& ob
 // Files whose H5Fclose failed: the library's clean-up at exit would close them again and crash.
 std::atomic<int> g_abandoned{0};
 
+namespace {
+// The library takes two open files in memory of the same name for one file: each gets its own.
+std::string memory_file_name(const std::string& name) {
+  static std::atomic<unsigned long> serial{0};
+  return name + " (in memory, " + std::to_string(++serial) + ")";
+}
+}  // namespace
+
 struct H5Writer::Impl {
   std::string tmp_path;
   std::unique_ptr<H5::H5File> file;
+  bool in_memory = false;
 };
 
-H5Writer::H5Writer(std::string final_path) : impl_(std::make_unique<Impl>()), final_path_(std::move(final_path)) {
+H5Writer::H5Writer(std::string final_path, Storage storage) : impl_(std::make_unique<Impl>()), final_path_(std::move(final_path)) {
   H5::Exception::dontPrint();
-  impl_->tmp_path = final_path_ + ".tmp";
+  impl_->in_memory = storage == Storage::memory;
+  impl_->tmp_path = impl_->in_memory ? final_path_ : final_path_ + ".tmp";
   try {
     // The 1.10 file format: superblock, object headers, B-trees, heaps and chunk indexes carry
     // checksums that the library verifies on every read (data/SCHEMA.md §1).
     H5::FileAccPropList fapl;
     H5Pset_libver_bounds(fapl.getId(), H5F_LIBVER_V110, H5F_LIBVER_LATEST);
-    impl_->file = std::make_unique<H5::H5File>(impl_->tmp_path, H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, fapl);
+    if (impl_->in_memory) H5Pset_fapl_core(fapl.getId(), 1 << 20, /*backing_store=*/0);
+    impl_->file = std::make_unique<H5::H5File>(impl_->in_memory ? memory_file_name(final_path_) : impl_->tmp_path, H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, fapl);
   } catch (const H5::Exception& e) {
-    std::remove(impl_->tmp_path.c_str());  // the library may have created it before failing
+    if (!impl_->in_memory) std::remove(impl_->tmp_path.c_str());  // the library may have created it before failing
     throw RunError("cannot create '" + impl_->tmp_path + "': " + e.getDetailMsg());
   }
 }
@@ -147,7 +158,7 @@ H5Writer::~H5Writer() {
       (void)impl_->file.release();  // as in commit(): never closed twice
       ++g_abandoned;
     }
-    std::remove(impl_->tmp_path.c_str());
+    if (!impl_->in_memory) std::remove(impl_->tmp_path.c_str());
   }
 }
 
@@ -255,6 +266,11 @@ void H5Writer::attr(const std::string& object, const std::string& name, std::int
 
 void H5Writer::commit() {
   if (committed_) return;
+  if (impl_->in_memory) {  // a reader opened on it keeps the file
+    impl_->file->close();
+    committed_ = true;
+    return;
+  }
   try {
     impl_->file->close();
   } catch (const H5::Exception& e) {
@@ -440,6 +456,19 @@ H5Reader::H5Reader(const std::string& path) : impl_(std::make_unique<Impl>()), p
     if (f.checksum) throw InputError("checksum mismatch in the superblock of file '" + path + "': the file is damaged");
     throw InputError(path + ": not a readable HDF5 file (" + f.why + ")");
   }
+}
+
+H5Reader::H5Reader(const H5Writer& w) : impl_(std::make_unique<Impl>()), path_(w.path()) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t id = w.impl_->file->getId();
+  hsize_t size = 0;
+  if (H5Fflush(id, H5F_SCOPE_GLOBAL) < 0 || H5Fget_filesize(id, &size) < 0)
+    throw RunError(path_ + ": cannot flush the file to read it (" + library_failure().why + ")");
+  impl_->file_size = static_cast<double>(size);
+  impl_->memory = memory_limit(ResourceLimits{});
+  impl_->heaps_checked = true;  // the file being written here, not one from elsewhere
+  impl_->file = H5Freopen(id);  // another handle of the same open file
+  if (impl_->file < 0) throw RunError(path_ + ": cannot open the file being written (" + library_failure().why + ")");
 }
 
 H5Reader::~H5Reader() = default;

@@ -15,7 +15,11 @@ namespace granwave::io {
 
 class H5Writer {
  public:
-  explicit H5Writer(std::string final_path);
+  // disk: NAME.tmp, renamed to NAME by commit(). memory: a file that only lives in memory (HDF5's
+  // core driver, no backing store), named NAME in messages; nothing touches the disk. An H5Reader
+  // opened on it before commit() keeps it until the reader is gone.
+  enum class Storage { disk, memory };
+  explicit H5Writer(std::string final_path, Storage storage = Storage::disk);
   ~H5Writer();  // removes the temporary file unless commit() succeeded
   H5Writer(const H5Writer&) = delete;
   H5Writer& operator=(const H5Writer&) = delete;
@@ -31,10 +35,11 @@ class H5Writer {
   void attr(const std::string& object, const std::string& name, std::int64_t value);
   void group(const std::string& path);
 
-  void commit();  // close and rename NAME.tmp -> NAME
+  void commit();  // close and rename NAME.tmp -> NAME (memory: close)
   const std::string& path() const { return final_path_; }
 
  private:
+  friend class H5Reader;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string final_path_;
@@ -44,6 +49,8 @@ class H5Writer {
 class H5Reader {
  public:
   explicit H5Reader(const std::string& path);  // throws InputError if unreadable
+  // The file `w` is writing (Storage::memory: the run's trace measured in memory), not committed yet.
+  explicit H5Reader(const H5Writer& w);
   ~H5Reader();
   bool has(const std::string& path) const;
   std::vector<double> read_double(const std::string& path, std::vector<std::size_t>* dims = nullptr) const;

@@ -96,14 +96,17 @@ std::vector<std::string> crystal_value_names(const CrystalStudy& s) {
   return n;
 }
 
-CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum) {
+CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum,
+                                    const StudyControl* control) {
   const auto members = crystal_members(s);
   const CrystalMember& m = members.at(index);
   CrystalMemberRun out;
   out.c = member_case(s, m);
   const crystal::Derived der = crystal::derive(out.c);
   out.packing = crystal::make_packing(out.c);  // relaxed when polydisperse (sec. 2.2 A)
-  out.run = crystal::simulate(out.c, out.packing);
+  crystal::ProgressHook stop;
+  if (control) stop = [control](long, long) { stop_point(control); };
+  out.run = crystal::simulate(out.c, out.packing, {}, nullptr, stop);
   if (out.run.failed) throw RunError(out.c.name + ": " + out.run.error);
   const crystal::Traces& tr = out.run.traces;
 
@@ -358,6 +361,7 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
   ro.progress = !opt.quiet;
   ro.what = "crystal runs";
   ro.limit = opt.limit;
+  ro.control = opt.control;
   // Polydisperse members relax first and S members run sqrt(2) longer: start those first.
   for (const auto& m : members)
     ro.cost.push_back((m.mode == 'S' ? std::numbers::sqrt2 : 1.0) * (s.vary == CrystalVary::polydispersity ? 1.0 + m.value : 1.0) *
@@ -370,7 +374,7 @@ std::vector<MemberResult> run_crystal_study(const CrystalStudy& s, const std::st
   const auto results = !done.empty() ? done : run_members(
       members.size(),
       [&](std::size_t i) {
-        CrystalMemberRun r = run_crystal_member(s, i, opt.keep_spectrum);
+        CrystalMemberRun r = run_crystal_member(s, i, opt.keep_spectrum, opt.control);
         if (opt.hook) opt.hook(i, r);
         if (!opt.quiet) {
           std::lock_guard<std::mutex> lock(log_mutex);

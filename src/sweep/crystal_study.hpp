@@ -89,7 +89,9 @@ struct CrystalMemberRun {
   double sigma0 = 0.0;  // prestress sigma_zz(t = 0), mean over the free layers (Pa)
 };
 // keep_spectrum: store |F(omega, k)| of the dispersion (figures).
-CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum = false);
+// A `control` asking to stop ends the run at its next output sample (StudyStopped).
+CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum = false,
+                                    const StudyControl* control = nullptr);
 // The lattice cell of a member's packing (its free layers, the case's lever arm) for the lattice
 // dynamics with rotations; nullopt when the packing is not a Bravais lattice (polydisperse).
 std::optional<theory::LatticeCell> member_lattice_cell(const config::Case& c, const crystal::Packing& packing,
@@ -137,6 +139,7 @@ struct CrystalRunOptions {
   CrystalMemberHook hook;  // members read back from batch files do not call it
   bool keep_spectrum = false;
   ResourceLimits limits;   // the guards of `granwave check`, applied to every member before any run
+  StudyControl* control = nullptr;  // a caller's stop and count (study.hpp)
 };
 // Run (or resume) the study: batches under OUT.parts, the study file OUT (written as OUT.tmp and
 // renamed) once every member is done. Returns the members ordered by index.

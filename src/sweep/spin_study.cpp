@@ -168,10 +168,11 @@ Measure measure_of(const chain::ChainTrace& tr, const std::vector<int>& beads) {
 }
 
 MemberResult run_spin_member(const SpinStudy& s, const SpinGroup& g, const SpinMember& m, std::size_t index,
-                             const std::string& flippable_spins, bool stop) {
+                             const std::string& flippable_spins, bool stop, const StudyControl* control) {
   chain::ChainSystem sys = g.sys;
   chain::apply_spins(sys, flippable_spins);
-  const auto opt = member_sim_options(s, g, stop);
+  auto opt = member_sim_options(s, g, stop);
+  if (control) opt.progress = [control](long, long) { stop_point(control); };
   const chain::ChainTrace tr = chain::simulate(sys, opt);
   const Measure meas = measure_of(tr, g.measure_beads);
   MemberResult r;
@@ -408,6 +409,7 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
   ro.progress = o.progress;
   ro.what = "runs";
   ro.limit = o.limit;
+  ro.control = o.control;
   for (const auto& m : members) {
     const double nb = static_cast<double>(groups[m.group].sys.nbeads());
     ro.cost.push_back(nb * nb);  // steps ~ chain length, so work ~ nbeads^2
@@ -428,7 +430,7 @@ SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o) {
         [&](std::size_t i) {
           const auto& m = members[i];
           const auto& g = groups[m.group];
-          return run_spin_member(s, g, m, i, member_spins(s, g, m, i), o.stop);
+          return run_spin_member(s, g, m, i, member_spins(s, g, m, i), o.stop, o.control);
         },
         ro, &stats);
   }

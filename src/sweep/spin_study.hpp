@@ -90,8 +90,9 @@ enum SpinValue : std::size_t {
 // Simulation options of a member run (early stop after the measured beads, capped).
 chain::SimOptions member_sim_options(const SpinStudy& s, const SpinGroup& g, bool stop);
 // Run one configuration and measure it. Profile = peak bead force of beads 0..last measured.
+// A `control` asking to stop ends the run at its next output sample (StudyStopped).
 MemberResult run_spin_member(const SpinStudy& s, const SpinGroup& g, const SpinMember& m, std::size_t index,
-                             const std::string& flippable_spins, bool stop = true);
+                             const std::string& flippable_spins, bool stop = true, const StudyControl* control = nullptr);
 
 // The seed's measure on a finished run: max over time (every step) and over `beads` of the bead
 // force (the beads must be the first full-rate beads of the run). Returns (value, time, bead).
@@ -145,6 +146,7 @@ struct SweepOptions {
   std::size_t limit = 0;  // stop after this many members (tests)
   bool stop = true;       // early stop (false: every run to the hard cap)
   ResourceLimits limits;  // the guards of `granwave check`, applied to every member before any run
+  StudyControl* control = nullptr;  // a caller's stop and count (study.hpp)
 };
 SpinStudyResult run_spin_study(const SpinStudy& s, const SweepOptions& o);
 SpinStudyResult analyse_spin_study(const SpinStudy& s, const std::vector<SpinGroup>& groups,

@@ -208,6 +208,10 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
   todo = team.share(todo);  // this rank's entries (all of them on one rank)
 
   Progress progress(n, resumed, opt.progress && team.root(), opt.what, team.progress_lines());
+  if (opt.control) {
+    opt.control->total = n;
+    opt.control->done = resumed;
+  }
   std::vector<MemberResult> pending;
   std::size_t serial = 0, computed = 0;
   double work = 0.0;
@@ -221,6 +225,7 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
   for (long k = 0; k < ntodo; ++k) {
     if (failed.load(std::memory_order_relaxed)) continue;  // an OpenMP loop cannot break
     try {
+      stop_point(opt.control);
       MemberResult r = fn(todo[static_cast<std::size_t>(k)]);
       r.index = static_cast<std::int64_t>(todo[static_cast<std::size_t>(k)]);
 #ifdef _OPENMP
@@ -238,6 +243,7 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
           }
         }
         progress.tick(team.finished(computed));
+        if (opt.control) opt.control->done = resumed + computed;
       }
     } catch (...) {
 #ifdef _OPENMP
@@ -273,6 +279,10 @@ std::vector<MemberResult> run_members(std::size_t n, const MemberFn& fn, const R
     return got;
   }
   return results;
+}
+
+void stop_point(const StudyControl* control) {
+  if (control && control->stop.load(std::memory_order_relaxed)) throw StudyStopped();
 }
 
 // ---- progress ----

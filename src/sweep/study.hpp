@@ -11,9 +11,11 @@
 // flight; a restart reads the batch files and runs only the missing members. Once the study file
 // is complete (renamed into place), commit_study removes the batches.
 #pragma once
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +36,20 @@ struct MemberResult {
   double work = 0.0;            // bead-steps (or particle-steps) spent, for the throughput line
 };
 
+// A hold on a running study from another thread (the Python module's sweep): `stop` asks it to
+// stop -- before the next member and at the next output sample of each running one, which then
+// throws StudyStopped; the finished members are committed as a batch, as after any failure, so
+// that the same call resumes. done/total: members done (read back or computed) of the study's.
+struct StudyControl {
+  std::atomic<bool> stop{false};
+  std::atomic<std::size_t> done{0}, total{0};
+};
+struct StudyStopped : std::runtime_error {
+  StudyStopped() : std::runtime_error("the study was stopped") {}
+};
+// Throws StudyStopped when `control` asks to stop (nullptr: never).
+void stop_point(const StudyControl* control);
+
 struct RunnerOptions {
   std::string parts_dir;                 // batch files live here ("" = no checkpoints)
   std::string fingerprint;               // batches written under another fingerprint are refused
@@ -47,6 +63,7 @@ struct RunnerOptions {
   std::vector<double> cost;
   // Stop after this many members were computed in this call (tests of resumption; 0 = no limit).
   std::size_t limit = 0;
+  StudyControl* control = nullptr;  // checked before each member; counts done and total
 };
 
 struct RunStats {

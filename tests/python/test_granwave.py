@@ -48,8 +48,9 @@ def test_run_is_the_program_bit_for_bit(name, tmp_path):
     assert got_attrs.keys() == want_attrs.keys()
     for k in want_attrs:
         assert same_bits(got_attrs[k], want_attrs[k]), k
-    # The result's arrays are the file's.
+    # The result's arrays (the run's own series, not read back) are the file's, every dataset but /system.
     group = "crystal" if name.startswith("crystal") else "chain"
+    assert sorted(result_arrays(r, group)) == sorted(k for k in want if not k.startswith("system/"))
     assert same_bits(r.time, want["time"])
     for k, v in r.traces.items():
         assert same_bits(v, want[f"{group}/{k}"]), k
@@ -64,6 +65,51 @@ def test_run_is_the_program_bit_for_bit(name, tmp_path):
     assert program["file"] == str(ref) and r.analysis["file"] == str(tmp_path / "module.h5")
     assert {**r.analysis, "file": None} == {**program, "file": None}
     assert g.analyze(tmp_path / "module.h5") == r.analysis
+
+
+def result_arrays(r, group):
+    """A Result's arrays keyed by their dataset's path in the trace file."""
+    out = {"time": r.time, **{f"energy/{k}": v for k, v in r.energy.items()},
+           **{f"{group}/{k}": v for k, v in r.traces.items()}}
+    if r.layer_z is not None:
+        out[f"{group}/layer_z"] = r.layer_z
+    return out
+
+
+@pytest.mark.parametrize("name", ["oriented20", "crystal40"])
+def test_run_without_out_writes_no_file_and_gives_the_programs_arrays(name, tmp_path, monkeypatch):
+    """run(case) keeps the trace in memory: the arrays are views of the run's buffers (no copy),
+    bit for bit the program's file; the analysis is `analyze --json` of that file; nothing is
+    written, neither where the run stands nor in TMPDIR."""
+    case = g.data_path(f"cases/{name}.toml")
+    ref = tmp_path / "program.h5"
+    subprocess.run([PROGRAM, "run", case, "-o", str(ref), "--quiet"], check=True, capture_output=True)
+    want, _ = datasets(ref)
+    program = json.loads(subprocess.run([PROGRAM, "analyze", str(ref), "--json"], capture_output=True, check=True).stdout)
+    here, tmp = tmp_path / "cwd", tmp_path / "tmp"
+    here.mkdir()
+    tmp.mkdir()
+    monkeypatch.chdir(here)
+    monkeypatch.setattr("tempfile.tempdir", str(tmp))
+    monkeypatch.setenv("TMPDIR", str(tmp))
+    r = g.run(g.Case.load(case))
+    assert list(here.iterdir()) == [] and list(tmp.iterdir()) == []
+    assert r.trace is None and r.numbers["trace"] is None
+    group = "crystal" if name.startswith("crystal") else "chain"
+    got = result_arrays(r, group)
+    assert sorted(got) == sorted(k for k in want if not k.startswith("system/"))
+    for k, v in got.items():
+        assert same_bits(v, want[k]), k
+        # A view of the run's buffer, held by its base (a capsule), not an array numpy allocated.
+        assert not v.flags.owndata and type(v.base).__name__ == "PyCapsule", k
+    assert r.analysis["file"] is None
+    assert {**r.analysis, "file": None} == {**program, "file": None}
+    # Ask for the numbers the run computed (not the analysis): the same as the program's run.
+    p = json.loads(subprocess.run([PROGRAM, "run", case, "-o", str(tmp_path / "again.h5"), "--json", "--quiet"],
+                                  capture_output=True, check=True).stdout)
+    timing = {"wall_seconds", "phases", "particle_steps_per_second", "bead_steps_per_second", "trace", "analysis",
+              "mpi_rank_seconds", "mpi_rank_message_seconds", "mpi_rank_cpu_seconds", "mpi_rank_message_cpu_seconds"}
+    assert {k: v for k, v in r.numbers.items() if k not in timing} == {k: v for k, v in p.items() if k not in timing}
 
 
 def test_bad_value_raises_the_programs_message(tmp_path):
@@ -114,6 +160,15 @@ def test_progress_callback_sees_the_steps():
     assert all(a[0] <= b[0] for a, b in zip(seen, seen[1:]))
 
 
+def in_two_threads(work):
+    """work(0) and work(1) at once, each in a thread of its own."""
+    ts = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in ts:
+        t.start()
+    for t in ts:
+        t.join()
+
+
 def test_two_threads_give_the_serial_arrays():
     base = g.Case.load(g.data_path("cases/crystal40.toml")).replace({"integrator.t_end": 1e-3})
     cases = [base, base.replace({"contact.kt": 5e4})]
@@ -123,11 +178,7 @@ def test_two_threads_give_the_serial_arrays():
     def work(i):
         threaded[i] = g.run(cases[i], progress=lambda done, total: ticks[i].append(time.monotonic()))
 
-    ts = [threading.Thread(target=work, args=(i,)) for i in range(2)]
-    for t in ts:
-        t.start()
-    for t in ts:
-        t.join()
+    in_two_threads(work)
     for s, t in zip(serial, threaded):
         for k in s.traces:
             assert same_bits(s.traces[k], t.traces[k]), k
@@ -149,6 +200,79 @@ def test_theory_build_sweep(tmp_path):
     s = g.sweep(g.data_path("studies/smoke.toml"), out=tmp_path / "smoke.h5", threads=2)
     assert s["tables"]["members/measure_norm"].ndim == 1 and len(s["tables"]["members/index"]) > 0
     assert not (tmp_path / "smoke.h5.tmp").exists()
+
+
+def long_study(tmp_path, n_total=40, configurations=40):
+    """The smoke study made longer: longer chains, more configurations (40, 40: 801 runs, about 3 s
+    on one core)."""
+    text = open(g.data_path("studies/smoke.toml")).read()
+    assert "n_total = [8]" in text and "configurations = 3" in text
+    path = tmp_path / "long.toml"
+    path.write_text(text.replace("n_total = [8]", f"n_total = [{n_total}]")
+                    .replace("configurations = 3", f"configurations = {configurations}"))
+    return path
+
+
+def files_under(path):
+    return sorted(str(p.relative_to(path)) for p in path.rglob("*"))
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_interrupt_stops_a_long_sweep_and_leaves_no_partial_file(threads, tmp_path):
+    study, out = long_study(tmp_path), tmp_path / "long.h5"
+    sent, seen = [], []
+    timer = threading.Timer(0.5, lambda: (sent.append(time.monotonic()), os.kill(os.getpid(), signal.SIGINT)))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        g.sweep(study, out=out, threads=threads, progress=lambda done, total: seen.append((done, total)))
+    stopped = time.monotonic()
+    timer.join()
+    assert sent and stopped - sent[0] < 0.5
+    # It was running: the study had members left when it stopped.
+    assert seen and seen[-1][0] < seen[-1][1]
+    # As after a kill: neither the study file nor a temporary one; finished runs committed under
+    # long.h5.parts/ as whole batch files, from which the same call resumes.
+    left = files_under(tmp_path)
+    assert "long.h5" not in left and not any(f.endswith(".tmp") for f in left), left
+    assert all(f in ("long.toml", "long.h5.parts") or (f.startswith("long.h5.parts/batch_") and f.endswith(".h5"))
+               for f in left), left
+
+
+def test_interrupted_sweep_resumes_to_the_uninterrupted_study(tmp_path):
+    study = long_study(tmp_path, n_total=32, configurations=16)  # 257 runs
+
+    def interrupt(done, total):  # Ctrl-C once 40 runs are done
+        if done >= 40:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        g.sweep(study, out=tmp_path / "resumed.h5", threads=2, progress=interrupt)
+    assert not (tmp_path / "resumed.h5").exists()
+    assert any((tmp_path / "resumed.h5.parts").iterdir())  # the runs done before the stop were committed
+    resumed = g.sweep(study, out=tmp_path / "resumed.h5", threads=2)
+    whole = g.sweep(study, out=tmp_path / "whole.h5", threads=2)
+    assert sorted(resumed["tables"]) == sorted(whole["tables"])
+    for k in whole["tables"]:
+        assert same_bits(resumed["tables"][k], whole["tables"][k]), k
+
+
+def test_two_sweeps_in_threads_equal_serial_ones(tmp_path):
+    study = g.data_path("studies/smoke.toml")
+    serial = [g.sweep(study, out=tmp_path / f"serial{i}.h5", threads=1) for i in range(2)]
+    threaded, done = [None, None], [[], []]
+
+    def work(i):
+        threaded[i] = g.sweep(study, out=tmp_path / f"thread{i}.h5", threads=2,
+                              progress=lambda d, t: done[i].append((d, t)))
+
+    in_two_threads(work)
+    for s, t in zip(serial, threaded):
+        assert sorted(s["tables"]) == sorted(t["tables"])
+        for k in s["tables"]:
+            assert same_bits(s["tables"][k], t["tables"][k]), k
+    for d in done:  # progress: members done of the study's, to the end
+        assert d and d[-1][0] == d[-1][1] == len(serial[0]["tables"]["members/index"])
+        assert all(a[0] <= b[0] for a, b in zip(d, d[1:]))
 
 
 def test_installed_module_found_from_outside_the_repository(tmp_path):
