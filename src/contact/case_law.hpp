@@ -89,12 +89,11 @@ void read_rolling_torsion(const Reader& r, const Table& t, config::ContactParams
   p.gamma_o = r.number_in(t, "contact", "gamma_o", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
   if (const auto mu = r.number_in(t, "contact", "mu_r", false, nonneg, ">= 0")) p.mu_r = *mu;
   if (const auto mu = r.number_in(t, "contact", "mu_o", false, nonneg, ">= 0")) p.mu_o = *mu;
-  p.rolling_lever = r.choice(t, "contact", "rolling_lever", {"lever_arm", "radii"}, "lever_arm") == "radii"
-                        ? RollingLever::radii
-                        : RollingLever::lever_arm;
-  p.rolling_history = r.choice(t, "contact", "rolling_history", {"rotated", "fixed"}, "rotated") == "fixed"
-                          ? RollingHistory::fixed
-                          : RollingHistory::rotated;
+  // the conventions: the first value is the default
+  const bool radii = r.choice(t, "contact", "rolling_lever", {"lever_arm", "radii"}, "lever_arm") == "radii";
+  const bool fixed = r.choice(t, "contact", "rolling_history", {"rotated", "fixed"}, "rotated") == "fixed";
+  p.rolling_lever = radii ? RollingLever::radii : RollingLever::lever_arm;
+  p.rolling_history = fixed ? RollingHistory::fixed : RollingHistory::rotated;
 }
 inline RollingTorsionParams rolling_torsion_of(const config::ContactParams& p) {
   return {p.kr, p.gamma_r, p.mu_r, p.ko, p.gamma_o, p.mu_o, p.coulomb_normal == config::CoulombNormal::magnitude,
