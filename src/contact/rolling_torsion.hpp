@@ -53,8 +53,8 @@ struct RollingTorsionParams {
   }
 };
 
-// Base: a law with torques and a Deferrable evaluation (contact/linear_luding.hpp, hertz_mindlin.hpp) that gives its
-// normal force as normal_part(Contact). Dashpots = false: gamma_r = gamma_o = 0, without their
+// Base: a law with torques and a Deferrable evaluation (contact/linear_luding.hpp, hertz_mindlin.hpp) whose
+// evaluate(..., double& f_n) also gives the normal force its Coulomb limit read. Dashpots = false: gamma_r = gamma_o = 0, without their
 // arithmetic. FixedHistory: RollingHistory::fixed.
 template <class Base, bool Dashpots, bool FixedHistory = false>
 struct WithRollingTorsion {
@@ -108,11 +108,11 @@ struct WithRollingTorsion {
   template <bool Exact>
   [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
     Response r;
+    double f_n;  // computed once, by the base's own evaluation
     if constexpr (Exact)
-      r = base.evaluate(c, h.base);
+      r = base.evaluate(c, h.base, f_n);
     else
-      r = base.evaluate(c, h.base, Deferrable{});
-    const double f_n = base.normal_part(c);
+      r = base.evaluate(c, h.base, Deferrable{}, f_n);
     const double arm_i = c.a_i - shift * c.delta, arm_j = c.a_j - shift * c.delta;
     const double lever = arm_i * arm_j / (arm_i + arm_j);  // a'
     const Vec3 turn = c.w_i - c.w_j;
