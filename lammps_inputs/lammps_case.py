@@ -33,7 +33,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "crosscheck"))
 from xclib import driver as DRV  # noqa: E402
 from xclib import dumps as D  # noqa: E402
 from xclib import laws as L  # noqa: E402
-from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, MIXED_ARM, Unsupported  # noqa: E402,F401
+from xclib.codefacts import FRICTION_STYLE_CONVENTIONS, MIXED_ARM, Unsupported, resistance_on  # noqa: E402,F401
 from xclib import traces as T  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LAMMPS velocity Verlet, dumps after a whole step; positions, velocities "
@@ -176,7 +176,8 @@ def render_crystal(case: dict, system: dict, workdir: str, facts: dict) -> str:
         law = L.law_of(c)
         matters = {"lever_arm": law.tangential(c), "normal_tension": law.dashpot(c),
                    "coulomb_normal": law.tangential(c) and law.dashpot(c) and c["normal_tension"] == "allow",
-                   "tangential_history": law.tangential(c), "contact_law": False}[key]
+                   "tangential_history": law.tangential(c), "contact_law": False,
+                   "rolling_lever": resistance_on(c) and c["lever_arm"] != "radius"}[key]
         if matters and asked != used:
             sys.stderr.write("lammps_case: the case asks for %s = \"%s\"; LAMMPS %s runs \"%s\", and the trace says so "
                              "(%s)\n" % (key, asked, sty["style"], used,

@@ -25,6 +25,7 @@ from xclib import driver as DRV  # noqa: E402
 from xclib import dumps as D  # noqa: E402
 from xclib import laws as L  # noqa: E402
 from xclib import traces as T  # noqa: E402
+from xclib.codefacts import resistance_on  # noqa: E402
 
 TIME_CONVENTION = ("synchronous: LIGGGHTS velocity Verlet, dumps after a whole step; positions, "
                    "velocities and compute pair/gran/local forces at step*dt (no shift); the normal "
@@ -109,7 +110,10 @@ def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dic
         exclude = src["exclude"]
         limit_force = "on" if c["normal_tension"] == "clip" else "off"
         contact_lines, with_history = L.law_of(c).liggghts_lines(c, limit_force)  # xclib.linear / hertz_mindlin
-        ncol = 9 if with_history else 6   # id1 id2 flag f(3) [shear history(3)]
+        # id1 id2 flag f(3) [shear history(3)]; model luding's history starts with its own values, not the shear
+        # (the converter needs the shear only with a dashpot, which the rolling decks refuse)
+        shear_columns = with_history and not resistance_on(c)
+        ncol = 9 if shear_columns else 6
         if with_history:
             # A contact that opens loses its spring (seed 002 sec. 2.1: a contact starts with xi = 0; granwave,
             # YADE, LAMMPS). LIGGGHTS zeroes the shear history only in surfacesClose, which pair_gran_base.h
@@ -125,7 +129,7 @@ def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dic
             contact_lines=contact_lines, exclude=exclude, free_types=src["free_types"],
             dt=_g(dt), excitation_line=src["excitation_line"], atom_format="%d" + " %.17g" * 9, every=every,
             thermo=max(1, nsteps // 10), nsteps=nsteps,
-            history=" history" if with_history else "", pair_columns=" ".join("c_cpl[%d]" % k for k in range(1, ncol + 1)),
+            history=" history" if shear_columns else "", pair_columns=" ".join("c_cpl[%d]" % k for k in range(1, ncol + 1)),
             pair_format=" ".join(["%.17g"] * ncol))
         facts.update(lay={k: v for k, v in x.lay.items() if k != "layer"})
     with open(os.path.join(workdir, "in.case"), "w") as f:

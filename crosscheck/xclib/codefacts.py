@@ -30,6 +30,23 @@ def torsion_on(c: dict) -> bool:
     return float(c.get("ko", 0.0)) > 0 or float(c.get("gamma_o", 0.0)) > 0
 
 
+def resistance_on(c: dict) -> bool:
+    """Rolling or torsion resistance: the conventions of RESISTANCE_CONVENTIONS matter."""
+    return rolling_on(c) or torsion_on(c)
+
+
+# The conventions of the resistance a code runs (trace root attributes, [contact] keys of granwave;
+# MAPPING.md "Rolling and torsion resistance"): rolling_lever "radii" is a' = a_i a_j/(a_i + a_j) of the
+# radii in the springs, dashpots and limits, which YADE, LIGGGHTS and LAMMPS all take (measured K/research = 1
+# at delta/a' = 1.7e-3); granwave's default "lever_arm" takes the tangential lever arm's arms.
+RADII_LEVER = dict(rolling_lever="radii")
+
+
+def resistance_conventions(c: dict, **used) -> dict:
+    """The conventions `used` of a code's rolling and torsion, when the case has any ({} otherwise)."""
+    return dict(used) if resistance_on(c) else {}
+
+
 def resistance_keys(c: dict) -> list:
     """The rolling and torsion keys the case sets ("kr = 2e4", ...), of the resistances that are on."""
     keys = (ROLLING_KEYS if rolling_on(c) else ()) + (TORSION_KEYS if torsion_on(c) else ())
@@ -75,8 +92,8 @@ def lammps_resistance(c: dict, radius) -> str:
 # What the YADE and LIGGGHTS drivers say when a case has rolling or torsion resistance (both laws).
 YADE_WHY = ("by yade_scripts/run_case.py with Hertz-Mindlin (its rolling law, Law2_ScGeom6D_CohFrictPhys_"
             "CohesionMoment, sits on a linear contact: liggghts_inputs/MAPPING.md)")
-LIGGGHTS_WHY = ("by liggghts_inputs/liggghts_case.py (rolling_friction luding keeps a fixed history, "
-                "lumps torsion into the rolling spring and drops the rolling dashpot: liggghts_inputs/MAPPING.md)")
+LIGGGHTS_WHY = ("by liggghts_inputs/liggghts_case.py with Hertz-Mindlin (its rolling law, rolling_friction luding, "
+                "runs on LIGGGHTS' linear model luding: liggghts_inputs/MAPPING.md)")
 
 
 def liggghts_properties(*rows) -> str:

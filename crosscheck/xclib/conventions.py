@@ -11,6 +11,7 @@ from __future__ import annotations
 from . import laws as L
 from . import sweepmath as M
 from . import traces as T
+from .codefacts import resistance_on, rolling_on
 
 TWIN_SEP = "~"
 
@@ -48,13 +49,25 @@ CONVENTIONS = (
      "LAMMPS' mindlin/force the force (incremental, \"force\"), LAMMPS' mindlin_rescale scales xi by "
      "a/a_prev on unloading (\"displacement_rescale\"), measured by crosscheck/probe_hertz_mindlin.py. "
      "granwave runs each: [contact] tangential_history."),
+    # Luding's rolling and torsion resistance (issue #28; MAPPING.md "Rolling and torsion resistance")
+    ("rolling_lever", resistance_on,
+     "The lever a' = arm_i arm_j/(arm_i + arm_j) of the rolling and torsion springs: YADE, LIGGGHTS and LAMMPS take "
+     "the radii (R*), granwave by default the tangential lever arm's arms, a - delta/2 with lever_arm = "
+     "\"contact_point\" (the angular springs then differ by about delta/a'). granwave runs either: [contact] "
+     "rolling_lever."),
+    ("rolling_history", rolling_on,
+     "The rolling spring: granwave and LAMMPS' sds turn it into the current tangent plane keeping its length "
+     "(\"rotated\"); LIGGGHTS' rolling_friction luding keeps its torque history fixed in space (\"fixed\"; after a "
+     "rigid turn phi its torque misses the turned one by 2 sin(phi/2), measured). granwave runs either: [contact] "
+     "rolling_history."),
 )
 
 # The values granwave can run (a twin is made only from these); a trace recording another value is
 # reported as a convention difference and not judged against granwave.
 GRANWAVE_RUNS = dict(lever_arm=("radius", "contact_point"), normal_tension=("allow", "clip"),
                      coulomb_normal=("compressive", "magnitude"),
-                     tangential_history=("displacement", "displacement_rescale", "force"))
+                     tangential_history=("displacement", "displacement_rescale", "force"),
+                     rolling_lever=("lever_arm", "radii"), rolling_history=("rotated", "fixed"))
 
 
 MODELS = ("crystal", "impact")   # the models whose traces record their conventions
@@ -75,6 +88,15 @@ def _params(case: dict) -> dict:
     return c
 
 
+def _value(key: str, attrs: dict, c: dict):
+    """The trace's value of a convention (the case's without the attribute), one name per law: a rolling
+    lever on the arms of lever_arm = "radius" is the radii's."""
+    v = attrs.get(key, c[key])
+    if key == "rolling_lever" and v == "lever_arm" and attrs.get("lever_arm", c["lever_arm"]) == "radius":
+        return "radii"
+    return v
+
+
 def _matters(case: dict, *attrs: dict) -> list:
     """The conventions that matter for the case run as these traces ran it: the Coulomb rule under
     tension matters when one of them let the dashpot pull (normal_tension recorded "allow")."""
@@ -89,7 +111,7 @@ def recorded(case: dict, attrs: dict) -> dict:
     if case.get("case", {}).get("model") not in MODELS:
         return {}
     c = _params(case)
-    return {key: attrs.get(key, c[key]) for key, _ in _matters(case, attrs)}
+    return {key: _value(key, attrs, c) for key, _ in _matters(case, attrs)}
 
 
 def difference(case: dict, attrs_a: dict, attrs_b: dict) -> str | None:
@@ -101,7 +123,7 @@ def difference(case: dict, attrs_a: dict, attrs_b: dict) -> str | None:
     c = _params(case)
     out = []
     for key, why in _matters(case, attrs_a, attrs_b):
-        va, vb = attrs_a.get(key, c[key]), attrs_b.get(key, c[key])
+        va, vb = _value(key, attrs_a, c), _value(key, attrs_b, c)
         if va != vb:
             out.append("%s convention: the traces say %s = %s and %s. %s" % (key.replace("_", "-"), key, va, vb, why))
     return " ".join(out) or None

@@ -249,7 +249,7 @@ def lammps_style(c: dict, mass, radius=None) -> dict:
         delta, k_t = Kt sqrt(R* delta), f_t = -k_t(delta) xi, lever arm a (as gran/hooke/history);
       friction otherwise: pair granular with tangential mindlin / mindlin_rescale / mindlin/force (k_t from
         the material, no tangential dashpot), whose arm is MIXED_ARM."""
-    from xclib.codefacts import MIXED_ARM, Unsupported, lammps_resistance, resistance_keys
+    from xclib.codefacts import MIXED_ARM, RADII_LEVER, Unsupported, lammps_resistance, resistance_conventions, resistance_keys
     p = params(c)
     clip = c["normal_tension"] == "clip" and p["zeta"] > 0.0
     rolling = lammps_resistance(c, radius)
@@ -259,7 +259,8 @@ def lammps_style(c: dict, mass, radius=None) -> dict:
         except ValueError as e:   # tsuji's alpha(e) spans (3e-4, 1.2728]: zeta in (1.2e-4, 0.5196]
             raise Unsupported(str(e)) from None
     base = dict(contact_law="hertz_mindlin", normal_tension=c["normal_tension"], lever_arm=c.get("lever_arm", "radius"),
-                coulomb_normal=c.get("coulomb_normal", "compressive"), tangential_history=p["history"])
+                coulomb_normal=c.get("coulomb_normal", "compressive"), tangential_history=p["history"],
+                **resistance_conventions(c, **RADII_LEVER))   # sds on R*, as the linear law's
     if p["tangential"] != "mindlin":
         line = lammps_pair_coeff("* *", p["E"], p["nu"], p["mu"], p["zeta"], p["history"], clip, tangential=False)
         line = line.rstrip("\n") + rolling

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import sys
 
-from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, Unsupported, liggghts_properties, refuse_resistance,
-                              resistance_keys, rolling_on, torsion_on, LIGGGHTS_WHY)
+from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, RADII_LEVER, Unsupported, liggghts_properties,
+                              resistance_conventions, resistance_keys, rolling_on, torsion_on)
 
 NAME = "linear"
 CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
@@ -82,8 +82,9 @@ def _yade_resisted(c: dict, W, phi: float):
 
 def yade_attrs(c: dict) -> dict:
     """What the YADE trace records of the law: ViscEl (any dashpot) clips; without a dashpot the normal
-    force cannot pull, so both conventions are the same law."""
-    return {"normal_tension": "clip"} if _yade_damped(c) else {}
+    force cannot pull, so both conventions are the same law. CohesionMoment's angular springs and limits
+    take the radii (ks alphaKr a_i a_j, etaRoll min(a_i, a_j): for the equal radii it runs, a' = a/2)."""
+    return dict({"normal_tension": "clip"} if _yade_damped(c) else {}, **resistance_conventions(c, **RADII_LEVER))
 
 
 # ------------------------------------------------------------------------------------------ LIGGGHTS
@@ -97,12 +98,60 @@ def _properties(kn, kt, gamma_n, gamma_t, mu) -> str:
 
 def liggghts_lines(c: dict, limit_force: str) -> tuple[str, bool]:
     """The contact lines of the crystal deck and whether the pair keeps a shear history."""
-    refuse_resistance(c, "LIGGGHTS", LIGGGHTS_WHY)
+    if rolling_on(c) or torsion_on(c):
+        return _liggghts_resisted(c, limit_force), True
     lines = ("# linear spring-dashpot with tangential spring; per type pair (1 free, 2 fixed, 3 source: "
              "one material)\n" + _properties(c["kn"], c["kt"], c["gamma_n"], c["gamma_t"], c["mu_static"]) +
              "pair_style      gran model hooke/stiffness tangential history absolute_damping on limitForce %s\n"
              "pair_coeff      * *\n" % limit_force)
     return lines, c["kt"] > 0
+
+
+# Properties of LIGGGHTS' model luding that make it granwave's linear spring (MAPPING.md, rolling section):
+# loading = unloading stiffness (no hysteresis), no adhesion, e = 1 (no dashpots: its gamma_n = gamma_t =
+# sqrt(4 m* kn/(1 + (pi/ln e)^2)) vanish), mu_d = mu_s (FluidViscosity, the ratio), FrictionViscosity > 0
+# required (times gamma_t = 0).
+LUDING_FIXED = (("UnloadingStiffness", 1.0), ("coefficientAdhesionStiffness", 0.0), ("coefficientPlasticityDepth", 0.1),
+                ("pullOffForce", 0.0), ("coefficientRestitution", 1.0), ("FluidViscosity", 1.0),
+                ("FrictionViscosity", 1.0), ("coefficientRollingViscousDamping", 0.0))
+NO_ROLLING_LIMIT = 1e100   # mu_r absent: a limit no torque reaches
+
+
+def _liggghts_resisted(c: dict, limit_force: str) -> str:
+    """Rolling (and torsion) on `model luding tangential tan_luding rolling_friction luding` (measured, MAPPING.md):
+    rolling stiffness LoadingStiffness coeffRollingStiffness R*^2 (coeffRollingStiffness = k_r/k_n, exact for every
+    pair), limit coefficientRollingFriction |F_n| R* (= mu_r), tan_luding's spring kn coeffFrictionStiffness (= kt).
+    Refused (Unsupported naming the keys): any dashpot (its rolling dashpot is gamma_t coeffRollVisc 2 sqrt(I_r k),
+    gamma_t from coefficientRestitution: zero without a normal dashpot, per pair of masses otherwise, and dropped
+    on slip), kt = 0, and torsion unless `torsion on`'s lumping is granwave's law: ko = kr, no limits."""
+    keys = ", ".join(resistance_keys(c))
+    where = "LIGGGHTS (liggghts_inputs/liggghts_case.py)"
+    damped = [k for k in ("gamma_n", "gamma_t", "gamma_r", "gamma_o") if float(c.get(k, 0.0)) > 0]
+    if damped:
+        raise Unsupported("[contact] %s with %s > 0: not mapped for %s: rolling_friction luding's dashpot is gamma_t "
+                          "coefficientRollingViscousDamping 2 sqrt(I_r k) with model luding's gamma_t from "
+                          "coefficientRestitution (zero without a normal dashpot, per pair of masses otherwise), and on "
+                          "slip it keeps the limited torque and drops the dashpot (MAPPING.md)" % (keys, ", ".join(damped), where))
+    kn, kt = float(c["kn"]), float(c["kt"])
+    if kt <= 0:
+        raise Unsupported("[contact] %s with kt = 0: not mapped for %s (tan_luding's spring is kn coeffFrictionStiffness "
+                          "and its slip divides by it)" % (keys, where))
+    if torsion_on(c):
+        if float(c.get("ko", 0.0)) != float(c.get("kr", 0.0)) or "mu_r" in c or "mu_o" in c:
+            raise Unsupported("[contact] %s: not mapped for %s: `torsion on` lumps the twist into the rolling spring (one "
+                              "stiffness k_r, one limit mu_r |F_n| R* for both; a combined spin saturates at 0.707 of "
+                              "granwave's two limits, measured) and `torsion off` has none; granwave's independent torsion "
+                              "is LIGGGHTS' only with ko = kr and no limits (mu_r, mu_o absent)" % (keys, where))
+    mu_r = float(c["mu_r"]) if "mu_r" in c else NO_ROLLING_LIMIT
+    rows = [("LoadingStiffness", kn)] + list(LUDING_FIXED) + [
+        ("coefficientFriction", float(c["mu_static"])), ("coeffFrictionStiffness", kt / kn),
+        ("coefficientRollingFriction", mu_r), ("coeffRollingStiffness", float(c.get("kr", 0.0)) / kn)]
+    nine = lambda x: " ".join([_g(x)] * 9)  # noqa: E731
+    props = liggghts_properties(*[(k + 1, name, "peratomtypepair 3", nine(v)) for k, (name, v) in enumerate(rows)])
+    return ("# Luding's linear model with tangential and rolling springs (model luding at loading = unloading stiffness, "
+            "no adhesion, e = 1); per type pair (one material)\n" + props +
+            "pair_style      gran model luding tangential tan_luding rolling_friction luding%s limitForce %s\n"
+            "pair_coeff      * *\n" % (" torsion on" if torsion_on(c) else "", limit_force))
 
 
 def liggghts_dump(c: dict, r, lay: dict) -> dict:
@@ -112,7 +161,8 @@ def liggghts_dump(c: dict, r, lay: dict) -> dict:
 
 
 def liggghts_attrs(c: dict) -> dict:
-    return {}
+    """rolling_friction luding takes R* of the radii and never turns its torque history (MAPPING.md)."""
+    return resistance_conventions(c, rolling_history="fixed", **RADII_LEVER)
 
 
 # -------------------------------------------------------------------------------------------- LAMMPS
@@ -161,7 +211,7 @@ def _lammps_resisted(c: dict, radius) -> dict:
     line = ("pair_style      granular\npair_coeff      * * hooke %s %s %s damping velocity%s%s"
             % (_g(kn), _g(gn), tang, " limit_damping" if clip else "", lammps_resistance(c, radius)))
     conv = dict(lever_arm=MIXED_ARM if kt > 0.0 else c.get("lever_arm", "radius"), normal_tension=c["normal_tension"],
-                coulomb_normal="magnitude" if kt > 0.0 else c.get("coulomb_normal", "compressive"))
+                coulomb_normal="magnitude" if kt > 0.0 else c.get("coulomb_normal", "compressive"), **RADII_LEVER)
     comment = ("granular hooke, absolute dashpot (damping velocity), %s, rolling/twisting sds (Luding)"
                % tang.split(" ")[1])
     return dict(lines=line, conventions=conv, tangential=kt > 0.0, clip=clip, comment=comment,

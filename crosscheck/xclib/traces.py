@@ -37,7 +37,8 @@ def load_case(path: str) -> tuple[dict, str]:
 def contact_params(case: dict) -> dict:
     c = dict(law="linear", kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5,
              normal_tension="allow", lever_arm="radius", coulomb_normal="compressive", damping_ratio=0.0,
-             tangential="mindlin", tangential_history="displacement")
+             tangential="mindlin", tangential_history="displacement", rolling_lever="lever_arm",
+             rolling_history="rotated")
     c.update(case.get("contact", {}))
     return c
 

@@ -11,6 +11,7 @@
 
 #include "config/impact_case.hpp"
 #include "contact/lever_arm.hpp"
+#include "contact/rolling_conventions.hpp"
 
 namespace granwave::config {
 
@@ -112,6 +113,8 @@ struct ContactParams {
   // and dashpots (kg/s) on the lever a', limits mu f_n (absent: no limit); all zero: off.
   double kr = 0.0, gamma_r = 0.0, mu_r = std::numeric_limits<double>::infinity();
   double ko = 0.0, gamma_o = 0.0, mu_o = std::numeric_limits<double>::infinity();
+  contact::RollingLever rolling_lever = contact::RollingLever::lever_arm;  // the arms of a'
+  contact::RollingHistory rolling_history = contact::RollingHistory::rotated;
   // hertz_mindlin only (the linear law refuses them; it refuses kn, kt, gamma_n, gamma_t)
   double youngs_modulus = 0.0;  // E (Pa), both spheres
   double poisson_ratio = 0.0;   // nu, in (-1, 0.5)

@@ -78,7 +78,8 @@ struct ScaleCheck {
 
 // Rolling and torsion resistance (contact/rolling_torsion.hpp), for a law that carries it: its
 // [contact] keys, their reading and checks, and its parameters.
-inline constexpr std::array<const char*, 6> rolling_torsion_keys{"kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o"};
+inline constexpr std::array<const char*, 8> rolling_torsion_keys{"kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o",
+                                                                 "rolling_lever", "rolling_history"};
 template <class Reader, class Table>
 void read_rolling_torsion(const Reader& r, const Table& t, config::ContactParams& p) {
   auto nonneg = [](double v) { return v >= 0; };
@@ -88,9 +89,15 @@ void read_rolling_torsion(const Reader& r, const Table& t, config::ContactParams
   p.gamma_o = r.number_in(t, "contact", "gamma_o", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
   if (const auto mu = r.number_in(t, "contact", "mu_r", false, nonneg, ">= 0")) p.mu_r = *mu;
   if (const auto mu = r.number_in(t, "contact", "mu_o", false, nonneg, ">= 0")) p.mu_o = *mu;
+  // the conventions: the first value is the default
+  const bool radii = r.choice(t, "contact", "rolling_lever", {"lever_arm", "radii"}, "lever_arm") == "radii";
+  const bool fixed = r.choice(t, "contact", "rolling_history", {"rotated", "fixed"}, "rotated") == "fixed";
+  p.rolling_lever = radii ? RollingLever::radii : RollingLever::lever_arm;
+  p.rolling_history = fixed ? RollingHistory::fixed : RollingHistory::rotated;
 }
 inline RollingTorsionParams rolling_torsion_of(const config::ContactParams& p) {
-  return {p.kr, p.gamma_r, p.mu_r, p.ko, p.gamma_o, p.mu_o, p.coulomb_normal == config::CoulombNormal::magnitude};
+  return {p.kr, p.gamma_r, p.mu_r, p.ko, p.gamma_o, p.mu_o, p.coulomb_normal == config::CoulombNormal::magnitude,
+          p.rolling_lever, p.rolling_history};
 }
 // `granwave check`'s line about them ("" when off).
 inline std::string rolling_torsion_line(const config::ContactParams& p) {
@@ -98,7 +105,9 @@ inline std::string rolling_torsion_line(const config::ContactParams& p) {
   std::ostringstream o;
   o << "  rolling: kr = " << p.kr << " N/m, gamma_r = " << p.gamma_r << " kg/s, mu_r = " << p.mu_r
     << "; torsion: ko = " << p.ko << " N/m, gamma_o = " << p.gamma_o << " kg/s, mu_o = " << p.mu_o
-    << " (lever a' = arm_i arm_j/(arm_i + arm_j))\n";
+    << " (lever a' = arm_i arm_j/(arm_i + arm_j), arms "
+    << (p.rolling_lever == RollingLever::radii ? "the radii a_p" : "the lever arm's") << "; rolling spring "
+    << rolling_history_name(p.rolling_history) << ")\n";
   return o.str();
 }
 

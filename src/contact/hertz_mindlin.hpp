@@ -142,14 +142,25 @@ struct HertzMindlinLaw {
   }
 
   // Any contact: sticking or sliding (eqs. (5), (7), (8)).
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const {
+    double f_n;
+    return respond<true>(c, h, f_n);
+  }
   // The kernel's vector sweep: sticking contacts finished, sliding ones deferred to the exact
   // evaluation above (their root and divisions cost more than the rest of the law), bit for bit
   // the same results as evaluating every contact exactly.
   [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const
     requires(H != MindlinHistory::none)
   {
-    return respond<false>(c, h);
+    double f_n;
+    return respond<false>(c, h, f_n);
+  }
+  // The same, also giving f_n as the Coulomb limit read it (the limits of contact/rolling_torsion.hpp).
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, double& f_n) const { return respond<true>(c, h, f_n); }
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable, double& f_n) const
+    requires(H != MindlinHistory::none)
+  {
+    return respond<false>(c, h, f_n);
   }
 
  private:
@@ -172,8 +183,9 @@ struct HertzMindlinLaw {
   }
 
   template <bool Exact>
-  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
+  [[gnu::always_inline]] Response respond(const Contact& c, History& h, double& f_n_out) const {
     const auto [a, f_elastic, f_n] = normal_of(c);
+    f_n_out = f_n;
     // The dashpot's work (or a clipped pull's).
     double loss = Damped ? (f_n - f_elastic) * c.delta_dot * c.dt : 0.0;
     if constexpr (H == MindlinHistory::none) {
@@ -242,8 +254,6 @@ struct HertzMindlinLaw {
   }
   LeverArm lever_arm() const { return p.lever_arm; }
   bool dissipates() const { return Damped || H != MindlinHistory::none; }
-  // f_n as the Coulomb limit reads it: for the rolling and torsion limits of contact/rolling_torsion.hpp.
-  [[gnu::always_inline]] double normal_part(const Contact& c) const { return normal_of(c).f_n; }
   HertzMindlinLaw<false, H, Hysteresis> without_rates() const { return HertzMindlinLaw<false, H, Hysteresis>(p); }
 
  private:

@@ -16,8 +16,9 @@ namespace granwave::contact {
 struct HertzMindlinCase {
   static constexpr config::ContactLaw law = config::ContactLaw::hertz_mindlin;
   static constexpr const char* name = "hertz_mindlin";
-  static constexpr std::array<const char*, 11> keys{"youngs_modulus", "poisson_ratio", "damping_ratio", "tangential",
-                                                    "tangential_history", "kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o"};
+  static constexpr std::array<const char*, 13> keys{"youngs_modulus", "poisson_ratio", "damping_ratio", "tangential",
+                                                    "tangential_history", "kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o",
+                                                    "rolling_lever", "rolling_history"};
   static constexpr const char* refusal_note =
       "; the Hertz-Mindlin stiffnesses come from youngs_modulus and poisson_ratio (k_n = 2 E* sqrt(R* delta), k_t = 8 "
       "G* sqrt(R* delta)), its damping from damping_ratio";
@@ -34,6 +35,9 @@ struct HertzMindlinCase {
                            : h == "displacement_rescale" ? config::TangentialHistory::displacement_rescale
                                                          : config::TangentialHistory::displacement;
     read_rolling_torsion(r, t, p);
+    if (p.rolling_history == RollingHistory::fixed)
+      r.fail("contact.rolling_history", "\"fixed\" is for law = \"linear\" (LIGGGHTS' rolling_friction luding, whose history it "
+             "is, runs on its linear model luding); hertz_mindlin takes \"rotated\"", t.get("rolling_history"));
     // The decorator needs the Mindlin spring's law (its torques and its deferral).
     if (!p.mindlin && rolling_torsion_of(p).active())
       for (const char* key : rolling_torsion_keys)

@@ -59,10 +59,19 @@ struct LinearLudingLaw {
 
   // Sticking contacts, branch-free; a contact that slides is deferred.
   [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const {
-    return respond<false>(c, h);
+    double f_n;
+    return respond<false>(c, h, f_n);
   }
   // Any contact, eqs. (5), (7), (8).
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const {
+    double f_n;
+    return respond<true>(c, h, f_n);
+  }
+  // The same, also giving f_n as the Coulomb limit read it (the limits of contact/rolling_torsion.hpp).
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable, double& f_n) const {
+    return respond<false>(c, h, f_n);
+  }
+  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, double& f_n) const { return respond<true>(c, h, f_n); }
 
   // The spring's energy is lost when the contact opens.
   double opening_loss(const History& h) const { return 0.5 * tangential.kt * h.xi().squaredNorm(); }
@@ -74,16 +83,18 @@ struct LinearLudingLaw {
   bool dissipates() const { return true; }  // slip
   // A jump of positions: no dashpots (the springs see no velocity either).
   LinearLudingLaw<false, Hysteresis> without_rates() const { return {normal, tangential, arm}; }
+
+ private:
   // f_n of eq. (1), as the Coulomb limit reads it.
   [[gnu::always_inline]] double normal_part(const Contact& c) const {
     // Without a dashpot a touching contact never pulls, so clipping changes nothing.
     return Dashpots ? normal_force(normal, c.delta, c.delta_dot) : normal.kn * c.delta;
   }
 
- private:
   template <bool Exact>
-  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
+  [[gnu::always_inline]] Response respond(const Contact& c, History& h, double& f_n_out) const {
     const double f_n = normal_part(c);  // eq. (1) text
+    f_n_out = f_n;
     // Dissipated normally: the work of (f_n - k delta) against the approach (dashpot, or a clipped pull).
     const double loss_n = Dashpots ? (f_n - normal.kn * c.delta) * c.delta_dot * c.dt : 0.0;
     // Lever arms: a - 0 * delta = a exactly for the seed's eq. (4) (the default).

@@ -17,8 +17,8 @@ namespace granwave::contact {
 struct LinearLudingCase {
   static constexpr config::ContactLaw law = config::ContactLaw::linear;
   static constexpr const char* name = "linear";
-  static constexpr std::array<const char*, 10> keys{"kn", "kt", "gamma_n", "gamma_t", "kr", "gamma_r", "mu_r",
-                                                    "ko", "gamma_o", "mu_o"};
+  static constexpr std::array<const char*, 12> keys{"kn", "kt", "gamma_n", "gamma_t", "kr", "gamma_r", "mu_r",
+                                                    "ko", "gamma_o", "mu_o", "rolling_lever", "rolling_history"};
   static constexpr const char* refusal_note = " (this case's law is \"linear\")";
 
   template <class Reader, class Table>
@@ -67,9 +67,9 @@ struct LinearLudingCase {
     rt.validate();
     // With rolling or torsion resistance, one form per dashpot flag (any dashpot: all of them).
     if (rt.active())
-      return with_flags([&]<bool Dashpots>() {
-        return make(WithRollingTorsion<LinearLudingLaw<Dashpots>, Dashpots>(LinearLudingLaw<Dashpots>(n, t, p.lever_arm), rt));
-      }, dashpots || rt.dashpots());
+      return with_flags([&]<bool Dashpots, bool Fixed>() {
+        return make(WithRollingTorsion<LinearLudingLaw<Dashpots>, Dashpots, Fixed>(LinearLudingLaw<Dashpots>(n, t, p.lever_arm), rt));
+      }, dashpots || rt.dashpots(), rt.history == RollingHistory::fixed);
     if (t.active())
       return with_flags([&]<bool Dashpots, bool Hysteresis>() {
         return make(LinearLudingLaw<Dashpots, Hysteresis>(n, t, p.lever_arm));

@@ -3,9 +3,12 @@
 // added to a frictional law (contact/law.hpp) as a decorator: WithRollingTorsion<Base>.
 //
 // Both are pseudo-forces on the lever a' = arm_i arm_j/(arm_i + arm_j), arm_p = a_p - shift delta
-// (the law's lever arm: R* with the radius, the overlap-corrected R* with the contact point):
+// (the law's lever arm: R* with the radius, the overlap-corrected R* with the contact point; R*
+// whatever the lever arm with RollingLever::radii):
 //   rolling  v_r = -a' n x (w_i - w_j)            (tangent to n; zero for w_i = w_j, a rigid turn)
 //            xi_r: projected into the current tangent plane keeping |xi_r| (eq. (2)), += v_r dt
+//            (FixedHistory, LIGGGHTS: a spring fixed in space on n x v_r = a' (w_i - w_j)_t, its couple
+//            a' f_r: the same to first order in the turn of n)
 //            f_r = -k_r xi_r - gamma_r v_r,  |f_r| <= mu_r f_n, on slip xi_r = -(f_r + gamma_r v_r)/k_r
 //   torsion  v_o = a' n . (w_i - w_j),  xi_o += v_o dt (a scalar: n turning leaves it alone)
 //            f_o = -k_o xi_o - gamma_o v_o,  |f_o| <= mu_o f_n, the same slip rule
@@ -21,6 +24,7 @@
 #include <string>
 
 #include "contact/law.hpp"
+#include "contact/rolling_conventions.hpp"
 #include "contact/tangential_spring.hpp"
 #include "core/error.hpp"
 
@@ -32,6 +36,8 @@ struct RollingTorsionParams {
   double ko = 0.0, gamma_o = 0.0;  // torsion spring (N/m) and dashpot (kg/s)
   double mu_o = HUGE_VAL;          // torsion limit mu_o f_n
   bool coulomb_on_magnitude = false;  // mu |f_n| (LIGGGHTS) instead of mu max(f_n, 0)
+  RollingLever lever = RollingLever::lever_arm;         // the arms of a' (contact/rolling_conventions.hpp)
+  RollingHistory history = RollingHistory::rotated;     // WithRollingTorsion's FixedHistory
 
   TangentialSpringParams rolling() const { return {kr, gamma_r, mu_r, mu_r, coulomb_on_magnitude}; }
   TangentialSpringParams torsion() const { return {ko, gamma_o, mu_o, mu_o, coulomb_on_magnitude}; }
@@ -47,16 +53,16 @@ struct RollingTorsionParams {
   }
 };
 
-// Base: a law with torques and a Deferrable evaluation (contact/linear_luding.hpp, hertz_mindlin.hpp) that gives its
-// normal force as normal_part(Contact). Dashpots = false: gamma_r = gamma_o = 0, without their
-// arithmetic.
-template <class Base, bool Dashpots>
+// Base: a law with torques and a Deferrable evaluation (contact/linear_luding.hpp, hertz_mindlin.hpp) whose
+// evaluate(..., double& f_n) also gives the normal force its Coulomb limit read. Dashpots = false: gamma_r = gamma_o = 0, without their
+// arithmetic. FixedHistory: RollingHistory::fixed.
+template <class Base, bool Dashpots, bool FixedHistory = false>
 struct WithRollingTorsion {
   static_assert(Base::torques && DefersContacts<Base>, "rolling and torsion resistance need a frictional law");
   Base base;
   RollingTorsionParams rt;
   TangentialSpringParams roll, twist;  // rt.rolling(), rt.torsion()
-  double shift = 0.0;                  // lever arms a_p - shift delta
+  double shift = 0.0;                  // arms of a': a_p - shift delta
 
   struct History {
     typename Base::History base;
@@ -69,7 +75,7 @@ struct WithRollingTorsion {
   static constexpr bool lossless_sweep = LosslessSweep<Base> && !Dashpots;
 
   WithRollingTorsion(const Base& b, const RollingTorsionParams& p)
-      : base(b), rt(p), shift(arm_shift(b.lever_arm())) {
+      : base(b), rt(p), shift(rolling_shift(p.lever, b.lever_arm())) {
     rt.validate();
     if (!Dashpots) rt.gamma_r = rt.gamma_o = 0.0;
     roll = rt.rolling();
@@ -93,7 +99,7 @@ struct WithRollingTorsion {
   bool dissipates() const { return true; }
   auto without_rates() const {
     using Still = decltype(base.without_rates());
-    return WithRollingTorsion<Still, false>(base.without_rates(), rt);
+    return WithRollingTorsion<Still, false, FixedHistory>(base.without_rates(), rt);
   }
 
  private:
@@ -102,21 +108,29 @@ struct WithRollingTorsion {
   template <bool Exact>
   [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
     Response r;
+    double f_n;  // computed once, by the base's own evaluation
     if constexpr (Exact)
-      r = base.evaluate(c, h.base);
+      r = base.evaluate(c, h.base, f_n);
     else
-      r = base.evaluate(c, h.base, Deferrable{});
-    const double f_n = base.normal_part(c);
+      r = base.evaluate(c, h.base, Deferrable{}, f_n);
     const double arm_i = c.a_i - shift * c.delta, arm_j = c.a_j - shift * c.delta;
     const double lever = arm_i * arm_j / (arm_i + arm_j);  // a'
     const Vec3 turn = c.w_i - c.w_j;
-    const Vec3 v_r = -lever * c.n.cross(turn);
+    Vec3 v_r;  // of the rolling spring
+    if constexpr (FixedHistory)
+      v_r = lever * (turn - c.n.dot(turn) * c.n);
+    else
+      v_r = -lever * c.n.cross(turn);
     const Vec3 v_o(lever * c.n.dot(turn), 0.0, 0.0);  // the torsion as the x of a vector
     const Vec3 xo(select(twist.kt == 0.0, 0.0, h.o + v_o.x() * c.dt), 0.0, 0.0);
     Vec3 f_r, f_o;
     double slip = 0.0;
     if constexpr (Exact) {
-      const Vec3 xr = advance_spring(roll, h.xi_r(), c.n, v_r, c.dt);
+      Vec3 xr;
+      if constexpr (FixedHistory)
+        xr = select(roll.kt == 0.0, Vec3::Zero(), h.xi_r() + v_r * c.dt);
+      else
+        xr = advance_spring(roll, h.xi_r(), c.n, v_r, c.dt);
       const TangentialResult rolled = tangential_force<Dashpots>(roll, xr, v_r, f_n, false);
       const TangentialResult twisted = tangential_force<Dashpots>(twist, xo, v_o, f_n, false);
       f_r = rolled.force, f_o = twisted.force;
@@ -125,7 +139,11 @@ struct WithRollingTorsion {
       r.loss += spring_dashpot_loss<Dashpots>(roll, f_r, v_r, c.dt, rolled.slip_loss);
       slip = spring_dashpot_loss<Dashpots>(twist, f_o, v_o, c.dt, twisted.slip_loss);
     } else {  // sticking; a slip or a spring that needs the projection's root is deferred
-      const AdvancedSpring xr = advance_spring_series(roll, h.xi_r(), c.n, v_r, c.dt);
+      AdvancedSpring xr;
+      if constexpr (FixedHistory)
+        xr = {select(roll.kt == 0.0, Vec3::Zero(), h.xi_r() + v_r * c.dt), false};
+      else
+        xr = advance_spring_series(roll, h.xi_r(), c.n, v_r, c.dt);
       const TangentialTest rolled = tangential_test<Dashpots>(roll, xr.xi, v_r, f_n, false);
       const TangentialTest twisted = tangential_test<Dashpots>(twist, xo, v_o, f_n, false);
       f_r = rolled.force, f_o = twisted.force;
@@ -136,7 +154,10 @@ struct WithRollingTorsion {
       slip = spring_dashpot_loss<Dashpots>(twist, f_o, v_o, c.dt, 0.0);
     }
     r.loss += slip;
-    r.couple = lever * (c.n.cross(f_r) + f_o.x() * c.n);
+    if constexpr (FixedHistory)
+      r.couple = lever * (f_r + f_o.x() * c.n);
+    else
+      r.couple = lever * (c.n.cross(f_r) + f_o.x() * c.n);
     return r;
   }
 };

@@ -31,6 +31,7 @@ theory::LatticeCellOptions lattice_options(const config::Case& c, double toleran
   opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
   opt.kr = c.contact.kr;
   opt.ko = c.contact.ko;
+  opt.rolling_radii = c.contact.rolling_lever == contact::RollingLever::radii;
   return opt;
 }
 
@@ -547,6 +548,8 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, io
          std::string(c.contact.coulomb_normal == config::CoulombNormal::magnitude ? "magnitude" : "compressive"));
   w.attr("/", "contact_law", contact_law_name(c.contact));
   w.attr("/", "tangential_history", tangential_history_name(c.contact));
+  w.attr("/", "rolling_lever", std::string(contact::rolling_lever_name(c.contact.rolling_lever)));
+  w.attr("/", "rolling_history", std::string(contact::rolling_history_name(c.contact.rolling_history)));
   w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
   write_system(w, p, c.name, "/system");
   for (const auto& f : trace_fields(c)) w.write(f.path, r.traces.*f.series, shape_of(f, r.traces));

@@ -55,6 +55,8 @@ void write_trace(const config::Case& c, const Setup& s, const Series& t, const s
            {"coulomb_normal", magnitude ? "magnitude" : "compressive"},
            {"contact_law", law.name},
            {"tangential_history", law.history_name(c.contact)},
+           {"rolling_lever", contact::rolling_lever_name(c.contact.rolling_lever)},
+           {"rolling_history", contact::rolling_history_name(c.contact.rolling_history)},
            {"status", "complete"}})
     w.attr("/", name, value);
   const std::size_t nt = t.size();

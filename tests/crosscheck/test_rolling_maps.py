@@ -96,3 +96,61 @@ def test_yade_cohesion_moment_map_without_dashpots():
     assert linear.yade_interaction(c, W, 0.5)[0]["etaRoll"] == -1.0      # no limit
     with pytest.raises(Unsupported, match="gamma_r"):
         linear.yade_interaction(dict(c, gamma_r=0.1), W, 0.5)
+
+
+def test_liggghts_luding_map_of_the_undamped_fixture():
+    """rolling_friction luding on model luding (MAPPING.md): coeffRollingStiffness = k_r/k_n, coefficientRollingFriction
+    = mu_r (absent: a limit never reached), tan_luding's coeffFrictionStiffness = kt/kn, `torsion on` for ko = kr
+    without limits; the trace records R* of the radii and the fixed history."""
+    c = contact("rolltors_nodash")
+    lines, history = linear.liggghts_lines(c, "off")
+    assert history
+    assert "pair_style      gran model luding tangential tan_luding rolling_friction luding torsion on limitForce off" in lines
+    for name, value in (("LoadingStiffness", 1e5), ("coeffRollingStiffness", 0.2), ("coeffFrictionStiffness", 1.0),
+                        ("coefficientRollingFriction", 1e100), ("coefficientRestitution", 1.0),
+                        ("coefficientRollingViscousDamping", 0.0), ("coefficientFriction", 0.5)):
+        assert "property/global %s peratomtypepair 3 %s\n" % (name, " ".join([repr(value)] * 9)) in lines, name
+    assert linear.liggghts_attrs(c) == dict(rolling_history="fixed", rolling_lever="radii")
+    rolling = dict(c, ko=0.0, mu_r=0.01)          # rolling alone with a limit: torsion off
+    lines, _ = linear.liggghts_lines(rolling, "on")
+    assert "rolling_friction luding limitForce on" in lines and "0.01 0.01" in lines
+    assert linear.liggghts_attrs(dict(c, kr=0.0, ko=0.0)) == {}
+
+
+@pytest.mark.parametrize("change,match", [
+    (dict(gamma_r=0.1), "gamma_r > 0.*LIGGGHTS.*coefficientRestitution"),
+    (dict(gamma_n=0.1), "gamma_n > 0.*LIGGGHTS"),
+    (dict(ko=1e4), "ko = 10000.*LIGGGHTS.*torsion on.*ko = kr"),
+    (dict(mu_o=0.01), "mu_o = 0.01.*LIGGGHTS.*one limit"),
+    (dict(kt=0.0), "kt = 0.*LIGGGHTS"),
+])
+def test_liggghts_refuses_what_luding_cannot_express(change, match):
+    with pytest.raises(Unsupported, match=match):
+        linear.liggghts_lines(dict(contact("rolltors_nodash"), **change), "off")
+
+
+def test_rolling_conventions_make_the_twins():
+    """YADE and LIGGGHTS take a' of the radii (LIGGGHTS also a fixed history): their twins run those keys; granwave's
+    default lever on the radius arm is the radii's, so LAMMPS (radii) differs only by its mixed arm."""
+    from xclib import conventions as CV
+    with open(os.path.join(HERE, "cases", "crystal_small_rolltors_nodash.toml"), "rb") as f:
+        case = tomllib.load(f)
+    gw = dict(lever_arm="radius", normal_tension="allow", coulomb_normal="compressive", contact_law="linear",
+              rolling_lever="lever_arm", rolling_history="rotated")
+    yade = dict(gw, lever_arm="contact_point", coulomb_normal="magnitude", rolling_lever="radii")
+    lig = dict(yade, rolling_history="fixed")
+    lmp = dict(gw, lever_arm="radius_velocity_contact_point_torque", coulomb_normal="magnitude", rolling_lever="radii")
+    tw = {name: (codes, changes) for name, codes, changes in CV.twins(case, dict(granwave=gw, yade=yade, liggghts=lig,
+                                                                                   lammps=lmp))}
+    assert tw["granwave~yade"] == (["yade"], dict(lever_arm="contact_point", rolling_lever="radii",
+                                                  rolling_history="rotated"))
+    assert tw["granwave~liggghts"] == (["liggghts"], dict(lever_arm="contact_point", rolling_lever="radii",
+                                                          rolling_history="fixed"))
+    assert "granwave~lammps" not in tw
+    why = CV.difference(case, gw, lmp)
+    assert why.count("convention: the traces say") == 1 and "lever-arm" in why
+    # the contact-point arm without the radii key is a rolling-lever difference
+    assert "rolling-lever" in CV.difference(case, dict(gw, lever_arm="contact_point"), yade)
+    # no resistance: neither rolling convention matters
+    plain = {"case": case["case"], "contact": {k: v for k, v in case["contact"].items() if k not in ("kr", "ko")}}
+    assert CV.difference(plain, dict(yade, rolling_history="rotated"), lig) is None

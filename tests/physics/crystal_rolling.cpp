@@ -114,6 +114,26 @@ TEST_CASE("rolling and torsion springs through the kernel: the spin oscillates a
   }
 }
 
+TEST_CASE("rolling_lever = radii through the kernel: the spin oscillates on a' = a b/(a + b) with the contact point as arm (either history)",
+          "[crystal][contact]") {
+  // YADE's moment springs take the radii (ks alphaKr a_i a_j), whatever its contact-point lever arm; LIGGGHTS'
+  // (rolling_history = fixed) too: n does not turn here, so its fixed spring oscillates alike.
+  for (const auto history : {contact::RollingHistory::rotated, contact::RollingHistory::fixed})
+  for (const int axis : {0, 2}) {
+    const double k = 4e4;
+    config::ContactParams cp = axis == 0 ? rolling_case(k, 0.0, contact::LeverArm::contact_point)
+                                         : rolling_case(0.0, k, contact::LeverArm::contact_point);
+    cp.rolling_lever = contact::RollingLever::radii;
+    cp.rolling_history = history;
+    const crystal::Packing pk = sandwich();
+    const double lever = a * b / (a + b);
+    REQUIRE(lever / lever_of(contact::LeverArm::contact_point, overlap_of(pk)) - 1 > 5e-4);  // the arm's a' differs
+    const Oscillation o = oscillate(cp, std::sqrt(2 * k * lever * lever / pk.inertia[1]), axis);
+    CAPTURE(axis, contact::rolling_history_name(history));
+    CHECK(o.worst < 1e-9);
+  }
+}
+
 TEST_CASE("rolling and torsion on Hertz-Mindlin through the kernel: the spin's oscillation with the Mindlin spring",
           "[crystal][contact]") {
   // The Mindlin spring k_t = 8 G* sqrt(R* delta) holds the roll as well (its torque -a n x f_t,

@@ -94,6 +94,40 @@ TEST_CASE("rolling and torsion: the couple a' (n x f_r + f_o n) of one step, no 
   CHECK_THAT(law.opening_loss(h) - plain.opening_loss(hb), Catch::Matchers::WithinRel(own, 1e-12));
 }
 
+TEST_CASE("rolling and torsion: rolling_lever = radii takes a' from the radii whatever the lever arm", "[contact]") {
+  // With the contact point as lever arm the default lever is (a_i - delta/2)(a_j - delta/2)/(a_i + a_j -
+  // delta); RollingLever::radii keeps a_i a_j/(a_i + a_j) in v_r, v_o, the couple and its cap.
+  const double kr = 3e4, ko = 5e4, mu = 1e-3, f_n = kn * delta;
+  const Base point({kn, 0.0, false}, {0.0, 0.0, 0.5, 0.5}, contact::LeverArm::contact_point);
+  contact::RollingTorsionParams p = springs(kr, 0.0, HUGE_VAL, ko, 0.0, HUGE_VAL);
+  p.lever = contact::RollingLever::radii;
+  const Law radii(point, p), arm(point, springs(kr, 0.0, HUGE_VAL, ko, 0.0, HUGE_VAL));
+  const double shifted = (ra - 0.5 * delta) * (rb - 0.5 * delta) / (ra + rb - delta);
+  const Vec3 n(0, 0, 1), w_i(2.0, 0.0, 3.0);
+  for (const auto& [law, a] : {std::pair<const Law*, double>{&radii, lever}, {&arm, shifted}}) {
+    Law::History h;
+    const auto r = law->evaluate(turning(n, w_i, Vec3()), h);
+    // From an empty history: f = -k v dt with v_r = -a' n x w_i, v_o = a' n . w_i; couple a' (n x f_r + f_o n).
+    const Vec3 v_r = -a * n.cross(w_i), f_r = -kr * dt * v_r;
+    const Vec3 expect = a * (n.cross(f_r) + (-ko * dt * a * n.dot(w_i)) * n);
+    CAPTURE(a);
+    CHECK_THAT(r.couple.x(), Catch::Matchers::WithinRel(expect.x(), 1e-13));
+    CHECK_THAT(r.couple.z(), Catch::Matchers::WithinRel(expect.z(), 1e-13));
+    CHECK(r.couple.y() == 0.0);
+  }
+  // The two levers differ by delta (1/(2 a') - 1/(a_i + a_j)) to first order: 8.3e-4 here.
+  CHECK_THAT(lever / shifted - 1, Catch::Matchers::WithinRel(delta * (0.5 / lever - 1 / (ra + rb)), 1e-2));
+  // The caps: a' mu f_n with the radii's a'.
+  contact::RollingTorsionParams q = springs(kr, 0.0, mu, ko, 0.0, mu);
+  q.lever = contact::RollingLever::radii;
+  const Law capped(point, q);
+  Law::History h;
+  contact::Response r;
+  for (int s = 0; s < 400; ++s) r = capped.evaluate(turning(n, Vec3(40.0, 0.0, 25.0), Vec3()), h);
+  CHECK_THAT(std::abs(r.couple.x()), Catch::Matchers::WithinRel(lever * mu * f_n, 1e-12));
+  CHECK_THAT(std::abs(r.couple.z()), Catch::Matchers::WithinRel(lever * mu * f_n, 1e-12));
+}
+
 TEST_CASE("rolling and torsion: a rigid turn of the pair (w_i = w_j) rolls and twists nothing", "[contact]") {
   // w_i = w_j: the spheres turn together (no relative rolling), whatever the axis. The gear-like
   // w_i = -w_j, whose contact points move together (no sliding), is a relative rolling: resisted.
@@ -160,6 +194,34 @@ TEST_CASE("rolling and torsion: the rolling spring turns into the new tangent pl
     CHECK_THAT(g.xi_r().norm(), Catch::Matchers::WithinRel(size, 1e-14));
     CHECK(g.o == twist);  // a scalar about n: the frame's turn leaves it alone
   }
+}
+
+TEST_CASE("rolling and torsion: rolling_history = fixed keeps the spring fixed in space (LIGGGHTS)", "[contact]") {
+  // One step from an empty history: the rotated law's couple (n x v_r = a' (w_i - w_j)_t). Then the pair
+  // turns by 0.3 rad with no relative spin: the fixed couple stays the same vector, the rotated one turns.
+  const double kr = 3e4, gr = 0.02;
+  using Fixed = contact::WithRollingTorsion<Base, true, true>;
+  contact::RollingTorsionParams p = springs(kr, gr, HUGE_VAL, 0.0, 0.0, HUGE_VAL);
+  p.history = contact::RollingHistory::fixed;
+  const Fixed fixed(base(0.0), p);
+  const Law rotated(base(0.0), springs(kr, gr, HUGE_VAL, 0.0, 0.0, HUGE_VAL));
+  const Vec3 n(0, 0, 1), w_i(2.0, -1.0, 3.0);
+  Fixed::History hf;
+  Law::History hr;
+  const auto f1 = fixed.evaluate(turning(n, w_i, Vec3()), hf), r1 = rotated.evaluate(turning(n, w_i, Vec3()), hr);
+  CHECK((f1.couple - r1.couple).norm() <= 1e-15 * r1.couple.norm());
+  // The spring: a' (w_i)_t dt (couple -k a' xi without dashpot), not projected
+  const Vec3 xi = lever * Vec3(2.0, -1.0, 0.0) * dt;
+  CHECK_THAT(hf.r_x, Catch::Matchers::WithinRel(xi.x(), 1e-14));
+  CHECK_THAT(hf.r_y, Catch::Matchers::WithinRel(xi.y(), 1e-14));
+  const Vec3 turned(std::sin(0.3), 0.0, std::cos(0.3));
+  const auto f2 = fixed.evaluate(turning(turned, Vec3(), Vec3()), hf), r2 = rotated.evaluate(turning(turned, Vec3(), Vec3()), hr);
+  const Vec3 held = -kr * lever * xi;
+  CHECK((f2.couple - held).norm() <= 1e-15 * held.norm());
+  CHECK(std::abs(r2.couple.dot(turned)) < 1e-15 * held.norm());  // the rotated couple stays across n
+  CHECK((r2.couple - held).norm() > 0.1 * held.norm());
+  // Both keep the stored energy (1/2) k |xi|^2.
+  CHECK_THAT(hf.xi_r().norm(), Catch::Matchers::WithinRel(hr.xi_r().norm(), 1e-14));
 }
 
 TEST_CASE("rolling and torsion: without springs or dashpots the law is the linear law, bit for bit", "[contact]") {
