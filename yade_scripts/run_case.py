@@ -308,16 +308,16 @@ def run_crystal(case, system, dt, nsteps, every):
         sys.stderr.write("run_case.py: YADE has one friction coefficient; using mu_static=%g (mu_dynamic=%g "
                          "ignored: a documented difference)\n" % (c["mu_static"], c["mu_dynamic"]))
     phi = math.atan(c["mu_static"])
-    from xclib.codefacts import Unsupported
+    from xclib.codefacts import NOT_EXPRESSIBLE, Unsupported
     try:
         mat, ip2, law2 = law.yade_interaction(c, yade.wrapper, phi)
     except Unsupported as e:
-        fail("%s: %s" % (case["case"]["name"], e))
+        fail("%s: %s YADE: %s" % (case["case"]["name"], NOT_EXPRESSIBLE, e))
     six_d = isinstance(law2, Law2_ScGeom6D_CohFrictPhys_CohesionMoment)   # rolling and torsion
     if six_d:
         if float(np.max(r)) != float(np.min(r)):
-            fail("%s: rolling/torsion resistance is mapped for YADE for equal radii only (CohesionMoment's "
-                 "stiffness a_i a_j and limit lever min(a_i, a_j))" % case["case"]["name"])
+            fail("%s: %s YADE: rolling/torsion resistance is mapped for YADE for equal radii only (CohesionMoment's "
+                 "stiffness a_i a_j and limit lever min(a_i, a_j))" % (case["case"]["name"], NOT_EXPRESSIBLE))
         mat.young = c["kn"] / float(r[0])    # Ip2_CohFrict: kn = 2 E a_i a_j/(a_i + a_j) = E a
     mat = O.materials.append(mat)
     zoff = 2 * float(np.max(r))
@@ -414,12 +414,12 @@ def run_impact(case_path, out_path, case, text):
     sampled by a PyRunner after NewtonIntegrator and made synchronous as the chain's samples."""
     from xclib import hertz_mindlin as HM
     from xclib import impact as I
-    from xclib.codefacts import Unsupported
+    from xclib.codefacts import NOT_EXPRESSIBLE, Unsupported
     try:
         s = I.setup(case, case_path)
         m1, m2, ip2 = HM.yade_impact_materials(s, yade.wrapper, math.atan(s.mu) if s.friction else 0.0)
     except Unsupported as e:
-        fail("%s: %s" % (case_path, e))
+        fail("%s: %s YADE: %s" % (case_path, NOT_EXPRESSIBLE, e))
     O.materials.append(m1)
     O.materials.append(m2)
     b1 = utils.sphere(Vector3(*s.b1.x), s.b1.radius, material=m1)

@@ -23,7 +23,7 @@ import numpy as np
 
 from . import laws as L
 from . import traces as T
-from .codefacts import Unsupported, resistance_keys
+from .codefacts import NOT_EXPRESSIBLE, Unsupported, resistance_keys
 
 
 def g(x: float) -> str:
@@ -336,7 +336,8 @@ class DeckDriver:
         try:
             facts = self.render(case, system, work)
         except self.refused as e:
-            self.say("%s: %s" % (a.case, e))
+            # only Unsupported is the law's refusal; another error of the rendering stays a failure
+            self.say("%s: %s%s" % (a.case, "%s %s: " % (NOT_EXPRESSIBLE, self.title) if isinstance(e, Unsupported) else "", e))
             return 2
         if a.render_only:
             print("rendered %s" % work)

@@ -465,7 +465,7 @@ def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=No
     failing = ["%s %s %s %s = %s (tolerance %s)" % (res["case_name"], r["pair"], r["quantity"], r["what"],
                                                    _fmt(r["value"]), _fmt(r["tol"]))
                for res in results for r in res["rows"] if r["status"] not in ("PASS", "EXPECTED-DIFF")]
-    failed = [v for v in verdict if v[1] not in ("EXPECTED-DIFF", "PASS")]
+    failed = [v for v in verdict if v[1] not in ("EXPECTED-DIFF", "PASS", RN.NOT_EXPRESSIBLE_STATUS.upper())]
     return Verdict(status="FAIL" if failed else "PASS", rows=[tuple(v) for v in verdict], failing=failing,
                    report=os.path.join(report_dir, "report.md"), report_dir=report_dir, results=results)
 

@@ -19,7 +19,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import traces as T
-from .codefacts import Unsupported, refuse_resistance
+from .codefacts import NOT_EXPRESSIBLE, Unsupported, refuse_resistance
 
 # The drivers' run: every step is written (the peaks are parabola-refined over three samples) until
 # this many closed-form contact times after first touch, and the flight out of the peak overlap at e v:
@@ -290,14 +290,14 @@ def main(argv, *, code: str, title: str, exe_option: str, exe_default: str, rend
     try:
         s = setup(case, a.case, a.granwave)
     except Unsupported as e:
-        say("%s: %s" % (a.case, e))
+        say("%s: %s %s: %s" % (a.case, NOT_EXPRESSIBLE, title, e))
         return 2
     work = a.workdir or (a.out + "." + code)
     os.makedirs(work, exist_ok=False)
     try:
         attrs = render(s, work)
     except Unsupported as e:
-        say("%s: %s" % (a.case, e))
+        say("%s: %s %s: %s" % (a.case, NOT_EXPRESSIBLE, title, e))
         return 2
     if a.render_only:
         print("rendered %s" % work)

@@ -27,11 +27,15 @@ import tomllib
 from . import conventions as CV
 from .impact import find_granwave  # noqa: F401 (the harness's name for it)
 from . import traces as T
+from .codefacts import NOT_EXPRESSIBLE
 
 XC_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))      # crosscheck/
 REPO = os.path.dirname(XC_DIR)
 CODES = ("granwave", "yade", "liggghts", "lammps")
 DEFAULT_CODES = ",".join(CODES)
+# A run the code's driver refused because its law cannot express the case (exit 2, NOT_EXPRESSIBLE on
+# stderr): the report names it and why; the verdict does not count it as a failure.
+NOT_EXPRESSIBLE_STATUS = "not-expressible"
 TWIN_SEP = CV.TWIN_SEP   # "granwave~lammps": granwave run with LAMMPS' conventions
 
 
@@ -153,7 +157,8 @@ def stored_result(workdir: str) -> dict | None:
 
 def run_code(code, case_path, system_path, workdir, timeout, granwave, resume=False) -> dict:
     """One code on one case in workdir (created). A missing, failing or hanging code is a result
-    with status missing / failed / timeout and a detail, never an exception."""
+    with status missing / failed / timeout and a detail, never an exception; a case the code's law cannot
+    express (its driver's refusal) has status NOT_EXPRESSIBLE_STATUS."""
     if resume:
         old = stored_result(workdir)
         if old is not None:
@@ -181,6 +186,10 @@ def run_code(code, case_path, system_path, workdir, timeout, granwave, resume=Fa
                 tail = []
             lead = {"timeout": "no answer within %g s (killed)" % timeout, "missing": "executable not found"}
             res["detail"] = ((res.get("detail") or lead.get(status, "exit %s" % rc)) + ": " + " ".join(tail))[-500:]
+            said = [ln for ln in tail if NOT_EXPRESSIBLE in ln]
+            if not code.startswith("granwave") and rc == 2 and said:
+                # the driver refused the law: reported with its reason (the whole line), not failed
+                res["status"], res["detail"] = NOT_EXPRESSIBLE_STATUS, said[-1][said[-1].index(NOT_EXPRESSIBLE):]
     with open(_result_path(workdir), "w") as f:
         json.dump(res, f, indent=1, default=str)
     return res

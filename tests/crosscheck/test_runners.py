@@ -168,3 +168,19 @@ def test_find_granwave_prefers_the_checkouts_build_over_path(tmp_path, monkeypat
     monkeypatch.setenv("GRANWAVE", str(fake))
     assert RN.find_granwave(None) == str(fake)
     assert RN.find_granwave(str(fake)) == str(fake)
+
+
+@needs_granwave
+def test_a_law_a_code_cannot_express_is_reported_not_failed(tmp_path):
+    """LIGGGHTS' rolling_friction luding has no free rolling dashpot: its driver refuses a case with
+    gamma_r > 0 before running anything (no LIGGGHTS needed). The report names the refusal and why;
+    the verdict does not count it as a failure, while a code that crashes still fails (above)."""
+    case = os.path.join(HERE, "cases", "crystal_small_rolling.toml")
+    p = subprocess.run([XC, "run", "--codes", "granwave,liggghts", "--granwave", GW, case, "--report",
+                        str(tmp_path / "rep")], capture_output=True, text=True, timeout=300)
+    report = (tmp_path / "rep" / "report.md").read_text()
+    assert p.returncode == 0 and "VERDICT: PASS" in p.stdout, p.stdout + p.stderr
+    assert "| liggghts | NOT-EXPRESSIBLE |" in report and "| granwave | OK |" in report
+    res = json.loads((tmp_path / "rep" / "crystal_small_rolling" / "liggghts" / "result.json").read_text())
+    assert res["status"] == RN.NOT_EXPRESSIBLE_STATUS and res["rc"] == 2
+    assert "not expressible in LIGGGHTS" in res["detail"] and "gamma_r" in res["detail"]
