@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """granwave, LAMMPS and LIGGGHTS side by side: the same crystal, one thread, end to end.
 
-    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,friction_radius,hertz,long]
+    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,friction_radius,hertz,rolling,long]
         [--codes granwave,lammps,liggghts] [--granwave build/granwave] [--granwave-avx2 build-avx2/granwave]
         [--reps 3] [--out table.md] [--json results.json] [--workdir DIR] [--keep]
 
@@ -36,6 +36,12 @@ long          crystal_p with 4 x 4 x 20000 cells (320 000 particles), 200 steps
 hertz         data/cases/crystal_hertz.toml: the same crystal of glass beads with Hertz normal and Mindlin
               tangential forces (issue #14), 6000 steps of 1.7e-7 s; LAMMPS `pair_style granular` with
               `hertz/material E 0 nu tangential mindlin NULL 0 mu`, LIGGGHTS `model hertz tangential history`
+rolling       bench/cases/crystal_rolling.toml: friction_radius with Luding's rolling and torsion springs (issue
+              #28), kr = ko = kt/2, mu_r = mu_o = 0.1; LAMMPS `pair_style granular` with `hooke`, `tangential
+              linear_history`, `rolling sds`, `twisting sds` (the crosscheck's map, xclib.codefacts: k_twist = ko
+              a'^2, mu_twist = mu_o a'), the only LAMMPS style with them; LIGGGHTS is not run (its `rolling_friction
+              luding` is another law: its driver refuses the case). The P step turns no sphere, so the springs
+              stay near zero: the case times their arithmetic (the physics check is the P wave's)
 small         data/cases/crystal40.toml (4 x 4 x 40, 1300 steps): a smoke case for the tests, not a benchmark
 
 Each code's set-up, and why it is the fastest fair equivalent
@@ -46,7 +52,9 @@ granwave: `granwave run CASE --system system.h5 -o traces.h5 --json`, its normal
 LAMMPS (lammps_inputs/templates/crystal_layers.in.tmpl):
   * frictionless: `pair_style gran/hooke kn 0 0 0 mu 0` (no shear history to store, look up or rotate)
     and `fix nve` (no torque acts, so no rotational integration); with friction
-    `gran/hooke/history kn kt 0 0 mu 0` and `fix nve/sphere`. LAMMPS's tangential arm is the radius a
+    `gran/hooke/history kn kt 0 0 mu 0` and `fix nve/sphere`; with rolling and torsion `pair_style granular`
+    (`hooke kn 0 tangential linear_history kt 0 mu damping velocity rolling sds ... twisting sds ...`, the
+    crosscheck deck's, whose torque arm is a - delta/2). LAMMPS's tangential arm is the radius a
     (pair_gran_hooke_history.cpp: radi * omega, radi * torque), i.e. granwave's lever_arm = "radius":
     the case friction_radius compares the same physics; in the case friction granwave runs its (dearer)
     "contact_point", LIGGGHTS' physics.

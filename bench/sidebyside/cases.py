@@ -28,12 +28,15 @@ CASES = {
     # delta_0 = 1e-4 d), 6000 steps of dt = 1.7e-7 s (t_c/52), output every 5 steps as above
     "hertz": ("data/cases/crystal_hertz.toml",
               {"dt_over_tc": ("dt", "1.7e-7"), "t_end": "1.02e-3", "interval": "8.5e-7"}, None),
+    # issue #28: friction_radius with Luding's rolling and torsion springs kr = ko = kt/2 (the case file says why)
+    "rolling": ("bench/cases/crystal_rolling.toml", {}, None),
     # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
     "small": ("data/cases/crystal40.toml", {}, None),
 }
 DEFAULT_CASES = ("frictionless", "friction", "friction_radius", "hertz", "long")
 # The codes that run the same physics as granwave in a case (default: all of CODES).
-CASE_CODES = {"friction_radius": ("granwave", "lammps")}
+# rolling: LIGGGHTS' rolling_friction luding is not granwave's law (its driver refuses it: xclib.codefacts).
+CASE_CODES = {"friction_radius": ("granwave", "lammps"), "rolling": ("granwave", "lammps")}
 
 
 class BenchError(Exception):

@@ -23,7 +23,7 @@ import numpy as np
 
 from . import laws as L
 from . import traces as T
-from .codefacts import NOT_EXPRESSIBLE, Unsupported, resistance_keys
+from .codefacts import NOT_EXPRESSIBLE, Unsupported
 
 
 def g(x: float) -> str:
@@ -137,9 +137,6 @@ def layer_deck_values(case: dict, system: dict) -> dict:
     ex = T.excitation(case)
     law = L.law_of(c)
     bad = list(law.bench_refusals(c))   # what the law's decks cannot render (xclib.laws)
-    if resistance_keys(c):
-        bad.append("%s: rolling and torsion resistance (the per-layer decks of LAMMPS and LIGGGHTS have none)"
-                   % ", ".join(resistance_keys(c)))
     if case["case"]["model"] != "crystal":
         bad.append("model = %r (crystal only)" % case["case"]["model"])
     if c["gamma_n"] != 0 or c["gamma_t"] != 0:
@@ -164,7 +161,8 @@ def layer_deck_values(case: dict, system: dict) -> dict:
                 skin=g(SKIN_OVER_RADIUS * r), neigh_every=NEIGH_EVERY, l0=g(lay["l0"]),
                 origin=g(z0 - 0.5 * lay["l0"]), friction=friction, kn=c["kn"], kt=c["kt"], mu=c["mu_static"],
                 excitation_line="displace_atoms  source move 0 0 %s units box" % g(float(ex["amplitude"]) * lay["d"]),
-                integrator="nve/sphere" if friction else "nve", n=f["n"])
+                integrator="nve/sphere" if friction else "nve", n=f["n"],
+                contact=c, radius=system["radius"])   # rolling and torsion: each law maps or refuses them
 
 
 def write_layer_deck(deck: str, case: dict, system: dict, workdir: str, title: str, v: dict) -> dict:

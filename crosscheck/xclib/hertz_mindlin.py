@@ -301,16 +301,20 @@ def bench_refusals(c: dict) -> list:
 
 def bench_lammps(v: dict) -> dict:
     """pair granular: F_n = (4/3) E* a delta with E* mixed from E, nu (hertz/material; eta_n0 = 0: no
-    damping), Mindlin's k_t = 8 G* a from the same E, nu (NULL), no tangential damping, mu."""
+    damping), Mindlin's k_t = 8 G* a from the same E, nu (NULL), no tangential damping, mu; rolling and
+    torsion resistance as the crosscheck deck's (`rolling sds`, `twisting sds`)."""
+    from xclib.codefacts import lammps_resistance
     return dict(pair_style="granular",
-                pair_coeff="hertz/material %s 0.0 %s tangential mindlin NULL 0.0 %s" % (
-                    _g(v["youngs"]), _g(v["poisson"]), _g(v["mu"])),
+                pair_coeff="hertz/material %s 0.0 %s tangential mindlin NULL 0.0 %s%s" % (
+                    _g(v["youngs"]), _g(v["poisson"]), _g(v["mu"]), lammps_resistance(v["contact"], v["radius"])),
                 variant="(granular hertz/material + tangential mindlin, fix nve/sphere)")
 
 
 def bench_liggghts(v: dict) -> dict:
     """model hertz: k_n = (4/3) E* sqrt(R* delta), k_t = 8 G* sqrt(R* delta) from youngsModulus and
     poissonsRatio; coefficientRestitution 1: ln e = 0, no damping."""
+    from xclib.codefacts import LIGGGHTS_WHY, refuse_resistance
+    refuse_resistance(v["contact"], "LIGGGHTS", LIGGGHTS_WHY)
     properties = ("hard_particles  yes  # E = 63 GPa: LIGGGHTS refuses E > 1e9 Pa in SI units without it\n" +
                   _properties(v["youngs"], v["poisson"], 1.0, v["mu"], (1, 2, 3, 5))).rstrip("\n")
     return dict(properties=properties, pair_style="gran model hertz tangential history",

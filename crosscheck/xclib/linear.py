@@ -229,7 +229,12 @@ def bench_refusals(c: dict) -> list:
 
 
 def bench_lammps(v: dict) -> dict:
-    """pair_style, pair_coeff and the variant's name of the benchmark's LAMMPS deck."""
+    """pair_style, pair_coeff and the variant's name of the benchmark's LAMMPS deck. Rolling and torsion
+    resistance: the crosscheck deck's pair granular (_lammps_resisted), the only style that has them."""
+    if rolling_on(v["contact"]) or torsion_on(v["contact"]):
+        lines = _lammps_resisted(v["contact"], v["radius"])["lines"]
+        return dict(pair_style="granular", pair_coeff=lines.split("pair_coeff      * * ", 1)[1],
+                    variant="(granular hooke + tangential linear_history + rolling/twisting sds, fix nve/sphere)")
     if float(v["kt"]) > 0:
         return dict(pair_style="gran/hooke/history %s %s 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["kt"]), _g(v["mu"])),
                     pair_coeff="", variant="(gran/hooke/history, fix nve/sphere)")
@@ -239,6 +244,7 @@ def bench_lammps(v: dict) -> dict:
 
 def bench_liggghts(v: dict) -> dict:
     """properties, pair_style and the variant's name of the benchmark's LIGGGHTS deck (no dashpots)."""
+    refuse_resistance(v["contact"], "LIGGGHTS", LIGGGHTS_WHY)
     friction = float(v["kt"]) > 0
     properties = _properties(v["kn"], v["kt"], 0.0, 0.0, v["mu"]).rstrip("\n")
     tang = "history" if friction else "no_history"

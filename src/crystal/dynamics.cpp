@@ -48,10 +48,11 @@ typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
   store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
 }
 // The torques of particles p..p+3 from their rows: -a (sum n x f^t), and with the contact-point
-// arm (Rows = 3) + 1/2 (sum delta n x f^t); zero without torques (Rows = 1).
-template <int Rows>
-[[gnu::always_inline]] inline void torques_of_rows(double* rn, double* rd, const double* a, std::int64_t p, V4& tx,
-                                                   V4& ty, V4& tz) {
+// arm (Rows = 3) + 1/2 (sum delta n x f^t), then with Couples + (sum of the couples, rows rc);
+// zero without torques (Rows = 1).
+template <int Rows, bool Couples>
+[[gnu::always_inline]] inline void torques_of_rows(double* rn, double* rd, double* rc, const double* a, std::int64_t p,
+                                                   V4& tx, V4& ty, V4& tz) {
   tx = ty = tz = V4{0.0, 0.0, 0.0, 0.0};
   if constexpr (Rows >= 2) {
     V4 nx, ny, nz;
@@ -63,6 +64,11 @@ template <int Rows>
       V4 dx, dy, dz;
       take_rows(rd + 4 * p, dx, dy, dz);
       tx = tx + half * dx, ty = ty + half * dy, tz = tz + half * dz;
+    }
+    if constexpr (Couples) {
+      V4 mx, my, mz;
+      take_rows(rc + 4 * p, mx, my, mz);
+      tx = tx + mx, ty = ty + my, tz = tz + mz;
     }
   }
 }
@@ -422,15 +428,10 @@ void Dynamics::particle_pass(double h) {
     };
     for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});
     for (std::int32_t c = i_first[p]; c < i_first[p + 1]; ++c) add(c, std::false_type{});
-    if constexpr (Couples) {
-      const double sh = ContactPointArm ? 0.5 : 0.0;
-      out.store<Kick, true, fr>(p, h, sx, sy, sz, (-a[p] * nx + sh * dnx) + mx, (-a[p] * ny + sh * dny) + my,
-                                (-a[p] * nz + sh * dnz) + mz);
-    } else if constexpr (ContactPointArm) {
-      out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx + 0.5 * dnx, -a[p] * ny + 0.5 * dny, -a[p] * nz + 0.5 * dnz);
-    } else {
-      out.store<Kick, true, fr>(p, h, sx, sy, sz, -a[p] * nx, -a[p] * ny, -a[p] * nz);
-    }
+    double tqx = -a[p] * nx, tqy = -a[p] * ny, tqz = -a[p] * nz;
+    if constexpr (ContactPointArm) tqx = tqx + 0.5 * dnx, tqy = tqy + 0.5 * dny, tqz = tqz + 0.5 * dnz;
+    if constexpr (Couples) tqx = tqx + mx, tqy = tqy + my, tqz = tqz + mz;  // as finish_pass adds them
+    out.store<Kick, true, fr>(p, h, sx, sy, sz, tqx, tqy, tqz);
   };
   if constexpr (Threaded) {
 #pragma omp parallel for schedule(static)
@@ -441,16 +442,17 @@ void Dynamics::particle_pass(double h) {
 }
 
 // The particle pass from the contact pass's per-particle sums (contact_sums, Rows rows per
-// particle: 1 force, 2 and n x f^t, 3 and delta n x f^t): the same torques and kick as
-// particle_pass, from sums made in the same order. The rows are zeroed for the next contact pass
-// (the halo's too: its sums are incomplete and never used).
-template <bool Kick, int Rows>
+// particle: 1 force, 2 and n x f^t, 3 and delta n x f^t; with Couples one more, the couples'):
+// the same torques and kick as particle_pass, from sums made in the same order. The rows are
+// zeroed for the next contact pass (the halo's too: its sums are incomplete and never used).
+template <bool Kick, int Rows, bool Couples>
 void Dynamics::finish_pass(double h, std::int64_t from) {
   const std::int64_t n = static_cast<std::int64_t>(size());
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
   double* __restrict rf = contact_sums.data();
   double* __restrict rn = rf + 4 * n;
   double* __restrict rd = rf + 8 * n;
+  double* __restrict rc = rf + 4 * Rows * n;  // the couples' row, Couples only
   const ParticleOut out(*this);
   const double* __restrict a = out.a;
   std::int64_t p = std::max(p0, from);
@@ -462,7 +464,7 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
     for (; p + 4 <= p1; p += 4) {
       V4 sx, sy, sz, tqx, tqy, tqz;
       take_rows(rf + 4 * p, sx, sy, sz);
-      torques_of_rows<Rows>(rn, rd, a, p, tqx, tqy, tqz);
+      torques_of_rows<Rows, Couples>(rn, rd, rc, a, p, tqx, tqy, tqz);
       store4(out.fx + p, sx), store4(out.fy + p, sy), store4(out.fz + p, sz);
       if constexpr (Rows >= 2) store4(out.tx + p, tqx), store4(out.ty + p, tqy), store4(out.tz + p, tqz);
       if constexpr (Kick) {
@@ -492,9 +494,10 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
       tqy = -a[p] * rn[4 * p + 1];
       tqz = -a[p] * rn[4 * p + 2];
     }
+    if constexpr (Couples) tqx = tqx + rc[4 * p], tqy = tqy + rc[4 * p + 1], tqz = tqz + rc[4 * p + 2];
     out.store<Kick, Rows >= 2, Rows >= 2>(p, h, sx, sy, sz, tqx, tqy, tqz);
   }
-  for (int k = 0; k < Rows; ++k) {  // the others (the halo's sums are incomplete and never used)
+  for (int k = 0; k < Rows + Couples; ++k) {  // the others (the halo's sums are incomplete and never used)
     std::fill(rf + 4 * (k * n), rf + 4 * (k * n + p0), 0.0);
     std::fill(rf + 4 * (k * n + zeroed), rf + 4 * (k * n + n), 0.0);
   }
@@ -507,9 +510,13 @@ void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
 void Dynamics::finish_forces(const ContactSums& sums, bool kick) {
   const double h = kick ? 0.5 * dt_ : 0.0;
   switch (sums.rows) {  // the contact pass made the sums (one thread)
-    case 1: return kick ? finish_pass<true, 1>(h) : finish_pass<false, 1>(h);
-    case 2: return kick ? finish_pass<true, 2>(h) : finish_pass<false, 2>(h);
-    case 3: return kick ? finish_pass<true, 3>(h) : finish_pass<false, 3>(h);
+    case 1: return kick ? finish_pass<true, 1, false>(h) : finish_pass<false, 1, false>(h);
+    case 2:
+      if (sums.couples) return kick ? finish_pass<true, 2, true>(h) : finish_pass<false, 2, true>(h);
+      return kick ? finish_pass<true, 2, false>(h) : finish_pass<false, 2, false>(h);
+    case 3:
+      if (sums.couples) return kick ? finish_pass<true, 3, true>(h) : finish_pass<false, 3, true>(h);
+      return kick ? finish_pass<true, 3, false>(h) : finish_pass<false, 3, false>(h);
     default: break;
   }
   const bool threads = threaded();
@@ -639,17 +646,17 @@ Drift Dynamics::kick_drift(std::int64_t from) {
   return {far != 0, false};
 }
 
-// Dynamics::advance's pass: finish_pass<true, Rows> (the second half kick of the step before)
+// Dynamics::advance's pass: finish_pass<true, Rows, Couples> (the second half kick of the step before)
 // and kick_drift<Torques, false> (this step's first half kick and drift) for four particles at a
 // time, F and the torques kept in registers (fx..tz are not stored: the step's last finish
 // writes them); the last n % 4 particles through the two passes as they are.
-template <int Rows>
+template <int Rows, bool Couples>
 Drift Dynamics::finish_kick_drift() {
 #ifdef GRANWAVE_GATHER_VECTORS
   constexpr bool Torques = Rows >= 2;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
   const std::int64_t n = static_cast<std::int64_t>(size());
-  double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t
+  double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t | couples
   double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
   const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
   V4m far4{0, 0, 0, 0};
@@ -657,7 +664,7 @@ Drift Dynamics::finish_kick_drift() {
   for (; p + 4 <= n; p += 4) {
     V4 sx, sy, sz, tqx, tqy, tqz;
     take_rows(sums + 4 * p, sx, sy, sz);
-    torques_of_rows<Rows>(sums + 4 * n, sums + 8 * n, radius.data(), p, tqx, tqy, tqz);
+    torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, radius.data(), p, tqx, tqy, tqz);
     const V4m m = mobile4(mobile.data(), p);
     const V4 inv_m = load4(inv_mass.data() + p);
     const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
@@ -673,22 +680,22 @@ Drift Dynamics::finish_kick_drift() {
   }
   Drift drift{(far4[0] | far4[1] | far4[2] | far4[3]) != 0, rows != nullptr};
   if (p < n) {
-    finish_pass<true, Rows>(h, p);
+    finish_pass<true, Rows, Couples>(h, p);
     const Drift tail = kick_drift<Torques, false>(p);
     drift = {drift.far || tail.far, tail.rows_fresh};
   }
   return drift;
 #else
-  finish_pass<true, Rows>(0.5 * dt_);
+  finish_pass<true, Rows, Couples>(0.5 * dt_);
   return kick_drift<Rows >= 2, false>();
 #endif
 }
 
 Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
   switch (waiting.rows) {
-    case 1: return finish_kick_drift<1>();
-    case 2: return finish_kick_drift<2>();
-    case 3: return finish_kick_drift<3>();
+    case 1: return finish_kick_drift<1, false>();
+    case 2: return waiting.couples ? finish_kick_drift<2, true>() : finish_kick_drift<2, false>();
+    case 3: return waiting.couples ? finish_kick_drift<3, true>() : finish_kick_drift<3, false>();
     default: break;
   }
   // The halo is not integrated here: its owner does it, and exchange_halo copies it.

@@ -80,9 +80,10 @@ struct ContactPassPlan {
 };
 // What the contact pass leaves for the finish: the rows per particle of Dynamics::contact_sums it
 // filled (one thread: 1 f, 2 and n x f^t, 3 and delta n x f^t), 0 when the finish sums the
-// per-contact arrays (the particle pass).
+// per-contact arrays (the particle pass); `couples`: one row more after them, the couples' sum.
 struct ContactSums {
   int rows = 0;
+  bool couples = false;
 };
 
 // Where a run's time loop spends its wall time (s), phase by phase. On one thread the finish of
@@ -171,8 +172,8 @@ class Dynamics {
   std::vector<double> gather_rows;
   // Per-particle sums of a one-thread contact pass (crystal/kernel.hpp's scatter), rows of four
   // doubles: f, and with a law with torques n x f^t, and with the contact-point arm
-  // delta n x f^t (each kind a block of 4 size() doubles); read and zeroed by the particle pass.
-  // 32, 64 or 96 bytes per particle; empty when threaded.
+  // delta n x f^t, and with a law with couples their sum (each kind a block of 4 size() doubles);
+  // read and zeroed by the particle pass. 32 to 128 bytes per particle; empty when threaded.
   std::vector<double> contact_sums;
   // The lever arms times u_z of every contact's ends, (a_i - delta/2) u_z at 2c and (a_j - delta/2)
   // u_z at 2c + 1, +0.0 for an open contact (the layer stress's terms, crystal/simulation.cpp):
@@ -311,10 +312,10 @@ class Dynamics {
   Drift kick_drift(std::int64_t from = -1);
   template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded, bool Couples>
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
-  template <bool Kick, int Rows>
+  template <bool Kick, int Rows, bool Couples>
   void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (one thread), from `from` on
-  template <int Rows>
-  Drift finish_kick_drift();  // finish_pass<true, Rows>, then kick_drift, four particles at a time
+  template <int Rows, bool Couples>
+  Drift finish_kick_drift();  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   // Kinetic and/or Verlet (nullptr: not wanted), through layer_order().
   void add_particle_energies(double* kinetic, double* verlet) const;

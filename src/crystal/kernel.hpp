@@ -93,9 +93,10 @@ void in_blocks(std::int64_t n, bool threaded, const Body& body) {
 // per contact, and rows cost more than they save (2.5 -> 3.0 ns): direct_contact_pass below.
 inline constexpr std::int64_t kChunk = 128;  // contacts per gather: their columns stay in L1 (256: 11.4 ns)
 
-// A chunk's results on the way to the scatter: f and n x f^t (scatter, below).
+// A chunk's results on the way to the scatter: f and n x f^t (scatter, below), Q = 9: and the couple.
+template <int Q>
 struct Sums {
-  alignas(64) double col[6][kChunk];
+  alignas(64) double col[Q][kChunk];
 };
 
 struct Gathered {
@@ -254,7 +255,8 @@ inline void fill_rows(const Dynamics& d, double* rows) {
 // ---- The scatter: contact sums straight into per-particle rows (one thread) ----
 // On one thread the contact pass adds each contact's f (laws with torques: and n x f^t, and
 // delta n x f^t for the contact-point arm) to per-particle rows of four doubles (K rows per
-// particle: f | n x f^t | delta n x f^t, each row kind a block of 4 n doubles) right after a
+// particle: f | n x f^t | delta n x f^t, each row kind a block of 4 n doubles; a law with couples
+// adds one more, the couple, j's subtracted) right after a
 // chunk of contacts is evaluated, while its values are still in L1; Dynamics then only finishes
 // the torques and kicks (finish_pass), instead of re-reading every contact's values through the
 // per-particle contact lists (the particle pass: 23 % of a friction run, AVX2). The order of the
@@ -269,15 +271,17 @@ struct ScatterState {
   V4 sum[K]{};
 };
 
-template <int K>
-[[gnu::always_inline]] inline void scatter_one(ScatterState<K>& st, double* __restrict rows, std::int64_t n,
+// K rows of f | n x f^t | delta n x f^t, then with Couples the couple's row (row K).
+template <int K, bool Couples>
+[[gnu::always_inline]] inline void scatter_one(ScatterState<K + Couples>& st, double* __restrict rows, std::int64_t n,
                                                std::int64_t i, std::int64_t j, const V4& f, const V4& nf,
-                                               double delta) {
+                                               double delta, const V4& couple) {
+  constexpr int R = K + Couples;
   if (i != st.cur) {
     if (st.cur >= 0)
-      for (int k = 0; k < K; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+      for (int k = 0; k < R; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
     st.cur = i;
-    for (int k = 0; k < K; ++k) st.sum[k] = load4(rows + 4 * (k * n + i));
+    for (int k = 0; k < R; ++k) st.sum[k] = load4(rows + 4 * (k * n + i));
   }
   st.sum[0] = st.sum[0] + f;
   store4(rows + 4 * j, load4(rows + 4 * j) - f);
@@ -291,30 +295,39 @@ template <int K>
     st.sum[2] = st.sum[2] + dn;
     store4(rows + 4 * (2 * n + j), load4(rows + 4 * (2 * n + j)) + dn);
   }
+  if constexpr (Couples) {  // j gets the opposite couple
+    st.sum[K] = st.sum[K] + couple;
+    store4(rows + 4 * (K * n + j), load4(rows + 4 * (K * n + j)) - couple);
+  }
 }
 
-// The m contacts (their i, j, forces, n x f^t, overlaps, indexed from 0) into the rows.
-template <int K>
+// The m contacts (their i, j, forces, n x f^t, overlaps, couples: cc, Couples only; indexed
+// from 0) into the rows.
+template <int K, bool Couples = false>
 [[gnu::always_inline]] inline void scatter(double* rows, std::int64_t n, std::int64_t m, const std::int32_t* ci,
                                            const std::int32_t* cj, const double* cfx, const double* cfy,
                                            const double* cfz, const double* cnx, const double* cny,
-                                           const double* cnz, const double* cdelta) {
-  ScatterState<K> st;
+                                           const double* cnz, const double* cdelta, const double* ccx = nullptr,
+                                           const double* ccy = nullptr, const double* ccz = nullptr) {
+  ScatterState<K + Couples> st;
   const V4 zero{0.0, 0.0, 0.0, 0.0};
-  V4 f[4], nf[4];
+  V4 f[4], nf[4], cp[4];
   std::int64_t c = 0;
   for (; c + 4 <= m; c += 4) {
     transpose4(load4(cfx + c), load4(cfy + c), load4(cfz + c), zero, f[0], f[1], f[2], f[3]);
     if constexpr (K >= 2) transpose4(load4(cnx + c), load4(cny + c), load4(cnz + c), zero, nf[0], nf[1], nf[2], nf[3]);
-    for (int q = 0; q < 4; ++q) scatter_one<K>(st, rows, n, ci[c + q], cj[c + q], f[q], nf[q], K >= 3 ? cdelta[c + q] : 0.0);
+    if constexpr (Couples) transpose4(load4(ccx + c), load4(ccy + c), load4(ccz + c), zero, cp[0], cp[1], cp[2], cp[3]);
+    for (int q = 0; q < 4; ++q)
+      scatter_one<K, Couples>(st, rows, n, ci[c + q], cj[c + q], f[q], nf[q], K >= 3 ? cdelta[c + q] : 0.0, cp[q]);
   }
   for (; c < m; ++c) {
     const V4 fc{cfx[c], cfy[c], cfz[c], 0.0};
     const V4 nc = K >= 2 ? V4{cnx[c], cny[c], cnz[c], 0.0} : zero;
-    scatter_one<K>(st, rows, n, ci[c], cj[c], fc, nc, K >= 3 ? cdelta[c] : 0.0);
+    const V4 cc = Couples ? V4{ccx[c], ccy[c], ccz[c], 0.0} : zero;
+    scatter_one<K, Couples>(st, rows, n, ci[c], cj[c], fc, nc, K >= 3 ? cdelta[c] : 0.0, cc);
   }
   if (st.cur >= 0)
-    for (int k = 0; k < K; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+    for (int k = 0; k < K + Couples; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
 }
 #endif
 
@@ -504,8 +517,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   const double inc = plan.increment_time;
   constexpr std::size_t NH = contact::history_columns<typename Law::History>;
   constexpr bool Defers = contact::DefersContacts<Law>;
-  // A law with couples (rolling, torsion) leaves them per contact for the particle pass: the
-  // one-thread scatter has no row for them.
+  // A law with couples (rolling, torsion): one thread, the scatter sums them in a row of their
+  // own; threaded, they are left per contact for the particle pass.
   constexpr bool Couples = contact::HasCouples<Law>;
   ContactList& C = d.contacts;
   using G = Gathered;
@@ -525,9 +538,9 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   double* sum_rows = nullptr;
   const bool keep_forces = plan.store_forces;
 #ifdef GRANWAVE_GATHER_VECTORS
-  if (!d.threaded() && !Couples) {
+  if (!d.threaded()) {
     scatter_mode = scatter_mode_of(law.lever_arm());
-    sum_rows = d.begin_contact_sums(scatter_mode + 1);
+    sum_rows = d.begin_contact_sums(scatter_mode + 1 + Couples);
   }
 #endif
   // With the forces, the layer stress's end arms (one thread: where the forces are stored per chunk).
@@ -538,7 +551,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   // at the list's build: 24 bytes per contact a one-thread run does not need).
   if (scatter_mode == 0)
     for (auto* v : {&C.nf_x, &C.nf_y, &C.nf_z}) v->resize(C.size());
-  if constexpr (Couples)
+  if (Couples && scatter_mode == 0)
     for (auto* v : {&C.couple_x, &C.couple_y, &C.couple_z}) v->resize(C.size());
   double* ccx = C.couple_x.data();
   double* ccy = C.couple_y.data();
@@ -551,7 +564,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   bool* losses_booked = &C.losses_booked;
   // One contact (evaluate_contact): g's entry u is contact c. Pointers and the law are captured
   // by value (OpenMP would share them by reference, which the vectoriser cannot see through).
-  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Sums& o, auto vector_sweep, auto scatter_sweep)
+  using Out = Sums<Couples ? 9 : 6>;
+  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, auto vector_sweep, auto scatter_sweep)
                  __attribute__((always_inline)) -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     constexpr bool Scatter = decltype(scatter_sweep)::value;
@@ -570,9 +584,12 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
                           select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
                           select(open, 0.0, res.nf.y()), select(open, 0.0, res.nf.z())};
     if constexpr (Couples) {
-      ccx[c] = select(open, 0.0, res.couple.x());
-      ccy[c] = select(open, 0.0, res.couple.y());
-      ccz[c] = select(open, 0.0, res.couple.z());
+      const double co[3] = {select(open, 0.0, res.couple.x()), select(open, 0.0, res.couple.y()),
+                            select(open, 0.0, res.couple.z())};
+      if constexpr (Scatter)
+        for (int q = 0; q < 3; ++q) o.col[6 + q][u] = co[q];
+      else
+        ccx[c] = co[0], ccy[c] = co[1], ccz[c] = co[2];
     }
     if constexpr (Scatter) {
       for (int q = 0; q < 6; ++q) o.col[q][u] = fo[q];
@@ -586,7 +603,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
   auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) __attribute__((always_inline)) {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
-    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Sums& o) __attribute__((always_inline)) {
+    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o) __attribute__((always_inline)) {
       sweep_contacts<Defers, kChunk>(
           s0, s1,
           [&](std::int64_t c, auto vector_sweep) __attribute__((always_inline)) {
@@ -597,19 +614,21 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
           });
     };
     G g;
-    Sums o;
+    Out o;
     for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
       const std::int64_t s1 = std::min(c1, s0 + kChunk);
       gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
       sweep(s0, s1, g, o);
 #ifdef GRANWAVE_GATHER_VECTORS
       if constexpr (Scatter) {
+        const double* cc[3] = {nullptr, nullptr, nullptr};
+        if constexpr (Couples) cc[0] = o.col[6], cc[1] = o.col[7], cc[2] = o.col[8];
         if (scatter_mode == 1)
-          scatter<2>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3], o.col[4],
-                     o.col[5], cdelta + s0);
+          scatter<2, Couples>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3],
+                              o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2]);
         else
-          scatter<3>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3], o.col[4],
-                     o.col[5], cdelta + s0);
+          scatter<3, Couples>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3],
+                              o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2]);
         if (keep_forces) {
           for (std::int64_t u = 0; u < s1 - s0; ++u) {
             cfx[s0 + u] = o.col[0][u];
@@ -626,7 +645,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     range(0, nc, std::true_type{});
   else
     in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
-  return {scatter_mode == 0 ? 0 : scatter_mode + 1};
+  return {scatter_mode == 0 ? 0 : scatter_mode + 1, Couples && scatter_mode != 0};
 }
 
 // The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law

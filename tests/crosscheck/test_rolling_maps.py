@@ -74,12 +74,21 @@ def test_without_resistance_nothing_changes():
     assert LM.crystal_style(c, np.ones(4), MONO)["style"] == "gran/hooke/history"
 
 
-def test_benchmark_decks_refuse_the_resistance():
-    from xclib import driver as D
-    with open(os.path.join(HERE, "cases", "crystal_small_rolling.toml"), "rb") as f:
-        case = tomllib.load(f)
-    with pytest.raises(Unsupported, match="kr = 20000.*rolling and torsion"):
-        D.layer_deck_values(case, {"radius": [1e-3, 1e-3], "position": [[0, 0, 0], [0, 0, 1e-3]]})
+def test_benchmark_decks_map_or_refuse_the_resistance():
+    """The benchmark's LAMMPS deck (bench/side_by_side.py) takes the crosscheck deck's pair granular line,
+    rolling and twisting sds included; LIGGGHTS' refuses, naming the keys. Both laws."""
+    for name in ("rolling", "rolltors_slip"):
+        c = contact(name)
+        v = dict(contact=c, radius=MONO, kn=c["kn"], kt=c["kt"], mu=c["mu_static"], youngs=1e9, poisson=0.3)
+        deck = linear.bench_lammps(v)
+        assert deck["pair_style"] == "granular"
+        assert "pair_coeff      * * " + deck["pair_coeff"] == LM.crystal_style(c, np.ones(4), MONO)["lines"].split("\n")[1]
+        hm = hertz_mindlin.bench_lammps(v)["pair_coeff"]
+        assert hm.startswith("hertz/material 1000000000.0 0.0 0.3 tangential mindlin NULL 0.0 0.5 rolling sds 20000.0 ")
+        for law in (linear, hertz_mindlin):
+            with pytest.raises(Unsupported, match="kr = 20000.*LIGGGHTS"):
+                law.bench_liggghts(v)
+    assert " twisting sds %r" % (2e4 * 0.5e-3 ** 2) in linear.bench_lammps(v)["pair_coeff"]
 
 
 def test_yade_cohesion_moment_map_without_dashpots():

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <vector>
 
 #include "../test_support.hpp"
 #include "config/case.hpp"
@@ -82,10 +83,13 @@ crystal::Dynamics forces_of(const Disturbed& d, const config::ContactParams& cp)
 }
 // crystal_small with sliding friction (kt = k, mu^s = 0.3 > mu^d = 0.2, a normal dashpot), and
 // the laws that route the particle sums differently: the linear law with the radius arm and
-// with the contact-point arm, and a damped Hertz-Mindlin law with stick-slip.
+// with the contact-point arm, and a damped Hertz-Mindlin law with stick-slip; `rolling`: the
+// same three with rolling and torsion resistance (a row of couples more), rolling and twisting
+// slips included, the linear radius arm without their dashpots, the others with.
 struct RouteLaws {
   config::Case c;
   config::ContactParams radius, contact_point, hertz;
+  std::vector<config::ContactParams> rolling;
 };
 RouteLaws route_laws() {
   RouteLaws r;
@@ -105,6 +109,13 @@ RouteLaws route_laws() {
   r.hertz.mu_static = 0.3;
   r.hertz.mu_dynamic = 0.2;
   r.hertz.tangential_history = config::TangentialHistory::displacement_rescale;
+  for (config::ContactParams cp : {r.radius, r.contact_point, r.hertz}) {
+    cp.kr = cp.ko = 5e4;
+    cp.mu_r = cp.mu_o = 0.05;
+    if (cp.law == config::ContactLaw::hertz_mindlin || cp.lever_arm == config::LeverArm::contact_point)
+      cp.gamma_r = cp.gamma_o = 0.01;
+    r.rolling.push_back(cp);
+  }
   return r;
 }
 }  // namespace
@@ -202,9 +213,11 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
   // the last bit, for both lever arms, a sliding law (deferred contacts) and Hertz-Mindlin.
   // The threaded route needs OpenMP with two threads.
   test_support::require_openmp_threads(2, "the two-pass route");
-  const auto [c, radius, contact_point, hertz] = route_laws();
+  const auto [c, radius, contact_point, hertz, rolling] = route_laws();
   const Disturbed base = disturb(crystal::make_packing(c));
-  for (const config::ContactParams& cp : {radius, contact_point, hertz}) {
+  std::vector<config::ContactParams> laws{radius, contact_point, hertz};
+  laws.insert(laws.end(), rolling.begin(), rolling.end());
+  for (const config::ContactParams& cp : laws) {
     const auto model = crystal::case_model(cp, c.crystal->density);
     crystal::Dynamics one(base.p, model, 2e-7), two(base.p, model, 2e-7);
     one.parallel_min_particles = ~std::size_t{0};  // one thread: the scatter
@@ -232,6 +245,10 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
     // stick/slip flag (after the spring's three components).
     const double* flag = one.contacts.history_column(3);
     CHECK(std::count(flag, flag + one.contacts.size(), 1.0) > 0);
+    if (cp.kr > 0.0) {  // the rolling springs (the four columns after the base law's) are stretched
+      const double* xi_r = one.contacts.history_column(one.contacts.history_columns - 4);
+      CHECK(std::count(xi_r, xi_r + one.contacts.size(), 0.0) < static_cast<std::ptrdiff_t>(one.contacts.size()));
+    }
   }
 }
 
@@ -239,9 +256,10 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   // On one thread Dynamics::advance finishes each step's forces and kicks in the same pass as the
   // next step's first half kick and drift, four particles at a time (the last few through the
   // two passes as they are). Every state and force must equal k calls of step() to the last bit:
-  // all three row layouts of the sums (no torques; radius arm; contact-point arm), a sliding
-  // law, Hertz-Mindlin, and a crystal whose particle count is not a multiple of four.
-  const auto [c, radius, contact_point, hertz] = route_laws();
+  // all five row layouts of the sums (no torques; radius arm; contact-point arm; either with the
+  // couples' row), a sliding law, Hertz-Mindlin, and a crystal whose particle count is not a
+  // multiple of four.
+  const auto [c, radius, contact_point, hertz, rolling] = route_laws();
   config::ContactParams frictionless = c.contact;
   frictionless.kt = 0.0;
   const crystal::Packing whole = crystal::make_packing(c);
@@ -256,7 +274,9 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   REQUIRE(short_of_three.fixed.back() == 1);
   for (const crystal::Packing* packing : {&whole, static_cast<const crystal::Packing*>(&short_of_three)}) {
     const Disturbed base = disturb(*packing);
-    for (const config::ContactParams& cp : {frictionless, radius, contact_point, hertz}) {
+    std::vector<config::ContactParams> laws{frictionless, radius, contact_point, hertz};
+    laws.insert(laws.end(), rolling.begin(), rolling.end());
+    for (const config::ContactParams& cp : laws) {
       const auto model = crystal::case_model(cp, c.crystal->density);
       crystal::Dynamics stepped(base.p, model, 2e-7), advanced(base.p, model, 2e-7);
       for (auto* d : {&stepped, &advanced}) {
