@@ -1,28 +1,15 @@
 // The entry points the command line calls for each model. src/chain/, src/crystal/ and src/impact/ each
 // implement their namespace; src/cli/ only parses arguments and dispatches here.
 #pragma once
-#include <cstdint>
 #include <functional>
 #include <iosfwd>
 #include <string>
-#include <vector>
 
 #include "config/case.hpp"
 #include "core/resources.hpp"
+#include "core/trace_series.hpp"
 
 namespace granwave {
-
-// A run's trace datasets as the run holds them in memory: each under its path in the trace file
-// ("/time", "/crystal/layer_stress_zz", ...; not /system), with the file's shape and values.
-struct TraceSeries {
-  struct Dataset {
-    std::string path;
-    std::vector<std::size_t> shape;
-    std::vector<double> values;        // a float64 dataset, or
-    std::vector<std::int64_t> counts;  // an int64 one (/chain/full_rate/beads)
-  };
-  std::vector<Dataset> datasets;
-};
 
 struct RunRequest {
   std::string trace_path;   // where the trace file goes (written via NAME.tmp, renamed when done)

@@ -28,7 +28,7 @@
 
 #include "config/case.hpp"
 #include "contact/hertz.hpp"
-#include "models.hpp"
+#include "core/trace_series.hpp"
 
 namespace granwave::io {
 class H5Writer;

@@ -14,7 +14,7 @@
 #include "theory/crystal_theory.hpp"
 #include "theory/lattice_dynamics.hpp"
 #include "crystal/slab.hpp"
-#include "models.hpp"
+#include "core/trace_series.hpp"
 
 namespace granwave::io {
 class H5Writer;

@@ -138,7 +138,11 @@ TEST_CASE("an unstable run stops naming the step and the particle and keeps its 
   CHECK(r.error.find("particle") != std::string::npos);
   CHECK(r.traces.samples() >= 1);
   const std::string path = temp_path("unstable.h5");
-  crystal::write_trace(c, p, r, path);
+  {
+    io::H5Writer w(path);
+    crystal::write_trace(c, p, r, w);
+    w.commit();
+  }
   io::H5Reader h(path);
   CHECK(h.attr_string("/", "status").rfind("failed", 0) == 0);
   CHECK(h.read_double("/time").size() == r.traces.samples());
