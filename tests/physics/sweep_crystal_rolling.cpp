@@ -1,0 +1,182 @@
+// Issue #28 validation: Luding's rolling and torsion springs in seed 002's crystal (4x4x200), the
+// members of data/studies/crystal_rolling.toml (k_r = k_o over k_r/k_t = 0.05 .. 2 at kt = k, S and
+// P, nothing slips) run by the study machinery (sweep::run_crystal_member: the ruler of `granwave
+// analyze`) against the lattice dynamics with rotations and the springs of each member's own packing
+// (theory/lattice_dynamics.hpp). The springs resist only relative turns: they vanish from the long
+// waves (the same long-wave speeds at every k_r) and lift the short-wave part of the S branch.
+//   - the 2D-FFT ridge of the run against the member's branch, within one frequency bin in every
+//     column where the branch carries energy (theory::compare_ridge), and at the zone edge (the
+//     driven translation's mode, wherever the two lines there are resolved by the record);
+//   - the half-peak S and P speeds against the lattice's long-wave speeds (0.5 %), where the branch
+//     bends down (its largest group velocity is the long-wave speed). Where the springs bend it up,
+//     a precursor at the largest group velocity leads and its crests, the first peaks, run at their
+//     phase velocity: the layers' local speeds against that (0.5 %) at every member;
+//   - the first peak's amplitude and width at z/l0 = 10, 80, 150 against k_r, printed.
+// An energy audit of the S wave with the springs (stored + work, Verlet's error O(dt^2)) closes it.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "config/case.hpp"
+#include "crystal/packing.hpp"
+#include "crystal/simulation.hpp"
+#include "sweep/crystal_study.hpp"
+
+using namespace granwave;
+using sweep::CrystalStudy;
+
+namespace {
+
+CrystalStudy rolling_study() {
+  return sweep::load_crystal_study(std::string(GRANWAVE_SOURCE_DIR) + "/data/studies/crystal_rolling.toml");
+}
+
+struct Member {
+  double kr_over_kt = 0.0;
+  char mode = 'S';
+  std::vector<double> v;
+  double at(const CrystalStudy& s, sweep::RollingValue q) const { return v[sweep::rolling_index(s, q)]; }
+};
+
+// Every member of the study (S and P at each k_r/k_t), run once for all test cases below.
+const std::vector<Member>& members() {
+  static const std::vector<Member> out = [] {
+    const CrystalStudy s = rolling_study();
+    const auto ms = sweep::crystal_members(s);
+    std::vector<Member> r;
+    for (std::size_t i = 0; i < ms.size(); ++i) r.push_back({ms[i].value, ms[i].mode, sweep::run_crystal_member(s, i).result.values});
+    return r;
+  }();
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("rolling study: the study file's members are the issue's range at kt = k, S and P",
+          "[crystal][rolling][sweep]") {
+  const CrystalStudy s = rolling_study();
+  REQUIRE(s.vary == sweep::CrystalVary::kr_over_kt);
+  REQUIRE(s.kt_over_k == 1.0);
+  CHECK(s.values == std::vector<double>{0.05, 0.1, 0.2, 0.5, 1.0, 2.0});
+  const config::Case c = sweep::member_case(s, {0.5, 'S'});
+  CHECK(c.contact.kt == c.contact.kn);
+  CHECK(c.contact.kr == 0.5 * c.contact.kt);
+  CHECK(c.contact.ko == c.contact.kr);
+  CHECK(c.contact.gamma_r == 0.0);
+  CHECK_FALSE(c.contact.mu_r);
+}
+
+TEST_CASE("rolling study: the 2D-FFT ridge follows the lattice branch with the springs, zone edge included",
+          "[crystal][rolling][sweep][physics]") {
+  const CrystalStudy s = rolling_study();
+  using namespace sweep;
+  std::printf("k_r/k_t mode  k_roll (N m/rad)  branch at pi/l0 (1/s), rotation  at k_last: driven mode  ridge (bins, "
+              "height)  largest line  omega_max  ridge columns within one bin / with a ridge / columns, largest offset (bins)\n");
+  for (const Member& m : members()) {
+    const double edge = m.at(s, rv_branch_zone_edge), ridge = m.at(s, rv_ridge_zone_edge), bin = m.at(s, rv_domega);
+    std::printf("%-7g %c     %.4e        %9.0f  %.3f        %9.0f  %7.0f (%+5.2f, %.3f)  %7.0f  %9.0f  %g / %g / %g, %.2f\n",
+                m.kr_over_kt, m.mode, m.at(s, rv_k_roll), m.at(s, rv_theory_zone_edge), m.at(s, rv_zone_edge_rotation), edge,
+                ridge, (ridge - edge) / bin, m.at(s, rv_ridge_zone_edge_height), m.at(s, rv_zone_edge_line),
+                m.at(s, rv_omega_max_zone_edge), m.at(s, rv_ridge_within_one_bin), m.at(s, rv_ridge_with_ridge),
+                m.at(s, rv_ridge_columns), m.at(s, rv_ridge_max_offset_bins));
+    INFO("k_r/k_t = " << m.kr_over_kt << ", " << m.mode);
+    CHECK(m.at(s, rv_ridge_columns) >= 10);
+    CHECK(m.at(s, rv_ridge_with_ridge) == m.at(s, rv_ridge_columns));
+    CHECK(m.at(s, rv_ridge_within_one_bin) == m.at(s, rv_ridge_with_ridge));
+    // Two lines closer than a few bins are not resolved by the record (T = 2 pi/domega = 1.7 ms):
+    // each shifts the other's peak. At k_r/k_t = 0.5 the turn's zone-edge mode is 3.8 bins under
+    // the translation's (423142 against 437118 1/s) and the peak sits between (-1.1 bins): printed.
+    const double partner = m.at(s, rv_zone_edge_partner);
+    std::printf("        the wave's zone-edge pair: %.0f (translation) and %.0f (turn), %.1f bins apart%s\n", edge, partner,
+                std::abs(partner - edge) / bin, std::abs(partner - edge) > 5 * bin ? "" : ": not resolved, not asserted");
+    if (std::abs(partner - edge) > 5 * bin) CHECK(std::abs(ridge - edge) <= bin);
+  }
+}
+
+TEST_CASE("rolling study: half-peak S and P speeds against the lattice's long-wave speeds",
+          "[crystal][rolling][sweep][physics]") {
+  using namespace sweep;
+  const CrystalStudy s = rolling_study();
+  std::printf("k_r/k_t mode  V_half (m/s)      V_lattice  V_half/V_lattice - 1  largest group velocity  its phase velocity  "
+              "local speed (median)\n");
+  double v_s = 0.0, v_p = 0.0;
+  for (const Member& m : members()) {
+    const auto& v = m.v;
+    const double lw = v[cv_theory_v_lattice], vg = m.at(s, rv_theory_v_group_max), rel = v[cv_v_half_peak] / lw - 1;
+    const double vph = m.at(s, rv_theory_v_phase_fastest), local = m.at(s, rv_local_speed_median);
+    std::printf("%-7g %c     %.3f +- %.3f  %.3f    %+.3f %%              %.3f (%+.2f %%)        %.3f             %.3f (%+.3f %%)\n",
+                m.kr_over_kt, m.mode, v[cv_v_half_peak], v[cv_v_half_peak_err], lw, 100 * rel, vg, 100 * (vg / lw - 1), vph,
+                local, 100 * (local / vph - 1));
+    INFO("k_r/k_t = " << m.kr_over_kt << ", " << m.mode);
+    // The long-wave speeds do not see the springs.
+    double& ref = m.mode == 'S' ? v_s : v_p;
+    if (ref == 0.0) ref = lw;
+    CHECK(lw == Approx(ref).epsilon(1e-12));
+    if (vg <= lw * (1 + 1e-9)) {
+      // Bent down: the step's front spreads behind the long-wave speed (its first peaks lag, the
+      // local speeds 0.5 .. 0.9 % below it), its half-peak keeps to it.
+      CHECK(std::abs(rel) <= 0.005);
+    } else {
+      // Bent up (k_r/k_t = 2 here): a precursor at the largest group velocity leads and its
+      // crests, the first peaks, run at their phase velocity (the layers' local speeds); where
+      // one crest fades below the next the first peak jumps a period ahead, and the least-squares
+      // half-peak speed over z/l0 = 10..150 takes the jump in (measured 8.3 % above the long-wave
+      // speed, above the group velocity too): not a front speed of the lattice, only its side asserted.
+      CHECK(std::abs(local / vph - 1) <= 0.005);
+      CHECK(v[cv_v_half_peak] > vph);
+    }
+  }
+}
+
+TEST_CASE("rolling study: the S pulse's first peak against k_r (amplitude and width at z/l0 = 10, 80, 150)",
+          "[crystal][rolling][sweep][physics]") {
+  using namespace sweep;
+  const CrystalStudy s = rolling_study();
+  std::printf("k_r/k_t mode");
+  for (double z : s.positions) std::printf("  A(%g)/sigma0  width(%g) (us)", z, z);
+  std::printf("\n");
+  for (const Member& m : members()) {
+    std::printf("%-7g %c   ", m.kr_over_kt, m.mode);
+    for (std::size_t k = 0; k < s.positions.size(); ++k)
+      std::printf("  %.5f      %8.3f       ", m.v[cv_count + k], 1e6 * m.v[rolling_index(s, rv_count) + k]);
+    std::printf("\n");
+    for (std::size_t k = 0; k < s.positions.size(); ++k) {
+      CHECK(std::isfinite(m.v[cv_count + k]));
+      CHECK(m.v[cv_count + k] > 0.0);
+    }
+  }
+}
+
+TEST_CASE("rolling study: energy audit of the S wave with the springs, Verlet's error O(dt^2)",
+          "[crystal][rolling][energy][physics]") {
+  // The small crystal (4x4x40), kt = k, k_r = k_o at both ends of the range: nothing slips, so
+  // stored + kinetic - work stays at its start up to the integrator's O(dt^2).
+  for (double ratio : {0.05, 2.0}) {
+    double residual[2] = {0, 0}, work = 0;
+    for (int h = 0; h < 2; ++h) {
+      config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
+      c.contact.kt = c.contact.kn;
+      c.contact.kr = c.contact.ko = ratio * c.contact.kt;
+      c.excitation.mode = config::Excitation::Mode::S;
+      c.integrator.dt = h ? 1e-7 : 2e-7;
+      c.integrator.t_end = 2e-4;
+      const crystal::Packing p = crystal::make_packing(c);
+      const crystal::RunResult r = crystal::simulate(c, p);
+      REQUIRE_FALSE(r.failed);
+      const crystal::Traces& t = r.traces;
+      auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
+      for (std::size_t k = 0; k < t.samples(); ++k) residual[h] = std::max(residual[h], std::abs(total(k) - total(0)));
+      CHECK(t.dissipated.back() == 0.0);
+      work = t.work_in.back();
+    }
+    std::printf("energy audit, S, k_r/k_t = %g: work %.4g J, max residual %.3g (dt), %.3g (dt/2) of the work, ratio %.3f\n",
+                ratio, work, residual[0] / work, residual[1] / work, residual[0] / residual[1]);
+    INFO("k_r/k_t = " << ratio);
+    CHECK(work > 0.0);
+    CHECK(residual[0] < 2e-3 * work);
+    CHECK(residual[0] / residual[1] == Approx(4.0).epsilon(0.05));
+  }
+}
