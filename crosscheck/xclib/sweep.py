@@ -345,6 +345,9 @@ def lattice_theory(case_path: str, granwave: str | None) -> dict:
                     if b["dominant"] in dofs]
             if ends:
                 out["zone_edge_" + fam] = max(ends)[1]
+        for b in d["dispersion"]["branches"]:   # the acoustic S branch's end: the turn's mode while it is below
+            if b["dominant"] == "u_x" and b["kind"] == "acoustic":
+                out["zone_edge_acoustic_u_x"] = float(b["omega"]["values"][-1])
         return out
     except Exception:  # noqa: BLE001 -- the theory is optional
         return {}
@@ -401,7 +404,7 @@ def rolling(a, report_dir, granwave, tol) -> int:
           "Luding's rolling and torsion springs over k_r/k_t with k_o = k_r, k_t = k, mu = 0.5, no dashpots and no "
           "rolling or torsion limit (nothing slips), lever_arm = \"contact_point\". Ruler `granwave analyze --json`%s; "
           "theory `granwave theory --json` (Bloch waves along z with rotations and the prestress: V_sz_lattice, "
-          "V_pz_lattice, the zone-edge frequency of the acoustic u_x / u_z branch). d(a-b) = |a - b| / max(|a|, |b|)."
+          "V_pz_lattice, the zone-edge frequency of the S / P translation). d(a-b) = |a - b| / max(|a|, |b|)."
           % ((" " + " ".join(ruler_args)) if ruler_args else ""), ""]
     cols, pairs = columns_of(points, codes)
 
@@ -438,7 +441,7 @@ def rolling(a, report_dir, granwave, tol) -> int:
            "the turn decouple), in bins of domega. Below k_r/k_t ~ 0.5 a line in the gap between the branches, "
            "the same at every k (a mode held at the fixed layers), pulls the weighted average down; the peak "
            "nearest the translation is compared in tests/physics/sweep_crystal_rolling.cpp.", "",
-           "| mode kr/kt | k_roll (N m/rad) | branch zone edge (1/s) | " + " | ".join(
+           "| mode kr/kt | k_roll (N m/rad) | zone-edge translation (1/s) | " + " | ".join(
                "%s: within/with, median, s, zone edge (bins off)" % c for c in cols) + " |",
            "|" + "---|" * (3 + len(cols))]
     for p in points:
@@ -623,7 +626,13 @@ def _plot_rolling(points, codes, modes, positions, path):
     key = "zone_edge_u_x" if mode == "S" else "zone_edge_u_z"
     th = [(p["kr_over_kt"], p["theory"].get(key)) for p in pts if p["theory"].get(key)]
     if th:
-        ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6, label="lattice branch")
+        ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6,
+                label="lattice: zone-edge translation")
+    ac = [(p["kr_over_kt"], p["theory"].get("zone_edge_acoustic_u_x")) for p in pts
+          if mode == "S" and p["theory"].get("zone_edge_acoustic_u_x")]
+    if ac:
+        ax.plot([t[0] for t in ac], [t[1] for t in ac], color="tab:purple", lw=1.5, ls="--", alpha=0.7,
+                label="lattice: acoustic S branch at pi/l0")
     for c in codes:
         col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
         ys = [p["ridges"].get(c, {}).get("zone_edge") for p in pts]
