@@ -266,20 +266,30 @@ def damping(a, report_dir, granwave, tol) -> int:
     return status
 
 
+def _sweep_setup(a, defaults):
+    """(size, values, modes, codes, ruler_args) of a sweep over `defaults` (or --values)."""
+    size = SIZES[a.size]
+    values = _parse_values(a.values, "--values") or list(defaults)
+    modes = [m.strip() for m in a.modes.split(",") if m.strip()]
+    ruler_args = ["--layers", size["layers"]] if size["layers"] else []
+    return size, values, modes, RN.parse_codes(a.codes), ruler_args
+
+
+def _template(size, mode):
+    """(template path, its kn) of a mode's point."""
+    tmpl = RN.repo_path(size["template_" + mode])
+    with open(tmpl, "rb") as f:
+        return tmpl, float(tomllib.load(f)["contact"]["kn"])
+
+
 # ----------------------------------------------------------------------------------------- friction
 def friction(a, report_dir, granwave, tol) -> int:
-    size = SIZES[a.size]
-    kts = _parse_values(a.values, "--values") or list(KT_OVER_K)
-    modes = [m.strip() for m in a.modes.split(",") if m.strip()]
-    codes = RN.parse_codes(a.codes)
-    ruler_args = ["--layers", size["layers"]] if size["layers"] else []
+    size, kts, modes, codes, ruler_args = _sweep_setup(a, KT_OVER_K)
     points = []
     for mode in modes:
         for r in kts:
             name = "sweep_friction_%s_%s_kt%s" % (a.size, mode, ("%g" % r).replace(".", "p"))
-            tmpl = RN.repo_path(size["template_" + mode])
-            with open(tmpl, "rb") as f:
-                kn = float(tomllib.load(f)["contact"]["kn"])
+            tmpl, kn = _template(size, mode)
             # lever_arm: the contact point, the convention YADE and LIGGGHTS can run (SCHEMA.md); LAMMPS'
             # gran/hooke/history takes the radius and is judged against granwave run with it (a twin).
             ch = {("contact", "kt"): r * kn, ("contact", "gamma_n"): 0.0, ("contact", "mu_static"): 0.5,
@@ -366,19 +376,13 @@ def ridge_of(raw: dict) -> dict:
 
 
 def rolling(a, report_dir, granwave, tol) -> int:
-    size = SIZES[a.size]
+    size, ratios, modes, codes, ruler_args = _sweep_setup(a, KR_OVER_KT)
     positions = ROLLING_POSITIONS[a.size]
-    ratios = _parse_values(a.values, "--values") or list(KR_OVER_KT)
-    modes = [m.strip() for m in a.modes.split(",") if m.strip()]
-    codes = RN.parse_codes(a.codes)
-    ruler_args = ["--layers", size["layers"]] if size["layers"] else []
     points = []
     for mode in modes:
         for r in ratios:
             name = "sweep_rolling_%s_%s_kr%s" % (a.size, mode, ("%g" % r).replace(".", "p"))
-            tmpl = RN.repo_path(size["template_" + mode])
-            with open(tmpl, "rb") as f:
-                kn = float(tomllib.load(f)["contact"]["kn"])
+            tmpl, kn = _template(size, mode)
             kt = ROLLING_KT_OVER_K * kn
             # k_o = k_r (data/studies/crystal_rolling.toml); no dashpot and no limit anywhere (YADE's
             # CohesionMoment has no rolling or twist dashpot); lever_arm: the contact point, as the friction sweep.
@@ -554,26 +558,30 @@ def _plot_damping(points, codes, positions, path):
     plt.close(fig)
 
 
+def _plot_speeds(ax, pts, codes, xkey, theory_of, theory_label):
+    """First-peak (filled) and half-peak (open) speeds of each code against p[xkey], and the theory's line."""
+    x = [p[xkey] for p in pts]
+    for c in codes:
+        col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
+        for which, mfc in (("peak", col), ("half", "none")):
+            ys = [p["speeds"].get(c, {}).get(which) for p in pts]
+            xx = [xi for xi, y in zip(x, ys) if y is not None]
+            ax.plot(xx, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, mfc=mfc, ms=6,
+                    label="%s (%s)" % (c, "first peak" if which == "peak" else "half peak"))
+    th = [(p[xkey], theory_of(p)) for p in pts if theory_of(p) is not None]
+    if th:
+        ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6, label=theory_label)
+    ax.set_ylabel("front speed (m/s)")
+
+
 def _plot_friction(points, codes, modes, path):
     plt = _plt()
     fig, axes = plt.subplots(1, len(modes), figsize=(5.5 * len(modes), 4), squeeze=False)
     for ax, mode in zip(axes[0], modes):
-        pts = [p for p in points if p["mode"] == mode]
-        x = [p["kt_over_k"] for p in pts]
-        for c in codes:
-            col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
-            for which, mfc in (("peak", col), ("half", "none")):
-                ys = [p["speeds"].get(c, {}).get(which) for p in pts]
-                xx = [xi for xi, y in zip(x, ys) if y is not None]
-                ax.plot(xx, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, mfc=mfc, ms=6,
-                        label="%s (%s)" % (c, "first peak" if which == "peak" else "half peak"))
-        th = [(p["kt_over_k"], p["theory"]) for p in pts if p["theory"] is not None]
-        if th:
-            ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6,
-                    label="granwave theory (eq. 10, affine kt)")
+        _plot_speeds(ax, [p for p in points if p["mode"] == mode], codes, "kt_over_k", lambda p: p["theory"],
+                     "granwave theory (eq. 10, affine kt)")
         ax.set_title("%s wave" % mode)
         ax.set_xlabel("kt / k")
-        ax.set_ylabel("front speed (m/s)")
         ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=90)
@@ -587,24 +595,12 @@ def _plot_rolling(points, codes, modes, positions, path):
     fig, axes = plt.subplots(1, len(modes) + 2, figsize=(4.6 * (len(modes) + 2), 4), squeeze=False)
     axes = axes[0]
     for ax, mode in zip(axes, modes):
-        pts = [p for p in points if p["mode"] == mode]
-        x = [p["kr_over_kt"] for p in pts]
-        for c in codes:
-            col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
-            for which, mfc in (("peak", col), ("half", "none")):
-                ys = [p["speeds"].get(c, {}).get(which) for p in pts]
-                xx = [xi for xi, y in zip(x, ys) if y is not None]
-                ax.plot(xx, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, mfc=mfc, ms=6,
-                        label="%s (%s)" % (c, "first peak" if which == "peak" else "half peak"))
         key = "V_sz" if mode == "S" else "V_pz"
-        th = [(p["kr_over_kt"], p["theory"].get(key)) for p in pts if p["theory"].get(key)]
-        if th:
-            ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6,
-                    label="lattice long-wave speed")
+        _plot_speeds(ax, [p for p in points if p["mode"] == mode], codes, "kr_over_kt", lambda p: p["theory"].get(key),
+                     "lattice long-wave speed")
         ax.set_xscale("log")
         ax.set_title("%s wave" % mode)
         ax.set_xlabel("k_r / k_t")
-        ax.set_ylabel("front speed (m/s)")
         ax.legend(fontsize=6)
     mode = "S" if "S" in modes else modes[0]
     pts = [p for p in points if p["mode"] == mode]

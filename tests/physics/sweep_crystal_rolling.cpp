@@ -12,7 +12,7 @@
 //     a precursor at the largest group velocity leads and its crests, the first peaks, run at their
 //     phase velocity: the layers' local speeds against that (0.5 %) at every member;
 //   - the first peak's amplitude and width at z/l0 = 10, 80, 150 against k_r, printed.
-// An energy audit of the S wave with the springs (stored + work, Verlet's error O(dt^2)) closes it.
+// The energy audit of the S wave with the springs: tests/physics/crystal_energy_tangential.cpp.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -21,8 +21,6 @@
 #include <vector>
 
 #include "config/case.hpp"
-#include "crystal/packing.hpp"
-#include "crystal/simulation.hpp"
 #include "sweep/crystal_study.hpp"
 
 using namespace granwave;
@@ -162,36 +160,5 @@ TEST_CASE("rolling study: the 2D-FFT ridge and the zone edge against the lattice
         CHECK(m.v[cv_count + k] > 0.0);
       }
     }
-  }
-}
-
-TEST_CASE("rolling study: energy audit of the S wave with the springs, Verlet's error O(dt^2)",
-          "[crystal][rolling][energy][physics]") {
-  // The small crystal (4x4x40), kt = k, k_r = k_o at both ends of the range: nothing slips, so
-  // stored + kinetic - work stays at its start up to the integrator's O(dt^2).
-  for (double ratio : {0.05, 2.0}) {
-    double residual[2] = {0, 0}, work = 0;
-    for (int h = 0; h < 2; ++h) {
-      config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
-      c.contact.kt = c.contact.kn;
-      c.contact.kr = c.contact.ko = ratio * c.contact.kt;
-      c.excitation.mode = config::Excitation::Mode::S;
-      c.integrator.dt = h ? 1e-7 : 2e-7;
-      c.integrator.t_end = 2e-4;
-      const crystal::Packing p = crystal::make_packing(c);
-      const crystal::RunResult r = crystal::simulate(c, p);
-      REQUIRE_FALSE(r.failed);
-      const crystal::Traces& t = r.traces;
-      auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
-      for (std::size_t k = 0; k < t.samples(); ++k) residual[h] = std::max(residual[h], std::abs(total(k) - total(0)));
-      CHECK(t.dissipated.back() == 0.0);
-      work = t.work_in.back();
-    }
-    std::printf("energy audit, S, k_r/k_t = %g: work %.4g J, max residual %.3g (dt), %.3g (dt/2) of the work, ratio %.3f\n",
-                ratio, work, residual[0] / work, residual[1] / work, residual[0] / residual[1]);
-    INFO("k_r/k_t = " << ratio);
-    CHECK(work > 0.0);
-    CHECK(residual[0] < 2e-3 * work);
-    CHECK(residual[0] / residual[1] == Approx(4.0).epsilon(0.05));
   }
 }
