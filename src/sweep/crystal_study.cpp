@@ -100,9 +100,9 @@ std::vector<std::string> crystal_value_names(const CrystalStudy& s) {
   for (double z : s.positions) n.push_back("amp_z" + std::to_string(static_cast<int>(z)));
   if (s.vary == CrystalVary::kr_over_kt) {
     for (const char* r : {"k_roll", "theory_zone_edge", "zone_edge_rotation", "zone_edge_k", "branch_zone_edge",
-                          "zone_edge_partner", "ridge_zone_edge", "ridge_zone_edge_height", "zone_edge_line", "omega_max_zone_edge", "domega", "ridge_columns", "ridge_with_ridge",
-                          "ridge_within_one_bin", "ridge_max_offset_bins", "theory_v_group_max", "theory_v_phase_fastest",
-                          "local_speed_median"})
+                          "zone_edge_partner", "ridge_zone_edge", "ridge_zone_edge_height", "zone_edge_line",
+                          "omega_max_zone_edge", "domega", "ridge_columns", "ridge_with_ridge", "ridge_within_one_bin",
+                          "ridge_max_offset_bins", "theory_v_group_max", "theory_v_phase_fastest", "local_speed_median"})
       n.push_back(r);
     for (double z : s.positions) n.push_back("width_z" + std::to_string(static_cast<int>(z)));
   }
