@@ -506,13 +506,15 @@ def main(argv=None) -> int:
     r.add_argument("--tolerances", help="tolerance file (default crosscheck/tolerances.toml)")
     r.add_argument("--fixture-system", action="store_true",
                    help="TEST ONLY: build the system with the Python fixture builder instead of `granwave build`")
-    w = sub.add_parser("sweep", help="parameter sweeps: damping (peak decay over gamma_0), friction (speeds over kt/k)")
-    w.add_argument("name", choices=["damping", "friction"])
+    w = sub.add_parser("sweep", help="parameter sweeps: damping (peak decay over gamma_0), friction (speeds over kt/k), "
+                       "rolling (speeds, first peaks and the dispersion ridge over k_r/k_t)")
+    w.add_argument("name", choices=["damping", "friction", "rolling"])
     w.add_argument("--size", choices=["small", "paper"], default="small",
                    help="small: 4x4x40 (default, ~1-2 min per code set); paper: seed 002's 4x4x200")
     w.add_argument("--suite", choices=["small", "paper"], dest="size", help="alias of --size")
-    w.add_argument("--values", help="comma-separated gamma_0 (kg/s) or kt/k values (default: the seed's)")
-    w.add_argument("--modes", default="P,S", help="friction: P, S or P,S")
+    w.add_argument("--values", help="comma-separated gamma_0 (kg/s), kt/k or k_r/k_t values (default: the seed's; "
+                   "rolling: 0.05,0.1,0.2,0.5,1,2)")
+    w.add_argument("--modes", default="P,S", help="friction, rolling: P, S, P,S or S,P (the order they run in)")
     w.add_argument("--codes", default=RN.DEFAULT_CODES, help="comma-separated, any of %(default)s")
     w.add_argument("--resume", action="store_true", help="with --report DIR: finish the sweep in DIR point by point")
     w.add_argument("--report", help="report directory (never overwritten)")

@@ -2,6 +2,7 @@
 
     crosscheck/crosscheck sweep damping  [--size small|paper] [--codes ...] [--report DIR [--resume]]
     crosscheck/crosscheck sweep friction [--size small|paper] [--modes P,S] [--codes ...] [--report DIR [--resume]]
+    crosscheck/crosscheck sweep rolling  [--size small|paper] [--modes S,P] [--codes ...] [--report DIR [--resume]]
 
 damping:  first-peak amplitude (ruler: `granwave analyze --json`) at five z/l0 positions over
           gamma_0 = 0, 0.025, 0.05, 0.1, 0.2 kg/s (seed 002 fig. 3 right), per code; relative
@@ -9,6 +10,11 @@ damping:  first-peak amplitude (ruler: `granwave analyze --json`) at five z/l0 p
 friction: P and S front speeds (first peak and half peak) over kt/k = 0, 0.2, 0.5, 1, 1.5, 2 with
           mu = 0.5 (seed 002 fig. 6), per code and pair; `granwave theory --json` V_pz, V_sz (eq. 10,
           affine kt term) as the closed-form line; a PNG of speed against kt/k.
+rolling:  Luding's rolling and torsion springs (issue #28) over k_r/k_t = 0.05, 0.1, 0.2, 0.5, 1, 2 with
+          k_o = k_r, k_t = k, mu = 0.5, no dashpots (YADE's CohesionMoment has none) and no rolling or
+          torsion limit (data/studies/crystal_rolling.toml); S and P: speeds against the lattice's
+          long-wave speeds (`granwave theory --json` V_sz_lattice, V_pz_lattice), first peaks at
+          z/l0 = 10, 80, 150, the 2D-FFT ridge against the lattice branch and the S zone-edge frequency.
 
 Each point is a case derived from a template (small: tests/crosscheck/cases/crystal_small.toml,
 4x4x40; paper: data/cases/crystal_p.toml / crystal_s.toml, 4x4x200) with only the swept keys
@@ -39,6 +45,9 @@ from . import traces as T
 
 GAMMAS = (0.0, 0.025, 0.05, 0.1, 0.2)
 KT_OVER_K = (0.0, 0.2, 0.5, 1.0, 1.5, 2.0)
+KR_OVER_KT = (0.05, 0.1, 0.2, 0.5, 1.0, 2.0)
+ROLLING_KT_OVER_K = 1.0            # data/studies/crystal_rolling.toml
+ROLLING_POSITIONS = {"small": (5, 15, 25), "paper": (10, 80, 150)}
 SIZES = {
     # small: 4x4x40; the first peak reaches z/l0 = 25 at ~1.7e-4 s (P) and the top reflection returns
     # there after ~3.9e-4 s, so t_end = 3e-4 s keeps every position's first peak clean.
@@ -79,20 +88,22 @@ def run_point(case_path: str, casedir: str, codes, granwave, timeout, fixture, r
         _log("%s: %s" % (os.path.basename(case_path), msg))
 
     runs = RN.run_codes(case_path, system, casedir, codes, timeout, granwave, resume, log)
-    out = {}
-    for code, r in runs.items():
-        rec = dict(status=r["status"], wall_s=r.get("wall_s"), detail=r.get("detail", ""))
-        if r.get("twin_of"):
-            rec.update(twin_of=r["twin_of"], conventions=r["conventions"])
-        if r["status"] == "ok":
-            try:
-                rec["attrs"] = {k: v for k, v in T.read_trace(r["trace"])["attrs"].items()
-                                if k in ("lever_arm", "normal_tension", "coulomb_normal")}
-                rec["raw"] = R.granwave_analyze(r["trace"], granwave or "granwave", extra_args=ruler_args)
-            except R.RulerError as e:
-                rec["status"], rec["detail"] = "failed", "not measurable: %s" % e
-        out[code] = rec
-    return out
+    return {code: _record(r, granwave, ruler_args) for code, r in runs.items()}
+
+
+def _record(r: dict, granwave, ruler_args) -> dict:
+    """A sweep point's row of one run: status, time, its conventions and the ruler's JSON ("raw")."""
+    rec = dict(status=r["status"], wall_s=r.get("wall_s"), detail=r.get("detail", ""))
+    if r.get("twin_of"):
+        rec.update(twin_of=r["twin_of"], conventions=r["conventions"])
+    if r["status"] == "ok":
+        try:
+            rec["attrs"] = {k: v for k, v in T.read_trace(r["trace"])["attrs"].items()
+                            if k in ("lever_arm", "normal_tension", "coulomb_normal")}
+            rec["raw"] = R.granwave_analyze(r["trace"], granwave or "granwave", extra_args=ruler_args)
+        except R.RulerError as e:
+            rec["status"], rec["detail"] = "failed", "not measurable: %s" % e
+    return rec
 
 
 def point_pairs(case_path: str, runs: dict) -> dict:
@@ -257,20 +268,30 @@ def damping(a, report_dir, granwave, tol) -> int:
     return status
 
 
+def _sweep_setup(a, defaults):
+    """(size, values, modes, codes, ruler_args) of a sweep over `defaults` (or --values)."""
+    size = SIZES[a.size]
+    values = _parse_values(a.values, "--values") or list(defaults)
+    modes = [m.strip() for m in a.modes.split(",") if m.strip()]
+    ruler_args = ["--layers", size["layers"]] if size["layers"] else []
+    return size, values, modes, RN.parse_codes(a.codes), ruler_args
+
+
+def _template(size, mode):
+    """(template path, its kn) of a mode's point."""
+    tmpl = RN.repo_path(size["template_" + mode])
+    with open(tmpl, "rb") as f:
+        return tmpl, float(tomllib.load(f)["contact"]["kn"])
+
+
 # ----------------------------------------------------------------------------------------- friction
 def friction(a, report_dir, granwave, tol) -> int:
-    size = SIZES[a.size]
-    kts = _parse_values(a.values, "--values") or list(KT_OVER_K)
-    modes = [m.strip() for m in a.modes.split(",") if m.strip()]
-    codes = RN.parse_codes(a.codes)
-    ruler_args = ["--layers", size["layers"]] if size["layers"] else []
+    size, kts, modes, codes, ruler_args = _sweep_setup(a, KT_OVER_K)
     points = []
     for mode in modes:
         for r in kts:
             name = "sweep_friction_%s_%s_kt%s" % (a.size, mode, ("%g" % r).replace(".", "p"))
-            tmpl = RN.repo_path(size["template_" + mode])
-            with open(tmpl, "rb") as f:
-                kn = float(tomllib.load(f)["contact"]["kn"])
+            tmpl, kn = _template(size, mode)
             # lever_arm: the contact point, the convention YADE and LIGGGHTS can run (SCHEMA.md); LAMMPS'
             # gran/hooke/history takes the radius and is judged against granwave run with it (a twin).
             ch = {("contact", "kt"): r * kn, ("contact", "gamma_n"): 0.0, ("contact", "mu_static"): 0.5,
@@ -311,6 +332,185 @@ def friction(a, report_dir, granwave, tol) -> int:
     md += ["![friction](friction.png)", ""]
     _write(report_dir, "sweep_friction", md, dict(sweep="friction", size=a.size, codes=codes, points=points,
                                                   verdict=verdict))
+    return status
+
+
+# ------------------------------------------------------------------------------------------ rolling
+def lattice_theory(case_path: str, granwave: str | None) -> dict:
+    """`granwave theory --json` of a point: the lattice's long-wave speeds (rotations and prestress
+    included), its rolling and twisting springs, and the zone-edge frequency of the S (u_x) and P (u_z)
+    translation. {} when granwave is missing or the lattice is not available."""
+    if not granwave:
+        return {}
+    try:
+        p = subprocess.run([granwave, "theory", case_path, "--json"], capture_output=True, text=True, timeout=300)
+        d = json.loads(p.stdout)
+        lat = d["lattice"]
+        if not lat.get("available"):
+            return {}
+        out = dict(V_pz=float(d["V_pz_lattice"]["value"]), V_sz=float(d["V_sz_lattice"]["value"]),
+                   k_roll=float(lat["k_roll"]["value"]), k_twist=float(lat["k_twist"]["value"]))
+        # At k = pi/l0 the translation and the turn decouple: the wave's zone-edge mode is the family's
+        # branch (S: u_x with theta_y; P: u_z with theta_z) that ends in a translation, acoustic or not.
+        for fam, dofs in (("u_x", ("u_x", "theta_y")), ("u_z", ("u_z", "theta_z"))):
+            ends = [(b["translation"][-1], float(b["omega"]["values"][-1])) for b in d["dispersion"]["branches"]
+                    if b["dominant"] in dofs]
+            if ends:
+                out["zone_edge_" + fam] = max(ends)[1]
+        for b in d["dispersion"]["branches"]:   # the acoustic S branch's end: the turn's mode while it is below
+            if b["dominant"] == "u_x" and b["kind"] == "acoustic":
+                out["zone_edge_acoustic_u_x"] = float(b["omega"]["values"][-1])
+        return out
+    except Exception:  # noqa: BLE001 -- the theory is optional
+        return {}
+
+
+def ridge_of(raw: dict) -> dict:
+    """The ruler's 2D-FFT ridge against the case's lattice branch (`long_wave` of `granwave analyze
+    --json`) and the ridge's frequency in the last wavenumber bin (k = pi/l0, the zone edge)."""
+    lw, d = raw.get("long_wave", {}), raw.get("dispersion", {})
+    rg = lw.get("ridge", {})
+    om = d.get("omega_max", {}).get("values") or [None]
+    return dict(model=lw.get("model"), v_k0=lw.get("value"), scale=rg.get("scale", {}).get("value"),
+                columns=rg.get("columns"), with_ridge=rg.get("with_ridge"), within_one_bin=rg.get("within_one_bin"),
+                median_offset_bins=rg.get("median_offset_bins"), zone_edge=om[-1],
+                domega=d.get("domega", {}).get("value"))
+
+
+YADE_LEVER_TWIN = "granwave~yade"
+
+
+def _yade_lever_twin(case_path: str, a, granwave, ruler_args) -> dict:
+    """granwave with YADE's angular springs: YADE's CohesionMoment takes k_r (a/2)^2 (radii), granwave
+    k_r a'^2 with a' = (a - delta/2)/2 (its contact-point arm, the tangential arm YADE shares), so the
+    twin runs k_r and k_o times (a/(a - delta_0/2))^2 at the static overlap delta_0 (equal radii; the
+    overlap's change in the wave is left to the comparison). Judged against YADE like a convention twin."""
+    casedir = os.path.dirname(case_path)
+    case, text = T.load_case(case_path)
+    c, cr = case["contact"], case["crystal"]
+    radius = float(cr["radius"])
+    scale = (radius / (radius - 0.5 * float(cr["overlap"]) * 2 * radius)) ** 2
+    changes = {("contact", "kr"): float(c.get("kr", 0.0)) * scale, ("contact", "ko"): float(c.get("ko", 0.0)) * scale,
+               ("case", "name"): case["case"]["name"] + "_yade_lever"}
+    twin_dir = os.path.join(casedir, YADE_LEVER_TWIN)
+    os.makedirs(twin_dir, exist_ok=True)
+    twin_case = os.path.join(twin_dir, "case.toml")
+    if not (a.resume and os.path.exists(twin_case)):
+        with open(twin_case, "w") as f:
+            f.write("# %s with YADE's angular springs: k_r, k_o times (a/(a - delta_0/2))^2 = %.16g\n"
+                    % (os.path.basename(case_path), scale) + M.derive_case(text, changes))
+    _log("%s: running %s (k_r, k_o x %.9f) ..." % (os.path.basename(case_path), YADE_LEVER_TWIN, scale))
+    r = RN.run_code(YADE_LEVER_TWIN, twin_case, os.path.join(casedir, "system.h5"), os.path.join(twin_dir, "run"),
+                    a.timeout, granwave, a.resume)
+    r.update(twin_of=["yade"], conventions={"kr": changes[("contact", "kr")], "ko": changes[("contact", "ko")]})
+    return _record(r, granwave, ruler_args)
+
+
+def rolling(a, report_dir, granwave, tol) -> int:
+    size, ratios, modes, codes, ruler_args = _sweep_setup(a, KR_OVER_KT)
+    positions = ROLLING_POSITIONS[a.size]
+    points = []
+    for mode in modes:
+        for r in ratios:
+            name = "sweep_rolling_%s_%s_kr%s" % (a.size, mode, ("%g" % r).replace(".", "p"))
+            tmpl, kn = _template(size, mode)
+            kt = ROLLING_KT_OVER_K * kn
+            # k_o = k_r (data/studies/crystal_rolling.toml); no dashpot and no limit anywhere (YADE's
+            # CohesionMoment has no rolling or twist dashpot); lever_arm: the contact point, as the friction sweep.
+            ch = {("contact", "kt"): kt, ("contact", "kr"): r * kt, ("contact", "ko"): r * kt,
+                  ("contact", "gamma_n"): 0.0, ("contact", "gamma_t"): 0.0, ("contact", "gamma_r"): 0.0,
+                  ("contact", "gamma_o"): 0.0, ("contact", "mu_static"): 0.5, ("contact", "mu_dynamic"): 0.5,
+                  ("contact", "lever_arm"): "contact_point", ("excitation", "mode"): mode}
+            cp, res = _sweep_point(a, report_dir, name, tmpl, ch, size, codes, granwave, ruler_args)
+            if res.get("granwave", {}).get("status") == "ok" and res.get("yade", {}).get("status") == "ok":
+                res[YADE_LEVER_TWIN] = _yade_lever_twin(cp, a, granwave, ruler_args)
+            th = lattice_theory(cp, granwave)
+            speeds, peaks, ridges = {}, {}, {}
+            for c, rr in res.items():
+                if "raw" in rr:
+                    t = R.translate(rr["raw"])
+                    speeds[c] = dict(peak=t["speed_peak"], half=t["speed_half"], range=t["speed_range"])
+                    peaks[c] = M.peaks_at(M.layer_table(rr["raw"]), positions)
+                    ridges[c] = ridge_of(rr["raw"])
+            points.append(dict(mode=mode, kr_over_kt=r, case=cp, theory=th,
+                               runs={c: {k: v for k, v in rr.items() if k != "raw"} for c, rr in res.items()},
+                               speeds=speeds, peaks=peaks, ridges=ridges,
+                               pairs={"%s-%s" % k: v for k, v in point_pairs(cp, res).items()}))
+    tsec = sweep_tolerances(tol, "rolling")
+    md = ["# crosscheck sweep rolling (%s)" % a.size, "",
+          "Luding's rolling and torsion springs over k_r/k_t with k_o = k_r, k_t = k, mu = 0.5, no dashpots and no "
+          "rolling or torsion limit (nothing slips), lever_arm = \"contact_point\". Ruler `granwave analyze --json`%s; "
+          "theory `granwave theory --json` (Bloch waves along z with rotations and the prestress: V_sz_lattice, "
+          "V_pz_lattice, the zone-edge frequency of the S / P translation). d(a-b) = |a - b| / max(|a|, |b|)."
+          % ((" " + " ".join(ruler_args)) if ruler_args else ""), ""]
+    cols, pairs = columns_of(points, codes)
+
+    def theory_v(p):
+        return p["theory"].get("V_sz" if p["mode"] == "S" else "V_pz")
+
+    for which, lab in (("peak", "first-peak speed (m/s)"), ("half", "half-peak speed (m/s)")):
+        def rows(pts, which=which):
+            for p in pts:
+                yield "%s %g" % (p["mode"], p["kr_over_kt"]), _fmtv(theory_v(p)), \
+                    {c: p["speeds"].get(c, {}).get(which) for c in cols}
+        md += ["### %s" % lab, ""] + M.sweep_table(points, cols, "mode kr/kt", "theory", rows, pairs) + [""]
+    md += ["### half-peak speed against the lattice's long-wave speed", "",
+           "| mode kr/kt | theory (m/s) | " + " | ".join("%s (rel.)" % c for c in cols) + " |",
+           "|" + "---|" * (2 + len(cols))]
+    for p in points:
+        v = theory_v(p)
+        md.append("| %s %g | %s | %s |" % (p["mode"], p["kr_over_kt"], _fmtv(v), " | ".join(
+            "%+.2e" % (p["speeds"][c]["half"] / v - 1) if (v and p["speeds"].get(c, {}).get("half")) else "-"
+            for c in cols)))
+    md.append("")
+
+    def peak_rows(pts):
+        for p in pts:
+            for z in positions:
+                yield "%s %g" % (p["mode"], p["kr_over_kt"]), "%g" % z, {c: p["peaks"].get(c, {}).get(z) for c in cols}
+    md += ["### first-peak amplitude (Pa) at z/l0 = %s" % ", ".join(map(str, positions)), ""]
+    md += M.sweep_table(points, cols, "mode kr/kt", "z/l0", peak_rows, pairs) + [""]
+    md += ["### 2D-FFT ridge against the lattice branch, and the zone edge", "",
+           "Per code: ridge columns within one frequency bin of the branch / columns with a ridge (the ruler's "
+           "`long_wave.ridge`, S only: the P branch is a sine), the median offset in bins, the scale s of "
+           "omega_ridge = s omega_branch; the zone edge: seed 002's power-weighted omega_max in the last "
+           "wavenumber column (k = pi/l0) against the lattice's zone-edge translation (there the translation and "
+           "the turn decouple), in bins of domega. Below k_r/k_t ~ 0.5 a line in the gap between the branches, "
+           "the same at every k (a mode held at the fixed layers), pulls the weighted average down; the peak "
+           "nearest the translation is compared in tests/physics/sweep_crystal_rolling.cpp.", "",
+           "| mode kr/kt | k_roll (N m/rad) | zone-edge translation (1/s) | " + " | ".join(
+               "%s: within/with, median, s, zone edge (bins off)" % c for c in cols) + " |",
+           "|" + "---|" * (3 + len(cols))]
+    for p in points:
+        th = p["theory"]
+        ze = th.get("zone_edge_u_x" if p["mode"] == "S" else "zone_edge_u_z")
+        cells = []
+        for c in cols:
+            g = p["ridges"].get(c)
+            if not g or g.get("within_one_bin") is None:
+                cells.append("-" if not g else "%s model" % g.get("model"))
+                continue
+            off = (g["zone_edge"] - ze) / g["domega"] if (ze and g.get("zone_edge") and g.get("domega")) else None
+            cells.append("%d/%d, %.2f, %.5f, %.0f (%s)" % (g["within_one_bin"], g["with_ridge"], g["median_offset_bins"],
+                                                          g["scale"], g["zone_edge"], "-" if off is None else "%+.2f" % off))
+        md.append("| %s %g | %s | %s | %s |" % (p["mode"], p["kr_over_kt"], _fmtv(th.get("k_roll")), _fmtv(ze),
+                                              " | ".join(cells)))
+    md.append("")
+    verdict = []
+    for which in ("peak", "half"):
+        verdict += judge_pairs(points, pairs, lambda p, which=which: [{c: p["speeds"].get(c, {}).get(which) for c in cols}],
+                               tsec.get("speed_rel"), tsec, "speed_rel %s (max over the sweep)" % which)
+    verdict += judge_pairs(points, pairs, lambda p: [{c: p["peaks"].get(c, {}).get(z) for c in cols} for z in positions],
+                           tsec.get("peak_rel"), tsec, "peak_rel (max over the sweep)")
+    verdict += _run_failures(points, cols)
+    why = " ".join("%s: %s" % (q, tsec.get(q + "_why", "no tolerance set")) for q in ("speed_rel", "peak_rel"))
+    status = _verdict_md(md, verdict, why, tsec)
+    _timings_md(md, points, cols)
+    png = os.path.join(report_dir, "rolling.png")
+    _plot_rolling(points, codes, modes, positions, png)
+    md += ["![rolling](rolling.png)", ""]
+    _write(report_dir, "sweep_rolling", md, dict(sweep="rolling", size=a.size, codes=codes, positions=positions,
+                                                 points=points, verdict=verdict))
     return status
 
 
@@ -391,27 +591,87 @@ def _plot_damping(points, codes, positions, path):
     plt.close(fig)
 
 
+def _plot_speeds(ax, pts, codes, xkey, theory_of, theory_label):
+    """First-peak (filled) and half-peak (open) speeds of each code against p[xkey], and the theory's line."""
+    x = [p[xkey] for p in pts]
+    for c in codes:
+        col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
+        for which, mfc in (("peak", col), ("half", "none")):
+            ys = [p["speeds"].get(c, {}).get(which) for p in pts]
+            xx = [xi for xi, y in zip(x, ys) if y is not None]
+            ax.plot(xx, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, mfc=mfc, ms=6,
+                    label="%s (%s)" % (c, "first peak" if which == "peak" else "half peak"))
+    th = [(p[xkey], theory_of(p)) for p in pts if theory_of(p) is not None]
+    if th:
+        ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6, label=theory_label)
+    ax.set_ylabel("front speed (m/s)")
+
+
 def _plot_friction(points, codes, modes, path):
     plt = _plt()
     fig, axes = plt.subplots(1, len(modes), figsize=(5.5 * len(modes), 4), squeeze=False)
     for ax, mode in zip(axes[0], modes):
-        pts = [p for p in points if p["mode"] == mode]
-        x = [p["kt_over_k"] for p in pts]
-        for c in codes:
-            col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
-            for which, mfc in (("peak", col), ("half", "none")):
-                ys = [p["speeds"].get(c, {}).get(which) for p in pts]
-                xx = [xi for xi, y in zip(x, ys) if y is not None]
-                ax.plot(xx, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, mfc=mfc, ms=6,
-                        label="%s (%s)" % (c, "first peak" if which == "peak" else "half peak"))
-        th = [(p["kt_over_k"], p["theory"]) for p in pts if p["theory"] is not None]
-        if th:
-            ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6,
-                    label="granwave theory (eq. 10, affine kt)")
+        _plot_speeds(ax, [p for p in points if p["mode"] == mode], codes, "kt_over_k", lambda p: p["theory"],
+                     "granwave theory (eq. 10, affine kt)")
         ax.set_title("%s wave" % mode)
         ax.set_xlabel("kt / k")
-        ax.set_ylabel("front speed (m/s)")
         ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def _plot_rolling(points, codes, modes, positions, path):
+    """Speeds against k_r/k_t (per mode, with the lattice's long-wave speed), S first peaks against k_r/k_t
+    per position, and the S ridge's zone-edge frequency against the branch's."""
+    plt = _plt()
+    fig, axes = plt.subplots(1, len(modes) + 2, figsize=(4.6 * (len(modes) + 2), 4), squeeze=False)
+    axes = axes[0]
+    for ax, mode in zip(axes, modes):
+        key = "V_sz" if mode == "S" else "V_pz"
+        _plot_speeds(ax, [p for p in points if p["mode"] == mode], codes, "kr_over_kt", lambda p: p["theory"].get(key),
+                     "lattice long-wave speed")
+        ax.set_xscale("log")
+        ax.set_title("%s wave" % mode)
+        ax.set_xlabel("k_r / k_t")
+        ax.legend(fontsize=6)
+    mode = "S" if "S" in modes else modes[0]
+    pts = [p for p in points if p["mode"] == mode]
+    x = [p["kr_over_kt"] for p in pts]
+    ax = axes[len(modes)]
+    for c in codes:
+        col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
+        for z in positions:
+            ys = [p["peaks"].get(c, {}).get(z) for p in pts]
+            xx = [xi for xi, y in zip(x, ys) if y is not None]
+            ax.plot(xx, [abs(y) for y in ys if y is not None], color=col, ls=ls, marker=mk, ms=5,
+                    label="%s z/l0 = %g" % (c, z))
+    ax.set_xscale("log")
+    ax.set_title("%s first peak" % mode)
+    ax.set_xlabel("k_r / k_t")
+    ax.set_ylabel("|first peak| (Pa)")
+    ax.legend(fontsize=6)
+    ax = axes[len(modes) + 1]
+    key = "zone_edge_u_x" if mode == "S" else "zone_edge_u_z"
+    th = [(p["kr_over_kt"], p["theory"].get(key)) for p in pts if p["theory"].get(key)]
+    if th:
+        ax.plot([t[0] for t in th], [t[1] for t in th], color="tab:green", lw=2, alpha=0.6,
+                label="lattice: zone-edge translation")
+    ac = [(p["kr_over_kt"], p["theory"].get("zone_edge_acoustic_u_x")) for p in pts
+          if mode == "S" and p["theory"].get("zone_edge_acoustic_u_x")]
+    if ac:
+        ax.plot([t[0] for t in ac], [t[1] for t in ac], color="tab:purple", lw=1.5, ls="--", alpha=0.7,
+                label="lattice: acoustic S branch at pi/l0")
+    for c in codes:
+        col, ls, mk = STYLES.get(c, ("gray", "-", "x"))
+        ys = [p["ridges"].get(c, {}).get("zone_edge") for p in pts]
+        xx = [xi for xi, y in zip(x, ys) if y is not None]
+        ax.plot(xx, [y for y in ys if y is not None], color=col, ls=ls, marker=mk, ms=5, label=c)
+    ax.set_xscale("log")
+    ax.set_title("%s ridge at k = pi/l0" % mode)
+    ax.set_xlabel("k_r / k_t")
+    ax.set_ylabel("omega (1/s)")
+    ax.legend(fontsize=6)
     fig.tight_layout()
     fig.savefig(path, dpi=90)
     plt.close(fig)
@@ -454,7 +714,7 @@ def main_sweep(a) -> int:
                              resume)
     granwave = RN.find_granwave(a.granwave)
     t = time.time()
-    st = (damping if a.name == "damping" else friction)(a, report_dir, granwave, tol)
+    st = dict(damping=damping, friction=friction, rolling=rolling)[a.name](a, report_dir, granwave, tol)
     print("report: %s" % os.path.join(report_dir, "sweep_%s.md" % a.name))
     print("wall: %.1f s" % (time.time() - t))
     print("VERDICT: %s" % ("FAIL" if st else "PASS"))

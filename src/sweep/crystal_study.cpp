@@ -36,6 +36,7 @@ const char* to_string(CrystalVary v) {
     case CrystalVary::kt_over_k: return "kt_over_k";
     case CrystalVary::polydispersity: return "polydispersity";
     case CrystalVary::overlap: return "overlap";
+    case CrystalVary::kr_over_kt: return "kr_over_kt";
   }
   return "?";
 }
@@ -55,6 +56,10 @@ config::Case member_case(const CrystalStudy& s, const CrystalMember& m) {
     case CrystalVary::kt_over_k: c.contact.kt = m.value * c.contact.kn; break;
     case CrystalVary::polydispersity: cr.polydispersity = m.value; break;
     case CrystalVary::overlap: cr.overlap = m.value; break;
+    case CrystalVary::kr_over_kt:
+      if (s.kt_over_k) c.contact.kt = *s.kt_over_k * c.contact.kn;
+      c.contact.kr = c.contact.ko = m.value * c.contact.kt;  // k_o tied to k_r (data/SCHEMA.md §6)
+      break;
   }
   if (s.layers) cr.cells[2] = *s.layers;
   if (s.dt) {
@@ -93,8 +98,101 @@ std::vector<std::string> crystal_value_names(const CrystalStudy& s) {
       "theory_omega0", "theory_omega0_prestressed", "coordination_theory", "coordination0", "coordination_min",
       "coordination_max", "sigma0", "relax_steps", "t_c", "restitution", "t_gamma", "m_ij", "steps", "theory_v_lattice"};
   for (double z : s.positions) n.push_back("amp_z" + std::to_string(static_cast<int>(z)));
+  if (s.vary == CrystalVary::kr_over_kt) {
+    for (const char* r : {"k_roll", "theory_zone_edge", "zone_edge_rotation", "zone_edge_k", "branch_zone_edge",
+                          "zone_edge_partner", "ridge_zone_edge", "ridge_zone_edge_height", "zone_edge_line",
+                          "omega_max_zone_edge", "domega", "ridge_columns", "ridge_with_ridge", "ridge_within_one_bin",
+                          "ridge_max_offset_bins", "theory_v_group_max", "theory_v_phase_fastest", "local_speed_median"})
+      n.push_back(r);
+    for (double z : s.positions) n.push_back("width_z" + std::to_string(static_cast<int>(z)));
+  }
   return n;
 }
+
+std::size_t rolling_index(const CrystalStudy& s, RollingValue v) { return cv_count + s.positions.size() + v; }
+
+namespace {
+// The rolling study's values of one member: its lattice branch (S: u_x, P: u_z) against the run's
+// spectrum, and the width (duration of the leading pulse) of the first peak at each position.
+void rolling_values(const CrystalStudy& s, const theory::LatticeCell& cell, const analysis::CrystalAnalysis& a, char mode,
+                    std::vector<double>& v) {
+  const theory::Vec3 ez = theory::Vec3::UnitZ();
+  const auto L = theory::lattice_dispersion(cell, ez, theory::layer_period(cell, ez), 201);
+  const int dof = mode == 'S' ? 0 : 2;
+  int b = -1;
+  for (int i = 0; i < 6; ++i)
+    if (L.acoustic[i] && L.dominant[i] == dof) b = i;
+  v[rolling_index(s, rv_k_roll)] = cell.bonds.front().k_roll;
+  const auto& d = a.dispersion;
+  v[rolling_index(s, rv_domega)] = d.domega;
+  if (!d.omega_max.empty()) v[rolling_index(s, rv_omega_max_zone_edge)] = d.omega_max.back();
+  if (b >= 0) {
+    const auto& br = L.branches[b];
+    std::size_t fastest = br.size() - 1;
+    for (std::size_t i = 0; i < br.size(); ++i)
+      if (L.k[i] > 0.0 && std::abs(br[i].group_velocity) > std::abs(br[fastest].group_velocity)) fastest = i;
+    v[rolling_index(s, rv_theory_v_group_max)] = std::abs(br[fastest].group_velocity);
+    v[rolling_index(s, rv_theory_v_phase_fastest)] = br[fastest].omega / L.k[fastest];
+    v[rolling_index(s, rv_theory_zone_edge)] = br.back().omega;
+    v[rolling_index(s, rv_zone_edge_rotation)] = br.back().rotation();
+  }
+  if (b >= 0 && !d.spectrum.empty()) {
+    // Where the branch carries the pulse's energy (the default third of its largest group velocity)...
+    const auto r = theory::compare_ridge(d.spectrum, d.k_axis, d.omega_axis, L, b, +1);
+    v[rolling_index(s, rv_ridge_columns)] = r.columns;
+    v[rolling_index(s, rv_ridge_with_ridge)] = r.with_ridge;
+    v[rolling_index(s, rv_ridge_within_one_bin)] = r.within_one_bin;
+    v[rolling_index(s, rv_ridge_max_offset_bins)] = r.max_offset_bins;
+    // ... and at the zone edge, where the group velocity vanishes. There the wave's translation
+    // and the turns decouple (every bond across the layers has 1 + e^{i k.b} = 0), so the mode
+    // the drive excites is the pure translation, on whichever branch: the acoustic one where the
+    // springs lift the turn's mode above it, the one above where they do not.
+    const std::size_t nk = d.k_axis.size(), nw = d.omega_axis.size();
+    const double k_last = d.k_axis.back();
+    v[rolling_index(s, rv_zone_edge_k)] = k_last;
+    const auto modes = theory::lattice_modes(cell, ez, k_last);
+    const auto driven = std::max_element(modes.begin(), modes.end(),
+                                         [dof](const auto& x, const auto& y) { return x.content[dof] < y.content[dof]; });
+    v[rolling_index(s, rv_branch_zone_edge)] = driven->omega;
+    const int turn = mode == 'S' ? 4 : 5;  // theta_y (S along x), theta_z (P): the turn the wave couples to
+    v[rolling_index(s, rv_zone_edge_partner)] =
+        std::max_element(modes.begin(), modes.end(), [turn](const auto& x, const auto& y) {
+          return x.content[turn] < y.content[turn];
+        })->omega;
+    // The column's local maximum nearest that mode, and the column's largest line: with the
+    // springs, a line in the gap between the branches that has the same frequency at every k
+    // (a mode held at the fixed layers, not a Bloch wave) can outshine the zone-edge mode.
+    const auto F = [&](std::size_t j) { return d.spectrum[j * nk + nk - 1]; };
+    std::size_t near = 0, top = 1;
+    for (std::size_t j = 1; j + 1 < nw; ++j) {
+      if (F(j) > F(top)) top = j;
+      if (F(j) > F(j - 1) && F(j) >= F(j + 1) &&
+          (near == 0 || std::abs(d.omega_axis[j] - driven->omega) < std::abs(d.omega_axis[near] - driven->omega)))
+        near = j;
+    }
+    if (near > 0) {
+      v[rolling_index(s, rv_ridge_zone_edge)] = d.omega_axis[near];
+      v[rolling_index(s, rv_ridge_zone_edge_height)] = F(near) / F(top);
+    }
+    v[rolling_index(s, rv_zone_edge_line)] = d.omega_axis[top];
+  }
+  // The layers' local speeds: a front led by crests keeps their speed between the layers where
+  // the first peak passes from one crest to the next (a jump that the least-squares fit spreads).
+  std::vector<double> local;
+  for (const auto& ly : a.layers)
+    if (ly.arrived && ly.z_over_l0 >= a.v_first_peak.lo && ly.z_over_l0 <= a.v_first_peak.hi &&
+        std::isfinite(ly.local_speed.value))
+      local.push_back(ly.local_speed.value);
+  if (!local.empty()) {
+    std::nth_element(local.begin(), local.begin() + local.size() / 2, local.end());
+    v[rolling_index(s, rv_local_speed_median)] = local[local.size() / 2];
+  }
+  for (std::size_t k = 0; k < s.positions.size(); ++k)
+    for (const auto& ly : a.layers)
+      if (std::lround(ly.z_over_l0) == std::lround(s.positions[k]) && ly.arrived)
+        v[rolling_index(s, rv_count) + k] = ly.duration.value;
+}
+}  // namespace
 
 CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bool keep_spectrum,
                                     const StudyControl* control) {
@@ -110,10 +208,17 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   if (out.run.failed) throw RunError(out.c.name + ": " + out.run.error);
   const crystal::Traces& tr = out.run.traces;
 
-  // The same ruler as `granwave analyze`, on the in-memory traces.
+  // Eq. (10) from this member's own (relaxed) contact network, as `granwave theory` does.
+  // (the linear law's kn, kt; Hertz-Mindlin's linearised at each contact's overlap)
+  const theory::ContactNetwork net = crystal::contact_network(out.c, out.packing);
+  const auto cell = member_lattice_cell(out.c, out.packing, net);
+  const bool rolling = s.vary == CrystalVary::kr_over_kt;
+
+  // The same ruler as `granwave analyze`, on the in-memory traces; the rolling study compares the
+  // spectrum with the member's lattice branches.
   out.trace = crystal::analysis_trace(out.c, out.packing, tr);
   analysis::CrystalAnalysisOptions aopt;
-  aopt.dispersion.keep_spectrum = keep_spectrum;
+  aopt.dispersion.keep_spectrum = keep_spectrum || rolling;
   out.analysis = analysis::analyze_crystal(out.trace, aopt);
   const analysis::CrystalAnalysis& a = out.analysis;
 
@@ -124,9 +229,6 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   for (std::size_t L = fl; L + fl < tr.nlayers; ++L, ++n0) s0 += tr.stress_zz[L];
   out.sigma0 = n0 ? s0 / n0 : kNaN;
 
-  // Eq. (10) from this member's own (relaxed) contact network, as `granwave theory` does.
-  // (the linear law's kn, kt; Hertz-Mindlin's linearised at each contact's overlap)
-  const theory::ContactNetwork net = crystal::contact_network(out.c, out.packing);
   const auto th = theory::crystal_prediction(net, {fl, out.packing.layers - 1 - fl});
   const bool S = m.mode == 'S';
   const auto ct = theory::linear_contact_time(der.kn, der.gamma_n, der.m_ij,
@@ -166,10 +268,12 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   v[cv_steps] = static_cast<double>(out.run.steps);
   // Lattice dynamics with rotations (issue 15), prestress included: the member's mode along z
   // (S: x-polarised). NaN for a packing that is not a Bravais lattice (polydisperse).
-  if (const auto cell = member_lattice_cell(out.c, out.packing, net)) {
+  if (cell) {
     const auto lw = theory::lattice_long_wave(*cell, theory::Vec3::UnitZ());
     v[cv_theory_v_lattice] = lw.speed_along(S ? theory::Vec3::UnitX() : theory::Vec3::UnitZ());
+    if (rolling) rolling_values(s, *cell, a, m.mode, v);
   }
+  if (rolling && !keep_spectrum) out.analysis.dispersion.spectrum.clear();  // only the rolling values needed it
   // First-peak amplitude |sigma - sigma_0| / sigma_0 at each requested z/l0 (Fig. 3 right).
   for (std::size_t k = 0; k < s.positions.size(); ++k)
     for (const auto& L : a.layers)
@@ -301,6 +405,26 @@ void print_crystal_study(std::ostream& out, const CrystalStudy& s, const Crystal
         << fmt("%8.2f", v[cv_theory_v]) << "     " << fmt("%9.0f", v[cv_omega0]) << "   " << fmt("%.4g", v[cv_coordination0]);
     for (std::size_t k = 0; k < s.positions.size(); ++k) out << "  " << fmt("%.4f", v[cv_count + k]);
     out << "\n";
+  }
+  if (s.vary == CrystalVary::kr_over_kt) {
+    out << "  value  mode  V_lattice  V_half/V_lattice-1  v_g,max  v_phase(v_g,max)  local speed (median)  zone edge (1/s): "
+           "branch  rotation  at k_last: branch  ridge  omega_max  bin  ridge within one bin/with a ridge/columns";
+    for (double z : s.positions) out << "  width(" << z << ") (s)";
+    out << "\n";
+    for (const auto& m : r.members) {
+      const auto& v = m.values;
+      const auto at = [&](RollingValue q) { return v[rolling_index(s, q)]; };
+      out << "  " << fmt("%-6g", v[cv_value]) << " " << (v[cv_mode_s] != 0.0 ? 'S' : 'P') << "    "
+          << fmt("%8.3f", v[cv_theory_v_lattice]) << "  " << fmt("%+10.3e", v[cv_v_half_peak] / v[cv_theory_v_lattice] - 1)
+          << "          " << fmt("%8.3f", at(rv_theory_v_group_max)) << "  " << fmt("%8.3f", at(rv_theory_v_phase_fastest))
+          << "          " << fmt("%8.3f", at(rv_local_speed_median)) << "              " << fmt("%7.0f", at(rv_theory_zone_edge))
+          << "  " << fmt("%.3f", at(rv_zone_edge_rotation)) << "     " << fmt("%7.0f", at(rv_branch_zone_edge)) << "  "
+          << fmt("%7.0f", at(rv_ridge_zone_edge)) << "  " << fmt("%7.0f", at(rv_omega_max_zone_edge)) << "  "
+          << fmt("%4.0f", at(rv_domega)) << "  " << fmt("%g", at(rv_ridge_within_one_bin)) << "/"
+          << fmt("%g", at(rv_ridge_with_ridge)) << "/" << fmt("%g", at(rv_ridge_columns));
+      for (std::size_t k = 0; k < s.positions.size(); ++k) out << "  " << fmt("%.4g", v[rolling_index(s, rv_count) + k]);
+      out << "\n";
+    }
   }
   if (const auto& d = r.damping)
     for (std::size_t k = 0; k < s.positions.size(); ++k)

@@ -11,6 +11,10 @@
 //   vary = "overlap"        issue #14: the static overlap delta_0/d (the confinement) of a Hertz
 //                           crystal; V_p, V_s against delta_0 and the prestress, power-law exponents
 //                           (affine FCC: V ~ delta_0^(1/4) ~ p^(1/6))
+//   vary = "kr_over_kt"     issue #28: Luding's rolling and torsion springs, k_r = k_o = value * k_t
+//                           (kt fixed by `kt_over_k`); speeds against the lattice's long-wave speeds
+//                           (rotations and the springs included), the 2D-FFT ridge against the lattice
+//                           branch, the zone-edge frequency, and the first peak's amplitude and width
 //
 // The study's TOML (data/SCHEMA.md §6) says `[study] kind = "crystal"`; the spin-chain loader
 // refuses that kind, so is_crystal_study() alone decides which loader a file goes to. Files: the
@@ -34,14 +38,15 @@
 
 namespace granwave::sweep {
 
-enum class CrystalVary { gamma_n, kt_over_k, polydispersity, overlap };
+enum class CrystalVary { gamma_n, kt_over_k, polydispersity, overlap, kr_over_kt };
 const char* to_string(CrystalVary v);
 
 struct CrystalStudy {
   std::string path, text, name;
   config::Case base;                // a crystal case (the frictionless P run of sec. 3.1, usually)
   CrystalVary vary = CrystalVary::gamma_n;
-  std::vector<double> values;       // gamma_0 (kg/s) | kt/k | Delta a / delta | delta_0/d
+  std::vector<double> values;       // gamma_0 (kg/s) | kt/k | Delta a / delta | delta_0/d | k_r/k_t
+  std::optional<double> kt_over_k;  // vary = kr_over_kt: kt = kt_over_k kn (absent: the base case's kt > 0)
   std::vector<char> modes{'P'};     // 'P' and/or 'S'
   std::vector<double> positions{10, 45, 80, 115, 150};  // z/l0 of the amplitude table (Fig. 3 right)
   std::size_t batch = 1;            // members per committed batch (a member is a whole wave run)
@@ -67,7 +72,8 @@ std::vector<CrystalMember> crystal_members(const CrystalStudy& s);
 // The case of one member (base case with the parameter and mode applied).
 config::Case member_case(const CrystalStudy& s, const CrystalMember& m);
 
-// MemberResult::values of a crystal member: the fixed names below, then amp_z<pos> per position.
+// MemberResult::values of a crystal member: the fixed names below, then amp_z<pos> per position;
+// vary = kr_over_kt adds the RollingValue names, then width_z<pos> per position.
 std::vector<std::string> crystal_value_names(const CrystalStudy& s);
 enum CrystalValue : std::size_t {
   cv_value, cv_mode_s, cv_v_first_peak, cv_v_first_peak_err, cv_v_half_peak, cv_v_half_peak_err, cv_fit_lo, cv_fit_hi,
@@ -76,6 +82,28 @@ enum CrystalValue : std::size_t {
   cv_coordination_max, cv_sigma0, cv_relax_steps, cv_t_c, cv_restitution, cv_t_gamma, cv_m_ij, cv_steps,
   cv_theory_v_lattice, cv_count
 };
+// vary = kr_over_kt, at index rolling_index(s, rv_...): the member mode's lattice branch (S: u_x, P:
+// u_z) against the 2D-FFT of the run (analysis/dispersion.hpp, theory::compare_ridge).
+enum RollingValue : std::size_t {
+  rv_k_roll,                // the lattice's rolling spring k_r a'^2 (N m/rad)
+  rv_theory_zone_edge,      // the branch's omega at k = pi/l0 (1/s)
+  rv_zone_edge_rotation,    // the branch's rotation content there (0: a translation, 1: a turn)
+  rv_zone_edge_k,           // the spectrum's largest wavenumber (1/m): pi/l0, or (1 - 1/nz) pi/l0 for odd nz
+  rv_branch_zone_edge,      // the lattice's mode there with the most of the wave's translation (1/s)
+  rv_zone_edge_partner,     // the mode there with the most of the turn the wave couples to (S: theta_y)
+  rv_ridge_zone_edge,       // the local maximum of |F| there nearest that mode (1/s)
+  rv_ridge_zone_edge_height,  // its height over the column's largest |F|
+  rv_zone_edge_line,        // the frequency of the column's largest |F| (1/s)
+  rv_omega_max_zone_edge,   // seed 002's power-weighted omega_max there (1/s)
+  rv_domega,                // the FFT's frequency bin (1/s)
+  rv_ridge_columns,         // columns where the branch carries energy (group velocity >= 1/3 of its largest)
+  rv_ridge_with_ridge, rv_ridge_within_one_bin, rv_ridge_max_offset_bins,
+  rv_theory_v_group_max,    // the branch's largest group velocity (m/s; above theory_v_lattice: it bends up)
+  rv_theory_v_phase_fastest,  // omega/k where the group velocity is largest (m/s): the leading crests' speed
+  rv_local_speed_median,    // median of the layers' five-layer first-peak speeds over the fit range (m/s)
+  rv_count
+};
+std::size_t rolling_index(const CrystalStudy& s, RollingValue v);
 
 // Everything one member run produced (for figures); the MemberResult is what the study stores:
 // profile = first-peak amplitude / sigma_0 at every layer z/l0 = 1 .. last free (NaN: no peak).

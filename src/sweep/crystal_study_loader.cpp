@@ -41,7 +41,7 @@ CrystalStudy parse_crystal_study(const std::string& text, const std::string& ori
   s.text = text;
   r.allow_only(root, "", {"study", "run"});
   const toml::table* st = r.table(root, "", "study", true);
-  r.allow_only(*st, "study", {"name", "kind", "case", "vary", "values", "modes", "positions", "batch"});
+  r.allow_only(*st, "study", {"name", "kind", "case", "vary", "values", "modes", "positions", "batch", "kt_over_k"});
   s.name = *r.string(*st, "study", "name", true);
   if (s.name.empty()) r.fail("study.name", "must not be empty", st->get("name"));
   r.choice(*st, "study", "kind", {"crystal"});
@@ -54,17 +54,31 @@ CrystalStudy parse_crystal_study(const std::string& text, const std::string& ori
   if (s.base.model != config::Model::crystal || !s.base.crystal)
     r.fail("study.case", "the base case must be a crystal case (model = \"crystal\")", st->get("case"));
 
-  const std::string vary = r.choice(*st, "study", "vary", {"gamma_n", "kt_over_k", "polydispersity", "overlap"});
-  s.vary = vary == "gamma_n"     ? CrystalVary::gamma_n
-           : vary == "kt_over_k" ? CrystalVary::kt_over_k
-           : vary == "overlap"   ? CrystalVary::overlap
-                                 : CrystalVary::polydispersity;
-  // gamma_n and kt_over_k vary a key (gamma_n, kt) that the base case's law must have.
+  const std::string vary =
+      r.choice(*st, "study", "vary", {"gamma_n", "kt_over_k", "polydispersity", "overlap", "kr_over_kt"});
+  s.vary = vary == "gamma_n"      ? CrystalVary::gamma_n
+           : vary == "kt_over_k"  ? CrystalVary::kt_over_k
+           : vary == "overlap"    ? CrystalVary::overlap
+           : vary == "kr_over_kt" ? CrystalVary::kr_over_kt
+                                  : CrystalVary::polydispersity;
+  // gamma_n, kt_over_k and kr_over_kt vary keys (gamma_n, kt, kr and kt) that the base case's law must have.
   const config::ContactLawInfo& law = config::law_of(s.base.contact);
-  const char* varied_key = s.vary == CrystalVary::gamma_n ? "gamma_n" : s.vary == CrystalVary::kt_over_k ? "kt" : nullptr;
-  if (varied_key && !law.has_key(varied_key))
-    r.fail("study.vary", "\"" + vary + "\" varies a key of the " + config::contact_law_owners(varied_key) +
-           " law; the base case's law is \"" + law.name + "\"", st->get("vary"));
+  std::vector<const char*> varied;
+  if (s.vary == CrystalVary::gamma_n) varied = {"gamma_n"};
+  if (s.vary == CrystalVary::kt_over_k) varied = {"kt"};
+  if (s.vary == CrystalVary::kr_over_kt) varied = {"kr", "kt"};
+  for (const char* key : varied)
+    if (!law.has_key(key))
+      r.fail("study.vary", "\"" + vary + "\" varies a key of the " + config::contact_law_owners(key) +
+             " law; the base case's law is \"" + law.name + "\"", st->get("vary"));
+  if (st->contains("kt_over_k")) {
+    if (s.vary != CrystalVary::kr_over_kt)
+      r.fail("study.kt_over_k", "only with vary = \"kr_over_kt\" (the fixed kt/k of the rolling springs)", st->get("kt_over_k"));
+    s.kt_over_k = r.number_in(*st, "study", "kt_over_k", true, [](double v) { return v > 0.0; }, "> 0");
+  }
+  // The springs are k_r = k_o = value * kt: without a tangential spring they would all be zero.
+  if (s.vary == CrystalVary::kr_over_kt && !s.kt_over_k && !(s.base.contact.kt > 0.0))
+    r.fail("study.kt_over_k", "missing: the base case has kt = 0, and vary = \"kr_over_kt\" sets k_r = k_o = value * kt");
   s.values = r.numbers(*st, "study", "values");
   if (s.values.empty()) r.fail("study.values", "missing (the parameter values)");
   for (double v : s.values)
