@@ -99,7 +99,7 @@ def _record(r: dict, granwave, ruler_args) -> dict:
     if r["status"] == "ok":
         try:
             rec["attrs"] = {k: v for k, v in T.read_trace(r["trace"])["attrs"].items()
-                            if k in ("lever_arm", "normal_tension", "coulomb_normal")}
+                            if k in CV.GRANWAVE_RUNS}
             rec["raw"] = R.granwave_analyze(r["trace"], granwave or "granwave", extra_args=ruler_args)
         except R.RulerError as e:
             rec["status"], rec["detail"] = "failed", "not measurable: %s" % e
@@ -377,35 +377,6 @@ def ridge_of(raw: dict) -> dict:
                 domega=d.get("domega", {}).get("value"))
 
 
-YADE_LEVER_TWIN = "granwave~yade"
-
-
-def _yade_lever_twin(case_path: str, a, granwave, ruler_args) -> dict:
-    """granwave with YADE's angular springs: YADE's CohesionMoment takes k_r (a/2)^2 (radii), granwave
-    k_r a'^2 with a' = (a - delta/2)/2 (its contact-point arm, the tangential arm YADE shares), so the
-    twin runs k_r and k_o times (a/(a - delta_0/2))^2 at the static overlap delta_0 (equal radii; the
-    overlap's change in the wave is left to the comparison). Judged against YADE like a convention twin."""
-    casedir = os.path.dirname(case_path)
-    case, text = T.load_case(case_path)
-    c, cr = case["contact"], case["crystal"]
-    radius = float(cr["radius"])
-    scale = (radius / (radius - 0.5 * float(cr["overlap"]) * 2 * radius)) ** 2
-    changes = {("contact", "kr"): float(c.get("kr", 0.0)) * scale, ("contact", "ko"): float(c.get("ko", 0.0)) * scale,
-               ("case", "name"): case["case"]["name"] + "_yade_lever"}
-    twin_dir = os.path.join(casedir, YADE_LEVER_TWIN)
-    os.makedirs(twin_dir, exist_ok=True)
-    twin_case = os.path.join(twin_dir, "case.toml")
-    if not (a.resume and os.path.exists(twin_case)):
-        with open(twin_case, "w") as f:
-            f.write("# %s with YADE's angular springs: k_r, k_o times (a/(a - delta_0/2))^2 = %.16g\n"
-                    % (os.path.basename(case_path), scale) + M.derive_case(text, changes))
-    _log("%s: running %s (k_r, k_o x %.9f) ..." % (os.path.basename(case_path), YADE_LEVER_TWIN, scale))
-    r = RN.run_code(YADE_LEVER_TWIN, twin_case, os.path.join(casedir, "system.h5"), os.path.join(twin_dir, "run"),
-                    a.timeout, granwave, a.resume)
-    r.update(twin_of=["yade"], conventions={"kr": changes[("contact", "kr")], "ko": changes[("contact", "ko")]})
-    return _record(r, granwave, ruler_args)
-
-
 def rolling(a, report_dir, granwave, tol) -> int:
     size, ratios, modes, codes, ruler_args = _sweep_setup(a, KR_OVER_KT)
     positions = ROLLING_POSITIONS[a.size]
@@ -421,9 +392,8 @@ def rolling(a, report_dir, granwave, tol) -> int:
                   ("contact", "gamma_n"): 0.0, ("contact", "gamma_t"): 0.0, ("contact", "gamma_r"): 0.0,
                   ("contact", "gamma_o"): 0.0, ("contact", "mu_static"): 0.5, ("contact", "mu_dynamic"): 0.5,
                   ("contact", "lever_arm"): "contact_point", ("excitation", "mode"): mode}
+            # YADE's angular springs take the radii: its twin granwave~yade runs rolling_lever = "radii"
             cp, res = _sweep_point(a, report_dir, name, tmpl, ch, size, codes, granwave, ruler_args)
-            if res.get("granwave", {}).get("status") == "ok" and res.get("yade", {}).get("status") == "ok":
-                res[YADE_LEVER_TWIN] = _yade_lever_twin(cp, a, granwave, ruler_args)
             th = lattice_theory(cp, granwave)
             speeds, peaks, ridges = {}, {}, {}
             for c, rr in res.items():
@@ -543,7 +513,7 @@ def _verdict_md(md, verdict, why, tsec) -> int:
     if tsec.get("expected_pairs"):
         md += ["", "EXPECTED-DIFF pairs: %s" % tsec.get("expected_pairs_why", "")]
     md += ["", "A pair whose two codes ran different contact-law conventions at a point (the traces' lever_arm, "
-           "normal_tension, coulomb_normal) is not judged there; granwave then runs that point again with the other "
+           "normal_tension, coulomb_normal, tangential_history, rolling_lever, rolling_history) is not judged there; granwave then runs that point again with the other "
            "code's conventions (`granwave~<code>`), which is judged against it."]
     md.append("")
     return 1 if any(v[4] == "FAIL" for v in verdict) else 0
