@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 
 from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, RADII_LEVER, Unsupported, liggghts_properties,
-                              resistance_conventions, resistance_keys, rolling_on, torsion_on)
+                              refuse_resistance, resistance_conventions, resistance_keys, rolling_on, torsion_on)
 
 NAME = "linear"
 CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
@@ -244,7 +244,8 @@ def bench_lammps(v: dict) -> dict:
 
 def bench_liggghts(v: dict) -> dict:
     """properties, pair_style and the variant's name of the benchmark's LIGGGHTS deck (no dashpots)."""
-    refuse_resistance(v["contact"], "LIGGGHTS", LIGGGHTS_WHY)
+    refuse_resistance(v["contact"], "LIGGGHTS", "in bench/side_by_side.py (its luding deck is the crosscheck's, "
+                      "liggghts_inputs/liggghts_case.py; the benchmark's hooke/stiffness deck has no rolling)")
     friction = float(v["kt"]) > 0
     properties = _properties(v["kn"], v["kt"], 0.0, 0.0, v["mu"]).rstrip("\n")
     tang = "history" if friction else "no_history"
