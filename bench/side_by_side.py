@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """granwave, LAMMPS and LIGGGHTS side by side: the same crystal, one thread, end to end.
 
-    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,friction_radius,hertz,rolling,long]
+    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,friction_radius,hertz,rolling,rolling_luding,long]
         [--codes granwave,lammps,liggghts] [--granwave build/granwave] [--granwave-avx2 build-avx2/granwave]
         [--reps 3] [--out table.md] [--json results.json] [--workdir DIR] [--keep]
 
@@ -40,8 +40,13 @@ rolling       bench/cases/crystal_rolling.toml: friction_radius with Luding's ro
               #28), kr = ko = kt/2, mu_r = mu_o = 0.1; LAMMPS `pair_style granular` with `hooke`, `tangential
               linear_history`, `rolling sds`, `twisting sds` (the crosscheck's map, xclib.codefacts: k_twist = ko
               a'^2, mu_twist = mu_o a'), the only LAMMPS style with them; LIGGGHTS is not run (its `rolling_friction
-              luding` is another law: its driver refuses the case). The P step turns no sphere, so the springs
-              stay near zero: the case times their arithmetic (the physics check is the P wave's)
+              luding` has no separate torsion spring or limits: its driver refuses the case). The P step turns no
+              sphere, so the springs stay near zero: the case times their arithmetic (the physics check is the P
+              wave's)
+rolling_luding  the rolling case as LIGGGHTS' `model luding tangential tan_luding rolling_friction luding torsion
+              on` runs it (the crosscheck's map): contact-point arm, rolling_lever = "radii", rolling_history =
+              "fixed", torsion lumped with rolling (ko = kr), no limits; granwave and LIGGGHTS (LAMMPS' sds turns
+              its history with the pair)
 small         data/cases/crystal40.toml (4 x 4 x 40, 1300 steps): a smoke case for the tests, not a benchmark
 
 Each code's set-up, and why it is the fastest fair equivalent

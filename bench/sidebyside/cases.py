@@ -30,13 +30,19 @@ CASES = {
               {"dt_over_tc": ("dt", "1.7e-7"), "t_end": "1.02e-3", "interval": "8.5e-7"}, None),
     # issue #28: friction_radius with Luding's rolling and torsion springs kr = ko = kt/2 (the case file says why)
     "rolling": ("bench/cases/crystal_rolling.toml", {}, None),
+    # the same springs as LIGGGHTS' rolling_friction luding runs them: its contact-point arm, the radii's lever,
+    # its torque history fixed in space, torsion lumped with rolling (ko = kr) and no limits
+    "rolling_luding": ("bench/cases/crystal_rolling.toml", {"lever_arm": '"contact_point"', "mu_r": ("rolling_lever", '"radii"'),
+                                                         "mu_o": ("rolling_history", '"fixed"')}, None),
     # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
     "small": ("data/cases/crystal40.toml", {}, None),
 }
 DEFAULT_CASES = ("frictionless", "friction", "friction_radius", "hertz", "long")
 # The codes that run the same physics as granwave in a case (default: all of CODES).
-# rolling: LIGGGHTS' rolling_friction luding is not granwave's law (its driver refuses it: xclib.codefacts).
-CASE_CODES = {"friction_radius": ("granwave", "lammps"), "rolling": ("granwave", "lammps")}
+# rolling: LIGGGHTS' rolling_friction luding has no separate torsion and limits (its driver refuses them);
+# rolling_luding: LAMMPS' sds turns its rolling history with the pair and takes a mixed tangential arm.
+CASE_CODES = {"friction_radius": ("granwave", "lammps"), "rolling": ("granwave", "lammps"),
+              "rolling_luding": ("granwave", "liggghts")}
 
 
 class BenchError(Exception):

@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 
 from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, RADII_LEVER, Unsupported, liggghts_properties,
-                              refuse_resistance, resistance_conventions, resistance_keys, rolling_on, torsion_on)
+                              resistance_conventions, resistance_keys, rolling_on, torsion_on)
 
 NAME = "linear"
 CHOOSES_TANGENTIAL_HISTORY = False  # the spring is a displacement, always
@@ -243,9 +243,12 @@ def bench_lammps(v: dict) -> dict:
 
 
 def bench_liggghts(v: dict) -> dict:
-    """properties, pair_style and the variant's name of the benchmark's LIGGGHTS deck (no dashpots)."""
-    refuse_resistance(v["contact"], "LIGGGHTS", "in bench/side_by_side.py (its luding deck is the crosscheck's, "
-                      "liggghts_inputs/liggghts_case.py; the benchmark's hooke/stiffness deck has no rolling)")
+    """properties, pair_style and the variant's name of the benchmark's LIGGGHTS deck (no dashpots). Rolling
+    and torsion resistance: the crosscheck deck's model luding (_liggghts_resisted), which has them."""
+    if rolling_on(v["contact"]) or torsion_on(v["contact"]):
+        properties, rest = _liggghts_resisted(v["contact"], "off").split("pair_style      ", 1)
+        return dict(properties=properties.rstrip("\n"), pair_style=rest.split("\n", 1)[0],
+                    variant="(model luding, tangential tan_luding, rolling_friction luding)")
     friction = float(v["kt"]) > 0
     properties = _properties(v["kn"], v["kt"], 0.0, 0.0, v["mu"]).rstrip("\n")
     tang = "history" if friction else "no_history"

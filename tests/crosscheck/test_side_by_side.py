@@ -122,6 +122,29 @@ def test_lammps_and_liggghts_decks_with_friction(tmp_path, cases_dir):
     assert "fix             layers all ave/spatial 5 1 5 z " in lig and "$" not in lig
 
 
+def test_rolling_decks(tmp_path, cases_dir):
+    """The rolling cases: LAMMPS' pair granular with sds (rolling), LIGGGHTS' luding deck (rolling_luding,
+    its conventions in the granwave case); each refuses what it cannot express."""
+    luding = S.case_text("rolling_luding")
+    for line in ('lever_arm = "contact_point"', 'rolling_lever = "radii"', 'rolling_history = "fixed"', "ko = 5e4"):
+        assert line in luding, line
+    assert "\nmu_r =" not in luding and "\nmu_o =" not in luding
+    assert S.CASE_CODES["rolling"] == ("granwave", "lammps") and S.CASE_CODES["rolling_luding"] == ("granwave", "liggghts")
+    case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
+    case["contact"].update(kt=1e5, mu_static=0.5, mu_dynamic=0.5, lever_arm="contact_point", kr=5e4, ko=5e4)
+    S.render_liggghts(case, system, str(tmp_path))
+    lig = (tmp_path / "in.case").read_text()
+    assert "pair_style      gran model luding tangential tan_luding rolling_friction luding torsion on limitForce off" in lig
+    assert "coeffRollingStiffness peratomtypepair 3 " + " ".join(["0.5"] * 9) in lig
+    assert "dump" not in lig and "pair/gran/local" not in lig and "$" not in lig
+    S.render_lammps(case, system, str(tmp_path))
+    deck = (tmp_path / "in.case").read_text()
+    assert "rolling sds" in deck and "twisting sds" in deck
+    case["contact"].update(mu_r=0.1)   # LIGGGHTS' lumped torsion has one limit for both: refused
+    with pytest.raises(S.BenchError, match="torsion on"):
+        S.render_liggghts(case, system, str(tmp_path / "x"))
+
+
 def test_hertz_decks(tmp_path, cases_dir):
     """Issue #14's row: LAMMPS pair granular hertz/material + mindlin, LIGGGHTS model hertz with
     tangential history, from the case's E and nu; damped or force-history cases are refused."""
