@@ -114,6 +114,14 @@ def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dic
         # (the converter needs the shear only with a dashpot, which the rolling decks refuse)
         shear_columns = with_history and not resistance_on(c)
         ncol = 9 if shear_columns else 6
+        record = dict(record_lines="# with a tangential spring the pairs also carry the shear history (the converter's "
+                      "step force)\ncompute         cpl all pair/gran/local id force%s\ndump            dpl all local %d "
+                      "dump.pairs %s" % (" history" if shear_columns else "", every,
+                                         " ".join("c_cpl[%d]" % k for k in range(1, ncol + 1))),
+                      atom_extra="", atom_format="%d" + " %.17g" * 9,
+                      pair_format_line='dump_modify     dpl format "%s"' % " ".join(["%.17g"] * ncol))
+        if resistance_on(c):
+            record = _record_without_pair_dumps(x)
         if with_history:
             # A contact that opens loses its spring (seed 002 sec. 2.1: a contact starts with xi = 0; granwave,
             # YADE, LAMMPS). LIGGGHTS zeroes the shear history only in surfacesClose, which pair_gran_base.h
@@ -127,14 +135,31 @@ def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dic
         deck = _template("crystal.in.tmpl").substitute(
             case_name=case["case"]["name"], mass_lines=_masses(x.m), skin=_g(0.2 * float(x.r.min())),
             contact_lines=contact_lines, exclude=exclude, free_types=src["free_types"],
-            dt=_g(dt), excitation_line=src["excitation_line"], atom_format="%d" + " %.17g" * 9, every=every,
-            thermo=max(1, nsteps // 10), nsteps=nsteps,
-            history=" history" if shear_columns else "", pair_columns=" ".join("c_cpl[%d]" % k for k in range(1, ncol + 1)),
-            pair_format=" ".join(["%.17g"] * ncol))
-        facts.update(lay={k: v for k, v in x.lay.items() if k != "layer"})
+            dt=_g(dt), excitation_line=src["excitation_line"], every=every,
+            thermo=max(1, nsteps // 10), nsteps=nsteps, **record)
+        facts.update(lay={k: v for k, v in x.lay.items() if k != "layer"}, pair_dumps=not resistance_on(c))
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
     return facts
+
+
+def _record_without_pair_dumps(x) -> dict:
+    """The record of a deck with rolling or torsion resistance: per-atom dumps only.
+
+    `compute pair/gran/local` runs the pair style again at each dump, and rolling_friction luding then
+    adds one more increment to its history (MAPPING.md): a run with pair dumps is not LIGGGHTS' run.
+    So sigma_zz comes from `compute stress/atom pair` (its zz is sum 0.5 delz fz per atom, which is
+    SCHEMA §3's (x_c - x_p)_z f_z with the contact point at the middle of the overlap only for equal
+    radii), and sigma_zx is not recorded: stress/atom keeps six symmetric components, its xz is
+    delx fz, and sigma_zx needs delz fx. The crosscheck judges these traces on the layer velocity."""
+    if not np.all(x.r == x.r[0]):
+        raise DRV.Unsupported("LIGGGHTS with rolling or torsion resistance: the layer stress comes from compute "
+                              "stress/atom (pair dumps turn rolling_friction luding's spring), which puts the contact "
+                              "point at the middle of the overlap only for equal radii (radii %g .. %g m)"
+                              % (float(x.r.min()), float(x.r.max())))
+    return dict(record_lines="# no pair dumps: they would turn rolling_friction luding's spring (MAPPING.md)\n"
+                "compute         sa all stress/atom pair", atom_extra=" c_sa[3]", atom_format="%d" + " %.17g" * 10,
+                pair_format_line="")
 
 
 # ------------------------------------------------------------------------------------ dump reading
@@ -200,7 +225,10 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
     resident size no longer grows with the run (it held every frame: 1.8 GB on crystal_kt10)."""
     system = T.read_system(system_path)
     dt = facts["dt"]
-    frames = D.lockstep(os.path.join(workdir, "dump.atoms"), os.path.join(workdir, "dump.pairs"))
+    atoms = os.path.join(workdir, "dump.atoms")
+    pair_dumps = facts.get("pair_dumps", True)
+    frames = (D.lockstep(atoms, os.path.join(workdir, "dump.pairs")) if pair_dumps else
+              ((s, cols, rows, None) for s, cols, rows in D.frames(atoms)))
     r = np.asarray(system["radius"], float)
     n = len(r)
     steps = []
@@ -242,6 +270,11 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             steps.append(s)
             p = rows[:, [cols.index("x"), cols.index("y"), cols.index("z")]]
             v = rows[:, [cols.index("vx"), cols.index("vy"), cols.index("vz")]]
+            if not pair_dumps:   # _record_without_pair_dumps: stress/atom's zz is minus the virial
+                vol = lay["box_x"] * lay["box_y"] * lay["l0"]
+                szz = -np.bincount(layer, rows[:, cols.index("c_sa[3]")], nl) / vol
+                layers.add(p, v, layer, szz, None)
+                continue
             correct = None
             if gamma_n > 0.0 and s > 0:   # step 0: the setup force already saw v(0), as the dump does
                 fa = rows[:, [cols.index("fx"), cols.index("fy"), cols.index("fz")]]
@@ -268,6 +301,9 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
             # measured (probe_linear.py): with the factor a contact that opens loses its spring, as in LAMMPS
             extra["history_on_contact_loss"] = "zeroed"
         extra.update(L.law_of(cp).liggghts_attrs(cp))
+        if not pair_dumps:
+            extra["layer_stress"] = ("sigma_zz from compute stress/atom (equal radii); no sigma_zx: pair dumps would "
+                                     "turn rolling_friction luding's spring, stress/atom's xz is delx fz")
     T.write_trace(out, code="liggghts", code_version=version, case_text=case_text, case_name=case["case"]["name"],
                   system_path=system_path, time_convention=TIME_CONVENTION, time=times, datasets=data,
                   extra_attrs=extra)

@@ -210,12 +210,14 @@ class LayerRows:
             du[:, 1] -= self.lay["box_y"] * np.round(du[:, 1] / self.lay["box_y"])
         for key, val in zip(LAYER_FIELDS, (szz, szx, T.layer_mean(du[:, 2], layer, nl), T.layer_mean(du[:, 0], layer, nl),
                                           T.layer_mean(v[:, 2], layer, nl), T.layer_mean(v[:, 0], layer, nl))):
-            self.rows[key].append(val)
+            if val is not None:   # a stress the code does not record (None): no dataset
+                self.rows[key].append(val)
 
     def datasets(self, nt: int) -> dict:
         data = {"/crystal/layer_z": self.lay["layer_z"]}
         for key in LAYER_FIELDS:
-            data["/crystal/" + key] = np.array(self.rows[key]).reshape(nt, self.lay["nlayers"])
+            if self.rows[key] or nt == 0:
+                data["/crystal/" + key] = np.array(self.rows[key]).reshape(nt, self.lay["nlayers"])
         return data
 
 

@@ -35,8 +35,23 @@ def expected_disagreement(tol: dict, case_name: str, pair: str | None = None) ->
 
 
 # ------------------------------------------------------------------------------ comparing
-def _traces_for(trace: dict, case: dict):
-    """The compared signals: {label: (times, values)} baseline-subtracted."""
+def _stress_path(case: dict) -> str:
+    """The crystal's judged stress: sigma_zx for an S wave, sigma_zz for a P wave."""
+    return "/crystal/layer_stress_" + ("zx" if case.get("excitation", {}).get("mode", "P") == "S" else "zz")
+
+
+def pulse_field(case: dict, *traces) -> str:
+    """The field two (or more) crystal traces are compared on: the layer stress, or the layer velocity
+    when one of them does not record the stress (LIGGGHTS with rolling resistance: its root attribute
+    `layer_stress` says why). Chain traces: "stress" (the contact force)."""
+    if any("/crystal/layer_z" in t and _stress_path(case) not in t for t in traces):
+        return "velocity"
+    return "stress"
+
+
+def _traces_for(trace: dict, case: dict, field: str = "stress"):
+    """The compared signals: {label: (times, values)} baseline-subtracted. field: "stress" or
+    "velocity" (crystal; pulse_field)."""
     t = trace["time"]
     out = {}
     if "/chain/contact_force" in trace:
@@ -45,14 +60,19 @@ def _traces_for(trace: dict, case: dict):
         for j in C.choose_contacts(cf.shape[1], has_wall):
             out["contact %d force" % j] = (t, cf[:, j] - cf[0, j])
     else:
-        mode = case.get("excitation", {}).get("mode", "P")
-        comp = "zx" if mode == "S" else "zz"
-        s = trace["/crystal/layer_stress_" + comp]
+        S = case.get("excitation", {}).get("mode", "P") == "S"
+        if field == "velocity":
+            path, name = "/crystal/layer_velocity_" + ("x" if S else "z"), "v_" + ("x" if S else "z")
+        else:
+            path, name = _stress_path(case), "sigma_" + ("zx" if S else "zz")
+        if path not in trace:
+            return out
+        s = trace[path]
         sa = trace.get("system_attrs", {})
         l0 = float(sa["l0"])
         z = trace["/crystal/layer_z"]
         for k in C.choose_layers(z, l0, s.shape[1], int(sa.get("fixed_layers", 2))):
-            out["sigma_%s z/l0=%.0f" % (comp, z[k] / l0)] = (t, s[:, k] - s[0, k])
+            out["%s z/l0=%.0f" % (name, z[k] / l0)] = (t, s[:, k] - s[0, k])
     return out
 
 
@@ -71,15 +91,21 @@ def pairs_of(codes, twins=None) -> list:
     return out
 
 
-def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict, twins: dict | None = None):
+def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict, twins: dict | None = None,
+                 velocity_measures: dict | None = None):
     """Rows: dict(pair, quantity, what, value, tol, status, why). `twins` maps a convention twin
-    (`granwave~lammps`, a key of traces) to the codes it is compared with."""
+    (`granwave~lammps`, a key of traces) to the codes it is compared with. A crystal pair is judged on
+    the layer stress, or on the layer velocity when one of the two traces does not record the stress
+    (pulse_field); `measures` are the stress measures, `velocity_measures` those on the velocity."""
     rows = []
+    velocity_measures = velocity_measures or {}
     codes = [c for c in CODES if c in traces] + [t for t in (twins or {}) if t in traces]
     cur = {"pair": None, "convention": None}
 
     def judge(value, q):
         lim, why = tolerance(tol, model, case_name, q)
+        if cur.get("field"):
+            why = "%s; %s" % (cur["field"], why)
         expected = expected_disagreement(tol, case_name, cur["pair"]) or cur["convention"]
         if expected:
             return lim, "EXPECTED-DIFF", expected
@@ -101,7 +127,7 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
                          status=st, why=why, extra="%.7g s / %.7g s" % (a["peak_time"], b["peak_time"])))
 
     for c in codes:
-        if c not in measures:
+        if c not in measures and not (c in velocity_measures and pulse_field(case, traces[c]) == "velocity"):
             rows.append(dict(pair=c, quantity="ruler", what="granwave analyze --json", value=None, tol=None,
                              status="FAIL", why="the ruler could not measure this trace: first peaks, arrival "
                              "times and speeds are not compared (see the code's detail)"))
@@ -109,7 +135,14 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
         pair = "%s-%s" % (ca, cb)
         cur["pair"] = pair
         cur["convention"] = convention_difference(case, traces[ca], traces[cb])
-        sa, sb = _traces_for(traces[ca], case), _traces_for(traces[cb], case)
+        field = pulse_field(case, traces[ca], traces[cb]) if model != "chain" else "stress"
+        cur["field"] = None
+        if field == "velocity":
+            why = next((str(t["attrs"].get("layer_stress", "")) for t in (traces[ca], traces[cb])
+                        if _stress_path(case) not in t), "")
+            cur["field"] = "judged on the layer velocity, one trace has no %s (%s)" % (
+                _stress_path(case).rsplit("/", 1)[1], why or "not recorded")
+        sa, sb = _traces_for(traces[ca], case, field), _traces_for(traces[cb], case, field)
         for label in sa:
             if label not in sb:
                 continue
@@ -125,7 +158,8 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
                 lim, st, why = judge(m[key], q)
                 rows.append(dict(pair=pair, quantity=q, what=label, value=m[key], tol=lim, status=st, why=why,
                                  extra="max |diff| = %.3g, peak = %.4g" % (m["max_abs"], m["peak"])))
-        ma, mb = measures.get(ca), measures.get(cb)
+        pick = velocity_measures if field == "velocity" else measures
+        ma, mb = pick.get(ca), pick.get(cb)
         if not ma or not mb:
             continue
         if model == "chain":
@@ -138,16 +172,13 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
             spd = [("front_speed", "front speed (contacts/s, first-peak times)")]
         else:
             la, lb = ma["layers"], mb["layers"]
-            sl = _traces_for(traces[ca], case)
-            for label in sl:
-                pass
             spd = [("speed_peak", "front speed from first-peak times (m/s)"),
                    ("speed_half", "front speed from half-peak crossings (m/s)")]
             sa_ = traces[ca].get("system_attrs", {})
             z = traces[ca]["/crystal/layer_z"]
             for k in C.choose_layers(z, float(sa_["l0"]), len(z), int(sa_.get("fixed_layers", 2))):
                 if k in la and k in lb:
-                    peak_rows("layer %d" % k, la[k], lb[k], "Pa")
+                    peak_rows("layer %d" % k, la[k], lb[k], "m/s" if field == "velocity" else "Pa")
         for key, what in spd:
             va, vb = ma.get(key), mb.get(key)
             v = C.rel_diff(va, vb) if (va is not None and vb is not None) else None
@@ -168,7 +199,8 @@ def _plot(case_name, case, traces, path):
     codes = [c for c in CODES if c in traces] + sorted(c for c in traces if c not in CODES)
     if not codes:
         return None
-    sig = {c: _traces_for(traces[c], case) for c in codes}
+    field = pulse_field(case, *traces.values()) if "/chain/contact_force" not in traces[codes[0]] else "stress"
+    sig = {c: _traces_for(traces[c], case, field) for c in codes}
     labels = list(sig[codes[0]])
     fig, axes = plt.subplots(len(labels), 2, figsize=(12, 2.6 * len(labels)), squeeze=False)
     styles = {"granwave": ("k", "-", 2.5), "yade": ("tab:orange", "--", 1.5), "liggghts": ("tab:blue", ":", 1.5),
@@ -418,26 +450,41 @@ def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=No
             print("crosscheck: %s: %s" % (name, msg), file=sys.stderr, flush=True)
 
         res["runs"] = RN.run_codes(cp, res["system"], casedir, codes, timeout, granwave_exe, resume, log)
-        traces, measures = {}, {}
+        traces, measures, vmeasures = {}, {}, {}
         for code, r in res["runs"].items():
             if r["status"] != "ok":
                 continue
             try:
                 traces[code] = T.read_trace(r["trace"])
-                measures[code] = R.measure(r["trace"], granwave_exe or "granwave")
-            except R.RulerError as e:
-                # the traces are still compared; the missing measures are FAIL rows (compare_case)
-                r["detail"] = "not measurable: %s" % e
             except Exception as e:  # noqa: BLE001
                 r["status"], r["detail"] = "failed", "unreadable trace: %s" % e
-                traces.pop(code, None)
+        # a trace without the judged stress (pulse_field): every code is also measured on the velocity
+        fields = ["stress"] + (["velocity"] if model != "chain" and pulse_field(case, *traces.values()) == "velocity"
+                               else [])
+        for code, tr in list(traces.items()):
+            for field in fields:
+                if field == "stress" and model != "chain" and _stress_path(case) not in tr:
+                    continue
+                try:
+                    (vmeasures if field == "velocity" else measures)[code] = R.measure(
+                        res["runs"][code]["trace"], granwave_exe or "granwave",
+                        pulse_field=field if model != "chain" else "auto")
+                except R.RulerError as e:
+                    # the traces are still compared; the missing measures are FAIL rows (compare_case)
+                    res["runs"][code]["detail"] = "not measurable (%s): %s" % (field, e)
+                except Exception as e:  # noqa: BLE001
+                    res["runs"][code]["status"], res["runs"][code]["detail"] = "failed", "unreadable trace: %s" % e
+                    traces.pop(code, None)
+                    break
         twins = {c: r["twin_of"] for c, r in res["runs"].items() if r.get("twin_of")}
         res["measures"] = measures
-        res["rows"] = compare_case(case, res["case_name"], model, traces, measures, tol, twins)
+        res["rows"] = compare_case(case, res["case_name"], model, traces, measures, tol, twins, vmeasures)
         res["plot"] = _plot(res["case_name"], case, traces, os.path.join(casedir, "overlay.png"))
         with open(os.path.join(casedir, "comparison.json"), "w") as f:
             json.dump(dict(runs=res["runs"], rows=res["rows"],
-                           measures={c: {k: v for k, v in m.items() if k != "granwave_analyze"} for c, m in measures.items()}),
+                           measures={c: {k: v for k, v in m.items() if k != "granwave_analyze"} for c, m in measures.items()},
+                           velocity_measures={c: {k: v for k, v in m.items() if k != "granwave_analyze"}
+                                              for c, m in vmeasures.items()}),
                       f, indent=1, default=str)
         write_report(report_dir, results, started)   # after every case: a long suite that is stopped keeps its report
     verdict = write_report(report_dir, results, started) if (results or not impact_cases) else []

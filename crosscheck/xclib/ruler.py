@@ -68,17 +68,19 @@ def translate(raw: dict) -> dict:
                     front_speed=_value(v), front_speed_err=_error(v),
                     front_range=raw.get("fit_range", {}).get("contacts"), ruler="granwave analyze")
     layers = _columns(raw["layers"], "layer")
-    comp = "zx" if raw.get("measure_field", "").endswith("_zx") else "zz"
+    field = raw.get("measure_field", "")
+    comp = "zx" if field.endswith("_zx") or field.endswith("velocity_x") else "zz"
     fr = raw.get("fit_range", {})
-    return dict(kind="crystal", component=comp, layers=layers,
+    return dict(kind="crystal", component=comp, field=field, layers=layers,
                 speed_peak=_value(raw.get("v_first_peak")), speed_peak_err=_error(raw.get("v_first_peak")),
                 speed_half=_value(raw.get("v_half_peak")), speed_half_err=_error(raw.get("v_half_peak")),
                 speed_range=fr.get("z_over_l0"), speed_range_note=fr.get("note", ""), ruler="granwave analyze")
 
 
-def measure(trace_path: str, granwave: str = "granwave") -> dict:
-    """The one ruler the harness uses (raises RulerError when it cannot measure)."""
-    raw = granwave_analyze(trace_path, granwave)
+def measure(trace_path: str, granwave: str = "granwave", pulse_field: str = "auto") -> dict:
+    """The one ruler the harness uses (raises RulerError when it cannot measure). pulse_field: the
+    field of a crystal's per-layer measures (analyze --pulse-field: auto, stress or velocity)."""
+    raw = granwave_analyze(trace_path, granwave, extra_args=() if pulse_field == "auto" else ("--pulse-field", pulse_field))
     res = translate(raw)
     res["granwave_analyze"] = raw
     return res

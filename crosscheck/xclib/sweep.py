@@ -379,6 +379,9 @@ def ridge_of(raw: dict) -> dict:
 
 def rolling(a, report_dir, granwave, tol) -> int:
     size, ratios, modes, codes, ruler_args = _sweep_setup(a, KR_OVER_KT)
+    # LIGGGHTS' resisted deck records no sigma_zx (pair dumps would turn its rolling spring; MAPPING.md): with it
+    # in the sweep, every code's S points are measured on the layer velocity, so that all are measured on one field
+    on_velocity = "liggghts" in codes and "S" in modes
     positions = ROLLING_POSITIONS[a.size]
     points = []
     for mode in modes:
@@ -393,7 +396,8 @@ def rolling(a, report_dir, granwave, tol) -> int:
                   ("contact", "gamma_o"): 0.0, ("contact", "mu_static"): 0.5, ("contact", "mu_dynamic"): 0.5,
                   ("contact", "lever_arm"): "contact_point", ("excitation", "mode"): mode}
             # YADE's angular springs take the radii: its twin granwave~yade runs rolling_lever = "radii"
-            cp, res = _sweep_point(a, report_dir, name, tmpl, ch, size, codes, granwave, ruler_args)
+            cp, res = _sweep_point(a, report_dir, name, tmpl, ch, size, codes, granwave,
+                                   ruler_args + (["--pulse-field", "velocity"] if on_velocity and mode == "S" else []))
             th = lattice_theory(cp, granwave)
             speeds, peaks, ridges = {}, {}, {}
             for c, rr in res.items():
@@ -409,10 +413,11 @@ def rolling(a, report_dir, granwave, tol) -> int:
     tsec = sweep_tolerances(tol, "rolling")
     md = ["# crosscheck sweep rolling (%s)" % a.size, "",
           "Luding's rolling and torsion springs over k_r/k_t with k_o = k_r, k_t = k, mu = 0.5, no dashpots and no "
-          "rolling or torsion limit (nothing slips), lever_arm = \"contact_point\". Ruler `granwave analyze --json`%s; "
+          "rolling or torsion limit (nothing slips), lever_arm = \"contact_point\". Ruler `granwave analyze --json`%s%s; "
           "theory `granwave theory --json` (Bloch waves along z with rotations and the prestress: V_sz_lattice, "
           "V_pz_lattice, the zone-edge frequency of the S / P translation). d(a-b) = |a - b| / max(|a|, |b|)."
-          % ((" " + " ".join(ruler_args)) if ruler_args else ""), ""]
+          % ((" " + " ".join(ruler_args)) if ruler_args else "",
+             " (S points `--pulse-field velocity`: LIGGGHTS' trace has no sigma_zx)" if on_velocity else ""), ""]
     cols, pairs = columns_of(points, codes)
 
     def theory_v(p):
@@ -438,7 +443,8 @@ def rolling(a, report_dir, granwave, tol) -> int:
         for p in pts:
             for z in positions:
                 yield "%s %g" % (p["mode"], p["kr_over_kt"]), "%g" % z, {c: p["peaks"].get(c, {}).get(z) for c in cols}
-    md += ["### first-peak amplitude (Pa) at z/l0 = %s" % ", ".join(map(str, positions)), ""]
+    md += ["### first-peak amplitude (%s) at z/l0 = %s" % ("S: layer velocity, m/s; P: Pa" if on_velocity else "Pa",
+                                                           ", ".join(map(str, positions))), ""]
     md += M.sweep_table(points, cols, "mode kr/kt", "z/l0", peak_rows, pairs) + [""]
     md += ["### 2D-FFT ridge against the lattice branch, and the zone edge", "",
            "Per code: ridge columns within one frequency bin of the branch / columns with a ridge (the ruler's "

@@ -183,13 +183,18 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
 
   // Measures on sigma - sigma(0) (docs/design.md §2.4): sigma_zz for P, sigma_zx for S.
   const bool S = tr.mode == 'S';
+  if (opt.pulse_field != "auto" && opt.pulse_field != "stress" && opt.pulse_field != "velocity")
+    throw InputError("analyze: --pulse-field must be auto, stress or velocity (got '" + opt.pulse_field + "')");
   const std::vector<double>* mf = S ? &tr.stress_zx : &tr.stress_zz;
   a.measure_field = S ? "layer_stress_zx" : "layer_stress_zz";
-  if (mf->empty()) {  // a trace without stresses: the layer velocity is the next best pulse
+  if (opt.pulse_field == "stress" && mf->empty())
+    throw InputError("analyze: --pulse-field stress: the trace has no " + a.measure_field);
+  // a trace without stresses (auto), or on request: the layer velocity is the next best pulse
+  if (opt.pulse_field == "velocity" || mf->empty()) {
     mf = S ? &tr.velocity_x : &tr.velocity_z;
     a.measure_field = S ? "layer_velocity_x" : "layer_velocity_z";
   }
-  if (mf->empty()) throw InputError("analyze: the trace has neither the layer stress nor the layer velocity");
+  if (mf->empty()) throw InputError("analyze: the trace has no " + a.measure_field);
 
   const int last_index = static_cast<int>(nl) - 1 - tr.fixed_layers;
   a.last_free = static_cast<int>(std::lround(tr.layer_z[last_index] / tr.l0));

@@ -77,6 +77,9 @@ struct CrystalAnalysisOptions {
   // Dispersion field: "auto" (the layer velocity; without it the time derivative of the layer
   // displacement) | "velocity" | "displacement" | "stress" (raw). See analyze_crystal for why.
   std::string field = "auto";
+  // Field of the per-layer measures: "auto" (the layer stress, sigma_zz for P and sigma_zx for S;
+  // without it the layer velocity) | "stress" | "velocity". Two traces are compared on one field.
+  std::string pulse_field = "auto";
   double t_max = -1.0;        // analyse t <= t_max only (< 0: the whole trace)
   // T of lambda = V T (measures.hpp); unset: the trace's case ([analysis] period), else oscillation.
   std::optional<PeriodReading> period;

@@ -1,4 +1,5 @@
-// granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--t-max T] [--period R] [--wavenumber-speed V]:
+// granwave analyze TRACES [--json] [--layers LO:HI] [--field F] [--pulse-field P] [--t-max T] [--period R]
+// [--wavenumber-speed V]:
 // the one ruler for
 // the trace files of granwave, YADE and LIGGGHTS (src/analysis/trace_analysis.hpp).
 #include <iostream>
@@ -15,7 +16,7 @@
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--t-max T]
+constexpr const char* kHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--pulse-field P] [--t-max T]
                         [--period oscillation|pulse] [--wavenumber-speed displacement_peak|first_peak]
 
 Measures a trace file of any code (granwave, yade, liggghts; data/SCHEMA.md §3) with the one set
@@ -66,6 +67,9 @@ for the trace it writes: the same code, the same numbers.
 
   --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain)
   --field F        dispersion field: velocity (default) | displacement | stress (raw fields)
+  --pulse-field P  field of the per-layer measures and speeds: stress (default; sigma_zz for P,
+                   sigma_zx for S) | velocity (u_z' for P, u_x' for S; the default for a trace
+                   without the stress) -- two codes are compared on one field
   --t-max T        analyse t <= T only (s), e.g. to stop before a reflection returns
   --period R       T of lambda = V T (seed 002 sec. 3.4): oscillation (the full first oscillation;
                    default) or pulse (the leading pulse alone: 0.49 of a sine's period, 0.73-0.75
@@ -134,7 +138,7 @@ int cmd_analyze(const Args& args, std::ostream& out) {
     out << kHelp;
     return 0;
   }
-  const auto pos = positionals(args, {"--layers", "--field", "--t-max", "--period", "--wavenumber-speed"});
+  const auto pos = positionals(args, {"--layers", "--field", "--pulse-field", "--t-max", "--period", "--wavenumber-speed"});
   if (pos.size() != 1) throw InputError("analyze: expected one trace file (granwave analyze --help)");
   const bool json = has_flag(args, "--json");
   int lo = -1, hi = -1;
@@ -164,6 +168,7 @@ int cmd_analyze(const Args& args, std::ostream& out) {
   opt.lo = lo;
   opt.hi = hi;
   if (const auto f = option_value(args, "", "--field"); !f.empty()) opt.field = f;
+  if (const auto f = option_value(args, "", "--pulse-field"); !f.empty()) opt.pulse_field = f;
   if (const auto t = option_value(args, "", "--t-max"); !t.empty()) {
     try {
       opt.t_max = std::stod(t);

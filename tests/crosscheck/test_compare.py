@@ -39,7 +39,9 @@ def test_half_step_shift_is_visible():
     assert m["max_rel"] > 1e-3
 
 
-GRANWAVE = os.environ.get("GRANWAVE", shutil.which("granwave") or os.path.join(REPO, "build", "granwave"))
+# this checkout's build first (as harness.find_granwave): an installed granwave may predate the tree
+_BUILT = os.path.join(REPO, "build", "granwave")
+GRANWAVE = os.environ.get("GRANWAVE") or (_BUILT if os.access(_BUILT, os.X_OK) else shutil.which("granwave") or _BUILT)
 
 
 def _pulse_trace(tmp_path, c=218.5):
@@ -152,3 +154,64 @@ def test_tension_and_coulomb_conventions_matter_only_where_a_dashpot_can_pull():
     # without a dashpot the normal force cannot pull: none of the two matters
     undamped = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 1e5}}
     assert Hh.convention_difference(undamped, gw, yade) is None
+
+
+def _s_wave_trace(scale, with_stress, c=218.5):
+    """A crystal S-wave trace (read_trace dict): sigma_zx and v_x fronts moving at c; without sigma_zx when
+    with_stress is False (as LIGGGHTS' resisted deck)."""
+    t = np.arange(0, 1e-3, 1e-6)
+    l0 = 1.4e-3
+    z = (np.arange(120) - 1) * l0
+    s = np.array([np.exp(-((t - max(zz, 0) / c - 5e-5) / 1e-5) ** 2) for zz in z]).T
+    tr = {"time": t, "attrs": {}, "system_attrs": {"l0": l0, "fixed_layers": 2}, "/crystal/layer_z": z,
+          "/crystal/layer_velocity_x": scale * 1e-3 * s}
+    if with_stress:
+        tr["/crystal/layer_stress_zx"] = 1e3 * s
+    else:
+        tr["attrs"]["layer_stress"] = "no sigma_zx: not recorded"
+    return tr
+
+
+def test_a_trace_without_the_stress_is_judged_on_the_layer_velocity():
+    """A pair in which one trace does not record the judged stress is compared on the layer velocity (its
+    differences seen there), with the velocity measures; a pair that both record stays on the stress."""
+    from xclib import harness as Hh
+    tol = {"default": {"crystal": {"trace_max_rel": 1e-6, "trace_l2_rel": 1e-6, "peak_rel": 1e-6,
+                                   "arrival_abs": 1e-9, "speed_rel": 1e-6}}}
+    case = {"excitation": {"mode": "S"}}
+    traces = {"granwave": _s_wave_trace(1.0, True), "yade": _s_wave_trace(1.0, True),
+              "liggghts": _s_wave_trace(1.0 + 1e-3, False)}
+    assert Hh.pulse_field(case, traces["granwave"], traces["yade"]) == "stress"
+    assert Hh.pulse_field(case, traces["granwave"], traces["liggghts"]) == "velocity"
+    layer = {11: dict(peak=1.0, peak_time=1e-4, half_arrival=9e-5)}
+    stress_m = {c: dict(layers=layer, speed_peak=218.5, speed_half=218.5) for c in ("granwave", "yade")}
+    vel_m = {c: dict(layers={11: dict(layer[11], peak=1e-3)}, speed_peak=218.5, speed_half=218.5) for c in traces}
+    rows = Hh.compare_case(case, "c", "crystal", traces, stress_m, tol, velocity_measures=vel_m)
+    gy = [r for r in rows if r["pair"] == "granwave-yade" and r["quantity"] == "trace_max_rel"]
+    gl = [r for r in rows if r["pair"] == "granwave-liggghts" and r["quantity"] == "trace_max_rel"]
+    assert gy and all(r["what"].startswith("sigma_zx") and r["status"] == "PASS" for r in gy)
+    assert gl and all(r["what"].startswith("v_x") and r["status"] == "FAIL" for r in gl)
+    assert all("judged on the layer velocity" in r["why"] for r in gl)
+    # the velocity measures (m/s) judge the pair; no ruler FAIL for the trace that has only the velocity
+    assert [r["extra"] for r in rows if r["pair"] == "granwave-liggghts" and r["quantity"] == "peak_rel"] == \
+        ["0.001 m/s / 0.001 m/s"]
+    assert not [r for r in rows if r["quantity"] == "ruler"]
+
+
+@pytest.mark.skipif(not os.path.exists(GRANWAVE), reason="granwave not built")
+def test_ruler_measures_the_field_asked_for(tmp_path):
+    """analyze --pulse-field: the stress (default), the velocity on request; a missing stress refused."""
+    path = _pulse_trace(tmp_path)
+    with h5py.File(path, "a") as f:
+        f["/crystal/layer_velocity_z"] = 1e-3 * f["/crystal/layer_stress_zz"][...]
+    m = R.measure(path, GRANWAVE)
+    v = R.measure(path, GRANWAVE, pulse_field="velocity")
+    assert m["field"] == "layer_stress_zz" and v["field"] == "layer_velocity_z" and v["component"] == "zz"
+    k = sorted(m["layers"])[3]
+    assert abs(v["layers"][k]["peak"] - 1e-3 * m["layers"][k]["peak"]) <= 1e-12 * m["layers"][k]["peak"]
+    with h5py.File(path, "a") as f:
+        del f["/crystal/layer_stress_zz"]
+    with pytest.raises(R.RulerError, match="no layer_stress_zz"):
+        R.measure(path, GRANWAVE, pulse_field="stress")
+    with pytest.raises(R.RulerError, match="must be auto, stress or velocity"):
+        R.measure(path, GRANWAVE, pulse_field="force")

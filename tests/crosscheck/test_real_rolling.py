@@ -105,32 +105,32 @@ def test_yade_cohesion_moment_matches_granwave_with_its_conventions(tmp_path):
 
 
 @pytest.mark.skipif(not shutil.which("liggghts"), reason="liggghts not installed")
-def test_liggghts_luding_deck_is_granwave_law_and_its_dumps_are_the_reported_difference(tmp_path):
+def test_liggghts_luding_deck_matches_granwave_with_its_conventions_on_the_layer_velocity(tmp_path):
     """LIGGGHTS' luding deck (model luding, tan_luding, rolling_friction luding) against granwave~liggghts (contact-point
-    arm, rolling_lever = "radii", rolling_history = "fixed"). With a vanishing rolling spring the deck is judged PASS
-    (measured 3.3e-10): its normal and tangential springs are granwave's. On the undamped rolling fixtures the pair is
-    EXPECTED-DIFF by LIGGGHTS' pair dumps, which turn its rolling spring once more per dump (measured 5.0e-2 .. 6.5e-2
-    with dumps every 5 steps, falling as 1/every: MAPPING.md); bounded here by 0.1 (regression bound)."""
-    text = open(UNDAMPED[1]).read().replace("kr = 2e4", "kr = 1e-12").replace(
-        'name = "xc_crystal_small_rolling_slip_nodash"', 'name = "xc_crystal_small_rolling_vanishing"')
-    vanishing = tmp_path / "vanishing.toml"
-    vanishing.write_text(text)
-    p, report = _run("granwave,liggghts", [str(vanishing)], tmp_path / "v")
-    rows = [ln.split("|") for ln in report.splitlines() if ln.startswith("| granwave~liggghts-liggghts |")]
-    assert len([r for r in rows if r[2].strip() == "trace_max_rel"]) >= 3, report
-    for r in rows:
-        assert r[6].strip() == "PASS" and float(r[4]) <= float(r[5]), r
+    arm, rolling_lever = "radii", rolling_history = "fixed"), judged by the case tolerances. The deck has no pair dumps
+    (they turn LIGGGHTS' rolling spring once more per dump: MAPPING.md), so its trace has no sigma_zx and the pair is
+    judged on the layer velocity (measured 3e-10 .. 1.7e-7 of the peak). Its sigma_zz comes from compute stress/atom:
+    checked against granwave~liggghts's SCHEMA sigma_zz (contact point in the middle of the overlap), whose prestress
+    it must reproduce to round-off."""
+    import h5py
+    import numpy as np
     p, report = _run("granwave,liggghts", UNDAMPED, tmp_path / "u")
     for name in ("rolltors_nodash", "rolling_slip_nodash"):
-        twin = tmp_path / "u" / "rep" / ("crystal_small_%s" % name) / "granwave~liggghts" / "case.toml"
-        case = twin.read_text()
+        case_dir = tmp_path / "u" / "rep" / ("crystal_small_%s" % name)
+        case = (case_dir / "granwave~liggghts" / "case.toml").read_text()
         assert 'rolling_history = "fixed"' in case and 'rolling_lever = "radii"' in case, case
+        with h5py.File(case_dir / "liggghts" / "traces.h5", "r") as lg, \
+                h5py.File(case_dir / "granwave~liggghts" / "run" / "traces.h5", "r") as gw:
+            assert "/crystal/layer_stress_zx" not in lg and "stress/atom" in str(lg.attrs["layer_stress"])
+            a, b = lg["/crystal/layer_stress_zz"][0], gw["/crystal/layer_stress_zz"][0]
+            assert np.max(np.abs(a - b)) <= 1e-9 * np.max(np.abs(b)), (a, b)
     rows = [ln.split("|") for ln in report.splitlines() if ln.startswith("| granwave~liggghts-liggghts |")]
-    assert len([r for r in rows if r[2].strip() == "trace_max_rel"]) >= 6, report
+    traces = [r for r in rows if r[2].strip() in ("trace_max_rel", "trace_l2_rel")]
+    assert len(traces) >= 12 and all(r[3].strip().startswith("v_x") for r in traces), report
+    peaks = [r for r in rows if r[2].strip() == "peak_rel"]
+    assert len(peaks) >= 4 and all(r[7].strip().endswith("m/s") for r in peaks), report
     for r in rows:
-        assert r[6].strip() == "EXPECTED-DIFF", r
-        if r[2].strip().startswith("trace"):
-            assert float(r[4]) <= 0.1, r
+        assert r[6].strip() == "PASS" and float(r[4]) <= float(r[5]), r
 
 
 @pytest.mark.skipif(not shutil.which("liggghts"), reason="liggghts not installed")
