@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """granwave, LAMMPS and LIGGGHTS side by side: the same crystal, one thread, end to end.
 
-    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,friction_radius,hertz,rolling,rolling_luding,long]
+    /usr/bin/python3 bench/side_by_side.py [--cases frictionless,friction,friction_radius,hertz,rolling,rolling_luding,rolling_s,long]
         [--codes granwave,lammps,liggghts] [--granwave build/granwave] [--granwave-avx2 build-avx2/granwave]
         [--reps 3] [--out table.md] [--json results.json] [--workdir DIR] [--keep]
 
@@ -47,6 +47,9 @@ rolling_luding  the rolling case as LIGGGHTS' `model luding tangential tan_ludin
               on` runs it (the crosscheck's map): contact-point arm, rolling_lever = "radii", rolling_history =
               "fixed", torsion lumped with rolling (ko = kr), no limits; granwave and LIGGGHTS (LAMMPS' sds turns
               its history with the pair)
+rolling_s, rolling_luding_s
+              the two rolling cases with seed 002's S step (1.7e-3 s, as data/cases/crystal_s.toml): the
+              springs turn with the wave (physics check on the layer velocity v_x)
 small         data/cases/crystal40.toml (4 x 4 x 40, 1300 steps): a smoke case for the tests, not a benchmark
 
 Each code's set-up, and why it is the fastest fair equivalent
@@ -87,9 +90,10 @@ Physics check
 -------------
 So that nobody benchmarks a wrong set-up, the last repetition's output of every code is measured
 by the one ruler, `granwave analyze --json` (LAMMPS' and LIGGGHTS' layer files are turned into
-trace files first): the half-peak P speed (z/l0 = 10..150; 1..4 for `long`, whose 200 steps carry
-the front about 6 layers), and the largest difference of sigma_zz from granwave's trace over all
-layers and samples, relative to granwave's largest stress change (the wave's peak), beside what the
+trace files first): the half-peak speed (z/l0 = 10..150; 1..4 for `long`, whose 200 steps carry
+the front about 6 layers), and the largest difference of sigma_zz (S cases: of the layer velocity v_x;
+the layer files' stress/atom xz is delx fz, the transpose of sigma_zx) from granwave's trace over all
+layers and samples, relative to granwave's largest change (the wave's peak), beside what the
 layer file's printed digits allow (half a unit in the last digit; LIGGGHTS prints 6 digits, so on the
 `hertz` case, a wave of 1e-3 of the prestress, its 1.9e-3 is its output's resolution, not its physics).
 

@@ -34,15 +34,25 @@ CASES = {
     # its torque history fixed in space, torsion lumped with rolling (ko = kr) and no limits
     "rolling_luding": ("bench/cases/crystal_rolling.toml", {"lever_arm": '"contact_point"', "mu_r": ("rolling_lever", '"radii"'),
                                                          "mu_o": ("rolling_history", '"fixed"')}, None),
+    # the rolling cases with seed 002's S step (t_end of crystal_s.toml): the springs turn and carry the wave
+    "rolling_s": ("bench/cases/crystal_rolling.toml", {"mode": '"S"', "t_end": "1.7e-3"}, None),
+    "rolling_luding_s": ("bench/cases/crystal_rolling.toml", {"lever_arm": '"contact_point"', "mode": '"S"',
+                                                           "t_end": "1.7e-3", "mu_r": ("rolling_lever", '"radii"'),
+                                                           "mu_o": ("rolling_history", '"fixed"')}, None),
     # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
     "small": ("data/cases/crystal40.toml", {}, None),
+    # not a benchmark: its S twin with LIGGGHTS' luding springs (640 particles, 1300 steps; z/l0 5..25)
+    "small_rolling_luding_s": ("bench/cases/crystal_rolling.toml", {
+        "cells": "[4, 4, 40]", "lever_arm": '"contact_point"', "mode": '"S"', "t_end": "2.6e-4",
+        "mu_r": ("rolling_lever", '"radii"'), "mu_o": ("rolling_history", '"fixed"')}, "5:25"),
 }
 DEFAULT_CASES = ("frictionless", "friction", "friction_radius", "hertz", "long")
 # The codes that run the same physics as granwave in a case (default: all of CODES).
 # rolling: LIGGGHTS' rolling_friction luding has no separate torsion and limits (its driver refuses them);
 # rolling_luding: LAMMPS' sds turns its rolling history with the pair and takes a mixed tangential arm.
 CASE_CODES = {"friction_radius": ("granwave", "lammps"), "rolling": ("granwave", "lammps"),
-              "rolling_luding": ("granwave", "liggghts")}
+              "rolling_luding": ("granwave", "liggghts"), "rolling_s": ("granwave", "lammps"),
+              "rolling_luding_s": ("granwave", "liggghts"), "small_rolling_luding_s": ("granwave", "liggghts")}
 
 
 class BenchError(Exception):

@@ -38,8 +38,8 @@ def layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str,
     means of c_sa[3] c_sa[5] vz vx c_dsp[3] c_dsp[1]. stress/atom is minus the virial per atom,
     (1/2) sum over the atom's contacts of (x_i - x_j) (x) f_i, so the layer's contact stress in
     granwave's convention (compression positive) is -count * mean / (l_x l_y l0). Its component 5
-    is LAMMPS' xz (x of the branch, z of the force), the transpose of granwave's zx: the P-wave
-    check uses zz only."""
+    is LAMMPS' xz (x of the branch, z of the force), the transpose of granwave's zx, so the trace has
+    no layer_stress_zx: an S case is checked on the layer velocity (CHECKED)."""
     case, text = T.load_case(case_path)
     system = T.read_system(system_path)
     lay = T.crystal_layout(system)
@@ -55,7 +55,7 @@ def layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str,
     v = vals[:, keep, :][:, order, :]
     vol = lay["box_x"] * lay["box_y"] * lay["l0"]
     data = {"/crystal/layer_z": lay["layer_z"],
-            "/crystal/layer_stress_zz": -cnt * v[:, :, 0] / vol, "/crystal/layer_stress_zx": -cnt * v[:, :, 1] / vol,
+            "/crystal/layer_stress_zz": -cnt * v[:, :, 0] / vol,
             "/crystal/layer_velocity_z": v[:, :, 2], "/crystal/layer_velocity_x": v[:, :, 3],
             "/crystal/layer_displacement_z": v[:, :, 4], "/crystal/layer_displacement_x": v[:, :, 5]}
     T.write_trace(out, code=code, code_version=version, case_text=text, case_name=case["case"]["name"],
@@ -63,8 +63,15 @@ def layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str,
                   time=steps * dt, datasets=data, extra_attrs={"note": "bench/side_by_side.py layer output"})
 
 
-def analyze_speed(granwave: str, trace: str, layers: str | None) -> dict:
-    cmd = [granwave, "analyze", trace, "--json"] + (["--layers", layers] if layers else [])
+# The checked field of a mode: (trace dataset, its column in the layer file, label). sigma_zz for a P wave; an S
+# wave's layer velocity (the layer file's stress/atom xz is delx fz, the transpose of sigma_zx).
+CHECKED = {"P": ("/crystal/layer_stress_zz", 0, "sigma_zz"), "S": ("/crystal/layer_velocity_x", 3, "v_x")}
+
+
+def analyze_speed(granwave: str, trace: str, layers: str | None, mode: str = "P") -> dict:
+    """The half-peak speed of the checked field (CHECKED: sigma_zz for P, v_x for S)."""
+    cmd = [granwave, "analyze", trace, "--json", "--pulse-field", "stress" if mode == "P" else "velocity"] + \
+        (["--layers", layers] if layers else [])
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         return dict(error=p.stderr.strip()[-300:])
@@ -78,29 +85,33 @@ def analyze_speed(granwave: str, trace: str, layers: str | None) -> dict:
 PRINTED_DIGITS = {"lammps": 10, "liggghts": 6}
 
 
-def stress_resolution(ref_trace: str, layer_file: str, system_path: str, digits: int) -> float | None:
+def stress_resolution(ref_trace: str, layer_file: str, system_path: str, digits: int, mode: str = "P") -> float | None:
     """What the layer file's printed digits alone allow: max over samples and layers of half a unit in
-    the last printed digit of the per-atom mean c_sa[3], turned into sigma_zz as layers_to_trace does
-    (count / (l_x l_y l0)), relative to granwave's peak stress change. A wave small against the
-    prestress (the `hertz` case: 1e-7 d on a 1e-4 d overlap) sits in the last digits of %g."""
+    the last printed digit of the checked per-atom mean (CHECKED: c_sa[3], turned into sigma_zz as
+    layers_to_trace does, count / (l_x l_y l0); an S wave's vx as it is), relative to granwave's peak
+    change. A wave small against the prestress (the `hertz` case: 1e-7 d on a 1e-4 d overlap) sits
+    in the last digits of %g."""
     import h5py
+    path, col, _ = CHECKED[mode]
     with h5py.File(ref_trace, "r") as a:
-        s0 = a["/crystal/layer_stress_zz"][()]
+        s0 = a[path][()]
     lay = T.crystal_layout(T.read_system(system_path))
     _, _, count, vals = read_layer_file(layer_file)
-    mean = np.abs(vals[:, :, 0])
+    mean = np.abs(vals[:, :, col])
     safe = np.where(mean > 0, mean, 1.0)
     ulp = np.where(mean > 0, 10.0 ** (np.floor(np.log10(safe)) - (digits - 1)), 0.0)
     peak = float(np.max(np.abs(s0 - s0[0])))
-    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
-    return None if peak <= 0 else float(np.max(0.5 * count * ulp)) / vol / peak
+    scale = count / (lay["box_x"] * lay["box_y"] * lay["l0"]) if col == 0 else 1.0
+    return None if peak <= 0 else float(np.max(0.5 * scale * ulp)) / peak
 
 
-def stress_deviation(ref_trace: str, trace: str) -> float | None:
-    """max |sigma_zz - sigma_zz(granwave)| over all samples and layers / max |sigma_zz(granwave) - its t = 0|."""
+def stress_deviation(ref_trace: str, trace: str, mode: str = "P") -> float | None:
+    """max |y - y(granwave)| over all samples and layers / max |y(granwave) - its t = 0| of the checked field
+    y (CHECKED: sigma_zz for P, v_x for S)."""
     import h5py
+    path = CHECKED[mode][0]
     with h5py.File(ref_trace, "r") as a, h5py.File(trace, "r") as b:
-        s0, s1 = a["/crystal/layer_stress_zz"][()], b["/crystal/layer_stress_zz"][()]
+        s0, s1 = a[path][()], b[path][()]
         t0, t1 = a["/time"][()], b["/time"][()]
     if s0.shape != s1.shape or not np.allclose(t0, t1, rtol=0, atol=1e-12):
         return None

@@ -47,7 +47,7 @@ def table(results: list, runners: list, codes: list) -> str:
 
 def sanity_table(results: list, runners: list) -> str:
     head = ["case"] + ["%s V_half (m/s)" % r.title for r in runners] + \
-           ["%s max dsigma_zz / peak" % r.title for r in runners if r.code != "granwave"]
+           ["%s max d(sigma_zz or v_x) / peak" % r.title for r in runners if r.code != "granwave"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for res in results:
         row = [res["case"]]
@@ -57,7 +57,8 @@ def sanity_table(results: list, runners: list) -> str:
                 row.append("not run")
             elif s.get("v_half") is not None:
                 rng = s.get("z_over_l0") or ["?", "?"]
-                row.append("%.3f (z/l0 %s..%s)" % (s["v_half"], rng[0], rng[1]))
+                row.append("%.3f (%sz/l0 %s..%s)" % (s["v_half"], ("%s, " % s["field"]) if s.get("field") else "",
+                                                      rng[0], rng[1]))
             else:
                 row.append("error: %s" % s.get("error", "?")[:60])
         for r in runners:
@@ -116,8 +117,9 @@ def write_report(a, argv: list, cpu: dict, load0: dict, load1: dict, t_start: fl
     md.append("")
     md.append(table(results, runners, codes))
     md.append("")
-    md.append("Physics check (`granwave analyze --json` on every code's output, last run): half-peak P speed, "
-              "and the largest sigma_zz difference from granwave's trace relative to the wave's peak stress:")
+    md.append("Physics check (`granwave analyze --json` on every code's output, last run): half-peak speed, and the "
+              "largest difference from granwave's trace relative to the wave's peak, of sigma_zz for a P wave and of "
+              "the layer velocity v_x for an S wave (the layer files' stress/atom xz is delx fz, not sigma_zx):")
     md.append("")
     md.append(sanity_table(results, runners))
     md.append("")

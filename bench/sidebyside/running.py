@@ -12,7 +12,7 @@ import time
 from xclib import traces as T
 
 from .cases import CASE_CODES, CASES, CODES, case_text, render_lammps, render_liggghts
-from .layers import PRINTED_DIGITS, analyze_speed, layers_to_trace, stress_deviation, stress_resolution
+from .layers import CHECKED, PRINTED_DIGITS, analyze_speed, layers_to_trace, stress_deviation, stress_resolution
 from .stats import rotation
 
 
@@ -169,17 +169,19 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
     res["load"].append(os.getloadavg()[0])
     # the physics check on the last repetition's output
     layers = CASES[name][2]
+    mode = "S" if re.search(r'(?m)^mode = "S"', open(case_path).read()) else "P"
     sanity = {}
     ref = last_dir.get("granwave")
     ref_trace = os.path.join(ref, "traces.h5") if ref else None
     for r in runners:
         try:
             tr = r.trace(last_dir[r.key], case_path, system_path)
-            s = analyze_speed(granwave, tr, layers)
+            s = analyze_speed(granwave, tr, layers, mode)
+            s["field"] = CHECKED[mode][2]
             if ref_trace and r.code != "granwave":
-                s["stress_dev"] = stress_deviation(ref_trace, tr)
+                s["stress_dev"] = stress_deviation(ref_trace, tr, mode)
                 s["stress_resolution"] = stress_resolution(ref_trace, os.path.join(last_dir[r.key], "layers.txt"),
-                                                           system_path, PRINTED_DIGITS[r.code])
+                                                           system_path, PRINTED_DIGITS[r.code], mode)
         except (ValueError, OSError, RuntimeError) as e:
             s = dict(error=str(e))
         sanity[r.key] = s

@@ -145,8 +145,8 @@ def layer_deck_values(case: dict, system: dict) -> dict:
         bad.append("mu_static != mu_dynamic (one mu in LAMMPS and LIGGGHTS)")
     if c["normal_tension"] != "allow":
         bad.append("normal_tension must be \"allow\"")
-    if ex["mode"] != "P" or ex["drive"] != "displacement":
-        bad.append("excitation must be a P displacement step")
+    if ex["drive"] != "displacement":
+        bad.append("excitation must be a displacement step (P or S)")
     if np.max(system["radius"]) != np.min(system["radius"]):
         bad.append("polydisperse radii (the decks take one skin and mass from density)")
     if bad:
@@ -160,7 +160,7 @@ def layer_deck_values(case: dict, system: dict) -> dict:
                 youngs=c.get("youngs_modulus", 0.0), poisson=c.get("poisson_ratio", 0.0),
                 skin=g(SKIN_OVER_RADIUS * r), neigh_every=NEIGH_EVERY, l0=g(lay["l0"]),
                 origin=g(z0 - 0.5 * lay["l0"]), friction=friction, kn=c["kn"], kt=c["kt"], mu=c["mu_static"],
-                excitation_line="displace_atoms  source move 0 0 %s units box" % g(float(ex["amplitude"]) * lay["d"]),
+                excitation_line=crystal_source(crystal(case, system))["excitation_line"],
                 integrator="nve/sphere" if friction else "nve", n=f["n"],
                 contact=c, radius=system["radius"])   # rolling and torsion: each law maps or refuses them
 

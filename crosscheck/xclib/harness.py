@@ -304,14 +304,16 @@ def write_report(report_dir, results, started):
             if r["status"] != "ok":
                 verdict.append((name, r["status"].upper(), code + ": " + (r.get("detail") or "")))
         md.append("")
-        for code, m in res.get("measures", {}).items():
+        on_velocity = [(c, m, " on the layer velocity") for c, m in res.get("velocity_measures", {}).items()]
+        for code, m, on in [(c, m, "") for c, m in res.get("measures", {}).items()] + on_velocity:
             if m.get("kind") == "chain":
                 md.append("- %s: striker-contact peak %s N, front speed %s contacts/ms (+- %s) over contacts %s (ruler: %s)"
                           % (code, _fmt(m.get("striker_peak")), _fmt((m.get("front_speed") or 0) / 1e3),
                              _fmt((m.get("front_speed_err") or 0) / 1e3), m.get("front_range"), m.get("ruler")))
             elif m.get("kind") == "crystal":
-                md.append("- %s: speed %s m/s (first peaks), %s m/s (half-peak crossings) over z/l0 = %s (ruler: %s)"
-                          % (code, _fmt(m.get("speed_peak")), _fmt(m.get("speed_half")), m.get("speed_range"), m.get("ruler")))
+                md.append("- %s: speed%s %s m/s (first peaks), %s m/s (half-peak crossings) over z/l0 = %s (ruler: %s)"
+                          % (code, on, _fmt(m.get("speed_peak")), _fmt(m.get("speed_half")), m.get("speed_range"),
+                             m.get("ruler")))
         md.append("")
         if res["rows"]:
             md += ["| pair | quantity | what | value | tolerance | status | detail |", "|---|---|---|---|---|---|---|"]
@@ -477,7 +479,7 @@ def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=No
                     traces.pop(code, None)
                     break
         twins = {c: r["twin_of"] for c, r in res["runs"].items() if r.get("twin_of")}
-        res["measures"] = measures
+        res["measures"], res["velocity_measures"] = measures, vmeasures
         res["rows"] = compare_case(case, res["case_name"], model, traces, measures, tol, twins, vmeasures)
         res["plot"] = _plot(res["case_name"], case, traces, os.path.join(casedir, "overlay.png"))
         with open(os.path.join(casedir, "comparison.json"), "w") as f:

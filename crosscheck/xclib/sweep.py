@@ -101,6 +101,7 @@ def _record(r: dict, granwave, ruler_args) -> dict:
             rec["attrs"] = {k: v for k, v in T.read_trace(r["trace"])["attrs"].items()
                             if k in CV.GRANWAVE_RUNS}
             rec["raw"] = R.granwave_analyze(r["trace"], granwave or "granwave", extra_args=ruler_args)
+            rec["pulse_field"] = rec["raw"].get("measure_field")   # the field the ruler measured
         except R.RulerError as e:
             rec["status"], rec["detail"] = "failed", "not measurable: %s" % e
     return rec
@@ -483,7 +484,7 @@ def rolling(a, report_dir, granwave, tol) -> int:
     status = _verdict_md(md, verdict, why, tsec)
     _timings_md(md, points, cols)
     png = os.path.join(report_dir, "rolling.png")
-    _plot_rolling(points, codes, modes, positions, png)
+    _plot_rolling(points, codes, modes, positions, png, on_velocity)
     md += ["![rolling](rolling.png)", ""]
     _write(report_dir, "sweep_rolling", md, dict(sweep="rolling", size=a.size, codes=codes, positions=positions,
                                                  points=points, verdict=verdict))
@@ -597,9 +598,10 @@ def _plot_friction(points, codes, modes, path):
     plt.close(fig)
 
 
-def _plot_rolling(points, codes, modes, positions, path):
+def _plot_rolling(points, codes, modes, positions, path, on_velocity=False):
     """Speeds against k_r/k_t (per mode, with the lattice's long-wave speed), S first peaks against k_r/k_t
-    per position, and the S ridge's zone-edge frequency against the branch's."""
+    per position (of the layer velocity when `on_velocity`), and the S ridge's zone-edge frequency against
+    the branch's."""
     plt = _plt()
     fig, axes = plt.subplots(1, len(modes) + 2, figsize=(4.6 * (len(modes) + 2), 4), squeeze=False)
     axes = axes[0]
@@ -625,7 +627,7 @@ def _plot_rolling(points, codes, modes, positions, path):
     ax.set_xscale("log")
     ax.set_title("%s first peak" % mode)
     ax.set_xlabel("k_r / k_t")
-    ax.set_ylabel("|first peak| (Pa)")
+    ax.set_ylabel("|first peak| (%s)" % ("layer velocity, m/s" if on_velocity and mode == "S" else "Pa"))
     ax.legend(fontsize=6)
     ax = axes[len(modes) + 1]
     key = "zone_edge_u_x" if mode == "S" else "zone_edge_u_z"

@@ -31,7 +31,7 @@ theory::LatticeCellOptions lattice_options(const config::Case& c, double toleran
   opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
   opt.kr = c.contact.kr;
   opt.ko = c.contact.ko;
-  opt.rolling_radii = c.contact.rolling_lever == contact::RollingLever::radii;
+  opt.rolling_arm_shift = contact::rolling_shift(c.contact.rolling_lever, c.contact.lever_arm);  // the law's a
   return opt;
 }
 

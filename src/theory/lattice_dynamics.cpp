@@ -401,7 +401,7 @@ std::optional<LatticeCell> lattice_cell(const ContactNetwork& net, SlabSelection
     const double delta = net.particles[c.i].radius + net.particles[c.j].radius - l;
     const double arm_i = net.particles[c.i].radius - opt.arm_shift * delta;
     const double arm_j = net.particles[c.j].radius - opt.arm_shift * delta;
-    const double shift_r = opt.rolling_radii ? 0.0 : opt.arm_shift;  // a' of the rolling and torsion springs
+    const double shift_r = opt.rolling_arm_shift;  // a' of the rolling and torsion springs
     const double roll_i = net.particles[c.i].radius - shift_r * delta, roll_j = net.particles[c.j].radius - shift_r * delta;
     const double lever = roll_i * roll_j / (roll_i + roll_j);
     const double k_roll = opt.k_roll + opt.kr * lever * lever, k_twist = opt.k_twist + opt.ko * lever * lever;

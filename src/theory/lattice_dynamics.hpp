@@ -165,10 +165,10 @@ struct LatticeCellOptions {
   double k_roll = 0.0, k_twist = 0.0;
   // Luding's rolling and torsion springs (N/m) on the lever a' = arm_i arm_j/(arm_i + arm_j) of each
   // contact (contact/rolling_torsion.hpp; [contact] kr, ko): they add kr a'^2 and ko a'^2 to k_roll
-  // and k_twist; with rolling_radii the arms of a' are the radii whatever arm_shift says ([contact]
-  // rolling_lever = "radii").
+  // and k_twist. The arms of a' are a - rolling_arm_shift * delta: the law's own shift
+  // (contact::rolling_shift; 0 with [contact] rolling_lever = "radii", else arm_shift).
   double kr = 0.0, ko = 0.0;
-  bool rolling_radii = false;
+  double rolling_arm_shift = 0.0;
   // Bonds, masses, radii and forces of every particle of the slab must match the reference
   // particle's to this relative tolerance (a Bravais lattice); otherwise there is no cell.
   double tolerance = 1e-9;

@@ -95,7 +95,7 @@ def test_lammps_deck_frictionless(tmp_path, cases_dir):
     assert "neigh_modify    delay 0 every 10 check yes exclude type 2 2 exclude type 2 3 exclude type 3 3" in deck
     assert "compute         sa all stress/atom NULL pair" in deck
     assert "fix             layers all ave/chunk 5 1 5 layers c_sa[3] c_sa[5] vz vx c_dsp[3] c_dsp[1]" in deck
-    assert "displace_atoms  source move 0 0 2.0000000000000002e-07 units box" in deck  # 1e-4 d
+    assert "displace_atoms  source move 0.0 0.0 2.0000000000000002e-07 units box" in deck  # 1e-4 d
     assert "run             1000" in deck and "$" not in deck
     # the bins are centred on the layers: layer 0 sits at origin + l0/2
     lay = T.crystal_layout(system)
@@ -130,6 +130,10 @@ def test_rolling_decks(tmp_path, cases_dir):
         assert line in luding, line
     assert "\nmu_r =" not in luding and "\nmu_o =" not in luding
     assert S.CASE_CODES["rolling"] == ("granwave", "lammps") and S.CASE_CODES["rolling_luding"] == ("granwave", "liggghts")
+    for name, codes in (("rolling_s", ("granwave", "lammps")), ("rolling_luding_s", ("granwave", "liggghts"))):
+        text = S.case_text(name)   # the same springs with seed 002's S step
+        assert S.CASE_CODES[name] == codes and 'mode = "S"' in text and "t_end = 1.7e-3" in text
+        assert ('rolling_history = "fixed"' in text) == (name == "rolling_luding_s")
     case, system, _ = _system(tmp_path, cases_dir, "crystal_small.toml")
     case["contact"].update(kt=1e5, mu_static=0.5, mu_dynamic=0.5, lever_arm="contact_point", kr=5e4, ko=5e4)
     S.render_liggghts(case, system, str(tmp_path))
@@ -330,3 +334,23 @@ def test_real_side_by_side_small(tmp_path, capsys):
     r = c["summary"]["ratios"]
     assert r["lammps/granwave"]["wall"] > 0 and r["liggghts/granwave"]["cpu"] > 0
     assert "| small | 640 x 1300 |" in capsys.readouterr().out
+
+
+@pytest.mark.realcodes
+def test_real_side_by_side_small_s_wave_is_checked_on_the_layer_velocity(tmp_path):
+    """An S case (LIGGGHTS' luding springs, 640 particles): the per-layer deck renders the S step, and the
+    physics check measures and compares the layer velocity v_x (the layer file's stress/atom xz is not
+    sigma_zx): LIGGGHTS is granwave to the digits its layer file prints."""
+    gw = os.path.join(REPO, "build", "granwave")
+    if not os.path.exists(gw) or not shutil.which("liggghts"):
+        pytest.skip("needs build/granwave and liggghts")
+    js = tmp_path / "r.json"
+    assert S.main(["--granwave", gw, "--cases", "small_rolling_luding_s", "--codes", "granwave,liggghts", "--reps", "1",
+                   "--json", str(js), "--workdir", str(tmp_path / "w")]) == 0
+    c = json.loads(js.read_text())["cases"][0]
+    san = c["sanity"]
+    assert san["granwave"]["field"] == san["liggghts"]["field"] == "v_x"
+    v = san["granwave"]["v_half"]
+    assert v is not None and abs(san["liggghts"]["v_half"] - v) < 1e-6 * v, san
+    assert 0 < san["liggghts"]["stress_resolution"] and \
+        san["liggghts"]["stress_dev"] <= san["liggghts"]["stress_resolution"] + 1e-7, san
