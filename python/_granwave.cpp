@@ -230,8 +230,6 @@ PYBIND11_MODULE(_granwave, m) {
         Stepper step{std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(check_seconds)),
                      std::move(callback)};
         req.progress = [&step](long done, long total) { step(done, total); };
-        if (in_memory && c.model == config::Model::impact)
-          throw InputError(origin + ": an impact run is not kept in memory (give it a trace file)");
         std::string json = released([&] {
           std::ostringstream out;
           cli::run_case(c, req, out);
@@ -242,9 +240,9 @@ PYBIND11_MODULE(_granwave, m) {
       py::arg("text"), py::arg("origin"), py::arg("trace_path"), py::arg("system_path") = "", py::arg("callback") = py::none(),
       py::arg("check_seconds") = 0.005, py::arg("in_memory") = false,
       "`granwave run CASE --json -o TRACE` of a case text: (the JSON it prints, {dataset path: array}).\n"
-      "The arrays are the run's own series (no copy; chain and crystal runs, else {}), the trace file's\n"
-      "datasets but /system. in_memory: the trace file is built and measured in memory only, TRACE only\n"
-      "names it (chain and crystal cases). Every check_seconds the run takes the GIL, handles signals\n"
+      "The arrays are the run's own series (no copy), the trace file's datasets but /system. in_memory:\n"
+      "the trace file is built and measured in memory only (an impact run measures its series and\n"
+      "builds none), TRACE only names it. Every check_seconds the run takes the GIL, handles signals\n"
       "(KeyboardInterrupt stops it, no file written) and calls callback(done, total).");
 
   m.def("analyze", [](const std::vector<std::string>& a) { return verb(cli::cmd_analyze, a); }, "`granwave analyze ARGS`'s output");

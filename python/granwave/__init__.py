@@ -13,7 +13,6 @@ A run's arrays are its own series in memory (no copies); run(out=None) writes no
 import json
 import os
 import tempfile
-from contextlib import nullcontext
 
 
 from . import _granwave
@@ -140,8 +139,8 @@ class Result:
     buffers the solver filled (flags.owndata is False; their base holds the buffers), bit for bit
     the datasets of the trace file. Two were made for the file rather than filled by the run and
     are held the same way: a chain's energy "dissipated" (zeros: the chain is conservative) and
-    traces["full_rate/beads"] (bead indices as int64). An impact run's arrays are read back from
-    its trace file."""
+    traces["full_rate/beads"] (bead indices as int64). An impact run's arrays are its series, moved
+    (owned by the capsule, not copied): traces "overlap", "contact_force_normal", "body1/position", ..."""
 
     def __init__(self, numbers, arrays, trace):
         self.analysis = numbers.pop("analysis", None)
@@ -189,7 +188,7 @@ def run(case, out=None, system=None, progress=None):
     case      a Case or a case file's path
     out       the trace file to write (the program's file, written as OUT.tmp and renamed, bit
               for bit the program's); None: no file at all -- the trace is built and measured in
-              memory (an impact case: in a temporary file, removed; no VTK snapshots either)
+              memory (no VTK snapshots either)
     system    a system file from build() to run instead of building the packing
     progress  None; True for a tqdm bar; or a callable progress(steps_done, steps_total), called
               from the run's thread with the GIL every few milliseconds
@@ -201,30 +200,22 @@ def run(case, out=None, system=None, progress=None):
     Raises ValueError for a refused case, RuntimeError for a failed run (an unstable crystal)."""
     case = _case(case)
     callback, bar = _progress(progress, case.name, "steps")
-    in_memory = out is None and case.model != "impact"
-    with tempfile.TemporaryDirectory(prefix="granwave-") if out is None and not in_memory else nullcontext() as tmp:
-        if out is not None:
-            path = os.fspath(out)
-        elif in_memory:
-            path = f"{case.name}.traces.h5 (not written)"  # names the trace in messages only
-        else:
-            path = os.path.join(tmp, f"{case.name}.traces.h5")
-        try:
-            text, arrays = _granwave.run(case.text, case.path, path, os.fspath(system) if system else "", callback,
-                                         in_memory=in_memory)
-        except KeyboardInterrupt:
-            # A Ctrl-C after the time loop (while the file was written) is handled here: no file either.
-            for p in (path, path + ".tmp") if not in_memory else ():
-                if os.path.exists(p):
-                    os.remove(p)
-            raise
-        finally:
-            if bar:
-                bar.close()
-        numbers = json.loads(text)
-        if not arrays:  # an impact run: its arrays are the file's
-            arrays = _read_arrays(path)
-        return Result(numbers, arrays, path if out is not None else None)
+    in_memory = out is None
+    # without out, the path names the trace in messages only
+    path = f"{case.name}.traces.h5 (not written)" if in_memory else os.fspath(out)
+    try:
+        text, arrays = _granwave.run(case.text, case.path, path, os.fspath(system) if system else "", callback,
+                                     in_memory=in_memory)
+    except KeyboardInterrupt:
+        # A Ctrl-C after the time loop (while the file was written) is handled here: no file either.
+        for p in (path, path + ".tmp") if not in_memory else ():
+            if os.path.exists(p):
+                os.remove(p)
+        raise
+    finally:
+        if bar:
+            bar.close()
+    return Result(json.loads(text), arrays, None if in_memory else path)
 
 
 def _options(opts):

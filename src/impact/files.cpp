@@ -11,12 +11,7 @@ namespace {
 
 std::vector<double> triple(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
-void write_body(io::H5Writer& w, const std::string& g, const Body& b, const std::vector<double>& x,
-                const std::vector<double>& v, const std::vector<double>& om) {
-  const std::size_t nt = x.size() / 3;
-  w.write(g + "/position", x, {nt, 3});
-  w.write(g + "/velocity", v, {nt, 3});
-  w.write(g + "/angular_velocity", om, {nt, 3});
+void body_attrs(io::H5Writer& w, const std::string& g, const Body& b) {
   w.attr(g, "radius", b.radius);
   w.attr(g, "mass", b.mass);
   w.attr(g, "inertia", b.inertia);
@@ -39,6 +34,33 @@ Trace trace_of(const Setup& s, Series series) {
   return t;
 }
 
+TraceSeries trace_series(const Setup& s, Series t) {
+  const std::size_t nt = t.size();
+  TraceSeries out;
+  auto add = [&](std::string path, std::vector<double>&& v, std::vector<std::size_t> shape) {
+    out.datasets.push_back({std::move(path), std::move(shape), std::move(v), {}});
+  };
+  add("/time", std::move(t.time), {nt});
+  add("/impact/overlap", std::move(t.overlap), {nt});
+  add("/impact/contact_force_normal", std::move(t.force_normal), {nt});
+  add("/impact/contact_force_tangential", std::move(t.force_tangential), {nt, 3});
+  add("/impact/body1/position", std::move(t.x1), {nt, 3});
+  add("/impact/body1/velocity", std::move(t.v1), {nt, 3});
+  add("/impact/body1/angular_velocity", std::move(t.w1), {nt, 3});
+  if (s.wall) {
+    add("/impact/wall/normal", triple(s.wall_normal), {3});
+    add("/impact/wall/point", triple(s.wall_point), {3});
+  } else {
+    add("/impact/body2/position", std::move(t.x2), {nt, 3});
+    add("/impact/body2/velocity", std::move(t.v2), {nt, 3});
+    add("/impact/body2/angular_velocity", std::move(t.w2), {nt, 3});
+  }
+  add("/energy/kinetic", std::move(t.kinetic), {nt});
+  add("/energy/potential", std::move(t.stored), {nt});
+  add("/energy/dissipated", std::move(t.dissipated), {nt});
+  return out;
+}
+
 void write_trace(const config::Case& c, const Setup& s, const Series& t, const std::string& path) {
   io::H5Writer w(path);
   io::write_provenance(w);
@@ -59,28 +81,18 @@ void write_trace(const config::Case& c, const Setup& s, const Series& t, const s
            {"rolling_history", contact::rolling_history_name(c.contact.rolling_history)},
            {"status", "complete"}})
     w.attr("/", name, value);
-  const std::size_t nt = t.size();
-  w.write("/time", t.time);
-  w.write("/impact/overlap", t.overlap);
-  w.write("/impact/contact_force_normal", t.force_normal);
-  w.write("/impact/contact_force_tangential", t.force_tangential, {nt, 3});
+  for (const auto& d : trace_series(s, t).datasets) w.write(d.path, d.values, d.shape);
   w.attr("/impact", "geometry", std::string(s.wall ? "sphere_wall" : "sphere_sphere"));
   w.attr("/impact", "dt", s.dt);
   w.attr("/impact", "effective_modulus", s.e_star);
   w.attr("/impact", "effective_shear_modulus", s.g_star);
   w.attr("/impact", "damping_ratio", s.contact.damping_ratio);
   w.attr("/impact", "gamma_n", s.contact.gamma_n);
-  write_body(w, "/impact/body1", s.b1, t.x1, t.v1, t.w1);
-  if (s.wall) {
-    w.write("/impact/wall/normal", triple(s.wall_normal));
-    w.write("/impact/wall/point", triple(s.wall_point));
+  body_attrs(w, "/impact/body1", s.b1);
+  if (s.wall)
     w.attr("/impact/wall", "material", c.impact->wall->material);
-  } else {
-    write_body(w, "/impact/body2", s.b2, t.x2, t.v2, t.w2);
-  }
-  w.write("/energy/kinetic", t.kinetic);
-  w.write("/energy/potential", t.stored);
-  w.write("/energy/dissipated", t.dissipated);
+  else
+    body_attrs(w, "/impact/body2", s.b2);
   // The rebound as `granwave analyze` measures it (any code's trace is measured from the series).
   const Rebound r = measure(trace_of(s, t));
   const std::string g = "/impact/rebound";

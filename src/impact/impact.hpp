@@ -9,6 +9,7 @@
 
 #include "config/case.hpp"
 #include "contact/vec3.hpp"
+#include "core/trace_series.hpp"
 #include "theory/impact.hpp"
 
 namespace granwave::impact {
@@ -62,6 +63,8 @@ struct Trace {
 // The trace a run of `s` writes, in memory (what run and the tests measure).
 Trace trace_of(const Setup& s, Series series);
 void write_trace(const config::Case& c, const Setup& s, const Series& series, const std::string& path);
+// Every dataset write_trace writes, under its path and shape, the series moved in (RunRequest::keep).
+TraceSeries trace_series(const Setup& s, Series series);
 Trace read_trace(const std::string& path);
 bool is_impact_trace(const std::string& path);
 

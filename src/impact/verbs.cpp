@@ -283,10 +283,11 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
     throw InputError(c.path + ": key 'integrator.dt': " + g6(steps) + " steps exceed --max-steps " + g6(request.limits.max_steps));
   if (!request.system_path.empty()) throw InputError("--system: an impact case has no system file (granwave build)");
   const Series series = simulate(s);
-  write_trace(c, s, series, request.trace_path);
+  if (!request.in_memory) write_trace(c, s, series, request.trace_path);  // in memory: measured below all the same
   Trace t = trace_of(s, series);
   t.law = config::law_of(c.contact).name;
   const Rebound r = measure(t);
+  if (request.keep) request.keep(trace_series(s, std::move(t.series)));
   if (request.json) {
     json j = {{"schema", "granwave-run/1"},
               {"case", c.name},

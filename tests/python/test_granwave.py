@@ -112,6 +112,38 @@ def test_run_without_out_writes_no_file_and_gives_the_programs_arrays(name, tmp_
     assert {k: v for k, v in r.numbers.items() if k not in timing} == {k: v for k, v in p.items() if k not in timing}
 
 
+@pytest.mark.parametrize("name", ["impact/t1/t1_glass.toml", "impact/t2/t2_al_alloy_t2.toml", "impact/t7/t7_al_alloy_05deg.toml"])
+def test_impact_run_without_out_writes_no_file_and_gives_the_programs_arrays(name, tmp_path, monkeypatch):
+    """An impact case too: without out, no file anywhere; the arrays are the run's series (moved, held by a
+    capsule), bit for bit the datasets of the program's trace file; the numbers and the rebound are the
+    program's; with out, the file is the program's bit for bit."""
+    case = g.data_path(name)
+    ref = tmp_path / "program.h5"
+    p = json.loads(subprocess.run([PROGRAM, "run", case, "-o", str(ref), "--json", "--quiet"],
+                                  capture_output=True, check=True).stdout)
+    want, want_attrs = datasets(ref)
+    here, tmp = tmp_path / "cwd", tmp_path / "tmp"
+    here.mkdir()
+    tmp.mkdir()
+    monkeypatch.chdir(here)
+    monkeypatch.setattr("tempfile.tempdir", str(tmp))
+    monkeypatch.setenv("TMPDIR", str(tmp))
+    r = g.run(g.Case.load(case))
+    assert list(here.iterdir()) == [] and list(tmp.iterdir()) == []
+    assert r.trace is None and r.numbers["trace"] is None
+    got = result_arrays(r, "impact")
+    assert sorted(got) == sorted(want)          # an impact trace has no /system
+    for k, v in got.items():
+        assert same_bits(v, want[k]), k
+        assert not v.flags.owndata and type(v.base).__name__ == "PyCapsule", k
+    assert r.analysis["rebound"] == p["analysis"]["rebound"]
+    assert {k: v for k, v in r.numbers.items() if k != "trace"} == {k: v for k, v in p.items() if k not in ("trace", "analysis")}
+    g.run(g.Case.load(case), out=tmp_path / "module.h5")
+    got_file, got_attrs = datasets(tmp_path / "module.h5")
+    assert sorted(got_file) == sorted(want) and all(same_bits(got_file[k], want[k]) for k in want)
+    assert got_attrs.keys() == want_attrs.keys() and all(same_bits(got_attrs[k], want_attrs[k]) for k in want_attrs)
+
+
 def test_bad_value_raises_the_programs_message(tmp_path):
     case = g.Case.load(g.data_path("cases/crystal40.toml"))
     d = case.to_dict()
