@@ -76,6 +76,20 @@ def result_arrays(r, group):
     return out
 
 
+def run_writing_nothing(case, tmp_path, monkeypatch):
+    """run(case) without out, from an empty directory with an empty TMPDIR: both stay empty."""
+    here, tmp = tmp_path / "cwd", tmp_path / "tmp"
+    here.mkdir()
+    tmp.mkdir()
+    monkeypatch.chdir(here)
+    monkeypatch.setattr("tempfile.tempdir", str(tmp))
+    monkeypatch.setenv("TMPDIR", str(tmp))
+    r = g.run(g.Case.load(case))
+    assert list(here.iterdir()) == [] and list(tmp.iterdir()) == []
+    assert r.trace is None and r.numbers["trace"] is None
+    return r
+
+
 @pytest.mark.parametrize("name", ["oriented20", "crystal40"])
 def test_run_without_out_writes_no_file_and_gives_the_programs_arrays(name, tmp_path, monkeypatch):
     """run(case) keeps the trace in memory: the arrays are views of the run's buffers (no copy),
@@ -86,15 +100,7 @@ def test_run_without_out_writes_no_file_and_gives_the_programs_arrays(name, tmp_
     subprocess.run([PROGRAM, "run", case, "-o", str(ref), "--quiet"], check=True, capture_output=True)
     want, _ = datasets(ref)
     program = json.loads(subprocess.run([PROGRAM, "analyze", str(ref), "--json"], capture_output=True, check=True).stdout)
-    here, tmp = tmp_path / "cwd", tmp_path / "tmp"
-    here.mkdir()
-    tmp.mkdir()
-    monkeypatch.chdir(here)
-    monkeypatch.setattr("tempfile.tempdir", str(tmp))
-    monkeypatch.setenv("TMPDIR", str(tmp))
-    r = g.run(g.Case.load(case))
-    assert list(here.iterdir()) == [] and list(tmp.iterdir()) == []
-    assert r.trace is None and r.numbers["trace"] is None
+    r = run_writing_nothing(case, tmp_path, monkeypatch)
     group = "crystal" if name.startswith("crystal") else "chain"
     got = result_arrays(r, group)
     assert sorted(got) == sorted(k for k in want if not k.startswith("system/"))
@@ -122,15 +128,7 @@ def test_impact_run_without_out_writes_no_file_and_gives_the_programs_arrays(nam
     p = json.loads(subprocess.run([PROGRAM, "run", case, "-o", str(ref), "--json", "--quiet"],
                                   capture_output=True, check=True).stdout)
     want, want_attrs = datasets(ref)
-    here, tmp = tmp_path / "cwd", tmp_path / "tmp"
-    here.mkdir()
-    tmp.mkdir()
-    monkeypatch.chdir(here)
-    monkeypatch.setattr("tempfile.tempdir", str(tmp))
-    monkeypatch.setenv("TMPDIR", str(tmp))
-    r = g.run(g.Case.load(case))
-    assert list(here.iterdir()) == [] and list(tmp.iterdir()) == []
-    assert r.trace is None and r.numbers["trace"] is None
+    r = run_writing_nothing(case, tmp_path, monkeypatch)
     got = result_arrays(r, "impact")
     assert sorted(got) == sorted(want)          # an impact trace has no /system
     for k, v in got.items():
