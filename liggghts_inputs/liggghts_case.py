@@ -110,18 +110,7 @@ def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dic
         exclude = src["exclude"]
         limit_force = "on" if c["normal_tension"] == "clip" else "off"
         contact_lines, with_history = L.law_of(c).liggghts_lines(c, limit_force)  # xclib.linear / hertz_mindlin
-        # id1 id2 flag f(3) [shear history(3)]; model luding's history starts with its own values, not the shear
-        # (the converter needs the shear only with a dashpot, which the rolling decks refuse)
-        shear_columns = with_history and not resistance_on(c)
-        ncol = 9 if shear_columns else 6
-        record = dict(record_lines="# with a tangential spring the pairs also carry the shear history (the converter's "
-                      "step force)\ncompute         cpl all pair/gran/local id force%s\ndump            dpl all local %d "
-                      "dump.pairs %s" % (" history" if shear_columns else "", every,
-                                         " ".join("c_cpl[%d]" % k for k in range(1, ncol + 1))),
-                      atom_extra="", atom_format="%d" + " %.17g" * 9,
-                      pair_format_line='dump_modify     dpl format "%s"' % " ".join(["%.17g"] * ncol))
-        if resistance_on(c):
-            record = _record_without_pair_dumps(x)
+        record = _record_without_pair_dumps(x) if resistance_on(c) else _record_with_pair_dumps(with_history, every)
         if with_history:
             # A contact that opens loses its spring (seed 002 sec. 2.1: a contact starts with xi = 0; granwave,
             # YADE, LAMMPS). LIGGGHTS zeroes the shear history only in surfacesClose, which pair_gran_base.h
@@ -141,6 +130,18 @@ def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dic
     with open(os.path.join(workdir, "in.case"), "w") as f:
         f.write(deck)
     return facts
+
+
+def _record_with_pair_dumps(with_history: bool, every: int) -> dict:
+    """The record of a deck without rolling or torsion: per-atom dumps and the pairs' rows id1 id2 flag f(3)
+    [shear history(3)] (with a tangential spring: the converter's step force, tangential_at_step)."""
+    ncol = 9 if with_history else 6
+    return dict(record_lines="# with a tangential spring the pairs also carry the shear history (the converter's "
+                "step force)\ncompute         cpl all pair/gran/local id force%s\ndump            dpl all local %d "
+                "dump.pairs %s" % (" history" if with_history else "", every,
+                                   " ".join("c_cpl[%d]" % k for k in range(1, ncol + 1))),
+                atom_extra="", atom_format="%d" + " %.17g" * 9,
+                pair_format_line='dump_modify     dpl format "%s"' % " ".join(["%.17g"] * ncol))
 
 
 def _record_without_pair_dumps(x) -> dict:

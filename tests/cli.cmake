@@ -136,3 +136,14 @@ ${GW} analyze ${CLI_TMP}/damaged_lookup.h5 --json > /dev/null 2> ${CLI_TMP}/dama
 test $rc -eq 2 || { cat ${CLI_TMP}/damaged_lookup.err; echo \"exit code $rc, expected 2\"; exit 1; }; \
 grep -q -- 'damaged_lookup.h5: damaged file: cannot look up .*/time' ${CLI_TMP}/damaged_lookup.err || { cat ${CLI_TMP}/damaged_lookup.err; exit 1; }")
 set_tests_properties("cli: analyze of a damaged trace exits 2 naming the file and the dataset" PROPERTIES LABELS "cli;unit")
+# analyze --pulse-field: a value other than stress | velocity | auto, or any value on a chain trace, exits 2
+# naming the option.
+add_test(NAME "cli: analyze --pulse-field refuses a bad value and a chain trace (exit 2)"
+  COMMAND sh -c "${GW} run ${CMAKE_SOURCE_DIR}/data/cases/crystal_small.toml -o ${CLI_TMP}/pulse_crystal.h5 --quiet > /dev/null && \
+${GW} run ${CMAKE_SOURCE_DIR}/data/cases/oriented20.toml -o ${CLI_TMP}/pulse_chain.h5 --quiet > /dev/null && \
+${GW} analyze ${CLI_TMP}/pulse_crystal.h5 --pulse-field velocity --json > /dev/null && \
+{ ${GW} analyze ${CLI_TMP}/pulse_crystal.h5 --pulse-field force 2> ${CLI_TMP}/pulse_bad.err; test $? -eq 2; } && \
+grep -q -- '--pulse-field must be auto, stress or velocity' ${CLI_TMP}/pulse_bad.err && \
+{ ${GW} analyze ${CLI_TMP}/pulse_chain.h5 --pulse-field velocity 2> ${CLI_TMP}/pulse_chain.err; test $? -eq 2; } && \
+grep -q -- 'pulse_chain.h5: --pulse-field is for crystal traces' ${CLI_TMP}/pulse_chain.err")
+set_tests_properties("cli: analyze --pulse-field refuses a bad value and a chain trace (exit 2)" PROPERTIES LABELS "cli")

@@ -169,7 +169,7 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
     res["load"].append(os.getloadavg()[0])
     # the physics check on the last repetition's output
     layers = CASES[name][2]
-    mode = "S" if re.search(r'(?m)^mode = "S"', open(case_path).read()) else "P"
+    mode = T.excitation(T.load_case(case_path)[0])["mode"]
     sanity = {}
     ref = last_dir.get("granwave")
     ref_trace = os.path.join(ref, "traces.h5") if ref else None

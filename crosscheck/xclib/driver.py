@@ -110,17 +110,19 @@ def crystal_source(x: SimpleNamespace) -> dict:
     fixed wall layer and the crystal, not moved at a constant velocity), the neighbour exclusions
     (pairs of two fixed particles; with a velocity drive the source (3) feels the wall (2)) and the
     integrated types."""
-    ex = x.ex
-    axis = (0, 0, 1) if ex["mode"] == "P" else (1, 0, 0)
-    vdrive = ex["drive"] != "displacement"
-    if not vdrive:
-        s = float(ex["amplitude"]) * x.lay["d"]
-        exl = "displace_atoms  source move %s %s %s units box" % tuple(g(s * a) for a in axis)
-    else:
-        vv = float(ex["amplitude"])
-        exl = "velocity        source set %s %s %s units box" % tuple(g(vv * a) for a in axis)
-    return dict(excitation_line=exl, exclude="exclude type 2 2" if vdrive else
+    vdrive = x.ex["drive"] != "displacement"
+    return dict(excitation_line=excitation_line(x.ex, x.lay["d"]), exclude="exclude type 2 2" if vdrive else
                 "exclude type 2 2 exclude type 2 3 exclude type 3 3", free_types="1 3" if vdrive else "1")
+
+
+def excitation_line(ex: dict, d: float) -> str:
+    """The source's excitation: a displacement step of amplitude * d, or an initial velocity, along z (P) or x (S)."""
+    axis = (0, 0, 1) if ex["mode"] == "P" else (1, 0, 0)
+    if ex["drive"] == "displacement":
+        s = float(ex["amplitude"]) * d
+        return "displace_atoms  source move %s %s %s units box" % tuple(g(s * a) for a in axis)
+    vv = float(ex["amplitude"])
+    return "velocity        source set %s %s %s units box" % tuple(g(vv * a) for a in axis)
 
 
 # ------------------------------------------------------------------------------- benchmark decks
@@ -160,7 +162,7 @@ def layer_deck_values(case: dict, system: dict) -> dict:
                 youngs=c.get("youngs_modulus", 0.0), poisson=c.get("poisson_ratio", 0.0),
                 skin=g(SKIN_OVER_RADIUS * r), neigh_every=NEIGH_EVERY, l0=g(lay["l0"]),
                 origin=g(z0 - 0.5 * lay["l0"]), friction=friction, kn=c["kn"], kt=c["kt"], mu=c["mu_static"],
-                excitation_line=crystal_source(crystal(case, system))["excitation_line"],
+                excitation_line=excitation_line(ex, lay["d"]),
                 integrator="nve/sphere" if friction else "nve", n=f["n"],
                 contact=c, radius=system["radius"])   # rolling and torsion: each law maps or refuses them
 

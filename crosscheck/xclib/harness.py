@@ -135,7 +135,7 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
         pair = "%s-%s" % (ca, cb)
         cur["pair"] = pair
         cur["convention"] = convention_difference(case, traces[ca], traces[cb])
-        field = pulse_field(case, traces[ca], traces[cb]) if model != "chain" else "stress"
+        field = pulse_field(case, traces[ca], traces[cb])
         cur["field"] = None
         if field == "velocity":
             why = next((str(t["attrs"].get("layer_stress", "")) for t in (traces[ca], traces[cb])
@@ -199,7 +199,7 @@ def _plot(case_name, case, traces, path):
     codes = [c for c in CODES if c in traces] + sorted(c for c in traces if c not in CODES)
     if not codes:
         return None
-    field = pulse_field(case, *traces.values()) if "/chain/contact_force" not in traces[codes[0]] else "stress"
+    field = pulse_field(case, *traces.values())
     sig = {c: _traces_for(traces[c], case, field) for c in codes}
     labels = list(sig[codes[0]])
     fig, axes = plt.subplots(len(labels), 2, figsize=(12, 2.6 * len(labels)), squeeze=False)
@@ -461,16 +461,15 @@ def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=No
             except Exception as e:  # noqa: BLE001
                 r["status"], r["detail"] = "failed", "unreadable trace: %s" % e
         # a trace without the judged stress (pulse_field): every code is also measured on the velocity
-        fields = ["stress"] + (["velocity"] if model != "chain" and pulse_field(case, *traces.values()) == "velocity"
-                               else [])
+        fields = ["stress"] + (["velocity"] if pulse_field(case, *traces.values()) == "velocity" else [])
         for code, tr in list(traces.items()):
             for field in fields:
-                if field == "stress" and model != "chain" and _stress_path(case) not in tr:
-                    continue
+                if field == "stress" and pulse_field(case, tr) == "velocity":
+                    continue   # no stress to measure
                 try:
                     (vmeasures if field == "velocity" else measures)[code] = R.measure(
                         res["runs"][code]["trace"], granwave_exe or "granwave",
-                        pulse_field=field if model != "chain" else "auto")
+                        pulse_field="velocity" if field == "velocity" else "auto")
                 except R.RulerError as e:
                     # the traces are still compared; the missing measures are FAIL rows (compare_case)
                     res["runs"][code]["detail"] = "not measurable (%s): %s" % (field, e)

@@ -154,6 +154,8 @@ int cmd_analyze(const Args& args, std::ostream& out) {
       throw InputError(pos[0] + ": --period is for crystal traces (the wavelength of seed 002 sec. 3.4)");
     if (!option_value(args, "", "--wavenumber-speed").empty())
       throw InputError(pos[0] + ": --wavenumber-speed is for crystal traces (the wavelength of seed 002 sec. 3.4)");
+    if (!option_value(args, "", "--pulse-field").empty())
+      throw InputError(pos[0] + ": --pulse-field is for crystal traces (a chain is measured on its contact forces)");
     const auto a = measured(pos[0], [&] { return analysis::analyze_chain(file.chain, {lo, hi}); });
     if (json) {
       out << json_text(analysis::to_json(file, a));
