@@ -1,0 +1,101 @@
+// The packing type's own operations (src/packing): periodic wrapping, z-bins, boundary words, and
+// the cell list of touching pairs against every pair tried.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "core/error.hpp"
+#include "packing/contacts.hpp"
+#include "packing/packing.hpp"
+
+using namespace granwave;
+using namespace granwave::packing;
+
+TEST_CASE("wrap maps periodic axes into [lo, hi) and leaves walls alone", "[packing]") {
+  Box b;
+  b.lo = {-1.0, 0.0, 0.0};
+  b.hi = {1.0, 3.0, 5.0};
+  b.periodic = {true, true, false};
+  const Vec3 w = wrap(b, Vec3(1.5, -0.5, 7.0));
+  CHECK(w.x() == Approx(-0.5));
+  CHECK(w.y() == Approx(2.5));
+  CHECK(w.z() == 7.0);
+  CHECK(wrap(b, Vec3(1.0, 3.0, 0.0)).x() == -1.0);  // hi is the next period's lo
+}
+
+TEST_CASE("z-bins: a particle's bin from its centre at assignment", "[packing]") {
+  Packing p;
+  p.source = "bins";
+  for (double z : {0.05, 0.1, 0.99, 1.0, 2.3}) {
+    Particle q;
+    q.centre = Vec3(0.0, 0.0, z);
+    p.particles.push_back(q);
+  }
+  assign_bins(p, 0.1, 0.45);
+  CHECK(p.bin == std::vector<int>{-1, 0, 1, 2, 4});
+  p.particles[0].centre = Vec3(0.0, 0.0, 5.0);  // moving later does not change the bin
+  CHECK(p.bin[0] == -1);
+  CHECK_THROWS_AS(assign_bins(p, 0.0, 0.0), InputError);
+}
+
+TEST_CASE("boundary words as LAMMPS writes them", "[packing]") {
+  CHECK(parse_boundary("p p f", "x") == std::array<bool, 3>{true, true, false});
+  CHECK(parse_boundary("pp pp fs", "x") == std::array<bool, 3>{true, true, false});
+  CHECK(parse_boundary("pp mm pp", "x") == std::array<bool, 3>{true, false, true});
+  CHECK_THROWS_AS(parse_boundary("pf pp pp", "x"), InputError);
+  CHECK_THROWS_AS(parse_boundary("p p p p", "x"), InputError);
+}
+
+TEST_CASE("touching pairs: the cell list finds exactly the pairs every pair tried finds", "[packing]") {
+  for (bool z_periodic : {true, false}) {
+    Packing p;
+    p.source = "random";
+    p.box.hi = {5.0, 6.0, 7.0};
+    p.box.periodic = {true, true, z_periodic};
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < 300; ++i) {
+      Particle q;
+      q.id = i;
+      q.centre = Vec3(5.0 * u(rng), 6.0 * u(rng), 7.0 * u(rng));
+      q.radius = 0.3 + 0.2 * u(rng);
+      p.particles.push_back(q);
+    }
+    std::vector<Touch> brute;
+    for (std::size_t i = 0; i < p.particles.size(); ++i)
+      for (std::size_t j = i + 1; j < p.particles.size(); ++j) {
+        Vec3 d = p.particles[j].centre - p.particles[i].centre;
+        d.vx -= std::round(d.vx / 5.0) * 5.0;
+        d.vy -= std::round(d.vy / 6.0) * 6.0;
+        if (z_periodic) d.vz -= std::round(d.vz / 7.0) * 7.0;
+        const double reach = p.particles[i].radius + p.particles[j].radius;
+        if (d.norm() < reach) brute.push_back({i, j, reach - d.norm()});
+      }
+    const auto cells = touching_pairs(p);
+    REQUIRE(cells.size() == brute.size());
+    REQUIRE(brute.size() > 100);
+    for (std::size_t k = 0; k < brute.size(); ++k) {
+      CHECK(cells[k].i == brute[k].i);
+      CHECK(cells[k].j == brute[k].j);
+      CHECK(cells[k].overlap == Approx(brute[k].overlap).epsilon(1e-12));
+    }
+  }
+}
+
+TEST_CASE("measure: two spheres of an FCC-like pair, coordination and solid fraction", "[packing]") {
+  Packing p;
+  p.box.hi = {4.0, 4.0, 4.0};
+  for (int i = 0; i < 2; ++i) {
+    Particle q;
+    q.id = i;
+    q.radius = 0.5;
+    q.centre = Vec3(1.0 + 0.99 * i, 1.0, 1.0);
+    p.particles.push_back(q);
+  }
+  const PackingStats s = measure(p);
+  CHECK(s.contacts == 1);
+  CHECK(s.mean_coordination == Approx(1.0));
+  CHECK(s.max_overlap == Approx(0.02));  // 0.01 over the radius 0.5
+  CHECK(s.solid_fraction == Approx(2.0 * 4.0 / 3.0 * M_PI * 0.125 / 64.0));
+  CHECK(s.rattlers == 2);
+}

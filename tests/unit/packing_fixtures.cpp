@@ -1,0 +1,68 @@
+// The packings of data/packings, made by LAMMPS, LIGGGHTS and YADE (each with its script and log),
+// read back by the importers: count, box, radii, a particle named in the file, and that each is
+// jammed (touching pairs and a solid fraction near random close packing).
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "packing/contacts.hpp"
+#include "packing/importers.hpp"
+
+using namespace granwave::packing;
+
+namespace {
+std::string fixture(const std::string& name) { return std::string(GRANWAVE_SOURCE_DIR) + "/data/packings/" + name; }
+
+// Radii made uniform in r0 (1 +- 0.15) with r0 = 0.5 mm, all three scripts.
+void check_radii_and_jamming(const Packing& p, double phi_lo, double phi_hi) {
+  const PackingStats s = measure(p);
+  CHECK(s.r_min >= 0.85 * 5e-4 * (1 - 1e-9));
+  CHECK(s.r_max <= 1.15 * 5e-4 * (1 + 1e-9));
+  CHECK(s.r_min < 0.87 * 5e-4);  // the whole range is drawn
+  CHECK(s.r_max > 1.13 * 5e-4);
+  CHECK(s.solid_fraction > phi_lo);
+  CHECK(s.solid_fraction < phi_hi);
+  // Jammed frictionless spheres: isostatic at 6 contacts per non-rattler, more when compressed.
+  CHECK(s.mean_coordination_nonrattler > 5.5);
+  CHECK(s.rattlers < s.particles / 5);
+  CHECK(s.max_overlap < 0.05);
+}
+}  // namespace
+
+TEST_CASE("fixture lammps_periodic: data file and custom dump of the same packing", "[packing][fixture]") {
+  const Packing data = read_lammps_data(fixture("lammps_periodic/packing.data"), "si", "p p p");
+  REQUIRE(data.particles.size() == 3000);
+  for (int a = 0; a < 3; ++a) {
+    CHECK(data.box.lo[a] == 0.0);
+    CHECK(data.box.hi[a] == 0.0134848865771451);
+    CHECK(data.box.periodic[a]);
+  }
+  const Particle& first = data.particles[0];  // the first Atoms row
+  CHECK(first.id == 1826);
+  CHECK(first.radius == 0.5 * 0.0010002068340778352);
+  CHECK(first.density == 2500.0);
+  CHECK(first.centre.x() == 0.00023954042278858894);
+  CHECK(first.centre.z() == 0.0005369899327610281);
+  REQUIRE(first.velocity);
+  CHECK(first.velocity->y() == 0.00316322428493666);
+  check_radii_and_jamming(data, 0.64, 0.67);
+
+  const Packing dump = read_lammps_dump(fixture("lammps_periodic/packing.dump"), "si");
+  REQUIRE(dump.particles.size() == 3000);
+  CHECK(dump.box.hi[1] == Approx(0.0134848865771451).epsilon(1e-15));
+  std::map<std::int64_t, const Particle*> by_id;
+  for (const auto& p : data.particles) by_id[p.id] = &p;
+  for (const auto& p : dump.particles) {  // 12 significant digits of the scaled coordinates
+    const Particle& q = *by_id.at(p.id);
+    REQUIRE((p.centre - q.centre).norm() < 1e-11 * 0.0135 * 3);
+    REQUIRE(p.radius == Approx(q.radius).epsilon(1e-11));
+  }
+}
+
+TEST_CASE("fixture liggghts_periodic: custom dump", "[packing][fixture]") {
+  const Packing p = read_lammps_dump(fixture("liggghts_periodic/packing.dump"), "si");
+  REQUIRE(p.particles.size() == 2000);
+  CHECK(p.box.periodic == std::array<bool, 3>{true, true, true});
+  check_radii_and_jamming(p, 0.63, 0.66);
+}
