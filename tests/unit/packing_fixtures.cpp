@@ -66,3 +66,21 @@ TEST_CASE("fixture liggghts_periodic: custom dump", "[packing][fixture]") {
   CHECK(p.box.periodic == std::array<bool, 3>{true, true, true});
   check_radii_and_jamming(p, 0.63, 0.66);
 }
+
+TEST_CASE("fixture yade_periodic: yade.export.text with the cell the script wrote", "[packing][fixture]") {
+  std::ifstream cell(fixture("yade_periodic/cell.txt"));
+  std::string comment;
+  std::getline(cell, comment);
+  Box box;
+  REQUIRE(cell >> box.hi[0] >> box.hi[1] >> box.hi[2]);
+  const Packing p = read_yade_text(fixture("yade_periodic/packing.txt"), box);
+  REQUIRE(p.particles.size() == 2000);
+  const Particle& first = p.particles[0];  // "0.000712096	0.00798192	0.00244498	0.000574963"
+  CHECK(first.id == 0);
+  CHECK(first.centre.y() == 0.00798192);
+  CHECK(first.radius == 0.000574963);
+  check_radii_and_jamming(p, 0.63, 0.66);
+  // YADE's own avgNumInteractions at export (log.txt): 6.231. The text keeps 6 digits, so a
+  // few pairs at the edge of contact may go either way.
+  CHECK(measure(p).mean_coordination == Approx(6.231).margin(0.01));
+}
