@@ -23,8 +23,14 @@ Packing read_lammps_dump(const std::string& path, const std::string& units, cons
   TextFile file(path);
   const auto& lines = file.lines();
   std::size_t k = lines.size();
-  for (std::size_t i = 0; i < lines.size(); ++i)
+  for (std::size_t i = 0; i < lines.size(); ++i) {
     if (starts(lines[i], {"ITEM:", "TIMESTEP"})) k = i;  // the last snapshot
+    // dump_modify units yes writes "ITEM: UNITS" and the style before each TIMESTEP: it must agree.
+    if (starts(lines[i], {"ITEM:", "UNITS"}) && i + 1 < lines.size() &&
+        (lines[i + 1].words.size() != 1 || lines[i + 1].words[0] != units))
+      throw InputError(file.at(lines[i + 1]) + ": the dump says units \"" + lines[i + 1].text + "\", the caller \"" +
+                       units + "\" (allowed: the same)");
+  }
   if (k == lines.size())
     throw InputError(path + ": no \"ITEM: TIMESTEP\" line: not a LAMMPS or LIGGGHTS text dump "
                             "(allowed: dump style custom, text)");
@@ -60,6 +66,8 @@ Packing read_lammps_dump(const std::string& path, const std::string& units, cons
       }
       have_box = true;
       k += 3;
+    } else if (starts(line, {"ITEM:", "UNITS"}) || starts(line, {"ITEM:", "TIME"})) {
+      ++k;  // one value line (dump_modify units / time yes), units checked above
     } else if (starts(line, {"ITEM:", "ATOMS"})) {
       atoms_line = k;
       for (std::size_t c = 2; c < line.words.size(); ++c) column[line.words[c]] = c - 2;

@@ -83,6 +83,14 @@ TEST_CASE("LAMMPS dump: the last snapshot, scaled and unwrapped coordinates, wra
   CHECK(s.particles[0].radius == Approx(0.5e-6));
 }
 
+TEST_CASE("LAMMPS dump: ITEM: UNITS and ITEM: TIME of dump_modify, units checked", "[packing][import]") {
+  const std::string body = "ITEM: TIME\n0.5\nITEM: TIMESTEP\n100\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"
+                           "0 4\n0 4\n0 4\nITEM: ATOMS id radius x y z\n1 0.5 1 1 1\n";
+  const auto path = write("dump_units.dump", "ITEM: UNITS\ncgs\n" + body);
+  CHECK(read_lammps_dump(path, "cgs").box.hi[0] == Approx(0.04));
+  REQUIRE_THROWS_WITH(read_lammps_dump(path, "si"), Contains(path + ":2: the dump says units \"cgs\", the caller \"si\""));
+}
+
 TEST_CASE("YADE text export: #format line, comments, ids by order or from the file", "[packing][import]") {
   const Packing p = read_yade_text(write("yade.txt", "#format x_y_z_r\n# a comment\n0.5\t0.5\t0.5\t0.5\n"
                                                      "4.5\t2.5\t2.5\t0.4\n"), cube(4.0));
