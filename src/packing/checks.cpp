@@ -36,7 +36,7 @@ void check_packing(const Packing& packing, const Limits& limits) {
   const Box& box = packing.box;
   const auto& ps = packing.particles;
   for (int a = 0; a < 3; ++a)
-    if (!(box.hi[a] > box.lo[a]) || !std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a]))
+    if (!(box.hi[a] > box.lo[a]) || !std::isfinite(box.length(a)))
       throw InputError(packing.source + ": the box's " + axis_name(a) + " bounds [" + num(box.lo[a]) + ", " +
                        num(box.hi[a]) + "] are not a finite interval with hi > lo");
   for (int a = 0; a < 2; ++a)

@@ -31,13 +31,15 @@ std::vector<Touch> touching_pairs(const Packing& packing) {
     } else {
       len[a] = box.length(a);
     }
-    n[a] = std::max(1, static_cast<int>(std::floor(len[a] / rc)));
+    // Cells at least rc wide; at most about 2 N^(1/3) per axis (wider cells only cost time).
+    const double most = 2.0 * std::cbrt(static_cast<double>(ps.size())) + 2.0;
+    n[a] = static_cast<int>(std::clamp(std::floor(len[a] / rc), 1.0, most));
   }
   auto coord = [](const Vec3& v, int a) { return a == 0 ? v.x() : a == 1 ? v.y() : v.z(); };
   auto cell_index = [&](const Vec3& c) {
     std::array<int, 3> k{};
     for (int a = 0; a < 3; ++a)
-      k[a] = std::clamp(static_cast<int>(std::floor((coord(c, a) - lo[a]) / len[a] * n[a])), 0, n[a] - 1);
+      k[a] = static_cast<int>(std::clamp(std::floor((coord(c, a) - lo[a]) / len[a] * n[a]), 0.0, n[a] - 1.0));
     return k;
   };
   const std::size_t ncell = static_cast<std::size_t>(n[0]) * n[1] * n[2];

@@ -15,9 +15,10 @@ Vec3 wrap(const Box& box, Vec3 v) {
   for (int a = 0; a < 3; ++a) {
     if (!box.periodic[a]) continue;
     const double L = box.length(a);
-    double x = *c[a] - std::floor((*c[a] - box.lo[a]) / L) * L;
-    if (x >= box.hi[a]) x -= L;  // rounding of a point just below hi
-    if (x < box.lo[a]) x = box.lo[a];
+    double r = std::fmod(*c[a] - box.lo[a], L);  // exact, whatever the distance
+    if (r < 0.0) r += L;
+    double x = box.lo[a] + r;
+    if (!(x < box.hi[a])) x = box.lo[a];  // rounding of a point just below the period
     *c[a] = x;
   }
   return v;
