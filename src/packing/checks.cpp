@@ -23,9 +23,14 @@ std::string num(double v) {
 }  // namespace
 
 std::string where(const Packing& packing, const Particle& p) {
-  std::string s = packing.source;
-  if (p.line > 0) s += ":" + std::to_string(p.line);
-  return s + ", particle id " + std::to_string(p.id);
+  std::string s = packing.source;  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "x" + string&&
+  if (p.line > 0) {
+    s += ':';
+    s += std::to_string(p.line);
+  }
+  s += ", particle id ";
+  s += std::to_string(p.id);
+  return s;
 }
 
 void wrap_into_box(Packing& packing) {

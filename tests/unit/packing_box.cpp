@@ -11,7 +11,7 @@
 using namespace granwave;
 using namespace granwave::packing;
 
-TEST_CASE("wrap maps periodic axes into [lo, hi) and leaves walls alone", "[packing]") {
+TEST_CASE("wrap maps periodic axes into the box, from lo up to but not hi, and leaves walls alone", "[packing]") {
   Box b;
   b.lo = {-1.0, 0.0, 0.0};
   b.hi = {1.0, 3.0, 5.0};

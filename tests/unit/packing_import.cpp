@@ -91,7 +91,7 @@ TEST_CASE("LAMMPS dump: ITEM: UNITS and ITEM: TIME of dump_modify, units checked
   REQUIRE_THROWS_WITH(read_lammps_dump(path, "si"), Contains(path + ":2: the dump says units \"cgs\", the caller \"si\""));
 }
 
-TEST_CASE("YADE text export: #format line, comments, ids by order or from the file", "[packing][import]") {
+TEST_CASE("YADE text export: the format line, comments, ids by order or from the file", "[packing][import]") {
   const Packing p = read_yade_text(write("yade.txt", "#format x_y_z_r\n# a comment\n0.5\t0.5\t0.5\t0.5\n"
                                                      "4.5\t2.5\t2.5\t0.4\n"), cube(4.0));
   REQUIRE(p.particles.size() == 2);
