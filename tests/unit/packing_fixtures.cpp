@@ -2,6 +2,7 @@
 // read back by the importers: count, box, radii, a particle named in the file, and that each is
 // jammed (touching pairs and a solid fraction near random close packing).
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <string>
@@ -64,6 +65,15 @@ TEST_CASE("fixture liggghts_periodic: custom dump", "[packing][fixture]") {
   const Packing p = read_lammps_dump(fixture("liggghts_periodic/packing.dump"), "si");
   REQUIRE(p.particles.size() == 2000);
   CHECK(p.box.periodic == std::array<bool, 3>{true, true, true});
+  // LIGGGHTS writes the bounds with 6 digits: the deck's box edge was 0.0118639681699891 m.
+  CHECK(p.box.lo[0] == 0.0);
+  CHECK(p.box.hi[2] == 0.011864);
+  const Particle& first = p.particles[0];  // "1892 1 0.000483905853647 0.000131271228764 ..."
+  CHECK(first.id == 1892);
+  CHECK(first.radius == 0.000483905853647);
+  CHECK(first.centre.x() == 0.000131271228764);
+  CHECK(first.centre.z() == 0.000580215111537);
+  CHECK(std::isnan(first.density));  // the dump has no density column
   check_radii_and_jamming(p, 0.63, 0.66);
 }
 
