@@ -1,17 +1,26 @@
 #!/usr/bin/env bash
 # Install what is missing (Debian 12 packages only), then configure and build granwave (Release).
-# Used by both README commands; safe to run again (installs nothing that is already there).
+#   bash scripts/setup.sh           the program and the Python module, installed (README command 1)
+#   bash scripts/setup.sh --tests   the same, and the test executables, the benchmarks and the tools
+#                                   the tests need (README command 2, scripts/test-all.sh)
+# Safe to run again (installs nothing that is already there; a second build compiles only what changed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+tests=OFF
+if [[ ${1:-} == --tests ]]; then tests=ON; elif [[ -n ${1:-} ]]; then echo "usage: $0 [--tests]" >&2; exit 2; fi
 
+# The program, the module, the default run and the cross-code check (YADE, LIGGGHTS, LAMMPS).
 packages=(
   build-essential cmake pkg-config git
-  libeigen3-dev libhdf5-dev hdf5-tools catch2 libtomlplusplus-dev nlohmann-json3-dev libfftw3-dev libbenchmark-dev
-  python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pytest
-  python3-dev python3-pybind11 pybind11-dev python3-tqdm python3-nbconvert python3-ipykernel
+  libeigen3-dev libhdf5-dev hdf5-tools libtomlplusplus-dev nlohmann-json3-dev libfftw3-dev
+  python3-numpy python3-h5py python3-matplotlib python3-scipy
+  python3-dev python3-pybind11 pybind11-dev python3-tqdm
   yade liggghts lammps libopenmpi-dev openmpi-bin
-  clang libclang-rt-14-dev ccache
 )
+# The tests only: Catch2, pytest, the notebook's runner, clang for libFuzzer, ccache.
+if [[ $tests == ON ]]; then
+  packages+=(catch2 libbenchmark-dev python3-pytest python3-nbconvert python3-ipykernel clang libclang-rt-14-dev ccache)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -25,8 +34,9 @@ if ((${#missing[@]})); then
   $SUDO apt-get install -y -q "${missing[@]}"
 fi
 
-echo "==> building granwave (Release) in build/"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
+echo "==> building granwave (Release) in build/$([[ $tests == ON ]] && echo ', with the tests' || echo ': the program and the Python module')"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests \
+  > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 cmake --build build -j"$(nproc)"
 
 # The program on PATH and the Python module where /usr/bin/python3 finds it (CMAKE_INSTALL_PREFIX,

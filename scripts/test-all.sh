@@ -7,7 +7,7 @@
 #      module granwave (tests/python, against the program); the example notebook, executed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh --tests
 jobs=$(nproc)
 
 echo "==> sanitizer build (ASan + UBSan) in build-sanitize/"

@@ -48,6 +48,11 @@ set_tests_properties("cli: sweep --threads -3 names the option and its range" PR
 include(${CMAKE_SOURCE_DIR}/tests/cli/guards.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/ruler.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/law_registry.cmake)
+# ARCHITECTURE.md's "only X includes Y" claims against the #include lines of src/ and python/ (one row each in
+# tests/cli/include_claims.py, with the rules that forbid an include).
+add_test(NAME "cli: ARCHITECTURE.md's include claims hold"
+  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/cli/include_claims.py ${CMAKE_SOURCE_DIR})
+set_tests_properties("cli: ARCHITECTURE.md's include claims hold" PROPERTIES LABELS "cli")
 include(${CMAKE_SOURCE_DIR}/tests/cli/impact.cmake)
 # granwave theory: the lattice-dynamics part (issue 15). Bad grid refused; JSON keys present for a
 # Bravais packing, omitted with a note (exit 0) for a polydisperse one.

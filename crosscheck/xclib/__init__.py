@@ -17,8 +17,21 @@ Modules (each imports only those listed before it, so there is no import cycle):
   sweepmath   -- sweep maths and tables (derived cases, peaks at positions, pairwise differences)
   conventions -- the contact-law conventions traces record; differences; granwave's convention twins
   runners     -- running each code in a fresh directory with a timeout; results kept for resuming
-  impactcheck -- `crosscheck run` on impact cases: judged against the closed forms and granwave, report, figures
-  sweep       -- `crosscheck sweep damping|friction`
-  harness     -- `crosscheck run`: cases and suites, comparison, report
+  impact_judge -- an impact case's rows: each code against the closed forms, Mindlin's compliance and granwave
+  impact_report -- the impact cases' report (impact.md: deviation tables, psi2 table, rows, verdict)
+  impact_figures -- the impact cases' figures (Chung & Ooi's panels)
+  impactcheck -- `crosscheck run` on impact cases: each code run and measured, then judged, reported, drawn
+  sweep_point -- one sweep point: its derived case run by every code through the harness's steps; its pairs
+  sweep_judge -- a sweep's pairs of codes over its points against [sweep.<name>]; failed runs
+  sweep_report -- a sweep's Markdown (head, verdict, wall times) and JSON
+  sweep_plots -- a sweep's figures
+  sweep_damping -- `crosscheck sweep damping`: first peaks over gamma_0
+  sweep_friction -- `crosscheck sweep friction`: P and S speeds over kt/k
+  sweep_rolling -- `crosscheck sweep rolling`: speeds, peaks and the dispersion ridge over k_r/k_t
+  sweep       -- `crosscheck sweep`: the command's checks and its three sweeps
+  judge       -- one case of `crosscheck run`: every pair of codes' traces and measures against the tolerances
+  report      -- `crosscheck run`'s report.md and overlays
+  harness     -- `crosscheck run` as a function (check): cases and suites run, measured, judged, reported
+  cli         -- the command line `crosscheck run|sweep`
 """
 SCHEMA_VERSION = 1

@@ -10,13 +10,13 @@ Bad input raises ValueError with the program's message (the one `granwave check`
 run and sweep handle Ctrl-C (KeyboardInterrupt) within a fraction of a second and report progress.
 A run's arrays are its own series in memory (no copies); run(out=None) writes no file at all.
 """
-import json
-import os
-import tempfile
-
+# Modules under underscore names: dir(granwave) shows the API only (tests/python/test_granwave.py).
+import json as _json
+import os as _os
+import tempfile as _tempfile
 
 from . import _granwave
-from ._config import DATA_DIR
+from ._config import DATA_DIR as _DATA_DIR
 
 __all__ = ["Case", "Result", "data_path", "run", "analyze", "theory", "build", "sweep"]
 
@@ -34,9 +34,9 @@ def data_path(relative=""):
 
     Installed: PREFIX/share/granwave/...; from a build tree: the source tree's data/.
     Raises FileNotFoundError when there is no such file."""
-    p = os.path.join(DATA_DIR, relative)
-    if not os.path.exists(p):
-        raise FileNotFoundError(f"{relative}: not among granwave's data in {DATA_DIR}")
+    p = _os.path.join(_DATA_DIR, relative)
+    if not _os.path.exists(p):
+        raise FileNotFoundError(f"{relative}: not among granwave's data in {_DATA_DIR}")
     return p
 
 
@@ -54,7 +54,7 @@ class Case:
     @classmethod
     def load(cls, path):
         """Read and check a case file (ValueError: the program's message naming the file and key)."""
-        path = os.fspath(path)
+        path = _os.fspath(path)
         try:
             with open(path, "rb") as f:
                 text = f.read().decode("utf-8", errors="surrogateescape")
@@ -97,11 +97,11 @@ class Case:
 
     def _file(self, tmp):
         """A file holding this case: its own file when unchanged, else a copy in tmp."""
-        if os.path.isfile(self.path):
+        if _os.path.isfile(self.path):
             with open(self.path, "rb") as f:
                 if f.read().decode("utf-8", errors="surrogateescape") == self.text:
                     return self.path
-        return self.save(os.path.join(tmp, f"{self.name}.toml"))
+        return self.save(_os.path.join(tmp, f"{self.name}.toml"))
 
     def __repr__(self):
         return f"Case({self.name!r}, model={self.model!r}, path={self.path!r})"
@@ -202,20 +202,20 @@ def run(case, out=None, system=None, progress=None):
     callback, bar = _progress(progress, case.name, "steps")
     in_memory = out is None
     # without out, the path names the trace in messages only
-    path = f"{case.name}.traces.h5 (not written)" if in_memory else os.fspath(out)
+    path = f"{case.name}.traces.h5 (not written)" if in_memory else _os.fspath(out)
     try:
-        text, arrays = _granwave.run(case.text, case.path, path, os.fspath(system) if system else "", callback,
+        text, arrays = _granwave.run(case.text, case.path, path, _os.fspath(system) if system else "", callback,
                                      in_memory=in_memory)
     except KeyboardInterrupt:
         # A Ctrl-C after the time loop (while the file was written) is handled here: no file either.
         for p in (path, path + ".tmp") if not in_memory else ():
-            if os.path.exists(p):
-                os.remove(p)
+            if _os.path.exists(p):
+                _os.remove(p)
         raise
     finally:
         if bar:
             bar.close()
-    return Result(json.loads(text), arrays, None if in_memory else path)
+    return Result(_json.loads(text), arrays, None if in_memory else path)
 
 
 def _options(opts):
@@ -236,22 +236,22 @@ def analyze(trace, **options):
         if trace.trace is None:
             raise ValueError("analyze: this Result has no trace file (run it with out=...); its .analysis is there")
         trace = trace.trace
-    return json.loads(_granwave.analyze([os.fspath(trace), "--json", *_options(options)]))
+    return _json.loads(_granwave.analyze([_os.fspath(trace), "--json", *_options(options)]))
 
 
 def theory(case, layers=None, nk=None):
     """`granwave theory CASE --json`: eq. (10)'s tensor, the lattice dynamics with rotations and
     prestress (long-wave speeds, dispersion), V_p, V_s, omega_0; for impact cases Hertz and Coulomb."""
     case = _case(case)
-    with tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
-        return json.loads(_granwave.theory([case._file(tmp), "--json", *_options({"layers": layers, "nk": nk})]))
+    with _tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
+        return _json.loads(_granwave.theory([case._file(tmp), "--json", *_options({"layers": layers, "nk": nk})]))
 
 
 def build(case, out=None):
     """`granwave build CASE -o OUT`: the resolved system file (default NAME.system.h5); its path."""
     case = _case(case)
-    out = os.fspath(out) if out is not None else f"{case.name}.system.h5"
-    with tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
+    out = _os.fspath(out) if out is not None else f"{case.name}.system.h5"
+    with _tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
         _granwave.build([case._file(tmp), "-o", out])
     return out
 
@@ -270,9 +270,9 @@ def sweep(study, out=None, threads=None, limit=None, progress=None):
     the program leaves after a kill: neither OUT nor OUT.tmp, the finished runs committed under
     OUT.parts/ (no temporary file there either), which the same call again resumes from. A Ctrl-C
     once every run is done lets the study file be written, then raises."""
-    study = os.fspath(study)
-    out = os.fspath(out) if out is not None else os.path.splitext(os.path.basename(study))[0] + ".h5"
-    callback, bar = _progress(progress, os.path.basename(study), "runs")
+    study = _os.fspath(study)
+    out = _os.fspath(out) if out is not None else _os.path.splitext(_os.path.basename(study))[0] + ".h5"
+    callback, bar = _progress(progress, _os.path.basename(study), "runs")
     try:
         text = _granwave.sweep([study, "-o", out, "--quiet", *_options({"threads": threads, "limit": limit})], callback)
     finally:

@@ -7,10 +7,10 @@
 
 The other codes (YADE, LIGGGHTS, LAMMPS) run as programs, each in a fresh directory of the report.
 """
-import os
-import sys
+import os as _os
+import sys as _sys
 
-from ._config import DATA_DIR
+from ._config import DATA_DIR as _DATA_DIR
 
 __all__ = ["run", "Verdict", "xclib_dir"]
 
@@ -18,19 +18,19 @@ __all__ = ["run", "Verdict", "xclib_dir"]
 def xclib_dir():
     """The crosscheck/ directory holding xclib: the source tree's (next to python/granwave/, or
     next to the data/ a build tree's module uses), else the installed PREFIX/share/granwave/crosscheck."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    for c in (os.path.join(here, "..", "..", "crosscheck"),       # python/granwave/ of a source tree
-              os.path.join(os.path.dirname(DATA_DIR), "crosscheck"),   # build tree: DATA_DIR is SOURCE/data
-              os.path.join(DATA_DIR, "crosscheck")):                   # installed: share/granwave/crosscheck
-        if os.path.isfile(os.path.join(c, "xclib", "harness.py")):
-            return os.path.normpath(c)
-    raise ImportError("granwave.crosscheck: no crosscheck/xclib in the source tree or in " + DATA_DIR)
+    here = _os.path.dirname(_os.path.abspath(__file__))
+    for c in (_os.path.join(here, "..", "..", "crosscheck"),       # python/granwave/ of a source tree
+              _os.path.join(_os.path.dirname(_DATA_DIR), "crosscheck"),   # build tree: DATA_DIR is SOURCE/data
+              _os.path.join(_DATA_DIR, "crosscheck")):                   # installed: share/granwave/crosscheck
+        if _os.path.isfile(_os.path.join(c, "xclib", "harness.py")):
+            return _os.path.normpath(c)
+    raise ImportError("granwave.crosscheck: no crosscheck/xclib in the source tree or in " + _DATA_DIR)
 
 
 def _harness():
     d = xclib_dir()
-    if d not in sys.path:
-        sys.path.insert(0, d)   # the drivers import xclib from the same directory
+    if d not in _sys.path:
+        _sys.path.insert(0, d)   # the drivers import xclib from the same directory
     from xclib import harness
     return harness
 
@@ -52,6 +52,6 @@ def run(cases, codes=("granwave", "lammps"), report=None, **options):
     (case, status, detail), .failing, .report (report.md), .report_dir, .results; its repr is the
     table `crosscheck run` prints. ValueError: an unknown code (named), an unknown suite, no case.
     """
-    if isinstance(cases, (str, os.PathLike)) or hasattr(cases, "text"):
+    if isinstance(cases, (str, _os.PathLike)) or hasattr(cases, "text"):
         cases = [cases]
     return _H.check(list(cases), codes, report=report, **options)

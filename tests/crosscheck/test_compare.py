@@ -97,7 +97,7 @@ def _chain_trace(scale):
 
 
 def test_expected_pairs_only_exempt_those_pairs_and_a_missing_ruler_is_a_fail_row():
-    from xclib import harness as Hh
+    from xclib import judge as Hh
     tol = {"default": {"chain": {"trace_max_rel": 1e-4, "trace_l2_rel": 1e-4}},
            "case": {"c": {"expected_disagreement": "granwave differs on purpose",
                           "expected_pairs": ["granwave-yade", "granwave-liggghts"]}}}
@@ -126,7 +126,7 @@ def test_a_lever_arm_mismatch_with_friction_is_a_convention_difference_not_a_fai
     """The traces record the lever arm of f^t; YADE and LIGGGHTS can only take the contact point.
     Two runs with different arms are reported as EXPECTED-DIFF with the reason, whatever the
     tolerance, and only when friction makes the arm matter."""
-    from xclib import harness as Hh
+    from xclib import judge as Hh
     case = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 1e5}}
     a = {"attrs": {"lever_arm": "radius"}}
     b = {"attrs": {"lever_arm": "contact_point"}}
@@ -140,7 +140,7 @@ def test_a_lever_arm_mismatch_with_friction_is_a_convention_difference_not_a_fai
 
 
 def test_tension_and_coulomb_conventions_matter_only_where_a_dashpot_can_pull():
-    from xclib import harness as Hh
+    from xclib import judge as Hh
     damped = {"case": {"model": "crystal"}, "contact": {"kn": 1e5, "kt": 1e5, "gamma_n": 0.1}}
     yade = {"attrs": {"lever_arm": "contact_point", "normal_tension": "clip", "coulomb_normal": "magnitude"}}
     gw = {"attrs": {"lever_arm": "contact_point", "normal_tension": "allow", "coulomb_normal": "compressive"}}
@@ -175,7 +175,7 @@ def _s_wave_trace(scale, with_stress, c=218.5):
 def test_a_trace_without_the_stress_is_judged_on_the_layer_velocity():
     """A pair in which one trace does not record the judged stress is compared on the layer velocity (its
     differences seen there), with the velocity measures; a pair that both record stays on the stress."""
-    from xclib import harness as Hh
+    from xclib import judge as Hh
     tol = {"default": {"crystal": {"trace_max_rel": 1e-6, "trace_l2_rel": 1e-6, "peak_rel": 1e-6,
                                    "arrival_abs": 1e-9, "speed_rel": 1e-6}}}
     case = {"excitation": {"mode": "S"}}

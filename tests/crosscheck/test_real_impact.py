@@ -1,5 +1,5 @@
 """Real runs of Chung & Ooi's contact-level tests (data/impact) in granwave, YADE, LIGGGHTS and LAMMPS,
-judged by `crosscheck run` against the closed forms and against granwave (crosscheck/xclib/impactcheck.py).
+judged by `crosscheck run` against the closed forms and against granwave (crosscheck/xclib/impactcheck.py, impact_judge.py).
 One material per test, the sliding regime for the oblique tests (where the closed form holds); about a
 minute on one core.
 

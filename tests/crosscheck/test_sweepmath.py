@@ -5,7 +5,9 @@ import tomllib
 import numpy as np
 import pytest
 
-from xclib import sweep as S
+from xclib import sweep_judge as J
+from xclib import sweep_point as P
+from xclib import sweep_report as MD
 from xclib import sweepmath as M
 
 import liggghts_case as L
@@ -145,17 +147,17 @@ def test_pairs_on_first_applies_the_correction_before_reordering():
 
 
 def test_sweep_values_are_refused_with_the_option_and_range():
-    assert S._parse_values("", "--values") is None
-    assert S._parse_values("0,0.5,2", "--values") == [0.0, 0.5, 2.0]
+    assert P.parse_values("", "--values") is None
+    assert P.parse_values("0,0.5,2", "--values") == [0.0, 0.5, 2.0]
     for bad, words in (("abc", "not a number"), ("-1", ">= 0"), ("inf", "finite")):
         with pytest.raises(ValueError) as e:
-            S._parse_values(bad, "--values")
+            P.parse_values(bad, "--values")
         assert "--values" in str(e.value) and words in str(e.value)
 
 
 def test_a_code_that_failed_at_any_point_fails_the_sweep():
     points = [dict(runs={"granwave": dict(status="ok"), "yade": dict(status="ok")}),
               dict(runs={"granwave": dict(status="ok"), "yade": dict(status="timeout")})]
-    rows = S._run_failures(points, ["granwave", "yade"])
+    rows = J.run_failures(points, ["granwave", "yade"])
     assert len(rows) == 1 and rows[0][0] == "yade" and rows[0][4] == "FAIL" and "1 of 2 (timeout)" in rows[0][1]
-    assert S._verdict_md([], rows, "why", {}) == 1
+    assert MD.verdict_md([], rows, "why", {}) == 1

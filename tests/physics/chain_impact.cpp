@@ -104,6 +104,7 @@ t_end = 1e-4
   CHECK_THAT(m.max_overlap, WithinRel(th.max_overlap, 1e-4));
   CHECK_THAT(m.peak_force, WithinRel(th.peak_force, 1e-4));
   CHECK_THAT(m.contact_time, WithinRel(th.contact_time, 1e-4));
-  // docs/design.md §5: the correct wall peak is 123.2 N (YADE's R/2 gives 107.2 N).
+  // docs/validation.md, "Facts measured in YADE and LIGGGHTS": the correct wall peak is 123.2 N
+  // (YADE's R/2 gives 107.2 N).
   CHECK_THAT(m.peak_force, WithinRel(123.2, 1e-3));
 }

@@ -1,7 +1,7 @@
-// oriented20 (data/cases/oriented20.toml) against YADE and LIGGGHTS (docs/design.md §5,
-// docs/design.md §3): both codes gave these to 3 decimals at dt = 2e-8 s. Measured with the measures of
-// src/analysis (first_peak, leading_pulse_max, front_speed), at the case's dt after showing that
-// halving dt changes none of them beyond a tenth of the tolerance.
+// oriented20 (data/cases/oriented20.toml) against YADE and LIGGGHTS (docs/validation.md, "Facts measured
+// in YADE and LIGGGHTS"; docs/design.md §3): both codes gave these to 3 decimals at dt = 2e-8 s.
+// Measured with the measures of src/analysis (first_peak, leading_pulse_max, front_speed), at the
+// case's dt after showing that halving dt changes none of them beyond a tenth of the tolerance.
 #include <catch2/catch.hpp>
 
 #include "analysis/measures.hpp"

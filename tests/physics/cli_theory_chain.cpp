@@ -1,6 +1,6 @@
 // The analysis on a real chain trace: oriented20 (seed 001) run by granwave and measured with the
 // same ruler the crosscheck uses; reference numbers from YADE and LIGGGHTS
-// (docs/design.md §5: they agree to 5e-5 N).
+// (docs/validation.md, "Facts measured in YADE and LIGGGHTS": they agree to 5e-5 N).
 #include <catch2/catch.hpp>
 
 #include <filesystem>

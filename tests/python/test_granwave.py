@@ -317,3 +317,17 @@ def test_installed_module_found_from_outside_the_repository(tmp_path):
     where, v_half_peak = p.stdout.split("\n")[:2]
     assert not where.startswith(ROOT) and "'unit': 'm/s'" in v_half_peak
     assert list(tmp_path.iterdir()) == []  # a run without out= leaves no file
+
+
+def test_the_namespace_holds_the_api_only():
+    """dir(granwave) lists the API (__all__) and underscore names, nothing the package imported for
+    itself (json, os, tempfile once leaked); granwave.crosscheck likewise. A fresh interpreter: this
+    test's own imports must not count."""
+    code = ("import granwave, granwave.crosscheck as x\n"
+            "for m, extra in ((granwave, {'crosscheck'}), (x, set())):\n"
+            "    public = {n for n in dir(m) if not n.startswith('_')}\n"
+            "    print(sorted(public - set(m.__all__) - extra), sorted(set(m.__all__) - public))\n")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.join(BUILD, "python"), os.environ.get("PYTHONPATH", "")]))
+    p = subprocess.run(["/usr/bin/python3", "-c", code], cwd=ROOT, env=env, capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.splitlines() == ["[] []", "[] []"], p.stdout

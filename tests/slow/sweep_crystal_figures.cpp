@@ -53,7 +53,8 @@ TEST_CASE("figures crystal --quick writes every figure and the summary, with num
   CHECK(attr("p0", "theory_v") == Approx(v_p).epsilon(1e-4));
   CHECK(attr("s0", "theory_v") == Approx(v_s).epsilon(1e-4));
   // Measured: the half-peak front runs 0.1-0.3 % ahead of V (its leading edge carries the long
-  // waves; docs/design.md §5: 218.7-218.8 on the full crystal), so 0.5 % bounds it.
+  // waves; docs/validation.md, "Facts measured in YADE and LIGGGHTS": 218.7-218.8 on the full crystal),
+  // so 0.5 % bounds it.
   CHECK(std::abs(attr("p0", "v_half_peak") / v_p - 1.0) < 5e-3);
   CHECK(std::abs(attr("s0", "v_half_peak") / v_s - 1.0) < 5e-3);
   // The sine fit of the dispersion relation: within 3 of its standard errors plus the 1e-3 of the

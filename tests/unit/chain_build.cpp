@@ -31,7 +31,7 @@ TEST_CASE("Hertz constant of eq. (13) and the two-body closed forms", "[chain][h
   // docs/design.md §3: steel-steel K = 6.8978e9, 84.07 N peak (3.63 g beads) and t_c = 3.5187e-5 s at 0.443 m/s.
   const double A_ss = contact::hertz_constant_beads(193e9, 0.30, 4.76e-3, 193e9, 0.30, 4.76e-3);
   CHECK_THAT(A_ss, WithinRel(6.8978e9, 1e-4));
-  // docs/design.md §5: steel-aluminium 3.8211e9 in both codes.
+  // docs/validation.md, "Facts measured in YADE and LIGGGHTS": steel-aluminium 3.8211e9 in both codes.
   CHECK_THAT(contact::hertz_constant_beads(193e9, 0.30, 4.76e-3, 72.4e9, 0.33, 4.76e-3), WithinRel(3.8211e9, 1e-4));
   // Eq. (13) as printed equals (4/3) E* sqrt(R*).
   const double E1 = 193e9, E2 = 72.4e9, n1 = 0.30, n2 = 0.33, R1 = 4.76e-3, R2 = 2.38e-3;
