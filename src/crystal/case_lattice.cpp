@@ -1,3 +1,4 @@
+// The lattice branches of a case's text for the analysis (crystal/case_lattice.hpp).
 #include "crystal/case_lattice.hpp"
 
 #include <exception>

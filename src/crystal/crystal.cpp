@@ -16,6 +16,7 @@
 #include "crystal/guards.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
+#include "crystal/trace_writer.hpp"
 #include "crystal/vtk.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"

@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "crystal/guards.hpp"
+#include "crystal/trace_writer.hpp"
 #include "io/h5.hpp"
 #include "sweep/distributed.hpp"
 #include "theory/crystal_theory.hpp"
