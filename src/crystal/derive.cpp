@@ -4,6 +4,7 @@
 #include "crystal/derive.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -63,7 +64,14 @@ double static_normal_force(const config::Case& c, double a_i, double a_j, double
 std::string contact_law_name(const config::ContactParams& cp) { return config::law_of(cp).name; }
 std::string tangential_history_name(const config::ContactParams& cp) { return config::law_of(cp).history_name(cp); }
 
+namespace {
+std::atomic<long> g_derivations{0};
+}
+
+long derivations() { return g_derivations.load(); }
+
 Derived derive(const config::Case& c) {
+  ++g_derivations;
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
   const config::CrystalCase& k = *c.crystal;
   Derived d;

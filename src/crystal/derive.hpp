@@ -28,8 +28,11 @@ struct Derived {
   double delta_max = 0.0;               // the overlap bound of the guards (initial + the source's)
   long steps = 0, sample_every = 1;     // time steps, steps between samples
 };
-// Throws InputError for refused cases (stability, geometry, contact parameters).
+// Throws InputError for refused cases (stability, geometry, contact parameters). A run derives its
+// case once (crystal::run: in the guards, then handed on); derivations() counts the calls in this
+// process, for the test that says so.
 Derived derive(const config::Case& c);
+long derivations();
 
 // The case's contact between two particles of the mean radius at overlap delta: normal force,
 // tangent stiffnesses, normal damping (linear law: kn delta, kn, kt, gamma_n at any delta).

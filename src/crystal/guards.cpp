@@ -27,7 +27,7 @@ constexpr double kFixedBytes = 20e6, kBytesPerParticle = 1500.0, kSeriesFactor =
 
 }  // namespace
 
-Assessment assess(const config::Case& c, const ResourceLimits& limits) {
+Assessment assess(const config::Case& c, const ResourceLimits& limits, std::optional<Derived>* derived) {
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
   const config::CrystalCase& k = *c.crystal;
   Assessment a;
@@ -41,6 +41,7 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits) {
     if (!a.refusals.empty()) return a;
   }
   const Derived d = derive(c);  // refuses bad contact parameters (overdamped, negative, ...)
+  if (derived) *derived = d;
   ResourceEstimate& e = a.estimate;
   const double layers = k.cells[2];
   const double n = static_cast<double>(k.cells[0]) * k.cells[1] * layers;

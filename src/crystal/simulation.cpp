@@ -50,7 +50,11 @@ std::array<double, 4> culprit(const Dynamics& dyn) {
 
 RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook,
                    std::shared_ptr<SlabComm> comm, const ProgressHook& progress) {
-  const Derived d = derive(c);
+  return simulate(c, derive(c), packing, hook, std::move(comm), progress);
+}
+
+RunResult simulate(const config::Case& c, const Derived& d, const Packing& packing, const SampleHook& hook,
+                   std::shared_ptr<SlabComm> comm, const ProgressHook& progress) {
   std::optional<SlabPlan> plan;
   if (comm && comm->ranks() > 1) {
     if (hook) throw InputError(c.path + ": output.vtk_every: VTK snapshots are not written by a run split over MPI ranks");

@@ -41,6 +41,9 @@ using ProgressHook = std::function<void(long done, long total)>;
 // the run: every rank calls it with the same case and packing; rank 0's traces are the serial
 // run's, bit for bit, the other ranks' hold only the global series (time, coordination,
 // energies). Throws InputError (crystal.cells[2]) when the ranks cannot split the crystal.
+// `d` is derive(c), when the caller has it (a run derives its case once).
+RunResult simulate(const config::Case& c, const Derived& d, const Packing& packing, const SampleHook& hook = {},
+                   std::shared_ptr<SlabComm> comm = nullptr, const ProgressHook& progress = {});
 RunResult simulate(const config::Case& c, const Packing& packing, const SampleHook& hook = {},
                    std::shared_ptr<SlabComm> comm = nullptr, const ProgressHook& progress = {});
 

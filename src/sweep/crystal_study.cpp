@@ -205,7 +205,7 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   out.packing = crystal::make_packing(out.c);  // relaxed when polydisperse (sec. 2.2 A)
   crystal::ProgressHook stop;
   if (control) stop = [control](long, long) { stop_point(control); };
-  out.run = crystal::simulate(out.c, out.packing, {}, nullptr, stop);
+  out.run = crystal::simulate(out.c, der, out.packing, {}, nullptr, stop);
   if (out.run.failed) throw RunError(out.c.name + ": " + out.run.error);
   const crystal::Traces& tr = out.run.traces;
 
