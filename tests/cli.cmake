@@ -48,6 +48,7 @@ set_tests_properties("cli: sweep --threads -3 names the option and its range" PR
 include(${CMAKE_SOURCE_DIR}/tests/cli/guards.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/ruler.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/law_registry.cmake)
+include(${CMAKE_SOURCE_DIR}/tests/cli/observables.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/impact.cmake)
 # granwave theory: the lattice-dynamics part (issue 15). Bad grid refused; JSON keys present for a
 # Bravais packing, omitted with a note (exit 0) for a polydisperse one.

@@ -1,13 +1,16 @@
-// The crystal's observers (crystal/observers.hpp): the layer stress, the coordination, and one
-// sample of every series of the trace at the output interval.
+// The crystal's observers (crystal/observers.hpp): the layer stress, the layers' motion, the
+// coordination, the energies, and one sample of every observable of the table.
 #include "crystal/observers.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 
 #include "crystal/layer_sums.hpp"
+#include "crystal/observables.hpp"
 
 namespace granwave::crystal {
 
@@ -149,16 +152,17 @@ double coordination(const Dynamics& dyn) {
   }
   return particles ? static_cast<double>(contacts) / particles : 0.0;
 }
-// Every observer is a sum per layer over the owned particles or contacts in index order (each
-// layer's sums are complete on the rank owning it), or a total over layers in layer order
-// (Dynamics::energies), or an integer count (coordination). Under a slab plan rank 0 gathers the
-// rows; the other ranks keep the global series only.
-void sample(const Dynamics& dyn, Traces& tr) {
-  const std::size_t nl = tr.nlayers;
-  tr.time.push_back(dyn.time);
-  static thread_local std::vector<double> zz, zx, uz, ux, vz, vx, count;  // no allocation per sample
+void sample_layer_stress(const Dynamics& dyn, double* const* out) {
+  static thread_local std::vector<double> zz, zx;  // no allocation per sample
   layer_stress(dyn, zz, zx);
-  for (auto* f : {&uz, &ux, &vz, &vx, &count}) f->assign(nl, 0.0);
+  std::copy(zz.begin(), zz.end(), out[0]);
+  std::copy(zx.begin(), zx.end(), out[1]);
+}
+
+void sample_layer_motion(const Dynamics& dyn, double* const* out) {
+  const std::size_t nl = static_cast<std::size_t>(dyn.packing().layers);
+  static thread_local std::vector<double> uz, ux, vz, vx;
+  for (auto* f : {&uz, &ux, &vz, &vx}) f->assign(nl, 0.0);
   // The layers' sums side by side (layer_chains); the count of a layer's particles is the
   // length of its list (a sum of 1.0s: the same whole number).
   const double *z = dyn.z.data(), *z0 = dyn.z0.data(), *x = dyn.x.data(), *x0 = dyn.x0.data(),
@@ -171,32 +175,86 @@ void sample(const Dynamics& dyn, Traces& tr) {
                     acc[2] += v_z[p];
                     acc[3] += v_x[p];
                   });
-  for (std::size_t L = 0; L < nl; ++L) count[L] = static_cast<double>(particles.first[L + 1] - particles.first[L]);
+  for (std::size_t L = 0; L < nl; ++L) {
+    const double count = static_cast<double>(particles.first[L + 1] - particles.first[L]);
+    const double per = count > 0.0 ? 1.0 / count : 0.0;
+    out[0][L] = uz[L] * per;
+    out[1][L] = ux[L] * per;
+    out[2][L] = vz[L] * per;
+    out[3][L] = vx[L] * per;
+  }
+}
+
+void sample_coordination(const Dynamics& dyn, double* const* out) { out[0][0] = coordination(dyn); }
+
+void sample_energies(const Dynamics& dyn, double* const* out) {
+  const Dynamics::Energies e = dyn.energies();
+  out[0][0] = e.kinetic;
+  out[1][0] = e.potential;
+  out[2][0] = e.dissipated;
+  out[3][0] = dyn.work_in;
+  out[4][0] = e.verlet_correction;
+}
+
+namespace {
+std::size_t index_of(std::string_view name) {
+  const std::vector<Observable>& all = observables();
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (all[k].name == name) return k;
+  throw std::out_of_range("crystal::Traces: no observable \"" + std::string(name) + "\" (crystal/observables.cpp)");
+}
+}  // namespace
+
+Traces::Traces() : series(observables().size()) {}
+std::vector<double>& Traces::operator[](std::string_view name) { return series.at(index_of(name)); }
+const std::vector<double>& Traces::operator[](std::string_view name) const { return series.at(index_of(name)); }
+
+// Every observer is a sum per layer over the owned particles or contacts in index order (each
+// layer's sums are complete on the rank owning it), or a total over layers in layer order
+// (Dynamics::energies), or an integer count (coordination). Under a slab plan rank 0 gathers the
+// rows; the other ranks keep the global series only.
+void sample(const Dynamics& dyn, Traces& tr) {
+  const std::vector<Observer>& table = observers();
+  const std::vector<Observable>& all = observables();
+  const std::size_t nl = tr.nlayers, stride = std::max<std::size_t>(nl, 1), n = all.size();
+  tr.time.push_back(dyn.time);
+  static thread_local std::vector<double> values;  // [observable][stride], no allocation per sample
+  static thread_local std::vector<double*> out;
+  values.resize(n * stride);
+  std::size_t k = 0;
+  for (const Observer& o : table) {  // every rank calls them in the same order (some are collective)
+    out.clear();
+    for (std::size_t j = 0; j < o.observables.size(); ++j) out.push_back(values.data() + (k + j) * stride);
+    o.sample(dyn, out.data());
+    k += o.observables.size();
+  }
   const SlabPlan* slab = dyn.slab();
   const std::size_t L0 = slab ? slab->first_layer[slab->rank] : 0, L1 = slab ? slab->first_layer[slab->rank + 1] : nl;
-  static thread_local std::vector<double> rows;  // [6][L1 - L0]: this rank's layers, field by field
+  static thread_local std::vector<double> rows;  // [per-layer observables][L1 - L0]: this rank's layers
   rows.clear();
-  for (const auto* f : {&zz, &zx}) rows.insert(rows.end(), f->begin() + L0, f->begin() + L1);
-  for (const auto* f : {&uz, &ux, &vz, &vx})
-    for (std::size_t L = L0; L < L1; ++L) rows.push_back((*f)[L] * (count[L] > 0.0 ? 1.0 / count[L] : 0.0));
+  std::size_t layered = 0;
+  for (std::size_t q = 0; q < n; ++q)
+    if (all[q].shape == Shape::per_layer) {
+      rows.insert(rows.end(), values.begin() + q * stride + L0, values.begin() + q * stride + L1);
+      ++layered;
+    }
   static thread_local std::vector<double> gathered;
   if (slab) slab->comm->gather(rows, gathered);
-  const std::vector<double>& all = slab ? gathered : rows;
-  if (!slab || slab->rank == 0)
+  const std::vector<double>& rows_all = slab ? gathered : rows;
+  const bool keeps_rows = !slab || slab->rank == 0;
+  if (keeps_rows)
     for (int r = 0; r < (slab ? slab->ranks : 1); ++r) {
       const std::size_t a = slab ? slab->first_layer[r] : 0, b = slab ? slab->first_layer[r + 1] : nl;
-      const double* block = all.data() + 6 * a;  // the ranks' blocks follow each other in layer order
-      const std::array out{&tr.stress_zz, &tr.stress_zx, &tr.displacement_z, &tr.displacement_x, &tr.velocity_z,
-                           &tr.velocity_x};
-      for (std::size_t k = 0; k < 6; ++k) out[k]->insert(out[k]->end(), block + k * (b - a), block + (k + 1) * (b - a));
+      const double* block = rows_all.data() + layered * a;  // the ranks' blocks follow each other in layer order
+      std::size_t f = 0;
+      for (std::size_t q = 0; q < n; ++q)
+        if (all[q].shape == Shape::per_layer) {
+          tr.series[q].insert(tr.series[q].end(), block + f * (b - a), block + (f + 1) * (b - a));
+          ++f;
+        }
     }
-  tr.coordination.push_back(coordination(dyn));
-  const Dynamics::Energies e = dyn.energies();
-  tr.kinetic.push_back(e.kinetic);
-  tr.potential.push_back(e.potential);
-  tr.dissipated.push_back(e.dissipated);
-  tr.work_in.push_back(dyn.work_in);
-  tr.verlet_correction.push_back(e.verlet_correction);
+  for (std::size_t q = 0; q < n; ++q)
+    if (all[q].shape == Shape::series) tr.series[q].push_back(values[q * stride]);
 }
 
 }  // namespace granwave::crystal

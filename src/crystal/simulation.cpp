@@ -2,6 +2,8 @@
 // with its samples, its stop rule and its timers.
 #include "crystal/simulation.hpp"
 
+#include "crystal/observables.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -53,38 +55,32 @@ RunResult simulate(const config::Case& c, const Packing& packing, const SampleHo
   return simulate(c, derive(c), packing, hook, std::move(comm), progress);
 }
 
-RunResult simulate(const config::Case& c, const Derived& d, const Packing& packing, const SampleHook& hook,
-                   std::shared_ptr<SlabComm> comm, const ProgressHook& progress) {
-  std::optional<SlabPlan> plan;
-  if (comm && comm->ranks() > 1) {
-    if (hook) throw InputError(c.path + ": output.vtk_every: VTK snapshots are not written by a run split over MPI ranks");
-    plan = plan_slab(packing, list_skin(packing), comm, c.path);
-  }
-  Dynamics dyn(packing, case_model(c.contact, c.crystal->density), d.dt, plan ? &*plan : nullptr);
-  RunResult res;
-  Traces& tr = res.traces;
-  tr.nlayers = static_cast<std::size_t>(packing.layers);
-  // Positions along z: the mean z of each layer's particles in the (relaxed) packing, from that
-  // of the innermost driven layer. A relaxed polydisperse packing is not at the lattice's
-  // (L - F + 1) l0 (crystal_poly2: 1.3e-5 m short at the top, a 2e-5 error in front speeds).
-  {
-    std::vector<double> z_sum(packing.layers, 0.0);
-    std::vector<int> count(packing.layers, 0);
-    for (std::size_t p = 0; p < packing.size(); ++p) {
-      z_sum[packing.layer[p]] += packing.z[p];
-      ++count[packing.layer[p]];
-    }
-    const int driven = packing.fixed_layers - 1;
-    const double z_driven = z_sum[driven] / count[driven];
-    for (int L = 0; L < packing.layers; ++L) tr.layer_z.push_back(z_sum[L] / count[L] - z_driven);
-  }
+namespace {
 
-  // Excitation at t = 0 (secs. 2.2 B, 3.1): a displacement step moves all bottom fixed layers
-  // together; the velocity drive ("an initial velocity as a perturbation of the layer, without
-  // controlling its displacement further on", sec. 3.1) frees the innermost one only, the layers
-  // below it staying fixed as the wall that holds the prestress.
-  // (By global index; `held`: the local indices of those this rank holds, owned or halo: every
-  // rank moves its copies the same way.)
+// Positions along z: the mean z of each layer's particles in the (relaxed) packing, from that
+// of the innermost driven layer. A relaxed polydisperse packing is not at the lattice's
+// (L - F + 1) l0 (crystal_poly2: 1.3e-5 m short at the top, a 2e-5 error in front speeds).
+std::vector<double> layer_positions(const Packing& packing) {
+  std::vector<double> z_sum(packing.layers, 0.0), layer_z;
+  std::vector<int> count(packing.layers, 0);
+  for (std::size_t p = 0; p < packing.size(); ++p) {
+    z_sum[packing.layer[p]] += packing.z[p];
+    ++count[packing.layer[p]];
+  }
+  const int driven = packing.fixed_layers - 1;
+  const double z_driven = z_sum[driven] / count[driven];
+  for (int L = 0; L < packing.layers; ++L) layer_z.push_back(z_sum[L] / count[L] - z_driven);
+  return layer_z;
+}
+
+// Excitation at t = 0 (secs. 2.2 B, 3.1): a displacement step moves all bottom fixed layers
+// together; the velocity drive ("an initial velocity as a perturbation of the layer, without
+// controlling its displacement further on", sec. 3.1) frees the innermost one only, the layers
+// below it staying fixed as the wall that holds the prestress. Returns the energy the run may
+// hold: the stored energy before, plus the work put in.
+// (By global index; `held`: the local indices of those this rank holds, owned or halo: every
+// rank moves its copies the same way.)
+double excite(const config::Case& c, const Packing& packing, Dynamics& dyn) {
   const int first_source_layer =
       c.excitation.drive == config::Excitation::Drive::velocity ? packing.fixed_layers - 1 : 0;
   std::vector<std::size_t> source, held;
@@ -108,20 +104,69 @@ RunResult simulate(const config::Case& c, const Derived& d, const Packing& packi
     // LIGGGHTS' setup and the YADE driver's first step (before: F(0) of the source at rest).
     dyn.compute_forces_of_state();
   }
-  const double budget = e_start + std::abs(dyn.work_in);
+  return e_start + std::abs(dyn.work_in);
+}
 
-  {  // the series' final lengths (no copies as they grow)
-    const std::size_t samples = static_cast<std::size_t>(d.steps / d.sample_every) + 1;
-    if (!plan || plan->rank == 0)  // the rank that keeps the rows
-      for (auto* f : {&tr.stress_zz, &tr.stress_zx, &tr.displacement_z, &tr.displacement_x, &tr.velocity_z,
-                      &tr.velocity_x})
-        f->reserve(samples * tr.nlayers);
-    for (auto* f : {&tr.time, &tr.coordination, &tr.kinetic, &tr.potential, &tr.dissipated, &tr.work_in,
-                    &tr.verlet_correction})
-      f->reserve(samples);
+// The series' final lengths (no copies as they grow); the layer rows on the rank that keeps them.
+void reserve_series(Traces& tr, const Derived& d, bool keeps_rows) {
+  const std::size_t samples = static_cast<std::size_t>(d.steps / d.sample_every) + 1;
+  tr.time.reserve(samples);
+  for (std::size_t k = 0; k < observables().size(); ++k) {
+    if (observables()[k].shape == Shape::series)
+      tr.series[k].reserve(samples);
+    else if (keeps_rows)
+      tr.series[k].reserve(samples * tr.nlayers);
   }
+}
+
+// Energy can only leave (dashpots, friction); growth beyond the budget is an instability: the
+// message naming the particle to blame, or "" while the energy is within it.
+std::string instability(const Dynamics& dyn, const Packing& packing, long step, double e, double budget) {
+  if (std::isfinite(e) && e <= 1.5 * budget + 1e-30) return {};
+  const auto [index, ux, uy, uz] = culprit(dyn);
+  const auto p = static_cast<std::size_t>(index);
+  std::ostringstream msg;
+  msg << "crystal run unstable at step " << step << " (t = " << dyn.time << " s): E_kin + E_pot = " << e
+      << " J against " << budget << " J available; particle " << p << " (layer " << packing.layer[p]
+      << ") has velocity (" << ux << ", " << uy << ", " << uz << ") m/s";
+  return msg.str();
+}
+
+// How the work split: every rank's time-loop wall and CPU seconds and their parts in MPI calls,
+// to rank 0 (serial: the one process's).
+void gather_rank_times(RunResult& res, const SlabPlan* plan, const std::vector<double>& mine) {
+  std::vector<double> all = mine;
+  if (plan) plan->comm->gather(mine, all);
+  for (std::size_t r = 0; 4 * r < all.size(); ++r) {
+    res.rank_seconds.push_back(all[4 * r]);
+    res.rank_message_seconds.push_back(all[4 * r + 1]);
+    res.rank_cpu_seconds.push_back(all[4 * r + 2]);
+    res.rank_message_cpu_seconds.push_back(all[4 * r + 3]);
+  }
+}
+
+}  // namespace
+
+RunResult simulate(const config::Case& c, const Derived& d, const Packing& packing, const SampleHook& hook,
+                   std::shared_ptr<SlabComm> comm, const ProgressHook& progress) {
+  check_output_fields(c);
+  std::optional<SlabPlan> plan;
+  if (comm && comm->ranks() > 1) {
+    if (hook) throw InputError(c.path + ": output.vtk_every: VTK snapshots are not written by a run split over MPI ranks");
+    plan = plan_slab(packing, list_skin(packing), comm, c.path);
+  }
+  Dynamics dyn(packing, case_model(c.contact, c.crystal->density), d.dt, plan ? &*plan : nullptr);
+  RunResult res;
+  Traces& tr = res.traces;
+  tr.nlayers = static_cast<std::size_t>(packing.layers);
+  tr.layer_z = layer_positions(packing);
+  const double budget = excite(c, packing, dyn);
+  reserve_series(tr, d, !plan || plan->rank == 0);
+  const std::vector<double>&kinetic = tr["kinetic"], &potential = tr["potential"];
   sample(dyn, tr);
   if (hook) hook(dyn, 0);
+
+  // The time loop: steps to the next sample, the sample, the stop rule; its phases timed.
   const double cpu0 = process_cpu_seconds();
   const double msg0 = comm ? comm->message_seconds : 0.0, msg_cpu0 = comm ? comm->message_cpu_seconds : 0.0;
   const auto t0 = std::chrono::steady_clock::now();
@@ -135,17 +180,9 @@ RunResult simulate(const config::Case& c, const Derived& d, const Packing& packi
     sample(dyn, tr);
     clock.lap(PhaseTimes::sample);
     if (progress) progress(s, d.steps);
-    const double e = tr.kinetic.back() + tr.potential.back();
-    // Energy can only leave (dashpots, friction); growth beyond the budget is an instability.
-    if (!std::isfinite(e) || e > 1.5 * budget + 1e-30) {
-      const auto [index, ux, uy, uz] = culprit(dyn);
-      const auto p = static_cast<std::size_t>(index);
-      std::ostringstream msg;
-      msg << "crystal run unstable at step " << s << " (t = " << dyn.time << " s): E_kin + E_pot = " << e
-          << " J against " << budget << " J available; particle " << p << " (layer " << packing.layer[p]
-          << ") has velocity (" << ux << ", " << uy << ", " << uz << ") m/s";
+    res.error = instability(dyn, packing, s, kinetic.back() + potential.back(), budget);
+    if (!res.error.empty()) {
       res.failed = true;
-      res.error = msg.str();
       break;
     }
     clock.lap(PhaseTimes::other);
@@ -157,18 +194,9 @@ RunResult simulate(const config::Case& c, const Derived& d, const Packing& packi
   res.seconds = std::chrono::duration<double>(clock.lap(PhaseTimes::other) - t0).count();
   res.steps = dyn.steps;
   res.rebuilds = dyn.rebuilds;
-  {  // how the work split: every rank's times, to rank 0 (serial: the one process's)
-    const std::vector<double> mine{res.seconds, plan ? comm->message_seconds - msg0 : 0.0, process_cpu_seconds() - cpu0,
-                                   plan ? comm->message_cpu_seconds - msg_cpu0 : 0.0};
-    std::vector<double> all = mine;
-    if (plan) plan->comm->gather(mine, all);
-    for (std::size_t r = 0; 4 * r < all.size(); ++r) {
-      res.rank_seconds.push_back(all[4 * r]);
-      res.rank_message_seconds.push_back(all[4 * r + 1]);
-      res.rank_cpu_seconds.push_back(all[4 * r + 2]);
-      res.rank_message_cpu_seconds.push_back(all[4 * r + 3]);
-    }
-  }
+  gather_rank_times(res, plan ? &*plan : nullptr,
+                    {res.seconds, plan ? comm->message_seconds - msg0 : 0.0, process_cpu_seconds() - cpu0,
+                     plan ? comm->message_cpu_seconds - msg_cpu0 : 0.0});
   return res;
 }
 

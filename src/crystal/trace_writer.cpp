@@ -3,9 +3,11 @@
 #include "crystal/trace_writer.hpp"
 
 #include <string>
+#include <vector>
 #include <utility>
 
 #include "config/contact_laws.hpp"
+#include "crystal/observables.hpp"
 #include "io/h5.hpp"
 
 namespace granwave::crystal {
@@ -20,51 +22,43 @@ analysis::CrystalTrace analysis_trace(const config::Case& c, const Packing& pack
   t.fixed_layers = packing.fixed_layers;
   t.mode = c.excitation.mode == config::Excitation::Mode::S ? 'S' : 'P';
   t.mode_source = "case_toml";
-  t.stress_zz = tr.stress_zz;
-  t.stress_zx = tr.stress_zx;
-  t.displacement_z = tr.displacement_z;
-  t.displacement_x = tr.displacement_x;
-  t.velocity_z = tr.velocity_z;
-  t.velocity_x = tr.velocity_x;
-  t.coordination = tr.coordination;
+  // What the analysis measures (analysis/trace_file.hpp), by the table's names.
+  t.stress_zz = tr["layer_stress_zz"];
+  t.stress_zx = tr["layer_stress_zx"];
+  t.displacement_z = tr["layer_displacement_z"];
+  t.displacement_x = tr["layer_displacement_x"];
+  t.velocity_z = tr["layer_velocity_z"];
+  t.velocity_x = tr["layer_velocity_x"];
+  t.coordination = tr["coordination"];
   return t;
 }
 
 namespace {
-bool wants(const config::Case& c, const std::string& field) {
-  if (c.output.fields.empty()) return true;
-  for (const auto& f : c.output.fields)
-    if (f == field) return true;
-  return false;
-}
-
-// A dataset of the trace: its path and series, [nt, nlayers] or one-dimensional.
+// A dataset of the trace: its path, its values (/time, /crystal/layer_z, or observable k's
+// series), [nt, nlayers] or one-dimensional.
 struct TraceField {
   std::string path;
-  std::vector<double> Traces::*series;
+  enum { time, layer_z, observable } source;
+  std::size_t k;
   bool per_layer;
+  template <class T>  // Traces or const Traces
+  auto& values(T& t) const {
+    return source == time ? t.time : source == layer_z ? t.layer_z : t.series[k];
+  }
 };
 
-// The datasets of the case's trace but /system, in the file's order.
+// The datasets of the case's trace but /system, in the file's order: /time, /crystal/layer_z,
+// then the observables of the table that the case's `[output] fields` select.
 std::vector<TraceField> trace_fields(const config::Case& c) {
-  std::vector<TraceField> out = {{"/time", &Traces::time, false}, {"/crystal/layer_z", &Traces::layer_z, false}};
-  const std::pair<const char*, std::vector<double> Traces::*> fields[] = {
-      {"layer_stress_zz", &Traces::stress_zz},         {"layer_stress_zx", &Traces::stress_zx},
-      {"layer_displacement_z", &Traces::displacement_z}, {"layer_displacement_x", &Traces::displacement_x},
-      {"layer_velocity_z", &Traces::velocity_z},       {"layer_velocity_x", &Traces::velocity_x}};
-  for (const auto& [name, series] : fields)
-    if (wants(c, name)) out.push_back({std::string("/crystal/") + name, series, true});
-  if (wants(c, "coordination")) out.push_back({"/crystal/coordination", &Traces::coordination, false});
-  if (wants(c, "energy"))
-    for (const auto& [name, series] : {std::pair{"kinetic", &Traces::kinetic}, {"potential", &Traces::potential},
-                                       {"dissipated", &Traces::dissipated}, {"work_in", &Traces::work_in},
-                                       {"verlet_correction", &Traces::verlet_correction}})
-      out.push_back({std::string("/energy/") + name, series, false});
+  std::vector<TraceField> out = {{"/time", TraceField::time, 0, false}, {"/crystal/layer_z", TraceField::layer_z, 0, false}};
+  const std::vector<Observable>& all = observables();
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (selected(c, all[k])) out.push_back({all[k].path(), TraceField::observable, k, all[k].shape == Shape::per_layer});
   return out;
 }
 
 std::vector<std::size_t> shape_of(const TraceField& f, const Traces& t) {
-  return f.per_layer ? std::vector<std::size_t>{t.samples(), t.nlayers} : std::vector<std::size_t>{(t.*f.series).size()};
+  return f.per_layer ? std::vector<std::size_t>{t.samples(), t.nlayers} : std::vector<std::size_t>{f.values(t).size()};
 }
 }  // namespace
 
@@ -84,14 +78,14 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, io
   w.attr("/", "rolling_history", std::string(contact::rolling_history_name(c.contact.rolling_history)));
   w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
   write_system(w, p, c.name, "/system");
-  for (const auto& f : trace_fields(c)) w.write(f.path, r.traces.*f.series, shape_of(f, r.traces));
+  for (const auto& f : trace_fields(c)) w.write(f.path, f.values(r.traces), shape_of(f, r.traces));
 }
 
 TraceSeries take_series(const config::Case& c, Traces&& t) {
   TraceSeries out;
   const auto fields = trace_fields(c);
   for (const auto& f : fields) out.datasets.push_back({f.path, shape_of(f, t), {}, {}});  // before /time moves
-  for (std::size_t k = 0; k < fields.size(); ++k) out.datasets[k].values = std::move(t.*fields[k].series);
+  for (std::size_t k = 0; k < fields.size(); ++k) out.datasets[k].values = std::move(fields[k].values(t));
   return out;
 }
 
