@@ -53,6 +53,7 @@ include(${CMAKE_SOURCE_DIR}/tests/cli/law_registry.cmake)
 add_test(NAME "cli: ARCHITECTURE.md's include claims hold"
   COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/cli/include_claims.py ${CMAKE_SOURCE_DIR})
 set_tests_properties("cli: ARCHITECTURE.md's include claims hold" PROPERTIES LABELS "cli")
+include(${CMAKE_SOURCE_DIR}/tests/cli/observables.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/impact.cmake)
 # granwave theory: the lattice-dynamics part (issue 15). Bad grid refused; JSON keys present for a
 # Bravais packing, omitted with a note (exit 0) for a polydisperse one.

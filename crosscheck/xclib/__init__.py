@@ -10,6 +10,7 @@ Modules (each imports only those listed before it, so there is no import cycle):
   driver      -- what the three drivers share: the command line of a deck driver (render, run, convert),
                  running the code, the LAMMPS-family data file and crystal lines, the trace datasets
   impact      -- impact cases (data/SCHEMA.md §7) for the drivers: the bodies, run length, dump reader, trace
+  observables -- the crystal trace's observables as granwave lists them (`granwave observables --json`)
   dumps       -- LIGGGHTS/LAMMPS text dumps read frame by frame; the dumped forces put back to the step's
   sysbuild    -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
   compare     -- comparison maths (max |diff|/peak, relative L2, measures) on traces

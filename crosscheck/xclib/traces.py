@@ -19,10 +19,9 @@ from xclib.laws import law_of
 
 SCHEMA_VERSION = 1
 
-# Every trace dataset by model (SCHEMA.md §3); `[output] fields` selects among them.
+# The chain's trace datasets (SCHEMA.md §3); `[output] fields` selects among them. The crystal's come
+# from granwave's table of observables: xclib.observables.crystal_fields().
 CHAIN_FIELDS = ("bead_force", "contact_force")
-CRYSTAL_FIELDS = ("layer_stress_zz", "layer_stress_zx", "layer_displacement_z", "layer_displacement_x",
-                  "layer_velocity_z", "layer_velocity_x", "coordination")
 
 
 # ---------------------------------------------------------------- case and system

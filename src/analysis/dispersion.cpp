@@ -1,3 +1,4 @@
+// The dispersion relation from a (t, z) field by 2D FFT (analysis/dispersion.hpp).
 #include "analysis/dispersion.hpp"
 
 #include <fftw3.h>

@@ -1,3 +1,4 @@
+// The long-wave speed of a measured dispersion and its branch model (analysis/long_wave.hpp).
 #include "analysis/long_wave.hpp"
 
 #include <algorithm>

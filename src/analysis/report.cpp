@@ -1,3 +1,4 @@
+// What `granwave run` prints and holds for the trace it wrote (analysis/report.hpp).
 #include "analysis/report.hpp"
 
 #include "analysis/trace_json.hpp"

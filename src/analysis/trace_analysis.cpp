@@ -1,3 +1,4 @@
+// The measures of any code's trace, one ruler (analysis/trace_analysis.hpp).
 #include "analysis/trace_analysis.hpp"
 
 #include <algorithm>

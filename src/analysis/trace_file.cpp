@@ -1,3 +1,4 @@
+// Reading any code's trace file into memory (analysis/trace_file.hpp).
 #include "analysis/trace_file.hpp"
 
 #include <algorithm>

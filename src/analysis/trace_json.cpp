@@ -1,3 +1,4 @@
+// The JSON report of `granwave analyze --json` (analysis/trace_json.hpp).
 #include "analysis/trace_json.hpp"
 
 #include <cmath>

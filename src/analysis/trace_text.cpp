@@ -1,3 +1,4 @@
+// The text report of `granwave analyze` (analysis/trace_text.hpp).
 #include "analysis/trace_text.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// The verbs' argument parsing (cli/verbs.hpp): flags, option values, positionals, layer ranges.
 #include <algorithm>
 #include <stdexcept>
 #include <string>

@@ -1,3 +1,4 @@
+// The guards' estimates of a run's cost against the machine's limits (core/resources.hpp).
 #include "core/resources.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Version and provenance strings, compiled into this one translation unit (core/version.hpp).
 #include "core/version.hpp"
 
 #include "git_describe.h"  // GRANWAVE_GIT_DESCRIBE, written at each build (cmake/git_describe.cmake)

@@ -1,6 +1,11 @@
+// The lattice branches of a case's text for the analysis (crystal/case_lattice.hpp).
 #include "crystal/case_lattice.hpp"
 
+#include <atomic>
 #include <exception>
+#include <limits>
+#include <optional>
+#include <string>
 
 #include "config/case.hpp"
 #include "crystal/packing.hpp"
@@ -8,6 +13,12 @@
 #include "theory/lattice_dynamics.hpp"
 
 namespace granwave::crystal {
+
+namespace {
+std::atomic<long> g_lattice_solves{0};
+}
+
+long lattice_solves() { return g_lattice_solves.load(); }
 
 void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::string& case_toml, const std::string& origin,
                       LatticeNeed need) {
@@ -27,32 +38,57 @@ void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::stri
     options.no_lattice = "the trace's case is not a crystal";
     return;
   }
-  bool turns_particles = false;
+  if (need == LatticeNeed::when_not_sine && c.excitation.mode != config::Excitation::Mode::S) {
+    add_case_lattice(options, c, Derived{}, need);  // a P wave: the sine, nothing derived
+    return;
+  }
+  std::optional<Derived> d;
   try {
-    turns_particles = c.excitation.mode == config::Excitation::Mode::S && derive(c).kt > 0.0;
+    d = derive(c);
   } catch (const std::exception&) {
     options.no_lattice = "the trace's case has no linearised contact: the lattice's branches are unknown";
     return;
   }
-  if (need == LatticeNeed::when_not_sine && !turns_particles) {
-    options.no_lattice = "the wave turns no particle (a P wave, or an S wave without tangential springs): its lattice "
-                         "branch is the sine";
+  add_case_lattice(options, c, *d, need);
+}
+
+void add_case_lattice(analysis::CrystalAnalysisOptions& options, const config::Case& c, const Derived& d, LatticeNeed need,
+                      double* speed) {
+  options.lattice.reset();
+  const bool shear = c.excitation.mode == config::Excitation::Mode::S;
+  const bool turns_particles = shear && d.kt > 0.0;
+  const bool branches = need == LatticeNeed::always || turns_particles;
+  const char* sine = "the wave turns no particle (a P wave, or an S wave without tangential springs): its lattice "
+                     "branch is the sine";
+  if (speed) *speed = std::numeric_limits<double>::quiet_NaN();
+  if (!branches && !speed) {
+    options.no_lattice = sine;
     return;
   }
   if (c.crystal->polydispersity > 0.0) {
-    options.no_lattice = "a polydisperse packing has no lattice branches";
+    options.no_lattice = branches ? "a polydisperse packing has no lattice branches" : sine;
     return;
   }
+  ++g_lattice_solves;
   const Packing pk = lattice_packing(c);
   // As `granwave theory`: bonds agree to the rounding of Hertz forces from overlaps of positions.
   const theory::LatticeCellOptions lopt = lattice_options(c, 1e-6);
+  std::string why;
   const auto cell = theory::lattice_cell(contact_network(c, pk), {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, lopt,
-                                         &options.no_lattice);
-  if (!cell) return;
+                                         &why);
+  if (!cell) {
+    options.no_lattice = branches ? why : sine;
+    return;
+  }
   const theory::Vec3 ez = theory::Vec3::UnitZ();
+  const auto lw = theory::lattice_long_wave(*cell, ez);
+  if (speed) *speed = lw.speed_along(shear ? theory::Vec3::UnitX() : ez);
+  if (!branches) {
+    options.no_lattice = sine;
+    return;
+  }
   analysis::LatticeBranches L;
   L.dispersion = theory::lattice_dispersion(*cell, ez, theory::layer_period(*cell, ez), 201);
-  const auto lw = theory::lattice_long_wave(*cell, ez);
   L.v_p = lw.speed_along(ez);
   L.v_s = lw.speed_along(theory::Vec3::UnitX());
   options.lattice = std::move(L);

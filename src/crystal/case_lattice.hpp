@@ -5,6 +5,8 @@
 #include <string>
 
 #include "analysis/trace_analysis.hpp"
+#include "config/case.hpp"
+#include "crystal/derive.hpp"
 
 namespace granwave::crystal {
 
@@ -20,5 +22,12 @@ enum class LatticeNeed { when_not_sine, always };
 // more than its measures do.
 void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::string& case_toml, const std::string& origin,
                       LatticeNeed need = LatticeNeed::when_not_sine);
+// The same from a loaded crystal case and its derive(c) (a run: nothing parsed or derived again).
+// With `speed`, the lattice is solved whatever `need` says, and *speed is its long-wave speed along z
+// of the case's mode (P: u_z, S: u_x), NaN without a cell: the run's one lattice solve serves both.
+void add_case_lattice(analysis::CrystalAnalysisOptions& options, const config::Case& c, const Derived& d, LatticeNeed need,
+                      double* speed = nullptr);
+// How many times this process has solved a case's lattice here (the test that a run solves it once).
+long lattice_solves();
 
 }  // namespace granwave::crystal

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <ostream>
 
 #include "analysis/report.hpp"
@@ -16,6 +17,7 @@
 #include "crystal/guards.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
+#include "crystal/trace_writer.hpp"
 #include "crystal/vtk.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
@@ -60,26 +62,13 @@ std::string trace_path_for(const config::Case& c, const RunRequest& req) {
   return req.trace_path.empty() ? c.name + ".h5" : req.trace_path;
 }
 
-// The long-wave speed along z of the lattice dynamics with rotations and the prestress
-// (theory/lattice_dynamics.hpp) of this packing, P (u_z) or S (u_x); NaN when the packing is not
-// a Bravais lattice (polydisperse). Eq. (10)'s affine kt term holds the rotations that an S wave
-// drives: with kt > 0 only this one predicts the S speed (seed 002 sec. 3.5, docs/design.md §3).
-double lattice_speed(const config::Case& c, const Packing& pk, bool shear) {
-  // The network of the case's law, linearised at each contact's static overlap (any law).
-  const theory::ContactNetwork net = contact_network(c, pk);
-  const theory::LatticeCellOptions opt = lattice_options(c, theory::LatticeCellOptions{}.tolerance);
-  const auto cell = theory::lattice_cell(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, opt);
-  if (!cell) return std::numeric_limits<double>::quiet_NaN();
-  return theory::lattice_long_wave(*cell, theory::Vec3::UnitZ())
-      .speed_along(shear ? theory::Vec3::UnitX() : theory::Vec3::UnitZ());
-}
-
 }  // namespace
 
 void check(const config::Case& c, std::ostream& out, const ResourceLimits& limits) {
-  const Assessment a = assess(c, limits);  // before anything is allocated (crystal/guards.hpp)
+  std::optional<Derived> derived;
+  const Assessment a = assess(c, limits, &derived);  // before anything is allocated (crystal/guards.hpp)
   enforce(a, c.path);
-  const Derived d = derive(c);
+  const Derived& d = *derived;
   const Packing p = lattice_packing(c);  // refuses a packing that does not fit its box
   const auto& k = *c.crystal;
   out << std::setprecision(6);
@@ -110,13 +99,14 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
 void build(const config::Case& c, const std::string& system_path) {
   ResourceLimits no_step_limit;  // build does not run: only the packing's memory and meaning count
   no_step_limit.max_steps = std::numeric_limits<double>::infinity();
-  enforce(assess(c, no_step_limit), c.path);
+  std::optional<Derived> derived;
+  enforce(assess(c, no_step_limit, &derived), c.path);
   const Packing p = make_packing(c);
   io::H5Writer w(system_path);
   io::write_provenance(w);
   write_system(w, p, c.name);
   // The resolved time step, so that the other codes' drivers need not linearise the law for dt_over_tc.
-  w.attr("/", "dt", derive(c).dt);
+  w.attr("/", "dt", derived->dt);
   w.commit();
 }
 
@@ -140,9 +130,11 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
       throw InputError(c.path + ": output.vtk_every = " + std::to_string(c.output.vtk_every) +
                        ": VTK snapshots are not written by a run split over MPI ranks (set 0, or run without mpirun)");
   }
-  Assessment a = assess(c, req.limits);  // the refusals of `granwave check`, before anything is allocated
+  std::optional<Derived> derived;  // the case derived once, for the guards, the run and the summary
+  Assessment a = assess(c, req.limits, &derived);  // the refusals of `granwave check`, before anything is allocated
   if (!req.in_memory) check_output_space(a, trace_path);
   enforce(a, c.path);
+  const Derived& d = *derived;
   for (const auto& w : a.warnings) err << "granwave run: warning: " << w << "\n";
   Packing packing;
   if (req.system_path.empty()) {
@@ -169,7 +161,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   PhaseTimes phases;
   std::unique_ptr<io::H5Reader> kept_trace;  // the trace, when it lives in memory only
   {
-    RunResult r = simulate(c, packing, hook, comm, root ? ProgressHook(req.progress) : ProgressHook());
+    RunResult r = simulate(c, d, packing, hook, comm, root ? ProgressHook(req.progress) : ProgressHook());
     if (vtk) vtk->finish();
     if (root) {
       io::H5Writer w(trace_path, req.in_memory ? io::H5Writer::Storage::memory : io::H5Writer::Storage::disk);
@@ -181,13 +173,13 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
       throw RunError(r.error + (req.in_memory ? std::string() : " (samples so far kept in " + trace_path + ")"));
     const Traces& t = r.traces;
     const std::size_t last = t.samples() - 1;
-    auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
+    auto total = [&](std::size_t k) { return t["kinetic"][k] + t["potential"][k] + t["dissipated"][k] - t["work_in"][k]; };
     residual = total(last) - total(0);
-    shadow_residual = residual - (t.verlet_correction[last] - t.verlet_correction[0]);
-    work_in = t.work_in[last];
-    dissipated = t.dissipated[last];
-    coordination0 = t.coordination[0];
-    coordination_end = t.coordination[last];
+    shadow_residual = residual - (t["verlet_correction"][last] - t["verlet_correction"][0]);
+    work_in = t["work_in"][last];
+    dissipated = t["dissipated"][last];
+    coordination0 = t["coordination"][0];
+    coordination_end = t["coordination"][last];
     steps = r.steps;
     rebuilds = r.rebuilds;
     seconds = r.seconds;
@@ -202,14 +194,15 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   if (!root) return 0;
 
   // The measures: `granwave analyze` of the trace just written (one ruler, src/analysis).
+  // The case's lattice, solved once: the analysis's branches (when the wave turns the particles)
+  // and the long-wave speed of the summary.
   analysis::CrystalAnalysisOptions measure;
-  add_case_lattice(measure, c.toml_text, trace_path + ":/case_toml");
+  double v_lattice = 0.0;
+  add_case_lattice(measure, c, d, LatticeNeed::when_not_sine, &v_lattice);
   const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, measure)
                                                  : analysis::report_file(trace_path, measure);
-  const Derived d = derive(c);
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;
   const double pss = static_cast<double>(packing.size()) * steps / std::max(seconds, 1e-12);
-  const double v_lattice = lattice_speed(c, packing, shear);
   if (req.json) {
     Json j = {{"schema", "granwave-run/1"},
               {"case", c.name},

@@ -9,6 +9,7 @@
 #include "config/contact_laws.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "crystal/observables.hpp"
 #include "crystal/simulation.hpp"
 
 namespace granwave::crystal {
@@ -27,8 +28,9 @@ constexpr double kFixedBytes = 20e6, kBytesPerParticle = 1500.0, kSeriesFactor =
 
 }  // namespace
 
-Assessment assess(const config::Case& c, const ResourceLimits& limits) {
+Assessment assess(const config::Case& c, const ResourceLimits& limits, std::optional<Derived>* derived) {
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
+  check_output_fields(c);  // the table's names (crystal/observables.hpp)
   const config::CrystalCase& k = *c.crystal;
   Assessment a;
   {  // what derive() divides by, so that its refusals name the right keys
@@ -41,6 +43,7 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits) {
     if (!a.refusals.empty()) return a;
   }
   const Derived d = derive(c);  // refuses bad contact parameters (overdamped, negative, ...)
+  if (derived) *derived = d;
   ResourceEstimate& e = a.estimate;
   const double layers = k.cells[2];
   const double n = static_cast<double>(k.cells[0]) * k.cells[1] * layers;
@@ -110,17 +113,16 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits) {
   e.steps = std::round(c.integrator.t_end / d.dt);
   const double every = c.output.interval > 0.0 ? std::max(1.0, std::round(c.output.interval / d.dt)) : 1.0;
   e.samples = std::floor(e.steps / every) + 1.0;
-  // Stored in memory: the 6 layer fields, coordination and 5 energies per sample; in the file,
-  // only the [output] fields.
-  const double in_memory = e.samples * (6.0 * layers + 7.0) * 8.0;
-  double columns = 0.0;
-  if (c.output.fields.empty()) {
-    columns = 6.0 * layers + 7.0;
-  } else {
-    for (const auto& f : c.output.fields)
-      columns += f.rfind("layer_", 0) == 0 ? layers : f == "energy" ? 5.0 : 1.0;
-    columns += 1.0;  // time
+  // Stored in memory: every observable of the table per sample (a layer's row or one value); in
+  // the file, only those of the [output] fields.
+  double all = 0.0, chosen = 0.0;
+  for (const Observable& o : observables()) {
+    const double values = o.shape == Shape::per_layer ? layers : 1.0;
+    all += values;
+    if (selected(c, o)) chosen += values;
   }
+  const double in_memory = e.samples * all * 8.0;
+  const double columns = c.output.fields.empty() ? all : chosen + 1.0;  // + time
   const double snapshots = c.output.vtk_every > 0 ? std::floor(e.samples / c.output.vtk_every) + 1.0 : 0.0;
   e.memory = kFixedBytes + kBytesPerParticle * n + kSeriesFactor * in_memory + (snapshots > 0 ? kVtkBytesPerParticle * n : 0.0);
   e.output = e.samples * columns * 8.0 + 120.0 * n + snapshots * kVtkBytesPerParticle * n;

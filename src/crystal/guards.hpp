@@ -12,11 +12,16 @@
 // step, plus |v| sqrt(m/k) for a velocity drive (a source particle's kinetic energy stored in one
 // spring).
 #pragma once
+#include <optional>
+
 #include "config/case.hpp"
 #include "core/resources.hpp"
+#include "crystal/derive.hpp"
 
 namespace granwave::crystal {
 
-Assessment assess(const config::Case& c, const ResourceLimits& limits);
+// With `derived`, the case's derive(c) is left there (unset when a refusal came before it), so
+// that a run derives its case once.
+Assessment assess(const config::Case& c, const ResourceLimits& limits, std::optional<Derived>* derived = nullptr);
 
 }  // namespace granwave::crystal

@@ -1,3 +1,4 @@
+// Candidate contact pairs from a cell list over the periodic box (crystal/neighbors.hpp).
 #include "crystal/neighbors.hpp"
 
 #include <algorithm>

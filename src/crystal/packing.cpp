@@ -1,3 +1,4 @@
+// The packing of seed 002 sec. 2.2 (crystal/packing.hpp): the FCC crystal, polydispersity, the system file.
 #include "crystal/packing.hpp"
 
 #include <cmath>

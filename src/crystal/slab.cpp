@@ -1,3 +1,4 @@
+// The slab plan of one crystal run over MPI ranks (crystal/slab.hpp): who owns which layers, the halo.
 #include "crystal/slab.hpp"
 
 #include <algorithm>

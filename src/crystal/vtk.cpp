@@ -1,3 +1,4 @@
+// ParaView particle snapshots of a crystal run (crystal/vtk.hpp): .vtp files and their .pvd collection.
 #include "crystal/vtk.hpp"
 
 #include <cstdio>

@@ -62,7 +62,7 @@ Captured capture(const CrystalMemberRun& r, const std::vector<double>& positions
   Captured c;
   const auto& tr = r.run.traces;
   const bool S = r.trace.mode == 'S';
-  const auto& f = S ? tr.stress_zx : tr.stress_zz;
+  const auto& f = S ? tr["layer_stress_zx"] : tr["layer_stress_zz"];
   std::vector<std::size_t> cols;
   for (double z : positions)
     for (std::size_t L = 0; L < tr.nlayers; ++L)
@@ -122,9 +122,9 @@ TrendPoint trend_point(const CrystalMemberRun& r, const std::vector<double>& pos
   tp.v_lattice = r.result.values[cv_theory_v_lattice];
   const auto& tr = r.run.traces;
   const bool S = r.trace.mode == 'S';
-  const std::array<const std::vector<double>*, 3> fields = {S ? &tr.stress_zx : &tr.stress_zz,
-                                                            S ? &tr.velocity_x : &tr.velocity_z,
-                                                            S ? &tr.displacement_x : &tr.displacement_z};
+  const std::array<const std::vector<double>*, 3> fields = {S ? &tr["layer_stress_zx"] : &tr["layer_stress_zz"],
+                                                            S ? &tr["layer_velocity_x"] : &tr["layer_velocity_z"],
+                                                            S ? &tr["layer_displacement_x"] : &tr["layer_displacement_z"]};
   const double z_last = tr.layer_z[tr.nlayers - 1 - r.packing.fixed_layers];
   for (const auto& q : crystal::list_contacts(r.packing, false))
     if (!r.packing.fixed[q.i] && !r.packing.fixed[q.j]) {

@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "crystal/guards.hpp"
+#include "crystal/trace_writer.hpp"
 #include "io/h5.hpp"
 #include "sweep/distributed.hpp"
 #include "theory/crystal_theory.hpp"
@@ -204,7 +205,7 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   out.packing = crystal::make_packing(out.c);  // relaxed when polydisperse (sec. 2.2 A)
   crystal::ProgressHook stop;
   if (control) stop = [control](long, long) { stop_point(control); };
-  out.run = crystal::simulate(out.c, out.packing, {}, nullptr, stop);
+  out.run = crystal::simulate(out.c, der, out.packing, {}, nullptr, stop);
   if (out.run.failed) throw RunError(out.c.name + ": " + out.run.error);
   const crystal::Traces& tr = out.run.traces;
 
@@ -226,7 +227,7 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   const int fl = out.packing.fixed_layers;
   double s0 = 0.0;
   int n0 = 0;
-  for (std::size_t L = fl; L + fl < tr.nlayers; ++L, ++n0) s0 += tr.stress_zz[L];
+  for (std::size_t L = fl; L + fl < tr.nlayers; ++L, ++n0) s0 += tr["layer_stress_zz"][L];
   out.sigma0 = n0 ? s0 / n0 : kNaN;
 
   const auto th = theory::crystal_prediction(net, {fl, out.packing.layers - 1 - fl});
@@ -254,10 +255,10 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   v[cv_theory_omega0] = S ? th.omega0_s : th.omega0_p;
   v[cv_theory_omega0_prestressed] = S ? th.omega0_s_prestressed : th.omega0_p_prestressed;
   v[cv_coordination_theory] = th.coordination;
-  if (!tr.coordination.empty()) {
-    v[cv_coordination0] = tr.coordination.front();
-    v[cv_coordination_min] = *std::min_element(tr.coordination.begin(), tr.coordination.end());
-    v[cv_coordination_max] = *std::max_element(tr.coordination.begin(), tr.coordination.end());
+  if (!tr["coordination"].empty()) {
+    v[cv_coordination0] = tr["coordination"].front();
+    v[cv_coordination_min] = *std::min_element(tr["coordination"].begin(), tr["coordination"].end());
+    v[cv_coordination_max] = *std::max_element(tr["coordination"].begin(), tr["coordination"].end());
   }
   v[cv_sigma0] = out.sigma0;
   v[cv_relax_steps] = static_cast<double>(out.packing.relax_steps);

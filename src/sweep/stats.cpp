@@ -1,3 +1,4 @@
+// Ensemble statistics of the studies (sweep/stats.hpp): group summaries, the M_c hinge fits, decay fits.
 #include "sweep/stats.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Continuum predictions for the crystal from its contact network (theory/crystal_theory.hpp).
 #include "theory/crystal_theory.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// Closed forms for Hertz contacts (theory/hertz.hpp): two-body impact, Nesterenko's solitary wave.
 #include "theory/hertz.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// Closed forms of a sphere's impact on a sphere or a wall (theory/impact.hpp).
 #include "theory/impact.hpp"
 
 #include <algorithm>

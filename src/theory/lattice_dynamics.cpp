@@ -1,3 +1,4 @@
+// Lattice dynamics of a Bravais packing with translations and rotations (theory/lattice_dynamics.hpp).
 #include "theory/lattice_dynamics.hpp"
 
 #include <algorithm>

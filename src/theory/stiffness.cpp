@@ -1,3 +1,4 @@
+// The micro-macro stiffness tensor of seed 002 eq. (10) and its sound speeds (theory/stiffness.hpp).
 #include "theory/stiffness.hpp"
 
 #include <algorithm>

@@ -23,12 +23,12 @@ Audit audit(const config::Case& c) {
   const crystal::RunResult r = crystal::simulate(c, p);
   REQUIRE_FALSE(r.failed);
   const crystal::Traces& t = r.traces;
-  auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
-  Audit a{t.work_in.back(), t.dissipated.back(), 0.0, 0.0};
+  auto total = [&](std::size_t k) { return t["kinetic"][k] + t["potential"][k] + t["dissipated"][k] - t["work_in"][k]; };
+  Audit a{t["work_in"].back(), t["dissipated"].back(), 0.0, 0.0};
   for (std::size_t k = 0; k < t.samples(); ++k) {
     const double res = total(k) - total(0);
     a.residual = std::max(a.residual, std::abs(res));
-    a.residual_shadow = std::max(a.residual_shadow, std::abs(res - (t.verlet_correction[k] - t.verlet_correction[0])));
+    a.residual_shadow = std::max(a.residual_shadow, std::abs(res - (t["verlet_correction"][k] - t["verlet_correction"][0])));
   }
   std::printf("%s dt=%.2g: work_in %.4g J, dissipated %.4g J, max residual %.3g J (%.3g of work_in), "
               "with Verlet correction %.3g J (%.3g)\n",
@@ -127,15 +127,15 @@ TEST_CASE("velocity drive: one freed layer in front of the wall, the prestress h
     const std::size_t layers = t.nlayers;
     for (std::size_t s = 0; s < t.samples(); ++s)
       for (std::size_t L = 2; L + 3 <= layers; ++L)
-        change = std::max(change, std::abs(t.stress_zz[s * layers + L] - t.stress_zz[L]));
-    auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
+        change = std::max(change, std::abs(t["layer_stress_zz"][s * layers + L] - t["layer_stress_zz"][L]));
+    auto total = [&](std::size_t k) { return t["kinetic"][k] + t["potential"][k] + t["dissipated"][k] - t["work_in"][k]; };
     double residual = 0.0;
     for (std::size_t k = 0; k < t.samples(); ++k)
-      residual = std::max(residual, std::abs(total(k) - total(0) - (t.verlet_correction[k] - t.verlet_correction[0])));
+      residual = std::max(residual, std::abs(total(k) - total(0) - (t["verlet_correction"][k] - t["verlet_correction"][0])));
     std::printf("velocity drive, gamma_n = %g, kt = %g, dt = %g: work_in %.6g J (kick %.6g J), sigma_0 %.6g Pa, largest "
                 "|sigma_zz - sigma_zz(0)| %.4g Pa, dissipated %.4g J, max shadow residual %.3g J\n",
-                gamma_n, kt, dt, t.work_in[last], kick, sigma_0, change, t.dissipated[last], residual);
-    return Run{t.work_in[last], kick, sigma_0, change, t.dissipated[last], residual};
+                gamma_n, kt, dt, t["work_in"][last], kick, sigma_0, change, t["dissipated"][last], residual);
+    return Run{t["work_in"][last], kick, sigma_0, change, t["dissipated"][last], residual};
   };
   const Run a = run(0.0, 0.0);
   CHECK(a.work_in / a.kick == Approx(1.0).epsilon(1e-12));

@@ -30,8 +30,8 @@ Audit audit(const config::Case& c, const char* what) {
   const crystal::RunResult r = crystal::simulate(c, p);
   REQUIRE_FALSE(r.failed);
   const crystal::Traces& t = r.traces;
-  auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
-  Audit a{t.work_in.back(), t.dissipated.back(), 0.0};
+  auto total = [&](std::size_t k) { return t["kinetic"][k] + t["potential"][k] + t["dissipated"][k] - t["work_in"][k]; };
+  Audit a{t["work_in"].back(), t["dissipated"].back(), 0.0};
   for (std::size_t k = 0; k < t.samples(); ++k) a.residual = std::max(a.residual, std::abs(total(k) - total(0)));
   std::printf("%s, dt = t_c x %.3g, amplitude %.3g d: work_in %.4g J, dissipated %.4g J, max residual %.3g J "
               "(%.3g of work_in)\n",

@@ -41,11 +41,11 @@ Audit audit(double gamma_t, double mu_static, double mu_dynamic, double dt, conf
   const crystal::RunResult r = crystal::simulate(c, p);
   REQUIRE_FALSE(r.failed);
   const crystal::Traces& t = r.traces;
-  auto total = [&](std::size_t k) { return t.kinetic[k] + t.potential[k] + t.dissipated[k] - t.work_in[k]; };
-  Audit a{t.work_in.back(), t.dissipated.back(), 0.0};
+  auto total = [&](std::size_t k) { return t["kinetic"][k] + t["potential"][k] + t["dissipated"][k] - t["work_in"][k]; };
+  Audit a{t["work_in"].back(), t["dissipated"].back(), 0.0};
   for (std::size_t k = 0; k < t.samples(); ++k) {
     a.residual =
-        std::max(a.residual, std::abs(total(k) - total(0) - (t.verlet_correction[k] - t.verlet_correction[0])));
+        std::max(a.residual, std::abs(total(k) - total(0) - (t["verlet_correction"][k] - t["verlet_correction"][0])));
     a.plain = std::max(a.plain, std::abs(total(k) - total(0)));
   }
   std::printf("S wave, kt = %g, kr = ko = %g, gamma_t = %g, mu_s = %g, mu_d = %g, dt = %g: work_in %.4g J, dissipated %.4g J, "

@@ -73,8 +73,8 @@ Measured s_wave(double kt_over_k, double kr_over_k = 0.0) {
   t.fixed_layers = pk.fixed_layers;
   t.mode = 'S';
   t.mode_source = "case_toml";
-  t.stress_zx = r.traces.stress_zx;
-  t.velocity_x = r.traces.velocity_x;
+  t.stress_zx = r.traces["layer_stress_zx"];
+  t.velocity_x = r.traces["layer_velocity_x"];
   const auto a = analysis::analyze_crystal(t);
   CHECK_FALSE(a.shortened);
   CHECK(a.v_half_peak.lo == 10);

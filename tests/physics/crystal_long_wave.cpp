@@ -19,6 +19,7 @@
 #include "crystal/case_lattice.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
+#include "crystal/trace_writer.hpp"
 
 using namespace granwave;
 

@@ -17,6 +17,7 @@
 #include "config/case.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
+#include "crystal/trace_writer.hpp"
 
 using namespace granwave;
 

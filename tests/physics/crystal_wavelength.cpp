@@ -56,12 +56,12 @@ analysis::CrystalTrace to_trace(const crystal::RunResult& r, const crystal::Pack
   t.fixed_layers = pk.fixed_layers;
   t.mode = mode;
   t.mode_source = "case_toml";
-  t.stress_zz = r.traces.stress_zz;
-  t.stress_zx = r.traces.stress_zx;
-  t.displacement_z = r.traces.displacement_z;
-  t.displacement_x = r.traces.displacement_x;
-  t.velocity_z = r.traces.velocity_z;
-  t.velocity_x = r.traces.velocity_x;
+  t.stress_zz = r.traces["layer_stress_zz"];
+  t.stress_zx = r.traces["layer_stress_zx"];
+  t.displacement_z = r.traces["layer_displacement_z"];
+  t.displacement_x = r.traces["layer_displacement_x"];
+  t.velocity_z = r.traces["layer_velocity_z"];
+  t.velocity_x = r.traces["layer_velocity_x"];
   return t;
 }
 
@@ -225,9 +225,9 @@ TEST_CASE("seed 002 sec. 3.5 kt trend, P wave: the first peaks of stress, v and 
       }
     REQUIRE(out.geometric > 0.0);
     for (int q = 0; q < 3; ++q) {
-      out.p[3 * q + 0] = first_peak_at(r.traces, r.traces.stress_zz, pk.l0, zs[q]);
-      out.p[3 * q + 1] = first_peak_at(r.traces, r.traces.velocity_z, pk.l0, zs[q]);
-      out.p[3 * q + 2] = first_peak_at(r.traces, r.traces.displacement_z, pk.l0, zs[q]);
+      out.p[3 * q + 0] = first_peak_at(r.traces, r.traces["layer_stress_zz"], pk.l0, zs[q]);
+      out.p[3 * q + 1] = first_peak_at(r.traces, r.traces["layer_velocity_z"], pk.l0, zs[q]);
+      out.p[3 * q + 2] = first_peak_at(r.traces, r.traces["layer_displacement_z"], pk.l0, zs[q]);
     }
     return out;
   };
@@ -268,8 +268,8 @@ TEST_CASE("seed 002 sec. 3.5 kt trend, S wave: the first peaks of stress and vel
     const crystal::Packing pk = crystal::make_packing(c);
     const crystal::RunResult r = crystal::simulate(c, pk);
     REQUIRE_FALSE(r.failed);
-    return std::array<double, 2>{first_peak_at(r.traces, r.traces.stress_zx, pk.l0, 10),
-                                 first_peak_at(r.traces, r.traces.velocity_x, pk.l0, 10)};
+    return std::array<double, 2>{first_peak_at(r.traces, r.traces["layer_stress_zx"], pk.l0, 10),
+                                 first_peak_at(r.traces, r.traces["layer_velocity_x"], pk.l0, 10)};
   };
   const auto p0 = peaks(0.0), p1 = peaks(1.0);
   std::printf("S, kt/k = 1, z/l0 = 10: first peak / kt = 0: sigma_zx %.4f, v_x %.4f\n", p1[0] / p0[0], p1[1] / p0[1]);

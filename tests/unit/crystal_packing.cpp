@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
+#include "crystal/trace_writer.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
 

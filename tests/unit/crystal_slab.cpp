@@ -95,18 +95,18 @@ crystal::RunResult on_ranks(const config::Case& c, const crystal::Packing& p, in
 void same_traces(const crystal::Traces& a, const crystal::Traces& b) {
   // Exact equality of every series: the trace file's datasets, bit for bit.
   CHECK(a.time == b.time);
-  CHECK(a.stress_zz == b.stress_zz);
-  CHECK(a.stress_zx == b.stress_zx);
-  CHECK(a.displacement_z == b.displacement_z);
-  CHECK(a.displacement_x == b.displacement_x);
-  CHECK(a.velocity_z == b.velocity_z);
-  CHECK(a.velocity_x == b.velocity_x);
-  CHECK(a.coordination == b.coordination);
-  CHECK(a.kinetic == b.kinetic);
-  CHECK(a.potential == b.potential);
-  CHECK(a.dissipated == b.dissipated);
-  CHECK(a.work_in == b.work_in);
-  CHECK(a.verlet_correction == b.verlet_correction);
+  CHECK(a["layer_stress_zz"] == b["layer_stress_zz"]);
+  CHECK(a["layer_stress_zx"] == b["layer_stress_zx"]);
+  CHECK(a["layer_displacement_z"] == b["layer_displacement_z"]);
+  CHECK(a["layer_displacement_x"] == b["layer_displacement_x"]);
+  CHECK(a["layer_velocity_z"] == b["layer_velocity_z"]);
+  CHECK(a["layer_velocity_x"] == b["layer_velocity_x"]);
+  CHECK(a["coordination"] == b["coordination"]);
+  CHECK(a["kinetic"] == b["kinetic"]);
+  CHECK(a["potential"] == b["potential"]);
+  CHECK(a["dissipated"] == b["dissipated"]);
+  CHECK(a["work_in"] == b["work_in"]);
+  CHECK(a["verlet_correction"] == b["verlet_correction"]);
 }
 
 }  // namespace

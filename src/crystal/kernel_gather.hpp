@@ -1,0 +1,270 @@
+// The contact kernel's data movement (crystal/kernel.hpp): the gather of particle data into
+// columns for a chunk of contacts, and the one-thread scatter of contact sums into per-particle rows.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "crystal/dynamics.hpp"
+
+namespace granwave::crystal {
+
+namespace kernel {
+
+// ---- The gather: the particle data of a chunk of contacts, as columns ----
+// The contact loop reads ~20 particle values per contact at the indices i and j. Gathered one
+// double at a time (GCC builds each vector from scalar loads and inserts, and the ~20 base
+// pointers do not fit in registers), they cost more than the law's arithmetic. Instead each
+// contact pass copies the particles into rows of four doubles (x, y, z, a | v | w), and a chunk
+// of contacts at a time loads whole rows, transposes four rows into four lanes, and stores the
+// values the contact needs as columns (kernel-owned scratch on the stack); the loop over the
+// chunk then reads them as vectors. The few operations done there (the image shift, r_j - r_i,
+// a_i + a_j, v_i - v_j) are those of the contact's own evaluation, in the same order, lane-wise
+// IEEE: the same bits as the scalar path.
+//
+// The gather serves the laws with torques (20 particle values per contact; there it pays: kt = k,
+// AVX2, 10.6 -> 9.6 ns per contact, Hertz-Mindlin 11.6 -> 9.6). A frictionless law reads 10
+// per contact, and rows cost more than they save (2.5 -> 3.0 ns): direct_contact_pass below.
+inline constexpr std::int64_t kChunk = 128;  // contacts per gather: their columns stay in L1 (256: 11.4 ns)
+
+// A chunk's results on the way to the scatter: f and n x f^t (scatter, below), Q = 9: and the couple.
+template <int Q>
+struct Sums {
+  alignas(64) double col[Q][kChunk];
+};
+
+struct Gathered {
+  // r_j - r_i at j's image; a_i + a_j; the radii; v_i - v_j; w_i, w_j.
+  enum Column { bx, by, bz, reach, a_i, a_j, dvx, dvy, dvz, wix, wiy, wiz, wjx, wjy, wjz, kColumns };
+  alignas(64) double col[kColumns][kChunk];
+};
+
+#if defined(__GNUC__) && defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+#define GRANWAVE_GATHER_VECTORS 1
+#endif
+#endif
+#ifdef GRANWAVE_GATHER_VECTORS
+// Four doubles (GCC/Clang vector extension: AVX registers where the target has them, SSE
+// pairs otherwise); +, - are lane-wise IEEE operations.
+typedef double V4 __attribute__((vector_size(32)));
+typedef double V4u __attribute__((vector_size(32), aligned(8), may_alias));  // for unaligned loads, stores
+[[gnu::always_inline]] inline V4 load4(const double* p) { return *reinterpret_cast<const V4u*>(p); }
+[[gnu::always_inline]] inline void store4(double* p, const V4& v) { *reinterpret_cast<V4u*>(p) = v; }
+// The 4 x 4 transpose: rows r0..r3 in, columns c0..c3 out (and back).
+[[gnu::always_inline]] inline void transpose4(const V4& r0, const V4& r1, const V4& r2, const V4& r3, V4& c0, V4& c1,
+                                              V4& c2, V4& c3) {
+  const V4 t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);  // r0x r1x r0z r1z
+  const V4 t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);  // r0y r1y r0a r1a
+  const V4 t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+  const V4 t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+  c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+#endif
+
+// rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0. The rows of particles
+// [p0, p1), four at a time where it can (also the one-thread drift's, Dynamics::kick_drift).
+[[gnu::always_inline]] inline void fill_rows(const Dynamics& d, double* rows, std::int64_t p0, std::int64_t p1) {
+  const std::int64_t n = static_cast<std::int64_t>(d.size());
+  double* __restrict pos = rows;
+  double* __restrict vel = rows + 4 * n;
+  double* __restrict rot = rows + 8 * n;
+  const double *x = d.x.data(), *y = d.y.data(), *z = d.z.data(), *a = d.radius.data();
+  const double *vx = d.vx.data(), *vy = d.vy.data(), *vz = d.vz.data();
+  const double *wx = d.wx.data(), *wy = d.wy.data(), *wz = d.wz.data();
+  std::int64_t p = p0;
+#ifdef GRANWAVE_GATHER_VECTORS
+  for (; p + 4 <= p1; p += 4) {
+    const V4 zero{0.0, 0.0, 0.0, 0.0};
+    V4 r0, r1, r2, r3;
+    transpose4(load4(x + p), load4(y + p), load4(z + p), load4(a + p), r0, r1, r2, r3);
+    store4(pos + 4 * p, r0), store4(pos + 4 * p + 4, r1), store4(pos + 4 * p + 8, r2), store4(pos + 4 * p + 12, r3);
+    transpose4(load4(vx + p), load4(vy + p), load4(vz + p), zero, r0, r1, r2, r3);
+    store4(vel + 4 * p, r0), store4(vel + 4 * p + 4, r1), store4(vel + 4 * p + 8, r2), store4(vel + 4 * p + 12, r3);
+    transpose4(load4(wx + p), load4(wy + p), load4(wz + p), zero, r0, r1, r2, r3);
+    store4(rot + 4 * p, r0), store4(rot + 4 * p + 4, r1), store4(rot + 4 * p + 8, r2), store4(rot + 4 * p + 12, r3);
+  }
+#endif
+  for (; p < p1; ++p) {
+    pos[4 * p] = x[p], pos[4 * p + 1] = y[p], pos[4 * p + 2] = z[p], pos[4 * p + 3] = a[p];
+    vel[4 * p] = vx[p], vel[4 * p + 1] = vy[p], vel[4 * p + 2] = vz[p], vel[4 * p + 3] = 0.0;
+    rot[4 * p] = wx[p], rot[4 * p + 1] = wy[p], rot[4 * p + 2] = wz[p], rot[4 * p + 3] = 0.0;
+  }
+}
+
+// Every particle's rows.
+inline void fill_rows(const Dynamics& d, double* rows) {
+  const std::int64_t n = static_cast<std::int64_t>(d.size());
+#pragma omp parallel for schedule(static) if (d.threaded())
+  for (std::int64_t b = 0; b <= n / 4; ++b) fill_rows(d, rows, 4 * b, std::min(n, 4 * b + 4));
+}
+
+// The columns of contacts [s0, s1) (at most kChunk) from the particle rows.
+[[gnu::always_inline]] inline void gather(Gathered& g, std::int64_t s0, std::int64_t s1,
+                                          const std::int32_t* ci, const std::int32_t* cj, const std::int8_t* imx,
+                                          const std::int8_t* imy, double box_x, double box_y, const double* pos,
+                                          const double* vel, const double* rot) {
+  using G = Gathered;
+  const std::int64_t m = s1 - s0;
+  std::int64_t u = 0;
+#ifdef GRANWAVE_GATHER_VECTORS
+  const V4 bxv{box_x, box_x, box_x, box_x}, byv{box_y, box_y, box_y, box_y};
+  for (; u + 4 <= m; u += 4) {
+    // j's image offsets in metres, converted here from the int8 images (not stored per contact:
+    // memory; a loop of their own over the chunk cost 1.3 % of the pass)
+    const std::int8_t* X = imx + s0 + u;
+    const std::int8_t* Y = imy + s0 + u;
+    const V4 sx = V4{double(X[0]), double(X[1]), double(X[2]), double(X[3])} * bxv;
+    const V4 sy = V4{double(Y[0]), double(Y[1]), double(Y[2]), double(Y[3])} * byv;
+    const std::int32_t* I = ci + s0 + u;
+    const std::int32_t* J = cj + s0 + u;
+    const std::int64_t i0 = 4 * std::int64_t{I[0]}, i1 = 4 * std::int64_t{I[1]}, i2 = 4 * std::int64_t{I[2]},
+                       i3 = 4 * std::int64_t{I[3]};
+    const std::int64_t j0 = 4 * std::int64_t{J[0]}, j1 = 4 * std::int64_t{J[1]}, j2 = 4 * std::int64_t{J[2]},
+                       j3 = 4 * std::int64_t{J[3]};
+    V4 xi, yi, zi, ai, xj, yj, zj, aj;
+    transpose4(load4(pos + i0), load4(pos + i1), load4(pos + i2), load4(pos + i3), xi, yi, zi, ai);
+    transpose4(load4(pos + j0), load4(pos + j1), load4(pos + j2), load4(pos + j3), xj, yj, zj, aj);
+    store4(&g.col[G::bx][u], (xj + sx) - xi);
+    store4(&g.col[G::by][u], (yj + sy) - yi);
+    store4(&g.col[G::bz][u], zj - zi);
+    store4(&g.col[G::reach][u], ai + aj);
+    store4(&g.col[G::a_i][u], ai);
+    store4(&g.col[G::a_j][u], aj);
+    // v_i - v_j lane-wise on the rows, then one transpose (the same subtractions)
+    V4 unused;
+    transpose4(load4(vel + i0) - load4(vel + j0), load4(vel + i1) - load4(vel + j1),
+               load4(vel + i2) - load4(vel + j2), load4(vel + i3) - load4(vel + j3), xi, yi, zi, unused);
+    store4(&g.col[G::dvx][u], xi);
+    store4(&g.col[G::dvy][u], yi);
+    store4(&g.col[G::dvz][u], zi);
+    transpose4(load4(rot + i0), load4(rot + i1), load4(rot + i2), load4(rot + i3), xi, yi, zi, unused);
+    store4(&g.col[G::wix][u], xi);
+    store4(&g.col[G::wiy][u], yi);
+    store4(&g.col[G::wiz][u], zi);
+    transpose4(load4(rot + j0), load4(rot + j1), load4(rot + j2), load4(rot + j3), xj, yj, zj, unused);
+    store4(&g.col[G::wjx][u], xj);
+    store4(&g.col[G::wjy][u], yj);
+    store4(&g.col[G::wjz][u], zj);
+  }
+#endif
+  for (; u < m; ++u) {
+    const std::int64_t i = 4 * std::int64_t{ci[s0 + u]}, j = 4 * std::int64_t{cj[s0 + u]};
+    g.col[G::bx][u] = (pos[j] + imx[s0 + u] * box_x) - pos[i];
+    g.col[G::by][u] = (pos[j + 1] + imy[s0 + u] * box_y) - pos[i + 1];
+    g.col[G::bz][u] = pos[j + 2] - pos[i + 2];
+    g.col[G::reach][u] = pos[i + 3] + pos[j + 3];
+    g.col[G::a_i][u] = pos[i + 3];
+    g.col[G::a_j][u] = pos[j + 3];
+    g.col[G::dvx][u] = vel[i] - vel[j];
+    g.col[G::dvy][u] = vel[i + 1] - vel[j + 1];
+    g.col[G::dvz][u] = vel[i + 2] - vel[j + 2];
+    g.col[G::wix][u] = rot[i], g.col[G::wiy][u] = rot[i + 1], g.col[G::wiz][u] = rot[i + 2];
+    g.col[G::wjx][u] = rot[j], g.col[G::wjy][u] = rot[j + 1], g.col[G::wjz][u] = rot[j + 2];
+  }
+}
+
+// The layer stress's lever arms times u_z of the chunk's contact ends (Dynamics::end_arms), from
+// its columns and overlaps: u_z = b_z/r with r = (a_i + a_j) - delta, which is the contact pass's
+// root bit for bit while -reach/2 <= delta <= reach/4 (Sterbenz: the subtraction that made delta
+// was exact, and so is this one); a chunk with a contact outside that margin takes the root.
+// The same operations as crystal/observers.cpp's exact_end_arms, so the same bits.
+[[gnu::always_inline]] inline void end_arms_of_chunk(const Gathered& g, std::int64_t m, const double* __restrict delta,
+                                                     double* __restrict arm_u) {
+  using G = Gathered;
+  std::int32_t outside = 0;
+  for (std::int64_t u = 0; u < m; ++u) outside |= !Dynamics::distance_from_overlap_exact(delta[u], g.col[G::reach][u]);
+  for (std::int64_t u = 0; u < m; ++u) {
+    const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
+    const double r = outside ? std::sqrt(bx * bx + by * by + bz * bz) : g.col[G::reach][u] - delta[u];
+    const double u_z = bz / r;
+    arm_u[2 * u] = Dynamics::end_arm(g.col[G::a_i][u], delta[u], u_z);
+    arm_u[2 * u + 1] = Dynamics::end_arm(g.col[G::a_j][u], delta[u], u_z);
+  }
+}
+
+// ---- The scatter: contact sums straight into per-particle rows (one thread) ----
+// On one thread the contact pass adds each contact's f (laws with torques: and n x f^t, and
+// delta n x f^t for the contact-point arm) to per-particle rows of four doubles (K rows per
+// particle: f | n x f^t | delta n x f^t, each row kind a block of 4 n doubles; a law with couples
+// adds one more, the couple, j's subtracted) right after a
+// chunk of contacts is evaluated, while its values are still in L1; Dynamics then only finishes
+// the torques and kicks (finish_pass), instead of re-reading every contact's values through the
+// per-particle contact lists (the particle pass: 23 % of a friction run, AVX2). The order of the
+// additions is the particle pass's: the list is sorted by i and i < j, so in list order a
+// particle first meets the contacts where it is j, then its own range as i; each sum starts from
+// 0.0 and adds (j: subtracts the force) in that order, lane-wise IEEE: the same bits. The sums
+// of the current i stay in registers over the list's run of equal i; j's are read and written.
+#ifdef GRANWAVE_GATHER_VECTORS
+template <int K>
+struct ScatterState {
+  std::int64_t cur = -1;  // the particle i whose sums are in registers
+  V4 sum[K]{};
+};
+
+// K rows of f | n x f^t | delta n x f^t, then with Couples the couple's row (row K).
+template <int K, bool Couples>
+[[gnu::always_inline]] inline void scatter_one(ScatterState<K + Couples>& st, double* __restrict rows, std::int64_t n,
+                                               std::int64_t i, std::int64_t j, const V4& f, const V4& nf,
+                                               double delta, const V4& couple) {
+  constexpr int R = K + Couples;
+  if (i != st.cur) {
+    if (st.cur >= 0)
+      for (int k = 0; k < R; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+    st.cur = i;
+    for (int k = 0; k < R; ++k) st.sum[k] = load4(rows + 4 * (k * n + i));
+  }
+  st.sum[0] = st.sum[0] + f;
+  store4(rows + 4 * j, load4(rows + 4 * j) - f);
+  if constexpr (K >= 2) {
+    st.sum[1] = st.sum[1] + nf;
+    store4(rows + 4 * (n + j), load4(rows + 4 * (n + j)) + nf);
+  }
+  if constexpr (K >= 3) {
+    const V4 d{delta, delta, delta, delta};
+    const V4 dn = d * nf;
+    st.sum[2] = st.sum[2] + dn;
+    store4(rows + 4 * (2 * n + j), load4(rows + 4 * (2 * n + j)) + dn);
+  }
+  if constexpr (Couples) {  // j gets the opposite couple
+    st.sum[K] = st.sum[K] + couple;
+    store4(rows + 4 * (K * n + j), load4(rows + 4 * (K * n + j)) - couple);
+  }
+}
+
+// The m contacts (their i, j, forces, n x f^t, overlaps, couples: cc, Couples only; indexed
+// from 0) into the rows.
+template <int K, bool Couples = false>
+[[gnu::always_inline]] inline void scatter(double* rows, std::int64_t n, std::int64_t m, const std::int32_t* ci,
+                                           const std::int32_t* cj, const double* cfx, const double* cfy,
+                                           const double* cfz, const double* cnx, const double* cny,
+                                           const double* cnz, const double* cdelta, const double* ccx = nullptr,
+                                           const double* ccy = nullptr, const double* ccz = nullptr) {
+  ScatterState<K + Couples> st;
+  const V4 zero{0.0, 0.0, 0.0, 0.0};
+  V4 f[4], nf[4], cp[4];
+  std::int64_t c = 0;
+  for (; c + 4 <= m; c += 4) {
+    transpose4(load4(cfx + c), load4(cfy + c), load4(cfz + c), zero, f[0], f[1], f[2], f[3]);
+    if constexpr (K >= 2) transpose4(load4(cnx + c), load4(cny + c), load4(cnz + c), zero, nf[0], nf[1], nf[2], nf[3]);
+    if constexpr (Couples) transpose4(load4(ccx + c), load4(ccy + c), load4(ccz + c), zero, cp[0], cp[1], cp[2], cp[3]);
+    for (int q = 0; q < 4; ++q)
+      scatter_one<K, Couples>(st, rows, n, ci[c + q], cj[c + q], f[q], nf[q], K >= 3 ? cdelta[c + q] : 0.0, cp[q]);
+  }
+  for (; c < m; ++c) {
+    const V4 fc{cfx[c], cfy[c], cfz[c], 0.0};
+    const V4 nc = K >= 2 ? V4{cnx[c], cny[c], cnz[c], 0.0} : zero;
+    const V4 cc = Couples ? V4{ccx[c], ccy[c], ccz[c], 0.0} : zero;
+    scatter_one<K, Couples>(st, rows, n, ci[c], cj[c], fc, nc, K >= 3 ? cdelta[c] : 0.0, cc);
+  }
+  if (st.cur >= 0)
+    for (int k = 0; k < K + Couples; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+}
+#endif
+
+}  // namespace kernel
+
+}  // namespace granwave::crystal

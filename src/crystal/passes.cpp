@@ -1,0 +1,510 @@
+// The time step of the crystal (Dynamics::advance): velocity Verlet's particle passes -- the
+// half kicks and drift, the finish of the contact pass's sums into forces and torques.
+// 256-bit vectors for the contact loop (4 contacts per instruction; lane-wise IEEE: the same results
+// at any width). With AVX-512 this still uses its masks and 32 registers; 512-bit vectors were
+// slower on the AMD EPYC (Zen 4) development machine, end to end (CPU time, 3200-particle crystal,
+// 6000 steps, alternating runs): friction 2.18 s at 512 bits against 1.90 s at 256, frictionless
+// 0.92 against 0.86 (its 512-bit gathers and roots do not pay for their width).
+#pragma GCC target("prefer-vector-width=256")
+#include "crystal/dynamics.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <string>
+#include <type_traits>
+
+#include "core/error.hpp"
+#include "crystal/kernel.hpp"
+#include "crystal/neighbors.hpp"
+
+namespace granwave::crystal {
+
+namespace {
+
+#ifdef GRANWAVE_GATHER_VECTORS
+// Four particles at a time, for the one-thread particle passes (finish_pass, kick_drift,
+// finish_kick_drift): each helper does one step of the scalar code in four lanes, the same
+// operations in the same order.
+using kernel::load4, kernel::store4, kernel::V4;
+typedef long long V4m __attribute__((vector_size(32)));  // lane masks
+typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
+
+// The `mobile` flags of particles p..p+3 as lane masks.
+[[gnu::always_inline]] inline V4m mobile4(const std::uint8_t* on, std::int64_t p) {
+  return V4m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
+}
+// Four rows of a per-particle sum (Dynamics::contact_sums) as x, y, z lanes; the rows are
+// zeroed for the next contact pass.
+[[gnu::always_inline]] inline void take_rows(double* r, V4& cx, V4& cy, V4& cz) {
+  const V4 zero{0.0, 0.0, 0.0, 0.0};
+  V4 unused;
+  kernel::transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
+  store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
+}
+// The torques of particles p..p+3 from their rows: -a (sum n x f^t), and with the contact-point
+// arm (Rows = 3) + 1/2 (sum delta n x f^t), then with Couples + (sum of the couples, rows rc);
+// zero without torques (Rows = 1).
+template <int Rows, bool Couples>
+[[gnu::always_inline]] inline void torques_of_rows(double* rn, double* rd, double* rc, const double* a, std::int64_t p,
+                                                   V4& tx, V4& ty, V4& tz) {
+  tx = ty = tz = V4{0.0, 0.0, 0.0, 0.0};
+  if constexpr (Rows >= 2) {
+    V4 nx, ny, nz;
+    take_rows(rn + 4 * p, nx, ny, nz);
+    const V4 na = -load4(a + p);
+    tx = na * nx, ty = na * ny, tz = na * nz;
+    if constexpr (Rows == 3) {
+      const V4 half{0.5, 0.5, 0.5, 0.5};
+      V4 dx, dy, dz;
+      take_rows(rd + 4 * p, dx, dy, dz);
+      tx = tx + half * dx, ty = ty + half * dy, tz = tz + half * dz;
+    }
+    if constexpr (Couples) {
+      V4 mx, my, mz;
+      take_rows(rc + 4 * p, mx, my, mz);
+      tx = tx + mx, ty = ty + my, tz = tz + mz;
+    }
+  }
+}
+// `Kicks` half kicks of one velocity component of the mobile ones of particles p..p+3,
+// v += h f / m each (f / m: `inv` is 1/m or 1/I).
+template <int Kicks>
+[[gnu::always_inline]] inline V4 kicked4(const V4& v, const V4& f, const V4m& m, const V4& hv, const V4& inv) {
+  V4 out = v;
+  for (int k = 0; k < Kicks; ++k) out = m ? out + hv * f * inv : out;
+  return out;
+}
+// Kicks and drift of one coordinate of particles p..p+3 (x += dt v for the mobile ones); returns
+// the displacement since the list's build, (x - x0) - x_build.
+template <int Kicks>
+[[gnu::always_inline]] inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const float* rb,
+                                             const V4m& m, const V4& hv, const V4& dtv, const V4& inv_m,
+                                             std::int64_t p) {
+  const V4 v1 = kicked4<Kicks>(load4(v + p), f, m, hv, inv_m);
+  const V4 x0 = load4(r + p);
+  const V4 x1 = m ? x0 + dtv * v1 : x0;
+  store4(v + p, v1);
+  store4(r + p, x1);
+  return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
+}
+#endif
+
+}  // namespace
+
+namespace {
+// Pass 2's particle arrays: what it writes (forces, torques, velocities) and reads (radii,
+// inverse masses and inertias, mobile flags). store() ends one particle's pass: its force and
+// torque, then with Kick the half kick (with Spin, of the angular velocity too).
+struct ParticleOut {
+  double *fx, *fy, *fz, *tx, *ty, *tz, *vx, *vy, *vz, *wx, *wy, *wz;
+  const double *a, *im, *ii;
+  const std::uint8_t* on;
+  explicit ParticleOut(Dynamics& d)
+      : fx(d.fx.data()), fy(d.fy.data()), fz(d.fz.data()), tx(d.tx.data()), ty(d.ty.data()), tz(d.tz.data()),
+        vx(d.vx.data()), vy(d.vy.data()), vz(d.vz.data()), wx(d.wx.data()), wy(d.wy.data()), wz(d.wz.data()),
+        a(d.radius.data()), im(d.inv_mass.data()), ii(d.inv_inertia.data()), on(d.mobile.data()) {}
+  template <bool Kick, bool StoreTorque, bool Spin>
+  [[gnu::always_inline]] void store(std::int64_t p, double h, double sx, double sy, double sz, double tqx, double tqy,
+                                    double tqz) const {
+    fx[p] = sx;
+    fy[p] = sy;
+    fz[p] = sz;
+    if constexpr (StoreTorque) {
+      tx[p] = tqx;
+      ty[p] = tqy;
+      tz[p] = tqz;
+    }
+    if (Kick && on[p]) {
+      vx[p] += h * sx * im[p];
+      vy[p] += h * sy * im[p];
+      vz[p] += h * sz * im[p];
+      if constexpr (Spin) {
+        wx[p] += h * tqx * ii[p];
+        wy[p] += h * tqy * ii[p];
+        wz[p] += h * tqz * ii[p];
+      }
+    }
+  }
+};
+}  // namespace
+
+// Sum of each particle's contact forces and torques in contact order; with Kick, the half
+// kick of velocity Verlet follows at once (the forces are then still in cache). The torque of
+// contact c on p is -arm n x f^t with arm = a_p (eq. (4)), or a_p - delta_c/2 with
+// ContactPointArm: then -a_p sum(n x f^t) + (1/2) sum(delta_c n x f^t). On one thread a plain
+// loop (no OpenMP call), every array through a __restrict pointer: 3 % faster end to end
+// frictionless than the loop behind `omp parallel for if (false)` that wrote through the vectors.
+// With Couples, each contact's couple is added to i's torque and subtracted from j's.
+template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded, bool Couples>
+void Dynamics::particle_pass(double h) {
+  const ContactList& C = contacts;
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
+  constexpr bool fr = Torques;
+  C.j_lists(size());
+  const std::int32_t* __restrict j_first = C.j_first.data();
+  const std::int32_t* __restrict j_contacts = C.j_contacts.data();
+  const std::int32_t* __restrict i_first = C.i_first.data();
+  const double* __restrict cfx = C.f_x.data();
+  const double* __restrict cfy = C.f_y.data();
+  const double* __restrict cfz = C.f_z.data();
+  const double* __restrict cnx = C.nf_x.data();
+  const double* __restrict cny = C.nf_y.data();
+  const double* __restrict cnz = C.nf_z.data();
+  const double* __restrict cdelta = C.delta.data();
+  const double* __restrict ccx = C.couple_x.data();
+  const double* __restrict ccy = C.couple_y.data();
+  const double* __restrict ccz = C.couple_z.data();
+  const double* __restrict a = radius.data();
+  const ParticleOut out(*this);
+  auto one = [&](std::int64_t p) __attribute__((always_inline)) {
+    double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
+    double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
+    double mx = 0.0, my = 0.0, mz = 0.0;     // sum of the couples, Couples only
+    // Both spheres feel -a n x f^t; j gets -f (s + (-f) is s - f).
+    auto add = [&](std::int32_t c, auto as_j) __attribute__((always_inline)) {
+      if constexpr (decltype(as_j)::value) {
+        sx -= cfx[c];
+        sy -= cfy[c];
+        sz -= cfz[c];
+      } else {
+        sx += cfx[c];
+        sy += cfy[c];
+        sz += cfz[c];
+      }
+      if constexpr (fr) {
+        nx += cnx[c];
+        ny += cny[c];
+        nz += cnz[c];
+        if constexpr (ContactPointArm) {
+          dnx += cdelta[c] * cnx[c];
+          dny += cdelta[c] * cny[c];
+          dnz += cdelta[c] * cnz[c];
+        }
+      }
+      if constexpr (Couples) {  // j gets the opposite couple
+        constexpr double sign = decltype(as_j)::value ? -1.0 : 1.0;
+        mx += sign * ccx[c], my += sign * ccy[c], mz += sign * ccz[c];
+      }
+    };
+    for (std::int32_t k = j_first[p]; k < j_first[p + 1]; ++k) add(j_contacts[k], std::true_type{});
+    for (std::int32_t c = i_first[p]; c < i_first[p + 1]; ++c) add(c, std::false_type{});
+    double tqx = -a[p] * nx, tqy = -a[p] * ny, tqz = -a[p] * nz;
+    if constexpr (ContactPointArm) tqx = tqx + 0.5 * dnx, tqy = tqy + 0.5 * dny, tqz = tqz + 0.5 * dnz;
+    if constexpr (Couples) tqx = tqx + mx, tqy = tqy + my, tqz = tqz + mz;  // as finish_pass adds them
+    out.store<Kick, true, fr>(p, h, sx, sy, sz, tqx, tqy, tqz);
+  };
+  if constexpr (Threaded) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t p = p0; p < p1; ++p) one(p);
+  } else {
+    for (std::int64_t p = p0; p < p1; ++p) one(p);
+  }
+}
+
+// The particle pass from the contact pass's per-particle sums (contact_sums, Rows rows per
+// particle: 1 force, 2 and n x f^t, 3 and delta n x f^t; with Couples one more, the couples'):
+// the same torques and kick as particle_pass, from sums made in the same order. The rows are
+// zeroed for the next contact pass (the halo's too: its sums are incomplete and never used).
+template <bool Kick, int Rows, bool Couples>
+void Dynamics::finish_pass(double h, std::int64_t from) {
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
+  double* __restrict rf = contact_sums.data();
+  double* __restrict rn = rf + 4 * n;
+  double* __restrict rd = rf + 8 * n;
+  double* __restrict rc = rf + 4 * Rows * n;  // the couples' row, Couples only
+  const ParticleOut out(*this);
+  const double* __restrict a = out.a;
+  std::int64_t p = std::max(p0, from);
+#ifdef GRANWAVE_GATHER_VECTORS
+  // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
+  // the rows zeroed behind them.
+  {
+    const V4 hv{h, h, h, h};
+    for (; p + 4 <= p1; p += 4) {
+      V4 sx, sy, sz, tqx, tqy, tqz;
+      take_rows(rf + 4 * p, sx, sy, sz);
+      torques_of_rows<Rows, Couples>(rn, rd, rc, a, p, tqx, tqy, tqz);
+      store4(out.fx + p, sx), store4(out.fy + p, sy), store4(out.fz + p, sz);
+      if constexpr (Rows >= 2) store4(out.tx + p, tqx), store4(out.ty + p, tqy), store4(out.tz + p, tqz);
+      if constexpr (Kick) {
+        const V4m m = mobile4(out.on, p);
+        const V4 imv = load4(out.im + p);
+        for (auto [v, f] : {std::pair{out.vx, sx}, std::pair{out.vy, sy}, std::pair{out.vz, sz}})
+          store4(v + p, kicked4<1>(load4(v + p), f, m, hv, imv));
+        if constexpr (Rows >= 2) {
+          const V4 iiv = load4(out.ii + p);
+          for (auto [w, t] : {std::pair{out.wx, tqx}, std::pair{out.wy, tqy}, std::pair{out.wz, tqz}})
+            store4(w + p, kicked4<1>(load4(w + p), t, m, hv, iiv));
+        }
+      }
+    }
+  }
+#endif
+  const std::int64_t zeroed = p;  // rows [p0, zeroed) are zero again
+  for (; p < p1; ++p) {
+    const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
+    double tqx = 0.0, tqy = 0.0, tqz = 0.0;
+    if constexpr (Rows == 3) {
+      tqx = -a[p] * rn[4 * p] + 0.5 * rd[4 * p];
+      tqy = -a[p] * rn[4 * p + 1] + 0.5 * rd[4 * p + 1];
+      tqz = -a[p] * rn[4 * p + 2] + 0.5 * rd[4 * p + 2];
+    } else if constexpr (Rows == 2) {
+      tqx = -a[p] * rn[4 * p];
+      tqy = -a[p] * rn[4 * p + 1];
+      tqz = -a[p] * rn[4 * p + 2];
+    }
+    if constexpr (Couples) tqx = tqx + rc[4 * p], tqy = tqy + rc[4 * p + 1], tqz = tqz + rc[4 * p + 2];
+    out.store<Kick, Rows >= 2, Rows >= 2>(p, h, sx, sy, sz, tqx, tqy, tqz);
+  }
+  for (int k = 0; k < Rows + Couples; ++k) {  // the others (the halo's sums are incomplete and never used)
+    std::fill(rf + 4 * (k * n), rf + 4 * (k * n + p0), 0.0);
+    std::fill(rf + 4 * (k * n + zeroed), rf + 4 * (k * n + n), 0.0);
+  }
+}
+
+void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
+  finish_forces(model_->contact_pass(*this, {inc, dashpots, false, true}), kick);
+}
+
+void Dynamics::finish_forces(const ContactSums& sums, bool kick) {
+  const double h = kick ? 0.5 * dt_ : 0.0;
+  switch (sums.rows) {  // the contact pass made the sums (one thread)
+    case 1: return kick ? finish_pass<true, 1, false>(h) : finish_pass<false, 1, false>(h);
+    case 2:
+      if (sums.couples) return kick ? finish_pass<true, 2, true>(h) : finish_pass<false, 2, true>(h);
+      return kick ? finish_pass<true, 2, false>(h) : finish_pass<false, 2, false>(h);
+    case 3:
+      if (sums.couples) return kick ? finish_pass<true, 3, true>(h) : finish_pass<false, 3, true>(h);
+      return kick ? finish_pass<true, 3, false>(h) : finish_pass<false, 3, false>(h);
+    default: break;
+  }
+  const bool threads = threaded();
+  auto pass = [&]<bool Torques, bool ContactPointArm, bool Couples>() {
+    if (threads)
+      kick ? particle_pass<true, Torques, ContactPointArm, true, Couples>(h)
+           : particle_pass<false, Torques, ContactPointArm, true, Couples>(h);
+    else
+      kick ? particle_pass<true, Torques, ContactPointArm, false, Couples>(h)
+           : particle_pass<false, Torques, ContactPointArm, false, Couples>(h);
+  };
+  if (!torques_) return pass.template operator()<false, false, false>();
+  switch (lever_arm_) {
+    case contact::LeverArm::radius:
+      return couples_ ? pass.template operator()<true, false, true>() : pass.template operator()<true, false, false>();
+    case contact::LeverArm::contact_point:
+      return couples_ ? pass.template operator()<true, true, true>() : pass.template operator()<true, true, false>();
+  }
+}
+
+// The first half kick and drift of the owned mobile particles (translation; sphere orientation
+// is not needed); returns whether one of them has moved more than half the skin since the list
+// was built. Branch-free (selects, and a flag instead of a max of doubles), so it vectorises
+// with AVX2 as well; the loop it replaces was scalar (GCC 12: not vectorized) and went through
+// an OpenMP call even on one thread: 7 % of crystal_kt10's time with the radius arm (perf).
+template <bool Torques, bool Threaded>
+Drift Dynamics::kick_drift(std::int64_t from) {
+  using contact::select;
+  const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
+  const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
+  double* __restrict px = x.data();
+  double* __restrict py = y.data();
+  double* __restrict pz = z.data();
+  double* __restrict pvx = vx.data();
+  double* __restrict pvy = vy.data();
+  double* __restrict pvz = vz.data();
+  double* __restrict pwx = wx.data();
+  double* __restrict pwy = wy.data();
+  double* __restrict pwz = wz.data();
+  const double* __restrict pfx = fx.data();
+  const double* __restrict pfy = fy.data();
+  const double* __restrict pfz = fz.data();
+  const double* __restrict ptx = tx.data();
+  const double* __restrict pty = ty.data();
+  const double* __restrict ptz = tz.data();
+  const double* __restrict im = inv_mass.data();
+  const double* __restrict ii = inv_inertia.data();
+  const double* __restrict x0p = x0.data();
+  const double* __restrict y0p = y0.data();
+  const double* __restrict z0p = z0.data();
+  const float* __restrict xb = x_build_.data();
+  const float* __restrict yb = y_build_.data();
+  const float* __restrict zb = z_build_.data();
+  const std::uint8_t* __restrict on = mobile.data();
+  // [q0, q1); each particle's displacement since the build is compared as its square against
+  // far2_ (the same decision as sqrt(max d^2) > skin/2; a NaN counts as not far, as std::max
+  // ignored it). ivdep: the captured pointers lose __restrict, and each p touches only its own entries.
+  auto range = [=](std::int64_t q0, std::int64_t q1) __attribute__((always_inline)) -> std::int64_t {
+    std::int64_t far = 0;
+#pragma GCC ivdep
+    for (std::int64_t p = q0; p < q1; ++p) {
+      const bool m = on[p] != 0;
+      const double vxp = select(m, pvx[p] + h * pfx[p] * im[p], pvx[p]);
+      const double vyp = select(m, pvy[p] + h * pfy[p] * im[p], pvy[p]);
+      const double vzp = select(m, pvz[p] + h * pfz[p] * im[p], pvz[p]);
+      const double xp = select(m, px[p] + dt * vxp, px[p]);
+      const double yp = select(m, py[p] + dt * vyp, py[p]);
+      const double zp = select(m, pz[p] + dt * vzp, pz[p]);
+      pvx[p] = vxp;
+      pvy[p] = vyp;
+      pvz[p] = vzp;
+      px[p] = xp;
+      py[p] = yp;
+      pz[p] = zp;
+      if constexpr (Torques) {
+        pwx[p] = select(m, pwx[p] + h * ptx[p] * ii[p], pwx[p]);
+        pwy[p] = select(m, pwy[p] + h * pty[p] * ii[p], pwy[p]);
+        pwz[p] = select(m, pwz[p] + h * ptz[p] * ii[p], pwz[p]);
+      }
+      const double dx = (xp - x0p[p]) - xb[p], dy = (yp - y0p[p]) - yb[p], dz = (zp - z0p[p]) - zb[p];
+      far |= dx * dx + dy * dy + dz * dz > far2;
+    }
+    return far;
+  };
+  std::int64_t far = 0;
+#ifdef GRANWAVE_GATHER_VECTORS
+  // One thread: four particles at a time with explicit vectors. GCC vectorises `range` by the
+  // narrowest type it reads (the uint8 mobile flag: 32 particles per iteration, eight registers
+  // per double, most of them spilled); here the flag becomes a lane mask. The same operations.
+  if constexpr (!Threaded) {
+    const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
+    // Serial, no slab (this rank holds every particle): write the gather rows too, so that the
+    // contact pass need not copy the state into them again.
+    const std::int64_t n = static_cast<std::int64_t>(size());
+    double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
+                                                                                                : nullptr;
+    V4m far4{0, 0, 0, 0};
+    std::int64_t p = std::max(p0, from);
+    for (; p + 4 <= p1; p += 4) {
+      const V4m m = mobile4(on, p);
+      const V4 imv = load4(im + p);
+      const V4 dx = kick_drift4<1>(pvx, px, load4(pfx + p), x0p, xb, m, hv, dtv, imv, p);
+      const V4 dy = kick_drift4<1>(pvy, py, load4(pfy + p), y0p, yb, m, hv, dtv, imv, p);
+      const V4 dz = kick_drift4<1>(pvz, pz, load4(pfz + p), z0p, zb, m, hv, dtv, imv, p);
+      if constexpr (Torques) {
+        const V4 iiv = load4(ii + p);
+        for (auto [w, t] : {std::pair{pwx, ptx}, std::pair{pwy, pty}, std::pair{pwz, ptz}})
+          store4(w + p, kicked4<1>(load4(w + p), load4(t + p), m, hv, iiv));
+      }
+      far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+      if (rows) kernel::fill_rows(*this, rows, p, p + 4);  // the contact pass's rows of these four
+    }
+    far = range(p, p1);
+    far |= far4[0] | far4[1] | far4[2] | far4[3];
+    if (rows) kernel::fill_rows(*this, rows, p, p1);
+    return {far != 0, rows != nullptr};
+  }
+#endif
+  if constexpr (Threaded) {
+    constexpr std::int64_t kBlock = 1024;
+    const std::int64_t nb = (p1 - p0 + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(static) reduction(| : far)
+    for (std::int64_t b = 0; b < nb; ++b) far |= range(p0 + b * kBlock, std::min(p1, p0 + (b + 1) * kBlock));
+  } else {
+    far = range(p0, p1);
+  }
+  return {far != 0, false};
+}
+
+// Dynamics::advance's pass: finish_pass<true, Rows, Couples> (the second half kick of the step before)
+// and kick_drift<Torques, false> (this step's first half kick and drift) for four particles at a
+// time, F and the torques kept in registers (fx..tz are not stored: the step's last finish
+// writes them); the last n % 4 particles through the two passes as they are.
+template <int Rows, bool Couples>
+Drift Dynamics::finish_kick_drift() {
+#ifdef GRANWAVE_GATHER_VECTORS
+  constexpr bool Torques = Rows >= 2;
+  const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t | couples
+  double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
+  const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
+  V4m far4{0, 0, 0, 0};
+  std::int64_t p = 0;
+  for (; p + 4 <= n; p += 4) {
+    V4 sx, sy, sz, tqx, tqy, tqz;
+    take_rows(sums + 4 * p, sx, sy, sz);
+    torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, radius.data(), p, tqx, tqy, tqz);
+    const V4m m = mobile4(mobile.data(), p);
+    const V4 inv_m = load4(inv_mass.data() + p);
+    const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
+    const V4 dy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), y_build_.data(), m, hv, dtv, inv_m, p);
+    const V4 dz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), z_build_.data(), m, hv, dtv, inv_m, p);
+    if constexpr (Torques) {
+      const V4 inv_i = load4(inv_inertia.data() + p);
+      for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
+        store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
+    }
+    far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+    if (rows) kernel::fill_rows(*this, rows, p, p + 4);
+  }
+  Drift drift{(far4[0] | far4[1] | far4[2] | far4[3]) != 0, rows != nullptr};
+  if (p < n) {
+    finish_pass<true, Rows, Couples>(h, p);
+    const Drift tail = kick_drift<Torques, false>(p);
+    drift = {drift.far || tail.far, tail.rows_fresh};
+  }
+  return drift;
+#else
+  finish_pass<true, Rows, Couples>(0.5 * dt_);
+  return kick_drift<Rows >= 2, false>();
+#endif
+}
+
+Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
+  switch (waiting.rows) {
+    case 1: return finish_kick_drift<1, false>();
+    case 2: return waiting.couples ? finish_kick_drift<2, true>() : finish_kick_drift<2, false>();
+    case 3: return waiting.couples ? finish_kick_drift<3, true>() : finish_kick_drift<3, false>();
+    default: break;
+  }
+  // The halo is not integrated here: its owner does it, and exchange_halo copies it.
+  const bool threads = threaded();
+  return torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
+                  : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
+}
+
+void Dynamics::upkeep_list(const Drift& drift) {
+  const bool far = slab_ ? slab_->comm->max(drift.far ? 1.0 : 0.0) > 0.0 : drift.far;  // every rank alike
+  if (far) rebuild();
+}
+
+ContactSums Dynamics::finish_step(const ContactSums& sums, bool last) {
+  if (!last && !slab_ && sums.rows != 0) return sums;  // one thread: joined to the next drift
+  finish_forces(sums, true);
+  return {};
+}
+
+void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
+  auto lap = [clock](PhaseTimes::Phase phase) {
+    if (clock) clock->lap(phase);
+  };
+  ContactSums waiting;  // the step before's sums, when their finish joins this step's drift
+  for (long s = 1; s <= k; ++s) {
+    const bool last = s == k;
+    const Drift drift = half_kick_drift(waiting);  // v(t + dt/2), x(t + dt)
+    time += dt_;
+    ++steps;
+    lap(PhaseTimes::kick_drift);
+    if (slab_) {
+      exchange_halo();  // the neighbours' boundary layers at t + dt
+      lap(PhaseTimes::halo);
+    }
+    upkeep_list(drift);  // a rebuild when a particle left its skin
+    lap(PhaseTimes::list_upkeep);
+    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces});
+    lap(PhaseTimes::contact_pass);
+    waiting = finish_step(sums, last);  // F(t + dt) and the second half kick, v(t + dt)
+    lap(PhaseTimes::finish);
+  }
+}
+
+}  // namespace granwave::crystal

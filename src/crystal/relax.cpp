@@ -1,0 +1,70 @@
+// FIRE relaxation of a packing (Bitzek et al., PRL 97, 170201 (2006)): a polydisperse packing
+// brought to rest under its prestress before a run.
+// 256-bit vectors, as in the time step's passes (crystal/passes.cpp says why).
+#pragma GCC target("prefer-vector-width=256")
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "crystal/dynamics.hpp"
+
+namespace granwave::crystal {
+
+RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> model, double t_c, double tolerance,
+                       long max_steps) {
+  // FIRE parameters of Bitzek et al., PRL 97, 170201 (2006).
+  const double dt_max = 0.1 * t_c, f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
+  const int n_min = 5, n_quiet = 50;
+  double dt = 0.02 * t_c, alpha = alpha_0;
+  Dynamics dyn(packing, std::move(model), dt);
+  const std::size_t n = dyn.size();
+  long since_reset = 0, quiet = 0;
+  RelaxResult res;
+  for (long s = 0; s < max_steps; ++s) {
+    // FIRE mixing: power P = F.v over the mobile particles.
+    double power = 0.0, v2 = 0.0, f2 = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      if (!dyn.mobile[p]) continue;
+      power += dyn.fx[p] * dyn.vx[p] + dyn.fy[p] * dyn.vy[p] + dyn.fz[p] * dyn.vz[p];
+      v2 += dyn.vx[p] * dyn.vx[p] + dyn.vy[p] * dyn.vy[p] + dyn.vz[p] * dyn.vz[p];
+      f2 += dyn.fx[p] * dyn.fx[p] + dyn.fy[p] * dyn.fy[p] + dyn.fz[p] * dyn.fz[p];
+    }
+    if (power > 0.0) {
+      const double scale = f2 > 0.0 ? alpha * std::sqrt(v2 / f2) : 0.0;
+      for (std::size_t p = 0; p < n; ++p) {
+        if (!dyn.mobile[p]) continue;
+        dyn.vx[p] = (1.0 - alpha) * dyn.vx[p] + scale * dyn.fx[p];
+        dyn.vy[p] = (1.0 - alpha) * dyn.vy[p] + scale * dyn.fy[p];
+        dyn.vz[p] = (1.0 - alpha) * dyn.vz[p] + scale * dyn.fz[p];
+      }
+      if (++since_reset > n_min) {
+        dt = std::min(dt * f_inc, dt_max);
+        alpha *= f_alpha;
+      }
+    } else {
+      for (auto* v : {&dyn.vx, &dyn.vy, &dyn.vz}) std::fill(v->begin(), v->end(), 0.0);
+      dt *= f_dec;
+      alpha = alpha_0;
+      since_reset = 0;
+    }
+    dyn.set_dt(dt);
+    dyn.step();
+    const double ratio = dyn.kinetic_energy() / dyn.potential_energy();
+    quiet = (ratio < tolerance && since_reset > 0) ? quiet + 1 : 0;
+    if (quiet >= n_quiet) {
+      res.steps = s + 1;
+      res.ratio = ratio;
+      for (std::size_t p = 0; p < n; ++p) {
+        packing.x[p] = dyn.x[p] - std::floor(dyn.x[p] / packing.box_x) * packing.box_x;
+        packing.y[p] = dyn.y[p] - std::floor(dyn.y[p] / packing.box_y) * packing.box_y;
+        packing.z[p] = dyn.z[p];
+      }
+      return res;
+    }
+  }
+  throw RunError("relaxation did not reach E_kin/E_pot < " + std::to_string(tolerance) + " within " +
+                 std::to_string(max_steps) + " steps");
+}
+
+}  // namespace granwave::crystal
