@@ -347,6 +347,7 @@ RelaxedModuli relaxed_moduli(const ContactNetwork& net, const RelaxedOptions& op
     r.residual = std::max(r.residual, s.residual);
   }
   auto speed = [&](const Tensor4& t, int pol) {
+    if (r.contacts_used == 0) return kNaN;  // no load-bearing network left (every particle a rattler)
     const double v2 = t.christoffel(Vec3::UnitZ())(pol, pol) / r.rho;
     return v2 >= 0.0 ? std::sqrt(v2) : kNaN;
   };
