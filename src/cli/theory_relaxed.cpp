@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "config/contact_laws.hpp"
 #include "crystal/simulation.hpp"
@@ -98,12 +99,17 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
                              : "the crystal closed across z (its fixed layers are lattice layers)";
   }
 
-  const theory::RelaxedModuli& ref = R.bulk_available ? R.bulk : R.slab;
+  // The bulk unless its closure left no load-bearing network (every particle a rattler).
+  const theory::RelaxedModuli& ref = R.bulk_available && R.bulk.contacts_used > 0 ? R.bulk : R.slab;
   R.Z = ref.coordination;
   R.phi = ref.rho / c.crystal->density;  // overlaps neglected
   R.p = ref.pressure;
   const config::ContactLawInfo& law = config::law_of(c.contact);
-  if (law.hertz_normal) {
+  if (!(R.Z > 0.0)) {
+    R.medium_model = "none: no load-bearing contacts";
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    R.medium = {nan, nan, nan, nan, nan};
+  } else if (law.hertz_normal) {
     R.medium_model = "walton_hertz_mindlin";
     const double G_g = c.contact.youngs_modulus / (2.0 * (1.0 + c.contact.poisson_ratio));
     R.medium = theory::walton_hertz_mindlin(R.Z, R.phi, G_g, c.contact.poisson_ratio, R.p, ref.rho);

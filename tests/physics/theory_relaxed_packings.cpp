@@ -115,7 +115,7 @@ TEST_CASE("FCC crystals of data/cases: relaxed bulk = lattice long waves with ro
   }
 }
 
-TEST_CASE("Polydisperse relaxed crystals: relaxation only softens; rattlers and zero modes counted", "[theory][relaxed]") {
+TEST_CASE("Polydisperse relaxed crystals: relaxation only softens, rattlers and zero modes counted", "[theory][relaxed]") {
   int solved = 0;
   for (const char* name : {"crystal_poly1", "crystal_poly2"}) {
     INFO(name);
