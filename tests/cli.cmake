@@ -72,6 +72,18 @@ p = json.load(open('${CLI_TMP}/lat_poly.json')); assert not p['lattice']['availa
 assert 'V_sz_lattice' not in p and 'V_sz' in p\"")
 set_tests_properties("cli: theory --nk 4 exits 2 naming the option and its range"
                      "cli: theory --json gives the lattice speeds and six branches; polydisperse: a note" PROPERTIES LABELS "cli;unit")
+# Issue 39: the relaxed moduli in theory --json. The FCC bulk's relaxed speeds are the lattice's
+# long-wave speeds with rotations (1e-6); the slab relaxes less; Hertz-Mindlin gets Walton's estimate.
+add_test(NAME "cli: theory --json gives the relaxed slab and bulk moduli and the effective-medium estimate"
+  COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_kt10.toml --json --nk 3 > ${CLI_TMP}/relaxed.json && \
+${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_hm_s.toml --json --nk 3 > ${CLI_TMP}/relaxed_hm.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/relaxed.json')); r = d['relaxed']; v = lambda x: x['value']; \
+assert abs(v(r['bulk']['V_sz']) / v(d['V_sz_lattice']) - 1) < 1e-6 and abs(v(r['bulk']['V_pz']) / v(d['V_pz_lattice']) - 1) < 1e-6, r['bulk']; \
+assert v(r['bulk']['V_sz']) <= v(r['slab']['V_sz']) <= v(r['slab']['V_sz_affine']); \
+assert r['slab']['rattlers'] == 0 and r['slab']['zero_modes']['mechanisms'] == 0 and r['slab']['unstable_modes'] == 0; \
+e = d['effective_medium']; assert e['label'] == 'affine estimate' and e['model'] == 'linear_springs'; \
+h = json.load(open('${CLI_TMP}/relaxed_hm.json'))['effective_medium']; assert h['model'] == 'walton_hertz_mindlin' and h['K']['value'] > 0\"")
+set_tests_properties("cli: theory --json gives the relaxed slab and bulk moduli and the effective-medium estimate" PROPERTIES LABELS "cli")
 # Crystal studies honour --limit (stop, keep the batches, resume) and --threads (the study file does
 # not depend on it): `granwave sweep` used to pass neither to crystal studies.
 add_test(NAME "cli: crystal sweep --limit stops and resumes, --threads changes nothing"

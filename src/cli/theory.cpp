@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 
+#include "cli/theory_relaxed.hpp"
 #include "cli/verbs.hpp"
 #include "config/case.hpp"
 #include "config/contact_laws.hpp"
@@ -45,6 +46,13 @@ packing's actual contact network (polydisperse packings are relaxed first, as in
            long-wave speeds V_pz_lattice, V_sz_lattice (x-polarised), V_sy_lattice, and the six
            branches omega_b(k) for k in [-pi/l0, pi/l0] with their polarisations. Needs a
            Bravais lattice: omitted, with a note, for a polydisperse packing.
+  relaxed  the non-affine tensor A_relaxed (theory/relaxed_moduli.hpp): every free particle's
+           translation and rotation relaxed under a homogeneous strain, with the prestress's
+           geometric term; rho V^2 = eigenvalues of A_abgf m_a m_g. Slab: the fixed layers moved
+           affinely; bulk: the packing closed across z. V_pz, V_sz, V_sy, rattlers, zero modes
+           (free rotations, translations, mechanisms), sliding contacts (all treated as sticking)
+  effective medium   the affine estimate at the packing's non-rattler Z, solid fraction and mean
+           stress: Walton's K, G for Hertz-Mindlin, the isotropic linear-spring K, G otherwise
 Index convention: C[a][b][g][f] with a, g branch (gradient) directions and b, f displacement
 (force) directions; sigma_ab = C_abgf du_f/dx_g.
 
@@ -55,7 +63,8 @@ Index convention: C[a][b][g][f] with a, g branch (gradient) directions and b, f 
                    v_k0_s, rho_bulk, l0, ratios, C, C_frictionless, C_voigt_sym, V_pz_lattice,
                    V_sz_lattice, V_sy_lattice, lattice (details, or the note why it is omitted),
                    dispersion (k grid; per branch omega, group velocity, translation/rotation
-                   fractions and the fraction in each of u_x u_y u_z theta_x theta_y theta_z), ...
+                   fractions and the fraction in each of u_x u_y u_z theta_x theta_y theta_z),
+                   relaxed {slab, bulk}, effective_medium (data/SCHEMA.md), ...
 )";
 
 Json quantity(double v, const char* unit) { return {{"value", v}, {"unit", unit}}; }
@@ -212,6 +221,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
   if (slab.layer_hi >= pk.layers) throw InputError("--layers: the case has " + std::to_string(pk.layers) + " layers");
   const auto r = theory::crystal_prediction(net, slab);
   const LatticePart L = lattice_part(c, net, slab, nk);
+  const RelaxedPart relaxed = relaxed_part(c, pk, net);
   const theory::Vec3 ex = theory::Vec3::UnitX(), ey = theory::Vec3::UnitY(), ez = theory::Vec3::UnitZ();
 
   // Sec. 2.1: the collision of two particles of the mean radius.
@@ -317,6 +327,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
       voigt.push_back(row);
     }
     o["C_voigt_sym"] = {{"unit", "Pa"}, {"order", {"xx", "yy", "zz", "yz", "xz", "xy"}}, {"values", voigt}};
+    add_relaxed_json(o, relaxed);
     out << json_text(o);
     return 0;
   }
@@ -376,6 +387,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
     for (int J = 0; J < 6; ++J) std::printf(" %12.5e", r.C_voigt_sym(I, J));
     std::printf("\n");
   }
+  print_relaxed(relaxed);
   return 0;
 }
 

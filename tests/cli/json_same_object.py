@@ -20,8 +20,9 @@ import sys
 
 TIMING = {"wall_seconds", "bead_steps_per_second", "particle_steps_per_second", "mpi_rank_seconds",
           "mpi_rank_message_seconds", "mpi_rank_cpu_seconds", "mpi_rank_message_cpu_seconds"}
-# keys the new binary adds: which dispersion model was fitted; the time loop's phases (timings)
-ADDED = {"dispersion_model", "long_wave", "phases"}
+# keys the new binary adds: which dispersion model was fitted; the time loop's phases (timings);
+# theory's relaxed moduli and effective-medium estimate (issue 39)
+ADDED = {"dispersion_model", "long_wave", "phases", "relaxed", "effective_medium"}
 
 
 def same(new, ref, path, diffs, added):

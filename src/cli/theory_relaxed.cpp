@@ -1,0 +1,174 @@
+// `granwave theory`'s relaxed moduli and effective-medium estimate (theory_relaxed.hpp).
+#include "cli/theory_relaxed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "config/contact_laws.hpp"
+#include "crystal/simulation.hpp"
+
+namespace granwave::cli {
+namespace {
+
+Json q(double v, const char* unit) { return {{"value", v}, {"unit", unit}}; }
+
+Json tensor_values(const theory::Tensor4& C) {
+  Json A = Json::array();
+  for (int a = 0; a < 3; ++a) {
+    Json B = Json::array();
+    for (int b = 0; b < 3; ++b) {
+      Json G = Json::array();
+      for (int g = 0; g < 3; ++g) {
+        Json F = Json::array();
+        for (int f = 0; f < 3; ++f) F.push_back(C(a, b, g, f));
+        G.push_back(F);
+      }
+      B.push_back(G);
+    }
+    A.push_back(B);
+  }
+  return {{"unit", "Pa"}, {"index_order", "A[a][b][g][f]: a,g gradient, b,f displacement"}, {"values", A}};
+}
+
+Json moduli_json(const theory::RelaxedModuli& r) {
+  return {{"boundary", theory::boundary_name(r.boundary)},
+          {"V_pz", q(r.V_pz, "m/s")},
+          {"V_sz", q(r.V_sz, "m/s")},
+          {"V_sy", q(r.V_sy, "m/s")},
+          {"V_pz_affine", q(r.V_pz_affine, "m/s")},
+          {"V_sz_affine", q(r.V_sz_affine, "m/s")},
+          {"rho", q(r.rho, "kg/m^3")},
+          {"volume", q(r.volume, "m^3")},
+          {"pressure", q(r.pressure, "Pa")},
+          {"coordination", q(r.coordination, "1")},
+          {"particles", r.particles},
+          {"free_particles", r.free_particles},
+          {"rattlers", r.rattlers},
+          {"contacts", r.contacts},
+          {"contacts_used", r.contacts_used},
+          {"dof", r.dof},
+          {"zero_modes",
+           {{"free_rotations", r.free_rotation_modes},
+            {"translations", r.translation_modes},
+            {"mechanisms", r.mechanisms}}},
+          {"unstable_modes", r.unstable_modes},
+          {"sliding_contacts", r.sliding_contacts},
+          {"forcing_on_zero_modes", r.forcing_on_zero_modes},
+          {"residual", r.residual},
+          {"A_relaxed", tensor_values(r.relaxed)}};
+}
+
+}  // namespace
+
+RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, const theory::ContactNetwork& net) {
+  RelaxedPart R;
+  theory::RelaxedOptions slab;
+  slab.contact = crystal::lattice_options(c, 1e-6);
+  slab.affine_layers = std::max(1, pk.fixed_layers);
+  slab.mu = c.contact.mu_static;
+  slab.unstressed = false;
+  R.slab = theory::relaxed_moduli(net, slab);
+
+  // The bulk: the network closed across z, the end layers' centres one mean layer spacing apart;
+  // an ABAB stack closes only with an even number of layers.
+  if (pk.layers % 2 != 0) {
+    R.bulk_note = "omitted: an odd number of layers does not close the ABAB stack across z";
+  } else {
+    std::vector<theory::Vec3> centres;
+    double zlo = 0.0, zhi = 0.0;
+    int nlo = 0, nhi = 0;
+    for (std::size_t p = 0; p < pk.size(); ++p) {
+      centres.emplace_back(pk.x[p], pk.y[p], pk.z[p]);
+      if (pk.layer[p] == 0) zlo += pk.z[p], ++nlo;
+      if (pk.layer[p] == pk.layers - 1) zhi += pk.z[p], ++nhi;
+    }
+    theory::RelaxedOptions bulk = slab;
+    bulk.boundary = theory::RelaxedBoundary::bulk;
+    bulk.box_z = (zhi / nhi - zlo / nlo) * pk.layers / (pk.layers - 1);
+    const auto periodic = theory::periodic_in_z(net, centres, bulk.box_z, [&](int i, int j, const theory::Vec3&, double overlap) {
+      const auto k = crystal::contact_between(c, pk.radius[i], pk.radius[j], overlap);
+      theory::NetworkContact nc;
+      nc.normal_force = k.f_n, nc.k = k.kn, nc.kt = k.kt;
+      return nc;
+    });
+    R.bulk = theory::relaxed_moduli(periodic, bulk);
+    R.bulk_available = true;
+    R.bulk_note = pk.relaxed ? "closed across z through the fixed end layers, which were not relaxed against each other"
+                             : "the crystal closed across z (its fixed layers are lattice layers)";
+  }
+
+  // The bulk unless its closure left no load-bearing network (every particle a rattler).
+  const theory::RelaxedModuli& ref = R.bulk_available && R.bulk.contacts_used > 0 ? R.bulk : R.slab;
+  R.Z = ref.coordination;
+  R.phi = ref.rho / c.crystal->density;  // overlaps neglected
+  R.p = ref.pressure;
+  const config::ContactLawInfo& law = config::law_of(c.contact);
+  if (!(R.Z > 0.0)) {
+    R.medium_model = "none: no load-bearing contacts";
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    R.medium = {nan, nan, nan, nan, nan};
+  } else if (law.hertz_normal) {
+    R.medium_model = "walton_hertz_mindlin";
+    const double G_g = c.contact.youngs_modulus / (2.0 * (1.0 + c.contact.poisson_ratio));
+    R.medium = theory::walton_hertz_mindlin(R.Z, R.phi, G_g, c.contact.poisson_ratio, R.p, ref.rho);
+  } else {
+    R.medium_model = "linear_springs";
+    R.medium = theory::affine_linear(R.Z, R.phi, c.crystal->radius, net.k, net.kt, ref.rho);
+  }
+  return R;
+}
+
+void add_relaxed_json(Json& o, const RelaxedPart& r) {
+  Json rel = {{"note", "non-affine: free particles' translations and rotations relaxed under a homogeneous strain; "
+                       "A_relaxed = A_affine - Xi^T H^+ Xi / V with the initial-stress term (rho V^2 = eigenvalues of "
+                       "A_abgf m_a m_g); slab: fixed layers moved affinely; rattlers and zero modes removed, never "
+                       "divided by; every contact treated as sticking"},
+              {"slab", moduli_json(r.slab)}};
+  if (r.bulk_available) {
+    rel["bulk"] = moduli_json(r.bulk);
+    rel["bulk"]["note"] = r.bulk_note;
+  } else {
+    rel["bulk"] = {{"available", false}, {"note", r.bulk_note}};
+  }
+  o["relaxed"] = rel;
+  o["effective_medium"] = {
+      {"label", "affine estimate"},
+      {"model", r.medium_model},
+      {"note", r.medium_model == "walton_hertz_mindlin"
+                   ? "Walton 1987 / Digby 1981: K = [Z^2 phi^2 G^2 p/(18 pi^2 (1-nu)^2)]^(1/3), G = (3/5) K (5-4nu)/(2-nu) "
+                     "(rough), G_smooth = (3/5) K; isotropic contacts, every contact strained affinely"
+                   : "linear springs, isotropic contacts strained affinely: K = Z phi k_n/(6 pi R), G = Z phi (2 k_n + 3 "
+                     "k_t)/(20 pi R), G_smooth = Z phi k_n/(10 pi R)"},
+      {"Z", q(r.Z, "1")},
+      {"phi", q(r.phi, "1")},
+      {"p", q(r.p, "Pa")},
+      {"K", q(r.medium.K, "Pa")},
+      {"G", q(r.medium.G, "Pa")},
+      {"G_smooth", q(r.medium.G_smooth, "Pa")},
+      {"V_p", q(r.medium.V_p, "m/s")},
+      {"V_s", q(r.medium.V_s, "m/s")}};
+}
+
+void print_relaxed(const RelaxedPart& r) {
+  auto line = [](const theory::RelaxedModuli& m) {
+    std::printf("relaxed (%s, non-affine): V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (affine %.4f, %.4f); "
+                "p = %.6g Pa, Z = %.4f\n",
+                theory::boundary_name(m.boundary), m.V_pz, m.V_sz, m.V_sy, m.V_pz_affine, m.V_sz_affine, m.pressure,
+                m.coordination);
+    std::printf("  rattlers %d, zero modes: %d free rotations, %d translations, %d mechanisms; unstable %d; sliding "
+                "contacts %d (treated as sticking)\n",
+                m.rattlers, m.free_rotation_modes, m.translation_modes, m.mechanisms, m.unstable_modes, m.sliding_contacts);
+  };
+  line(r.slab);
+  if (r.bulk_available)
+    line(r.bulk);
+  else
+    std::printf("relaxed (bulk): %s\n", r.bulk_note.c_str());
+  std::printf("effective medium (affine estimate, %s, Z = %.4f, phi = %.4f, p = %.6g Pa): K = %.6g Pa, G = %.6g Pa "
+              "(smooth %.6g), V_p = %.4f m/s, V_s = %.4f m/s\n",
+              r.medium_model.c_str(), r.Z, r.phi, r.p, r.medium.K, r.medium.G, r.medium.G_smooth, r.medium.V_p, r.medium.V_s);
+}
+
+}  // namespace granwave::cli
