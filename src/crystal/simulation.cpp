@@ -28,10 +28,10 @@ ContactAt contact_between(const config::Case& c, double a_i, double a_j, double 
 theory::LatticeCellOptions lattice_options(const config::Case& c, double tolerance) {
   theory::LatticeCellOptions opt;
   opt.tolerance = tolerance;
-  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
-  opt.kr = c.contact.kr;
-  opt.ko = c.contact.ko;
-  opt.rolling_arm_shift = contact::rolling_shift(c.contact.rolling_lever, c.contact.lever_arm);  // the law's a
+  opt.arm_shift = contact::arm_shift(c.contact.friction().lever_arm);
+  opt.kr = c.contact.rolling().kr;
+  opt.ko = c.contact.rolling().ko;
+  opt.rolling_arm_shift = contact::rolling_shift(c.contact.rolling().rolling_lever, c.contact.friction().lever_arm);  // the law's a
   return opt;
 }
 
@@ -62,8 +62,8 @@ double static_normal_force(const config::Case& c, double a_i, double a_j, double
   return contact_between(c, a_i, a_j, delta).f_n;
 }
 
-std::string contact_law_name(const config::ContactParams& cp) { return config::law_of(cp).name; }
-std::string tangential_history_name(const config::ContactParams& cp) { return config::law_of(cp).history_name(cp); }
+std::string contact_law_name(const contact::LawParams& cp) { return config::law_of(cp).name; }
+std::string tangential_history_name(const contact::LawParams& cp) { return config::law_of(cp).history_name(cp); }
 
 Derived derive(const config::Case& c) {
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
@@ -77,16 +77,16 @@ Derived derive(const config::Case& c) {
   d.kt = k0.kt;
   d.gamma_n = k0.gamma_n;
   d.f0 = k0.f_n;
-  const contact::LinearSpringDashpotParams normal{d.kn, d.gamma_n, c.contact.normal_tension == config::NormalTension::clip};
-  const contact::TangentialSpringParams tangential{d.kt, k0.gamma_t, c.contact.mu_static, c.contact.mu_dynamic,
-                                                   c.contact.coulomb_normal == config::CoulombNormal::magnitude};
+  const contact::LinearSpringDashpotParams normal{d.kn, d.gamma_n, c.contact.friction().clip()};
+  const contact::TangentialSpringParams tangential{d.kt, k0.gamma_t, c.contact.friction().mu_static, c.contact.friction().mu_dynamic,
+                                                   c.contact.friction().magnitude()};
   normal.validate();
   tangential.validate();
   d.mass = k.density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
   d.m_ij = contact::reduced_mass(d.mass, d.mass);
   d.omega = contact::contact_frequency(normal, d.m_ij);
   if (!std::isfinite(d.omega))
-    throw InputError(c.path + ": contact.gamma_n = " + std::to_string(c.contact.gamma_n) +
+    throw InputError(c.path + ": contact.gamma_n = " + std::to_string(c.contact.number("gamma_n").value_or(0.0)) +
                      " overdamps a contact (k/m_ij < eta_0^2): no contact time");
   d.t_c = contact::contact_time(normal, d.m_ij);
   d.restitution = contact::restitution(normal, d.m_ij);
@@ -542,14 +542,14 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, io
   w.attr("/", "case_toml", c.toml_text);
   w.attr("/", "time_convention", std::string("synchronous"));
   // The contact-law conventions the crosscheck compares (data/SCHEMA.md §3).
-  w.attr("/", "lever_arm", std::string(contact::lever_arm_name(c.contact.lever_arm)));
-  w.attr("/", "normal_tension", std::string(c.contact.normal_tension == config::NormalTension::clip ? "clip" : "allow"));
+  w.attr("/", "lever_arm", std::string(contact::lever_arm_name(c.contact.friction().lever_arm)));
+  w.attr("/", "normal_tension", std::string(c.contact.friction().clip() ? "clip" : "allow"));
   w.attr("/", "coulomb_normal",
-         std::string(c.contact.coulomb_normal == config::CoulombNormal::magnitude ? "magnitude" : "compressive"));
+         std::string(c.contact.friction().magnitude() ? "magnitude" : "compressive"));
   w.attr("/", "contact_law", contact_law_name(c.contact));
   w.attr("/", "tangential_history", tangential_history_name(c.contact));
-  w.attr("/", "rolling_lever", std::string(contact::rolling_lever_name(c.contact.rolling_lever)));
-  w.attr("/", "rolling_history", std::string(contact::rolling_history_name(c.contact.rolling_history)));
+  w.attr("/", "rolling_lever", std::string(contact::rolling_lever_name(c.contact.rolling().rolling_lever)));
+  w.attr("/", "rolling_history", std::string(contact::rolling_history_name(c.contact.rolling().rolling_history)));
   w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
   write_system(w, p, c.name, "/system");
   for (const auto& f : trace_fields(c)) w.write(f.path, r.traces.*f.series, shape_of(f, r.traces));
