@@ -56,6 +56,12 @@ const ContactLawInfo& law_of(ContactLaw law) {
   return contact::visit_law(law, []<class D>(D) -> const ContactLawInfo& { return record<D>(); });
 }
 
+std::vector<const ContactLawInfo*> contact_laws() {
+  std::vector<const ContactLawInfo*> laws;
+  contact::for_each_law([&]<class D>(D) { laws.push_back(&record<D>()); });
+  return laws;
+}
+
 std::vector<std::string_view> contact_law_names() {
   std::vector<std::string_view> names;
   contact::for_each_law([&]<class D>(D) { names.push_back(D::name); });

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "config/case.hpp"
+#include "contact/case_keys.hpp"
 #include "contact/case_law.hpp"
 
 namespace granwave::config {
@@ -36,6 +37,8 @@ struct ContactLawInfo {
 const ContactLawInfo& law_of(ContactLaw law);
 inline const ContactLawInfo& law_of(const contact::LawParams& contact) { return law_of(contact.law()); }
 
+// Every law of this build's registry, in registry order (`granwave laws`).
+std::vector<const ContactLawInfo*> contact_laws();
 // The laws' names, in registry order (the first is the default of [contact] law).
 std::vector<std::string_view> contact_law_names();
 // The names of the laws that have `key`, quoted and joined by " or " (refusal messages).

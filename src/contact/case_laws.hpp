@@ -4,8 +4,8 @@
 // description is not in the list fails the static_assert of Described (tests/cli.cmake's
 // law_registry_* tests show both, and that no ContactLaw:: comparison is left outside).
 // Only the registry's translation units include this header: config/contact_laws.cpp (what code
-// outside a law asks), crystal/law_models.cpp (the kernel's instantiations), impact/simulate.cpp
-// (the impact's) and cli/laws.cpp (`granwave laws`: every law's parameter description).
+// outside a law asks), crystal/law_models.cpp (the kernel's instantiations) and impact/simulate.cpp
+// (the impact's); `granwave laws` reads the records of config/contact_laws.cpp.
 #pragma once
 #include <stdexcept>
 #include <tuple>

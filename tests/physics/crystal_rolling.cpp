@@ -230,7 +230,7 @@ Audit audit(const contact::LawParams& cp, double dt, double t_end) {
 TEST_CASE("rolling and torsion through the kernel: stored + dissipated = work, the error converging as dt^2",
           "[crystal][contact]") {
   // omega ~ 9e4 1/s for these springs (a' = 0.6 mm).
-  contact::LawParams cp = rolling_case(4e4, 2e4, contact::LeverArm::contact_point);
+  contact::LinearLudingParams cp = rolling_case(4e4, 2e4, contact::LeverArm::contact_point);
   const double t_end = 5e-4;
   // Elastic, no slip: velocity Verlet's error of the oscillation, O(dt^2).
   const Audit e1 = audit(cp, 2e-7, t_end), e2 = audit(cp, 1e-7, t_end);
