@@ -1,13 +1,32 @@
 """The contact laws' parameter descriptions as granwave exports them (`granwave laws --json`, written
 by src/cli/laws.cpp from each law's own description in src/contact/): every law's [contact] keys with
-their units, ranges and defaults. The crosscheck takes the defaults from here, never from a copy.
+their units, ranges and defaults. The crosscheck takes the defaults from here, never from a copy; the
+granwave it asks is the one the harness and the drivers use (find_granwave).
 
 Only the standard library (the YADE script imports it too)."""
 from __future__ import annotations
 
 import functools
 import json
+import os
+import shutil
 import subprocess
+
+from .codefacts import Unsupported
+
+
+def find_granwave(explicit: str | None = None) -> str | None:
+    """granwave: EXPLICIT, else $GRANWAVE, this checkout's build/ and build-xc/, then PATH (the harness's and the
+    drivers' search; a checkout judges its own build, never an older installed program)."""
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    for c in ([explicit] if explicit else [os.environ.get("GRANWAVE", ""), os.path.join(repo, "build", "granwave"),
+                                           os.path.join(repo, "build-xc", "granwave"), "granwave"]):
+        if not c:
+            continue
+        p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)
+        if p:
+            return os.path.abspath(p)
+    return None
 
 SCHEMA = "granwave-laws/1"
 
@@ -25,7 +44,6 @@ def _described(exe: str) -> tuple:
 
 def laws(granwave: str | None = None) -> list:
     """Every law of granwave's registry, in its order (the first is the default): name, summary, keys."""
-    from xclib.impact import find_granwave   # here, not at import: impact imports traces, which imports us
     exe = find_granwave(granwave)
     if exe is None:
         raise RuntimeError("granwave not found ($GRANWAVE, build/ or PATH): the contact laws' keys and defaults "
@@ -42,7 +60,6 @@ def law(name: str, granwave: str | None = None) -> dict:
     for d in laws(granwave):
         if d["name"] == name:
             return d
-    from xclib.codefacts import Unsupported
     raise Unsupported("contact.law = %r: granwave knows %s" % (name, ", ".join(d["name"] for d in laws(granwave))))
 
 
