@@ -45,7 +45,7 @@ TEST_CASE("contact laws name the case key of a bad parameter", "[contact]") {
   CHECK_THAT(message_of([&] { contact::LinearLuding(n, {1e5, -1.0, 0.5, 0.5}, contact::LeverArm::radius); }),
              Catch::Contains("contact.gamma_t"));
   CHECK_THAT(message_of([&] { contact::LinearLuding(n, {1e5, 0.0, 0.3, 0.5}, contact::LeverArm::radius); }),
-             Catch::Contains("contact.friction().mu_dynamic"));
+             Catch::Contains("contact.mu_dynamic"));
   CHECK_NOTHROW(contact::LinearLuding(n, {1e5, 0.1, 0.5, 0.3}, contact::LeverArm::contact_point));
 }
 
@@ -255,7 +255,7 @@ TEST_CASE("linear + Luding law: the forms without dashpots or without the stick/
   const contact::TangentialSpringParams t{1e5, 0.0, 0.01, 0.01};
   // mu_s != mu_d needs the flag.
   CHECK_THAT(message_of([&] { LinearLudingLaw<true, false>(n, {1e5, 0.0, 0.5, 0.3}, contact::LeverArm::radius); }),
-             Catch::Contains("contact.friction().mu_static"));
+             Catch::Contains("contact.mu_static"));
   CHECK(contact::history_columns<LinearLudingLaw<true, false>::History> == 3);
   CHECK(contact::history_columns<LinearLudingLaw<true, true>::History> == 4);
   // Drive one contact through sticking into sliding with each form: same forces, springs, losses.
