@@ -30,8 +30,8 @@ namespace {
 config::Case seed_case(int layers, double kt, config::LeverArm arm = config::LeverArm::radius) {
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_p.toml");
   c.crystal->cells[2] = layers;
-  c.contact.kt = kt;
-  c.contact.lever_arm = arm;
+  c.contact.set_number("kt", kt);
+  c.contact.friction().lever_arm = arm;
   return c;
 }
 

@@ -292,7 +292,7 @@ def convert_crystal(workdir, case, system, facts):
     nl = lay["nlayers"]
     clip = facts["clip"]
     dl = L.law_of(cp).lammps_dump(cp)    # the law's dashpot correction (Hertz-Mindlin: per contact)
-    gamma_n, kn, hertz = dl["gamma_n"], dl["kn"], dl["hertz"]
+    gamma_n, normal = dl["gamma_n"], dl["normal"]
     mobile = DRV.mobile(case, x)
     bx, by, dt = lay["box_x"], lay["box_y"], facts["dt"]
     ncol = 6 if facts["tangential"] else 3
@@ -316,7 +316,7 @@ def convert_crystal(workdir, case, system, facts):
         if gamma_n > 0.0 and s > 0 and len(i):   # step 0: the setup force already saw v(0), as the dump does
             n_ij, _, _ = D.contact_normals(p, i, j, bx, by)
             fn_dump = np.sum(fnorm * n_ij, axis=1)
-            f_step = D.dashpot_at_half_step(p, v, fa, mass, mobile, dt, i, j, fnorm, r, gamma_n, bx, by, kn, clip, hertz)
+            f_step = D.dashpot_at_half_step(p, v, fa, mass, mobile, dt, i, j, fnorm, r, gamma_n, bx, by, clip, normal)
             if facts["tangential"]:
                 fn_step = np.sum(f_step * n_ij, axis=1)
                 ft, assumed = tangential_at_step(fr[:, 3:6], fn_dump, fn_step, float(cp["mu_static"]))
@@ -374,7 +374,7 @@ DRIVER = DRV.DeckDriver(name="lammps_case", code="lammps", title="LAMMPS", packa
 def render_impact(s, work: str) -> dict:
     """An impact deck (data/SCHEMA.md §7): the spheres as types 1, 2, their contact by xclib.hertz_mindlin
     (lammps_impact), every step dumped at full precision (xclib.impact)."""
-    from xclib import hertz_mindlin as HM
+    from xclib import hertz_mindlin_impact as HM
     from xclib import impact as I
     lines, attrs = HM.lammps_impact(s)
     deck = ("# granwave impact case %s -> LAMMPS (lammps_inputs/lammps_case.py; MAPPING.md, \"Impact\")\n" % s.name +

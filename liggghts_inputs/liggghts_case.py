@@ -264,7 +264,7 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
         clip = cp["normal_tension"] == "clip"
         # the law's parameters of the dashpot correction (Hertz-Mindlin: per contact; xclib.laws)
         dl = L.law_of(cp).liggghts_dump(cp, r, lay)
-        gamma_n, gamma_t, kt, kn, hertz = dl["gamma_n"], dl["gamma_t"], dl["kt"], dl["kn"], dl["hertz"]
+        gamma_n, gamma_t, kt, normal = dl["gamma_n"], dl["gamma_t"], dl["kt"], dl["normal"]
         mobile = DRV.mobile(case, x)
         layers = DRV.LayerRows(lay, x.pos)
         for s, cols, rows, pr in frames:
@@ -285,7 +285,7 @@ def convert(workdir: str, case: dict, case_text: str, system_path: str, out: str
                         k = kt(i1, i2, p)[:, None] if callable(kt) else kt
                         ff = tangential_at_step(p, i1, i2, ff, shear, k, lay["box_x"], lay["box_y"])
                     return dashpot_at_half_step(p, v, fa, mass, mobile, dt, i1, i2, ff, r, gamma_n,
-                                                lay["box_x"], lay["box_y"], kn, clip, hertz)
+                                                lay["box_x"], lay["box_y"], clip, normal)
             i, j, f = _pairs_on_first(pr, correct) if len(pr) else (np.zeros(0, int), np.zeros(0, int), np.zeros((0, 3)))
             szz, szx = T.layer_stress(p, r, layer, fixed, i, j, f, lay["box_x"], lay["box_y"], lay["l0"], nl)
             layers.add(p, v, layer, szz, szx)
@@ -319,7 +319,7 @@ DRIVER = DRV.DeckDriver(name="liggghts_case", code="liggghts", title="LIGGGHTS",
 def render_impact(s, work: str) -> dict:
     """An impact deck (data/SCHEMA.md §7): body 1 type 1, body 2 or the wall type 2, the contact by
     xclib.hertz_mindlin (liggghts_impact), every step dumped at full precision (xclib.impact)."""
-    from xclib import hertz_mindlin as HM
+    from xclib import hertz_mindlin_impact as HM
     from xclib import impact as I
     lines, attrs = HM.liggghts_impact(s)
     I.data_file(s, os.path.join(work, "data.system"), "Atoms")

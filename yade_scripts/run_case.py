@@ -410,9 +410,9 @@ def run_crystal(case, system, dt, nsteps, every):
 
 def run_impact(case_path, out_path, case, text):
     """An impact case (data/SCHEMA.md §7): the spheres (the wall: a fixed sphere of
-    HM.YADE_WALL_RADIUS_FACTOR radii with the material that makes YADE's mixing exact), every step
+    HM.YADE_WALL_RADIUS_FACTOR (xclib.hertz_mindlin_impact) radii with the material that makes YADE's mixing exact), every step
     sampled by a PyRunner after NewtonIntegrator and made synchronous as the chain's samples."""
-    from xclib import hertz_mindlin as HM
+    from xclib import hertz_mindlin_impact as HM
     from xclib import impact as I
     from xclib.codefacts import NOT_EXPRESSIBLE, Unsupported
     try:

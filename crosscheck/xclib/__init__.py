@@ -1,16 +1,19 @@
 """granwave cross-code validation library (granwave, YADE, LIGGGHTS, LAMMPS).
 
 Modules (each imports only those listed before it, so there is no import cycle):
-  traces      -- case/system reading, trace writing (data/SCHEMA.md §2-3), the layer-stress definition
   codefacts   -- facts of the other codes shared by the laws' mappings (LAMMPS pair-style conventions, Unsupported,
                  axis-aligned walls)
+  lawdesc     -- the contact laws' keys, units, ranges and defaults from `granwave laws --json`; where granwave is
+  traces      -- case/system reading, trace writing (data/SCHEMA.md §2-3), the layer-stress definition
   linear      -- the linear law of a case in YADE's, LIGGGHTS' and LAMMPS' parameters (one mapping module per law)
-  hertz_mindlin -- the Hertz-Mindlin law of a case in YADE's, LIGGGHTS' and LAMMPS' parameters (measured maps)
+  hertz_mindlin_maps -- Hertz-Mindlin's constants in each code's terms (E*, G*, restitution, Tsuji, pair_coeff)
+  hertz_mindlin -- the Hertz-Mindlin law of a crystal case in YADE's, LIGGGHTS' and LAMMPS' parameters
   laws        -- the registry of those modules: law_of(contact) (drivers never branch on the law's name)
   driver      -- what the three drivers share: the command line of a deck driver (render, run, convert),
                  running the code, the LAMMPS-family data file and crystal lines, the trace datasets
   impact      -- impact cases (data/SCHEMA.md §7) for the drivers: the bodies, run length, dump reader, trace
   observables -- the crystal trace's observables as granwave lists them (`granwave observables --json`)
+  hertz_mindlin_impact -- the Hertz-Mindlin law's impact decks (LAMMPS, LIGGGHTS, YADE)
   dumps       -- LIGGGHTS/LAMMPS text dumps read frame by frame; the dumped forces put back to the step's
   sysbuild    -- a Python builder of system files (test fixtures only; real runs use `granwave build`)
   compare     -- comparison maths (max |diff|/peak, relative L2, measures) on traces

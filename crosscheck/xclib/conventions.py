@@ -75,13 +75,13 @@ MODELS = ("crystal", "impact")   # the models whose traces record their conventi
 
 def _params(case: dict) -> dict:
     c = T.contact_params(case)
-    c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n", "damping_ratio")})
+    c.update({k: float(c[k]) for k in ("kt", "gamma_t", "gamma_n", "damping_ratio") if k in c})  # the law's own
     c["contact_law"] = c["law"]
     if case.get("case", {}).get("model") == "impact":
         # an impact's dashpot is set by `restitution` (SCHEMA §7.1); mu = 0 or a head-on impact without
         # spin: no tangential force at all
         if float(c.get("restitution", 1.0)) < 1.0:
-            c["damping_ratio"] = max(c["damping_ratio"], 1.0)
+            c["damping_ratio"] = max(c.get("damping_ratio", 0.0), 1.0)
         from .impact import tangential_motion
         if float(c["mu_static"]) == 0.0 or not tangential_motion(case):
             c["tangential"] = "none"

@@ -141,8 +141,6 @@ def layer_deck_values(case: dict, system: dict) -> dict:
     bad = list(law.bench_refusals(c))   # what the law's decks cannot render (xclib.laws)
     if case["case"]["model"] != "crystal":
         bad.append("model = %r (crystal only)" % case["case"]["model"])
-    if c["gamma_n"] != 0 or c["gamma_t"] != 0:
-        bad.append("gamma_n, gamma_t must be 0 (LAMMPS' dashpot is per unit mass)")
     if c["mu_static"] != c["mu_dynamic"]:
         bad.append("mu_static != mu_dynamic (one mu in LAMMPS and LIGGGHTS)")
     if c["normal_tension"] != "allow":
@@ -159,9 +157,8 @@ def layer_deck_values(case: dict, system: dict) -> dict:
     z0 = float(np.min(np.asarray(system["position"], float)[lay["layer"] == 0, 2]))
     friction = law.tangential(c)
     return dict(case_name=case["case"]["name"], dt=g(f["dt"]), nsteps=f["nsteps"], every=f["every"], law=law,
-                youngs=c.get("youngs_modulus", 0.0), poisson=c.get("poisson_ratio", 0.0),
                 skin=g(SKIN_OVER_RADIUS * r), neigh_every=NEIGH_EVERY, l0=g(lay["l0"]),
-                origin=g(z0 - 0.5 * lay["l0"]), friction=friction, kn=c["kn"], kt=c["kt"], mu=c["mu_static"],
+                origin=g(z0 - 0.5 * lay["l0"]), friction=friction, mu=c["mu_static"],
                 excitation_line=excitation_line(ex, lay["d"]),
                 integrator="nve/sphere" if friction else "nve", n=f["n"],
                 contact=c, radius=system["radius"])   # rolling and torsion: each law maps or refuses them

@@ -142,8 +142,8 @@ def half_step_velocities(v, f_atoms, m, mobile, dt):
     return vh
 
 
-def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y, kn=0.0,
-                         clip=False, hertz=None):
+def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gamma_n, box_x, box_y, clip=False,
+                         normal=None):
     """The force each contact applied in the step, from the force the dump recomputed.
 
     LIGGGHTS' `compute pair/gran/local` and LAMMPS' `compute pair/local` (through the pair style's
@@ -161,14 +161,14 @@ def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gam
     clip (normal_tension = "clip": LIGGGHTS `limitForce on`, LAMMPS `limit_damping`): the step's
     normal force was max(kn delta + gamma_n ddelta_half, 0) and the dump's max(kn delta + gamma_n
     ddelta_used, 0); where either one was cut to zero the difference is not the dashpot difference,
-    so the normal force of the step is computed whole (kn: the contact stiffness). Measured on the
+    so the normal force of the step is computed whole (normal: the law's). Measured on the
     prestressed velocity drive with "clip" (contacts opening with the dashpot pulling): LIGGGHTS vs
     granwave and YADE 4.2e-5 at z/l0 = 10 with the additive correction, with the same dynamics (layer
     velocities 1e-10); 5.6e-10 computed whole.
 
-    hertz = (E*, zeta) for the Hertz-Mindlin law (xclib.hertz_mindlin): the elastic force is
-    (4/3) E* sqrt(R*) delta^3/2 and the dashpot 2 zeta sqrt(m* 2 E* sqrt(R* delta)) per contact
-    (gamma_n is then only a flag: > 0 when damped)."""
+    normal(r_i, r_j, m_i, m_j, delta) -> (elastic force, dashpot) of these contacts: the law's mapping
+    module's `normal_force(c)` (xclib.laws; Hertz-Mindlin's dashpot depends on the contact, and gamma_n
+    is then only a flag: > 0 when damped). None: the dashpot gamma_n and no elastic force (without clip)."""
     if gamma_n == 0.0 or len(i) == 0:
         return f_pair
     vh = half_step_velocities(v, f_atoms, m, mobile, dt)
@@ -178,14 +178,10 @@ def dashpot_at_half_step(p, v, f_atoms, m, mobile, dt, i, j, f_pair, radius, gam
     dd_used = -np.sum(n * (v[i] - vj_used), axis=1)
     dd_half = -np.sum(n * (vh[i] - vh[j]), axis=1)
     delta = np.maximum(radius[i] + radius[j] - r, 0.0)
-    if hertz is not None:
-        e_star, zeta = hertz
-        r_star = radius[i] * radius[j] / (radius[i] + radius[j])
-        m_star = m[i] * m[j] / (m[i] + m[j])
-        gamma_n = 2.0 * zeta * np.sqrt(m_star * 2.0 * e_star * np.sqrt(r_star * delta))
-        f_el = 4.0 / 3.0 * e_star * np.sqrt(r_star) * delta ** 1.5
+    if normal is not None:
+        f_el, gamma_n = normal(radius[i], radius[j], m[i], m[j], delta)
     else:
-        f_el = kn * delta
+        f_el = 0.0 * delta
     if clip:
         fn_step = np.where(touching, np.maximum(f_el + gamma_n * dd_half, 0.0), 0.0)
         return f_pair + (fn_step - np.sum(f_pair * n, axis=1))[:, None] * n

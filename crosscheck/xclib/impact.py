@@ -20,25 +20,12 @@ import numpy as np
 
 from . import traces as T
 from .codefacts import NOT_EXPRESSIBLE, Unsupported, refuse_resistance
+from .lawdesc import find_granwave  # noqa: F401 (the drivers' and the harness's name for it)
 
 # The drivers' run: every step is written (the peaks are parabola-refined over three samples) until
 # this many closed-form contact times after first touch, and the flight out of the peak overlap at e v:
 # the run ends in free flight.
 RUN_AFTER_TOUCH = 1.1
-
-
-def find_granwave(explicit: str | None = None) -> str | None:
-    """granwave: EXPLICIT, else $GRANWAVE, this checkout's build/ and build-xc/, then PATH (the harness's and the
-    drivers' search; a checkout judges its own build, never an older installed program)."""
-    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    for c in ([explicit] if explicit else [os.environ.get("GRANWAVE", ""), os.path.join(repo, "build", "granwave"),
-                                           os.path.join(repo, "build-xc", "granwave"), "granwave"]):
-        if not c:
-            continue
-        p = shutil.which(c) if "/" not in c else (c if os.access(c, os.X_OK) else None)
-        if p:
-            return os.path.abspath(p)
-    return None
 
 
 def theory(case_path: str, granwave: str | None = None) -> dict:

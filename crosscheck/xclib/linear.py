@@ -4,6 +4,7 @@ Luding's tangential spring with Coulomb friction) in YADE's, LIGGGHTS' and LAMMP
 xclib.hertz_mindlin (xclib.laws)."""
 from __future__ import annotations
 
+import math
 import sys
 
 from xclib.codefacts import (FRICTION_STYLE_CONVENTIONS, RADII_LEVER, Unsupported, liggghts_properties,
@@ -154,10 +155,15 @@ def _liggghts_resisted(c: dict, limit_force: str) -> str:
             "pair_coeff      * *\n" % (" torsion on" if torsion_on(c) else "", limit_force))
 
 
+def normal_force(c: dict):
+    """The elastic normal force and dashpot of contacts at overlaps delta (xclib.dumps): k delta, gamma_0."""
+    kn, gamma_n = float(c["kn"]), float(c["gamma_n"])
+    return lambda r_i, r_j, m_i, m_j, delta: (kn * delta, gamma_n)
+
+
 def liggghts_dump(c: dict, r, lay: dict) -> dict:
     """The contact parameters the dump converter's dashpot correction takes (xclib.dumps)."""
-    return dict(gamma_n=float(c["gamma_n"]), gamma_t=float(c["gamma_t"]), kt=float(c["kt"]), kn=float(c["kn"]),
-                hertz=None)
+    return dict(gamma_n=float(c["gamma_n"]), gamma_t=float(c["gamma_t"]), kt=float(c["kt"]), normal=normal_force(c))
 
 
 def liggghts_attrs(c: dict) -> dict:
@@ -220,11 +226,21 @@ def _lammps_resisted(c: dict, radius) -> dict:
 
 def lammps_dump(c: dict) -> dict:
     """The contact parameters the dump converter's dashpot correction takes (xclib.dumps)."""
-    return dict(gamma_n=float(c["gamma_n"]), kn=float(c["kn"]), hertz=None)
+    return dict(gamma_n=float(c["gamma_n"]), normal=normal_force(c))
 
 
 # ---------------------------------------------------------------------------- bench/side_by_side.py
+def contact_time(c: dict, case: dict, m: float) -> float:
+    """t_c = pi/sqrt(k/m* - eta_0^2), eta_0 = gamma_0/(2 m*), of two spheres of mass m (seed 002
+    sec. 2.1): this law's contact time that `dt_over_tc` scales (granwave: contact/linear_spring_dashpot.hpp)."""
+    mstar = m / 2.0
+    eta = float(c["gamma_n"]) / (2 * mstar)
+    return math.pi / math.sqrt(float(c["kn"]) / mstar - eta * eta)
+
+
 def bench_refusals(c: dict) -> list:
+    if float(c["gamma_n"]) != 0 or float(c["gamma_t"]) != 0:
+        return ["gamma_n, gamma_t must be 0 (LAMMPS' dashpot is per unit mass)"]
     return []
 
 
@@ -235,10 +251,10 @@ def bench_lammps(v: dict) -> dict:
         lines = _lammps_resisted(v["contact"], v["radius"])["lines"]
         return dict(pair_style="granular", pair_coeff=lines.split("pair_coeff      * * ", 1)[1],
                     variant="(granular hooke + tangential linear_history + rolling/twisting sds, fix nve/sphere)")
-    if float(v["kt"]) > 0:
-        return dict(pair_style="gran/hooke/history %s %s 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["kt"]), _g(v["mu"])),
+    if float(v["contact"]["kt"]) > 0:
+        return dict(pair_style="gran/hooke/history %s %s 0.0 0.0 %s 0" % (_g(v["contact"]["kn"]), _g(v["contact"]["kt"]), _g(v["mu"])),
                     pair_coeff="", variant="(gran/hooke/history, fix nve/sphere)")
-    return dict(pair_style="gran/hooke %s 0.0 0.0 0.0 %s 0" % (_g(v["kn"]), _g(v["mu"])), pair_coeff="",
+    return dict(pair_style="gran/hooke %s 0.0 0.0 0.0 %s 0" % (_g(v["contact"]["kn"]), _g(v["mu"])), pair_coeff="",
                 variant="(gran/hooke without history, fix nve)")
 
 
@@ -249,8 +265,8 @@ def bench_liggghts(v: dict) -> dict:
         properties, rest = _liggghts_resisted(v["contact"], "off").split("pair_style      ", 1)
         return dict(properties=properties.rstrip("\n"), pair_style=rest.split("\n", 1)[0],
                     variant="(model luding, tangential tan_luding, rolling_friction luding)")
-    friction = float(v["kt"]) > 0
-    properties = _properties(v["kn"], v["kt"], 0.0, 0.0, v["mu"]).rstrip("\n")
+    friction = float(v["contact"]["kt"]) > 0
+    properties = _properties(v["contact"]["kn"], v["contact"]["kt"], 0.0, 0.0, v["mu"]).rstrip("\n")
     tang = "history" if friction else "no_history"
     return dict(properties=properties,
                 pair_style="gran model hooke/stiffness tangential %s absolute_damping on limitForce off" % tang,

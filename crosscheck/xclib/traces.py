@@ -15,6 +15,7 @@ import tomllib
 import h5py
 import numpy as np
 
+from xclib import lawdesc
 from xclib.laws import law_of
 
 SCHEMA_VERSION = 1
@@ -34,12 +35,9 @@ def load_case(path: str) -> tuple[dict, str]:
 
 
 def contact_params(case: dict) -> dict:
-    c = dict(law="linear", kn=0.0, gamma_n=0.0, kt=0.0, gamma_t=0.0, mu_static=0.5, mu_dynamic=0.5,
-             normal_tension="allow", lever_arm="radius", coulomb_normal="compressive", damping_ratio=0.0,
-             tangential="mindlin", tangential_history="displacement", rolling_lever="lever_arm",
-             rolling_history="rotated")
-    c.update(case.get("contact", {}))
-    return c
+    """The case's [contact] with its law's defaults (`granwave laws --json`, xclib.lawdesc): only that
+    law's keys and friction's, never another law's."""
+    return lawdesc.with_defaults(case.get("contact", {}))
 
 
 def has_tangential(c: dict) -> bool:
@@ -113,7 +111,8 @@ def read_system(path: str) -> dict:
 
 def timestep(case: dict, system: dict) -> float:
     """dt of the run. A system attribute `dt` (granwave's build writes the resolved one) wins; then
-    `dt` as written; `dt_over_tc` of a linear crystal from the two-body contact time."""
+    `dt` as written; `dt_over_tc` of a crystal from the two-body contact time of its law's linearised
+    contact (the law's mapping module: `contact_time`)."""
     integ = case.get("integrator", {})
     if "dt" in system["attrs"]:
         return float(system["attrs"]["dt"])
@@ -121,14 +120,7 @@ def timestep(case: dict, system: dict) -> float:
         return float(integ["dt"])
     if "dt_over_tc" in integ and case["case"]["model"] == "crystal":
         c = contact_params(case)
-        if not c["kn"] > 0:
-            raise ValueError("dt_over_tc of a %s crystal needs the system file's resolved `dt` (write it with "
-                             "`granwave build`)" % c["law"])
-        m = float(np.min(system["mass"]))
-        mstar = m / 2.0
-        eta = c["gamma_n"] / (2 * mstar)
-        tc = math.pi / math.sqrt(c["kn"] / mstar - eta * eta)
-        return float(integ["dt_over_tc"]) * tc
+        return float(integ["dt_over_tc"]) * law_of(c).contact_time(c, case, float(np.min(system["mass"])))
     raise ValueError("case gives dt_over_tc for a chain and the system file has no resolved `dt` attribute")
 
 

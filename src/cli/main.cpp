@@ -31,6 +31,7 @@ usage: granwave VERB [ARGS] (granwave VERB --help for each verb)
                                         ensembles and parameter studies, resumable
   figures chain|crystal [--out DIR]     the seeds' figures as PNG, from fresh runs
   observables [--json]                  the crystal trace's observables: name, shape, unit, sampling
+  laws [--json]                         the contact laws: their [contact] keys, units, ranges, defaults
   version                               print the version
 
 Exit codes: 0 success, 2 bad input, 1 a failed run.
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
       {"build", cli::cmd_build},   {"run", cli::cmd_run},       {"check", cli::cmd_check},     {"analyze", cli::cmd_analyze},
       {"theory", cli::cmd_theory}, {"sweep", cli::cmd_sweep},   {"figures", cli::cmd_figures},
       {"observables", cli::cmd_observables},
+      {"laws", cli::cmd_laws},
   };
   if (verb == "version" || verb == "--version") {
     std::cout << "granwave " << version() << " (" << git_describe() << ")\n";

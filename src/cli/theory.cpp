@@ -226,15 +226,15 @@ int cmd_theory(const Args& args, std::ostream& out) {
 
   // Sec. 2.1: the collision of two particles of the mean radius.
   const double m = cr.density * 4.0 / 3.0 * std::numbers::pi * cr.radius * cr.radius * cr.radius;
-  const bool clip = c.contact.normal_tension == config::NormalTension::clip;
+  const bool clip = c.contact.friction().clip();
   const auto tc = theory::linear_contact_time(k0.kn, k0.gamma_n, 0.5 * m, clip);
   // Hertz: the two-body impact of two free mean particles (no confinement), closing at v_impact:
   // the excitation's velocity for a velocity drive, else 1 m/s (t_c scales as v^(-1/5)).
   theory::HertzImpact impact;
   theory::DampedHertzImpact damped;
   if (hertz) {
-    damped = theory::damped_hertz_impact(c.contact.damping_ratio, clip);
-    const double E_star = c.contact.youngs_modulus / (2.0 * (1.0 - c.contact.poisson_ratio * c.contact.poisson_ratio));
+    damped = theory::damped_hertz_impact(c.contact.number("damping_ratio").value_or(0.0), clip);
+    const double E = *c.contact.number("youngs_modulus"), nu = *c.contact.number("poisson_ratio"), E_star = E / (2.0 * (1.0 - nu * nu));
     const double A = 4.0 / 3.0 * E_star * std::sqrt(0.5 * cr.radius);
     const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
     impact = theory::hertz_impact(A, m, m, velocity ? std::abs(c.excitation.amplitude) : 1.0);
@@ -304,7 +304,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
                       {"inertia", quantity(L.cell.inertia, "kg m^2")},
                       {"contacts", L.cell.bonds.size()},
                       {"lever_arm", quantity(L.arm, "m")},
-                      {"lever_arm_convention", contact::lever_arm_name(c.contact.lever_arm)},
+                      {"lever_arm_convention", contact::lever_arm_name(c.contact.friction().lever_arm)},
                       {"f0", quantity(L.f0, "N")},
                       {"k_roll", quantity(L.cell.bonds.front().k_roll, "N m/rad")},
                       {"k_twist", quantity(L.cell.bonds.front().k_twist, "N m/rad")},
@@ -340,7 +340,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
                 pk.delta, k0.kn, k0.kt, k0.f_n, k0.gamma_n);
     std::printf("Hertz impact of two free particles at %.4g m/s: t_c = %.6g s, delta_max = %.6g m, peak force %.6g N "
                 "(elastic); with damping_ratio %g: restitution %.6f, t_c = %.6g s (at any velocity: t_c ~ v^(-1/5))\n",
-                impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force, c.contact.damping_ratio,
+                impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force, c.contact.number("damping_ratio").value_or(0.0),
                 damped.restitution, damped.time_ratio * impact.contact_time);
   }
   std::printf("representative slab: layers %d..%d, %d particles, coordination %.4f, rho_bulk = %.6g kg/m^3\n",
@@ -361,7 +361,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
               law.stiffness_of_overlap ? ", linearised" : "", 0.5 * m, clip ? "clip" : "allow", tc.t_c, tc.restitution, tc.eta0);
   if (L.available) {
     std::printf("lattice dynamics along z (rotations, I = 2/5 m a^2, lever arm %.6g m (%s), prestress f0 = %.4g N):\n",
-                L.arm, c.contact.lever_arm == contact::LeverArm::contact_point ? "contact point" : "radius", L.f0);
+                L.arm, c.contact.friction().lever_arm == contact::LeverArm::contact_point ? "contact point" : "radius", L.f0);
     std::printf("  long waves: V_pz = %.4f m/s, V_sz = %.4f m/s, V_sy = %.4f m/s (without prestress %.4f, %.4f;\n"
                 "  rotations held, eq. (10)'s kind: %.4f, %.4f)\n",
                 L.lw.speed_along(ez), L.lw.speed_along(ex), L.lw.speed_along(ey), L.lw_unstressed.speed_along(ez),

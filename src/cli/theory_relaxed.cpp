@@ -67,7 +67,7 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
   theory::RelaxedOptions slab;
   slab.contact = crystal::lattice_options(c, 1e-6);
   slab.affine_layers = std::max(1, pk.fixed_layers);
-  slab.mu = c.contact.mu_static;
+  slab.mu = c.contact.friction().mu_static;
   slab.unstressed = false;
   R.slab = theory::relaxed_moduli(net, slab);
 
@@ -111,8 +111,9 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
     R.medium = {nan, nan, nan, nan, nan};
   } else if (law.hertz_normal) {
     R.medium_model = "walton_hertz_mindlin";
-    const double G_g = c.contact.youngs_modulus / (2.0 * (1.0 + c.contact.poisson_ratio));
-    R.medium = theory::walton_hertz_mindlin(R.Z, R.phi, G_g, c.contact.poisson_ratio, R.p, ref.rho);
+    const double E = c.contact.number("youngs_modulus").value(), nu = c.contact.number("poisson_ratio").value();
+    const double G_g = E / (2.0 * (1.0 + nu));
+    R.medium = theory::walton_hertz_mindlin(R.Z, R.phi, G_g, nu, R.p, ref.rho);
   } else {
     R.medium_model = "linear_springs";
     R.medium = theory::affine_linear(R.Z, R.phi, c.crystal->radius, net.k, net.kt, ref.rho);

@@ -10,8 +10,7 @@
 #include <vector>
 
 #include "config/impact_case.hpp"
-#include "contact/lever_arm.hpp"
-#include "contact/rolling_conventions.hpp"
+#include "contact/law_params.hpp"
 
 namespace granwave::config {
 
@@ -61,30 +60,11 @@ struct ChainCase {
 };
 
 // ---- crystal (seed 002) ----
-enum class NormalTension { allow, clip };
-// Lever arm of the tangential force (contact/lever_arm.hpp): radius (seed 002 eq. (4)) or contact_point.
+// The contact law's enumerator and the conventions every law shares live with the laws (contact/).
+using ContactLaw = contact::ContactLaw;
+using NormalTension = contact::NormalTension;
 using LeverArm = contact::LeverArm;
-// The normal force in the Coulomb limits f_C = mu f^n when a dashpot makes it pull (f^n < 0,
-// normal_tension = allow): compressive, mu max(f^n, 0) (no friction under tension, the default);
-// magnitude, mu |f^n| (LIGGGHTS' tangential history model). The same law whenever f^n >= 0.
-enum class CoulombNormal { compressive, magnitude };
-// The crystal's contact law: the linear spring-dashpot with Luding's tangential spring (seed 002
-// sec. 2.1, the default), or Hertz normal + Mindlin tangential (contact/hertz_mindlin.hpp). Each
-// enumerator has one description (contact/case_laws.hpp), and only that registry reads the enum:
-// code elsewhere asks the law (config/contact_laws.hpp). GRANWAVE_TEST_LAW (tests only) adds the
-// test law of tests/laws/, registered through the same path.
-enum class ContactLaw : unsigned char {
-  linear,
-  hertz_mindlin,
-#ifdef GRANWAVE_TEST_LAW
-  test_linear_dashpot,  // tests/laws/test_linear_dashpot.hpp
-#endif
-};
-// What a Hertz-Mindlin contact keeps as its tangential history (contact/hertz_mindlin.hpp):
-// displacement: f_t = -k_t(delta) xi (LAMMPS mindlin, LIGGGHTS tangential history);
-// displacement_rescale: the same, xi scaled by a_new/a_old when the contact radius a shrinks
-// (LAMMPS mindlin_rescale); force: incremental f_t += -k_t(delta) dxi (YADE Mindlin, LAMMPS mindlin/force).
-enum class TangentialHistory { displacement, displacement_rescale, force };
+using CoulombNormal = contact::CoulombNormal;
 
 struct CrystalCase {
   std::string lattice = "fcc";
@@ -96,31 +76,6 @@ struct CrystalCase {
   int fixed_layers = 2;               // at each z end; the bottom ones are the source
   std::uint64_t seed = 1;             // radii draw
   double relax_tolerance = 1e-7;      // kinetic/potential energy that ends the relaxation
-};
-
-struct ContactParams {
-  ContactLaw law = ContactLaw::linear;
-  double kn = 0.0;          // N/m
-  double gamma_n = 0.0;     // kg/s
-  double kt = 0.0;          // N/m
-  double gamma_t = 0.0;     // kg/s
-  double mu_static = 0.5;
-  double mu_dynamic = 0.5;
-  NormalTension normal_tension = NormalTension::allow;
-  LeverArm lever_arm = LeverArm::radius;
-  CoulombNormal coulomb_normal = CoulombNormal::compressive;
-  // Rolling and torsion resistance (contact/rolling_torsion.hpp; linear, hertz_mindlin): springs (N/m)
-  // and dashpots (kg/s) on the lever a', limits mu f_n (absent: no limit); all zero: off.
-  double kr = 0.0, gamma_r = 0.0, mu_r = std::numeric_limits<double>::infinity();
-  double ko = 0.0, gamma_o = 0.0, mu_o = std::numeric_limits<double>::infinity();
-  contact::RollingLever rolling_lever = contact::RollingLever::lever_arm;  // the arms of a'
-  contact::RollingHistory rolling_history = contact::RollingHistory::rotated;
-  // hertz_mindlin only (the linear law refuses them; it refuses kn, kt, gamma_n, gamma_t)
-  double youngs_modulus = 0.0;  // E (Pa), both spheres
-  double poisson_ratio = 0.0;   // nu, in (-1, 0.5)
-  double damping_ratio = 0.0;   // beta: gamma_n(delta) = 2 beta sqrt(m* k_n(delta))
-  bool mindlin = true;          // tangential = "mindlin" (false: "none", frictionless Hertz)
-  TangentialHistory tangential_history = TangentialHistory::displacement;
 };
 
 struct Excitation {
@@ -176,7 +131,7 @@ struct Case {
   std::optional<ChainCase> chain;
   std::optional<CrystalCase> crystal;
   std::optional<ImpactCase> impact;
-  ContactParams contact;  // crystal and impact
+  contact::LawParams contact;  // crystal and impact: the chosen law's parameters
   Excitation excitation;  // crystal only
   Integrator integrator;
   StopRule stop;          // chain only

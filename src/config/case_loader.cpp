@@ -221,26 +221,11 @@ CrystalCase read_crystal(const TomlReader& r, const toml::table& t) {
   return c;
 }
 
-ContactParams read_contact(const TomlReader& r, const toml::table& t) {
-  r.allow_only(t, "contact", contact_keys({"mu_static", "mu_dynamic", "normal_tension", "lever_arm", "coulomb_normal"}));
-  ContactParams p;
-  auto nonneg = [](double v) { return v >= 0; };
-  read_contact_law(r, t, p);  // the law's name and its own keys (config/contact_laws.cpp)
-  p.mu_static = r.number_in(t, "contact", "mu_static", false, nonneg, ">= 0").value_or(0.5);
-  p.mu_dynamic = r.number_in(t, "contact", "mu_dynamic", false, nonneg, ">= 0").value_or(p.mu_static);
-  if (p.mu_dynamic > p.mu_static) {
-    std::ostringstream s;
-    s << "must not exceed contact.mu_static (" << p.mu_static << "; got " << p.mu_dynamic << ")";
-    r.fail("contact.mu_dynamic", s.str(), t.get("mu_dynamic"));
-  }
-  p.normal_tension = r.choice(t, "contact", "normal_tension", {"allow", "clip"}, "allow") == "clip" ? NormalTension::clip : NormalTension::allow;
-  p.lever_arm = r.choice(t, "contact", "lever_arm", {"radius", "contact_point"}, "radius") == "contact_point"
-                    ? LeverArm::contact_point
-                    : LeverArm::radius;
-  p.coulomb_normal = r.choice(t, "contact", "coulomb_normal", {"compressive", "magnitude"}, "compressive") == "magnitude"
-                         ? CoulombNormal::magnitude
-                         : CoulombNormal::compressive;
-  return p;
+contact::LawParams read_contact(const TomlReader& r, const toml::table& t) {
+  std::vector<std::string_view> common;
+  for (const contact::KeySpec& k : contact::Friction::keys) common.push_back(k.key);
+  r.allow_only(t, "contact", contact_keys(common));
+  return read_contact_law(r, t);  // the law's name, its own keys and friction's (config/contact_laws.cpp)
 }
 
 Excitation read_excitation(const TomlReader& r, const toml::table& t) {

@@ -11,9 +11,10 @@
 namespace granwave::config {
 
 // Every key a [contact] table may hold: "law", the laws' own keys, then `common`.
-std::vector<std::string_view> contact_keys(std::initializer_list<std::string_view> common);
-// [contact] law (default: the registry's first) and that law's keys; another law's key is refused.
-void read_contact_law(const TomlReader& r, const toml::table& contact, ContactParams& p);
+std::vector<std::string_view> contact_keys(const std::vector<std::string_view>& common);
+// [contact] law (default: the registry's first) and that law's parameters (its keys, then
+// friction's); another law's key is refused.
+contact::LawParams read_contact_law(const TomlReader& r, const toml::table& contact);
 // What the law needs of the rest of the case (root: the case file's table).
 void check_contact_law(const TomlReader& r, const toml::table& root, const Case& c);
 

@@ -11,22 +11,35 @@
 namespace granwave::config {
 namespace {
 
+// The law's own functions on the case's parameters (which are the law's: the registry dispatched on them).
+template <class D>
+const typename D::Params& own(const contact::LawParams& p) {
+  return p.get<typename D::Params>();
+}
+
 template <class D>
 ContactLawInfo info_of() {
+  using contact::LawParams;
+  std::vector<contact::KeySpec> specs(D::Params::keys.begin(), D::Params::keys.end());
+  specs.insert(specs.end(), contact::Friction::keys.begin(), contact::Friction::keys.end());
   return {D::name,
+          D::summary,
           std::vector<std::string_view>(D::keys.begin(), D::keys.end()),
+          std::move(specs),
           D::stiffness_of_overlap,
           D::hertz_normal,
           D::prestress_formula,
           D::linearisation_note,
-          &D::torques,
-          &D::history_name,
-          &D::at,
+          [](const LawParams& p) { return D::torques(own<D>(p)); },
+          [](const LawParams& p) { return D::history_name(own<D>(p)); },
+          [](const LawParams& p, double density, double a_i, double a_j, double delta) {
+            return D::at(own<D>(p), density, a_i, a_j, delta);
+          },
           &D::guard_keys,
-          &D::scale,
+          [](const LawParams& p, const CrystalCase& k, double m) { return D::scale(own<D>(p), k.radius, k.overlap, m); },
           &D::stability_note,
-          &D::check_line,
-          &D::tangential_line};
+          [](const LawParams& p, const contact::LinearisedContact& k0) { return D::check_line(own<D>(p), k0); },
+          [](const LawParams& p) { return D::tangential_line(own<D>(p)); }};
 }
 
 template <class D>
@@ -43,6 +56,12 @@ const ContactLawInfo& law_of(ContactLaw law) {
   return contact::visit_law(law, []<class D>(D) -> const ContactLawInfo& { return record<D>(); });
 }
 
+std::vector<const ContactLawInfo*> contact_laws() {
+  std::vector<const ContactLawInfo*> laws;
+  contact::for_each_law([&]<class D>(D) { laws.push_back(&record<D>()); });
+  return laws;
+}
+
 std::vector<std::string_view> contact_law_names() {
   std::vector<std::string_view> names;
   contact::for_each_law([&]<class D>(D) { names.push_back(D::name); });
@@ -57,7 +76,7 @@ std::string contact_law_owners(std::string_view key) {
   return owners;
 }
 
-std::vector<std::string_view> contact_keys(std::initializer_list<std::string_view> common) {
+std::vector<std::string_view> contact_keys(const std::vector<std::string_view>& common) {
   std::vector<std::string_view> keys{"law"};
   contact::for_each_law([&]<class D>(D) {
     for (std::string_view k : D::keys)
@@ -67,13 +86,14 @@ std::vector<std::string_view> contact_keys(std::initializer_list<std::string_vie
   return keys;
 }
 
-void read_contact_law(const TomlReader& r, const toml::table& t, ContactParams& p) {
+contact::LawParams read_contact_law(const TomlReader& r, const toml::table& t) {
   const std::vector<std::string_view> names = contact_law_names();
   const std::string name = r.choice(t, "contact", "law", names, std::string(names.front()));
+  contact::ContactLaw law{};
   contact::for_each_law([&]<class D>(D) {
-    if (name == D::name) p.law = D::law;
+    if (name == D::name) law = D::law;
   });
-  contact::visit_law(p.law, [&]<class D>(D) {
+  return contact::visit_law(law, [&]<class D>(D) -> contact::LawParams {
     const ContactLawInfo& own = record<D>();
     contact::for_each_law([&]<class O>(O) {
       for (std::string_view k : O::keys)
@@ -81,12 +101,12 @@ void read_contact_law(const TomlReader& r, const toml::table& t, ContactParams& 
           r.fail("contact." + std::string(k), "belongs to contact.law = " + contact_law_owners(k) + D::refusal_note,
                  t.get(k));
     });
-    D::read(r, t, p);
+    return D::read(r, t);
   });
 }
 
 void check_contact_law(const TomlReader& r, const toml::table& root, const Case& c) {
-  contact::visit_law(c.contact.law, [&]<class D>(D) { D::check_case(r, root, c); });
+  contact::visit_law(c.contact.law(), [&]<class D>(D) { D::check_case(r, root, own<D>(c.contact), c.crystal->overlap); });
 }
 
 }  // namespace granwave::config

@@ -1,10 +1,11 @@
 // The registry of case-file contact laws: the one list of their descriptions (contact/case_law.hpp)
-// and the one dispatch from config::ContactLaw to a description. A switch without `default`,
+// and the one dispatch from contact::ContactLaw to a description. A switch without `default`,
 // built with -Werror=switch: an enumerator without its case does not compile, and a case whose
 // description is not in the list fails the static_assert of Described (tests/cli.cmake's
 // law_registry_* tests show both, and that no ContactLaw:: comparison is left outside).
 // Only the registry's translation units include this header: config/contact_laws.cpp (what code
-// outside a law asks) and crystal/law_models.cpp (the kernel's instantiations).
+// outside a law asks), crystal/law_models.cpp (the kernel's instantiations) and impact/simulate.cpp
+// (the impact's); `granwave laws` reads the records of config/contact_laws.cpp.
 #pragma once
 #include <stdexcept>
 #include <tuple>
@@ -29,9 +30,9 @@ using CaseLaws = LawList<LinearLudingCase, HertzMindlinCase
                          >;
 
 // The description of enumerator L in CaseLaws (exactly one).
-template <config::ContactLaw L, class List = CaseLaws>
+template <ContactLaw L, class List = CaseLaws>
 struct Described;
-template <config::ContactLaw L, class... D>
+template <ContactLaw L, class... D>
 struct Described<L, LawList<D...>> {
   static_assert(((D::law == L) + ... + 0) == 1, "a ContactLaw enumerator needs exactly one description in CaseLaws");
   using type = std::tuple_element_t<0, decltype(std::tuple_cat(
@@ -40,8 +41,7 @@ struct Described<L, LawList<D...>> {
 
 // f(D{}) for the description D of `law`.
 template <class F>
-decltype(auto) visit_law(config::ContactLaw law, F&& f) {
-  using config::ContactLaw;
+decltype(auto) visit_law(ContactLaw law, F&& f) {
   switch (law) {
     case ContactLaw::linear: return f(typename Described<ContactLaw::linear>::type{});
     case ContactLaw::hertz_mindlin: return f(typename Described<ContactLaw::hertz_mindlin>::type{});

@@ -10,72 +10,50 @@
 
 #include "contact/case_law.hpp"
 #include "contact/hertz_mindlin.hpp"
+#include "contact/hertz_mindlin_params.hpp"
 
 namespace granwave::contact {
 
 struct HertzMindlinCase {
-  static constexpr config::ContactLaw law = config::ContactLaw::hertz_mindlin;
+  using Params = HertzMindlinCaseParams;
+  static constexpr ContactLaw law = Params::law;
   static constexpr const char* name = "hertz_mindlin";
-  static constexpr std::array<const char*, 13> keys{"youngs_modulus", "poisson_ratio", "damping_ratio", "tangential",
-                                                    "tangential_history", "kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o",
-                                                    "rolling_lever", "rolling_history"};
+  static constexpr auto keys = names_of(Params::keys);
   static constexpr const char* refusal_note =
       "; the Hertz-Mindlin stiffnesses come from youngs_modulus and poisson_ratio (k_n = 2 E* sqrt(R* delta), k_t = 8 "
       "G* sqrt(R* delta)), its damping from damping_ratio";
 
+  static constexpr const char* summary =
+      "Hertz normal (k_n = 2 E* sqrt(R* delta)) + Mindlin tangential (k_t = 8 G* sqrt(R* delta)), damping 2 beta sqrt(m* k_n)";
+
   template <class Reader, class Table>
-  static void read(const Reader& r, const Table& t, config::ContactParams& p) {
-    p.youngs_modulus = *r.number_in(t, "contact", "youngs_modulus", true, [](double v) { return v > 0 && std::isfinite(v); }, "> 0 (Pa)");
-    p.poisson_ratio = *r.number_in(t, "contact", "poisson_ratio", true, [](double v) { return v > -1.0 && v < 0.5; }, "in (-1, 0.5)");
-    p.damping_ratio = r.number_in(t, "contact", "damping_ratio", false, [](double v) { return v >= 0 && v < 1; },
-                                  "in [0, 1) (gamma_n = 2 damping_ratio sqrt(m* k_n(delta)); 1 overdamps)").value_or(0.0);
-    p.mindlin = r.choice(t, "contact", "tangential", {"mindlin", "none"}, "mindlin") == "mindlin";
-    const std::string h = r.choice(t, "contact", "tangential_history", {"displacement", "displacement_rescale", "force"}, "displacement");
-    p.tangential_history = h == "force"                  ? config::TangentialHistory::force
-                           : h == "displacement_rescale" ? config::TangentialHistory::displacement_rescale
-                                                         : config::TangentialHistory::displacement;
-    read_rolling_torsion(r, t, p);
-    if (p.rolling_history == RollingHistory::fixed)
-      r.fail("contact.rolling_history", "\"fixed\" is for law = \"linear\" (LIGGGHTS' rolling_friction luding, whose history it "
-             "is, runs on its linear model luding); hertz_mindlin takes \"rotated\"", t.get("rolling_history"));
-    // The decorator needs the Mindlin spring's law (its torques and its deferral).
-    if (!p.mindlin && rolling_torsion_of(p).active())
-      for (const char* key : rolling_torsion_keys)
-        if (t.contains(key))
-          r.fail(std::string("contact.") + key, "needs contact.tangential = \"mindlin\" (rolling and torsion resistance "
-                 "on the frictionless Hertz law are not supported)", t.get(key));
-  }
+  static Params read(const Reader& r, const Table& t) { return Params::read(r, t); }
   // The linearised speeds, the time step and the theory are taken at the static overlap.
   template <class Reader, class Table>
-  static void check_case(const Reader& r, const Table& root, const config::Case& c) {
-    if (!(c.crystal->overlap > 0.0))
+  static void check_case(const Reader& r, const Table& root, const Params&, double overlap) {
+    if (!(overlap > 0.0))
       r.fail("crystal.overlap", "must be > 0 with contact.law = \"hertz_mindlin\" (a confined crystal: the Hertz "
              "stiffness vanishes at zero overlap)", root.get("crystal"));
   }
 
-  static bool torques(const config::ContactParams& p) { return p.mindlin; }
-  static const char* history_name(const config::ContactParams& p) {
+  static bool torques(const Params& p) { return p.mindlin; }
+  static const char* history_name(const Params& p) {
     if (!p.mindlin) return "none";
-    switch (p.tangential_history) {
-      case config::TangentialHistory::displacement: return "displacement";
-      case config::TangentialHistory::displacement_rescale: return "displacement_rescale";
-      case config::TangentialHistory::force: return "force";
-    }
-    return "";
+    return tangential_history_name(p.tangential_history);
   }
 
   // The parameters of a case's [contact] (validated); the damping's masses from `density`.
-  static HertzMindlinParams params(const config::ContactParams& cp, double density) {
+  static HertzMindlinParams params(const Params& cp, double density) {
     HertzMindlinParams p;
     p.youngs_modulus = cp.youngs_modulus;
     p.poisson_ratio = cp.poisson_ratio;
     p.density = density;
     p.damping_ratio = cp.damping_ratio;
-    p.mu_static = cp.mu_static;
-    p.mu_dynamic = cp.mu_dynamic;
-    p.clip_tension = cp.normal_tension == config::NormalTension::clip;
-    p.coulomb_on_magnitude = cp.coulomb_normal == config::CoulombNormal::magnitude;
-    p.lever_arm = cp.lever_arm;
+    p.mu_static = cp.friction.mu_static;
+    p.mu_dynamic = cp.friction.mu_dynamic;
+    p.clip_tension = cp.friction.clip();
+    p.coulomb_on_magnitude = cp.friction.magnitude();
+    p.lever_arm = cp.friction.lever_arm;
     p.validate();
     return p;
   }
@@ -88,7 +66,7 @@ struct HertzMindlinCase {
       "Hertz-Mindlin at the static overlap delta_0: k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* sqrt(R* delta_0), gamma_n = "
       "2 damping_ratio sqrt(m* k_n), f0 = (4/3) E* sqrt(R*) delta_0^(3/2); V_pz, V_sz are eq. (10)'s no-rotation "
       "values, V_pz_lattice, V_sz_lattice include rotations";
-  static LinearisedContact at(const config::ContactParams& cp, double density, double a_i, double a_j, double delta) {
+  static LinearisedContact at(const Params& cp, double density, double a_i, double a_j, double delta) {
     const double m_i = density * 4.0 / 3.0 * std::numbers::pi * a_i * a_i * a_i;
     const double m_j = density * 4.0 / 3.0 * std::numbers::pi * a_j * a_j * a_j;
     const HertzMindlinStiffness s = hertz_mindlin_at(params(cp, density), a_i * a_j / (a_i + a_j), m_i * m_j / (m_i + m_j), delta);
@@ -98,14 +76,15 @@ struct HertzMindlinCase {
   // Frictionless and undamped; the time step from the stiffest contact the packing starts with,
   // k_n at the largest initial overlap between the two largest radii (R*, the overlap and k_n grow
   // with them) and the smallest mass.
-  static Relaxation relaxation(const config::ContactParams& cp, double density, double a_max, double m_min,
+  static Relaxation relaxation(const Params& cp, double density, double a_max, double m_min,
                                double overlap_max) {
     Relaxation r;
-    r.params = cp;
-    r.params.mindlin = false;
-    r.params.damping_ratio = 0.0;
-    r.params.normal_tension = config::NormalTension::allow;
-    const HertzMindlinStiffness s = hertz_mindlin_at(params(r.params, density), 0.5 * a_max, 0.5 * m_min, overlap_max);
+    Params frictionless = cp;
+    frictionless.mindlin = false;
+    frictionless.damping_ratio = 0.0;
+    frictionless.friction.normal_tension = NormalTension::allow;
+    r.params = frictionless;
+    const HertzMindlinStiffness s = hertz_mindlin_at(params(frictionless, density), 0.5 * a_max, 0.5 * m_min, overlap_max);
     r.t_c = std::numbers::pi * std::sqrt(0.5 * m_min / s.k_n);
     return r;
   }
@@ -113,11 +92,11 @@ struct HertzMindlinCase {
   // The history kind, the dashpot (beta > 0 or clip) and mu^s != mu^d (else the stick/slip flag
   // is not kept: it would select between equal limits) as template arguments.
   template <class Make>
-  static auto model(const config::ContactParams& cp, double density, const Make& make) {
+  static auto model(const Params& cp, double density, const Make& make) {
     const HertzMindlinParams p = params(cp, density);
     const bool damped = p.damping_ratio > 0.0 || p.clip_tension;
     const bool hysteresis = p.mu_static != p.mu_dynamic;
-    const RollingTorsionParams rt = rolling_torsion_of(cp);
+    const RollingTorsionParams rt = cp.rolling.params(cp.friction);
     rt.validate();
     auto of_history = [&]<MindlinHistory H>() {
       if constexpr (H == MindlinHistory::none) {
@@ -135,10 +114,10 @@ struct HertzMindlinCase {
     };
     if (!cp.mindlin) return of_history.template operator()<MindlinHistory::none>();
     switch (cp.tangential_history) {
-      case config::TangentialHistory::displacement: return of_history.template operator()<MindlinHistory::displacement>();
-      case config::TangentialHistory::displacement_rescale:
+      case TangentialHistory::displacement: return of_history.template operator()<MindlinHistory::displacement>();
+      case TangentialHistory::displacement_rescale:
         return of_history.template operator()<MindlinHistory::displacement_rescale>();
-      case config::TangentialHistory::force: return of_history.template operator()<MindlinHistory::force>();
+      case TangentialHistory::force: return of_history.template operator()<MindlinHistory::force>();
     }
     throw std::logic_error("contact.tangential_history: not an enumerator");
   }
@@ -148,8 +127,8 @@ struct HertzMindlinCase {
     return {kn, damping, kn + ", " + damping + ", excitation.amplitude", kn + ", crystal.radius", kn};
   }
   // k_n/m at the static overlap, up to a factor of order one: E a sqrt(overlap)/m.
-  static ScaleCheck scale(const config::ContactParams& p, const config::CrystalCase& k, double m) {
-    return {"E a sqrt(overlap)/m", p.youngs_modulus * k.radius * std::sqrt(k.overlap) / m,
+  static ScaleCheck scale(const Params& p, double radius, double overlap, double m) {
+    return {"E a sqrt(overlap)/m", p.youngs_modulus * radius * std::sqrt(overlap) / m,
             "contact.youngs_modulus, crystal.radius, crystal.density, crystal.overlap"};
   }
   static std::string stability_note(double delta_max) {
@@ -158,19 +137,19 @@ struct HertzMindlinCase {
     o << "; Hertz: k_n, k_t at the largest overlap " << delta_max << " m";
     return o.str();
   }
-  static std::string check_line(const config::ContactParams& p, const LinearisedContact& k0) {
+  static std::string check_line(const Params& p, const LinearisedContact& k0) {
     std::ostringstream o;
     o << "  contact law hertz_mindlin (tangential history " << history_name(p)
       << "), linearised at delta_0: k_n = 2 E* sqrt(R* delta_0) = " << k0.kn << " N/m, k_t = 8 G* sqrt(R* delta_0) = "
       << k0.kt << " N/m, f0 = " << k0.f_n << " N, gamma_n = " << k0.gamma_n << " kg/s\n";
     return o.str();
   }
-  static std::string tangential_line(const config::ContactParams& p) {
+  static std::string tangential_line(const Params& p) {
     if (!torques(p)) return "";
     std::ostringstream o;
-    o << "  tangential: Mindlin, mu_s = " << p.mu_static << ", mu_d = " << p.mu_dynamic << ", lever arm "
-      << lever_arm_text(p.lever_arm) << "\n";
-    return o.str() + rolling_torsion_line(p);
+    o << "  tangential: Mindlin, mu_s = " << p.friction.mu_static << ", mu_d = " << p.friction.mu_dynamic << ", lever arm "
+      << lever_arm_text(p.friction.lever_arm) << "\n";
+    return o.str() + p.rolling.line(p.friction);
   }
 };
 

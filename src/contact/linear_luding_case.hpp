@@ -10,45 +10,43 @@
 #include "contact/case_law.hpp"
 #include "contact/hooke.hpp"
 #include "contact/linear_luding.hpp"
+#include "contact/linear_luding_params.hpp"
 #include "contact/rolling_torsion.hpp"
 
 namespace granwave::contact {
 
 struct LinearLudingCase {
-  static constexpr config::ContactLaw law = config::ContactLaw::linear;
+  using Params = LinearLudingParams;
+  static constexpr ContactLaw law = Params::law;
   static constexpr const char* name = "linear";
-  static constexpr std::array<const char*, 12> keys{"kn", "kt", "gamma_n", "gamma_t", "kr", "gamma_r", "mu_r",
-                                                    "ko", "gamma_o", "mu_o", "rolling_lever", "rolling_history"};
+  static constexpr auto keys = names_of(Params::keys);
   static constexpr const char* refusal_note = " (this case's law is \"linear\")";
+  static constexpr const char* summary =
+      "seed 002's linear spring-dashpot (k, gamma_0) with Luding's tangential spring (k_t, gamma_t)";
 
   template <class Reader, class Table>
-  static void read(const Reader& r, const Table& t, config::ContactParams& p) {
-    auto nonneg = [](double v) { return v >= 0; };
-    p.kn = *r.number_in(t, "contact", "kn", true, [](double v) { return v > 0; }, "> 0 (N/m)");
-    p.gamma_n = r.number_in(t, "contact", "gamma_n", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-    p.kt = r.number_in(t, "contact", "kt", false, nonneg, ">= 0 (N/m)").value_or(0.0);
-    p.gamma_t = r.number_in(t, "contact", "gamma_t", false, nonneg, ">= 0 (kg/s)").value_or(0.0);
-    read_rolling_torsion(r, t, p);
-  }
+  static Params read(const Reader& r, const Table& t) { return Params::read(r, t); }
   template <class Reader, class Table>
-  static void check_case(const Reader&, const Table&, const config::Case&) {}
+  static void check_case(const Reader&, const Table&, const Params&, double) {}
 
-  static bool torques(const config::ContactParams& p) { return tangential(p).active() || rolling_torsion_of(p).active(); }
-  static const char* history_name(const config::ContactParams&) { return "displacement"; }  // the spring xi
+  static bool torques(const Params& p) { return tangential(p).active() || p.rolling.active(p.friction); }
+  static const char* history_name(const Params&) { return "displacement"; }  // the spring xi
 
   // The law itself at any overlap.
   static constexpr bool stiffness_of_overlap = false;
   static constexpr bool hertz_normal = false;
   static constexpr const char* prestress_formula = "2 sqrt(2) k delta / d'^2";
   static constexpr const char* linearisation_note = nullptr;
-  static LinearisedContact at(const config::ContactParams& p, double, double, double, double delta) {
+  static LinearisedContact at(const Params& p, double, double, double, double delta) {
     return {p.kn * delta, p.kn, p.kt, p.gamma_n, p.gamma_t};
   }
 
   // The frictionless, undamped spring k; t_c of the lightest pair.
-  static Relaxation relaxation(const config::ContactParams& p, double, double, double m_min, double) {
+  static Relaxation relaxation(const Params& p, double, double, double m_min, double) {
     Relaxation r;
-    r.params.kn = p.kn;
+    Params spring;
+    spring.kn = p.kn;
+    r.params = spring;
     r.t_c = contact_time({p.kn, 0.0, false}, 0.5 * m_min);
     return r;
   }
@@ -56,23 +54,23 @@ struct LinearLudingCase {
   // Luding's law with friction (k_t > 0 or gamma_t > 0), else Hooke; each without the arithmetic
   // its parameters make zero (no dashpots, mu^s = mu^d: the same bits).
   template <class Make>
-  static auto model(const config::ContactParams& p, double, const Make& make) {
+  static auto model(const Params& p, double, const Make& make) {
     const LinearSpringDashpotParams n = normal(p);
     const TangentialSpringParams t = tangential(p);
     n.validate();
     t.validate();
     const bool dashpots = n.gamma_n > 0.0 || t.gamma_t > 0.0;
     const bool hysteresis = t.mu_static != t.mu_dynamic;
-    const RollingTorsionParams rt = rolling_torsion_of(p);
+    const RollingTorsionParams rt = p.rolling.params(p.friction);
     rt.validate();
     // With rolling or torsion resistance, one form per dashpot flag (any dashpot: all of them).
     if (rt.active())
       return with_flags([&]<bool Dashpots, bool Fixed>() {
-        return make(WithRollingTorsion<LinearLudingLaw<Dashpots>, Dashpots, Fixed>(LinearLudingLaw<Dashpots>(n, t, p.lever_arm), rt));
+        return make(WithRollingTorsion<LinearLudingLaw<Dashpots>, Dashpots, Fixed>(LinearLudingLaw<Dashpots>(n, t, p.friction.lever_arm), rt));
       }, dashpots || rt.dashpots(), rt.history == RollingHistory::fixed);
     if (t.active())
       return with_flags([&]<bool Dashpots, bool Hysteresis>() {
-        return make(LinearLudingLaw<Dashpots, Hysteresis>(n, t, p.lever_arm));
+        return make(LinearLudingLaw<Dashpots, Hysteresis>(n, t, p.friction.lever_arm));
       }, dashpots, hysteresis);
     return with_flags([&]<bool Dashpot>() { return make(HookeLaw<Dashpot>(n)); }, n.gamma_n > 0.0);
   }
@@ -81,25 +79,25 @@ struct LinearLudingCase {
     return {"contact.kn", "contact.gamma_n", "contact.kn, contact.kt, contact.gamma_n, contact.gamma_t, crystal.polydispersity",
             "contact.kn, crystal.overlap, crystal.radius", "contact.kn, contact.kt"};
   }
-  static ScaleCheck scale(const config::ContactParams& p, const config::CrystalCase&, double m) {
+  static ScaleCheck scale(const Params& p, double, double, double m) {
     return {"k/m", p.kn / m, "contact.kn, crystal.radius, crystal.density"};
   }
   static std::string stability_note(double) { return ""; }
-  static std::string check_line(const config::ContactParams&, const LinearisedContact&) { return ""; }
-  static std::string tangential_line(const config::ContactParams& p) {
+  static std::string check_line(const Params&, const LinearisedContact&) { return ""; }
+  static std::string tangential_line(const Params& p) {
     if (!torques(p)) return "";
     std::ostringstream o;
-    o << "  tangential: kt = " << p.kt << " N/m, mu_s = " << p.mu_static << ", mu_d = " << p.mu_dynamic
-      << ", lever arm " << lever_arm_text(p.lever_arm) << "\n";
-    return o.str() + rolling_torsion_line(p);
+    o << "  tangential: kt = " << p.kt << " N/m, mu_s = " << p.friction.mu_static << ", mu_d = " << p.friction.mu_dynamic
+      << ", lever arm " << lever_arm_text(p.friction.lever_arm) << "\n";
+    return o.str() + p.rolling.line(p.friction);
   }
 
  private:
-  static LinearSpringDashpotParams normal(const config::ContactParams& p) {
-    return {p.kn, p.gamma_n, p.normal_tension == config::NormalTension::clip};
+  static LinearSpringDashpotParams normal(const Params& p) {
+    return {p.kn, p.gamma_n, p.friction.clip()};
   }
-  static TangentialSpringParams tangential(const config::ContactParams& p) {
-    return {p.kt, p.gamma_t, p.mu_static, p.mu_dynamic, p.coulomb_normal == config::CoulombNormal::magnitude};
+  static TangentialSpringParams tangential(const Params& p) {
+    return {p.kt, p.gamma_t, p.friction.mu_static, p.friction.mu_dynamic, p.friction.magnitude()};
   }
 };
 

@@ -80,7 +80,7 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
   const config::ContactLawInfo& law = config::law_of(c.contact);
   out << (law.stiffness_of_overlap ? "  contact linearised at delta_0" : "  contact") << ": omega = sqrt(k/m_ij - eta_0^2) = " << d.omega << " 1/s, t_c = pi/omega = " << d.t_c
       << " s, restitution exp(-eta_0 t_c) = " << d.restitution
-      << (c.contact.normal_tension == config::NormalTension::clip ? " (\"allow\" value; \"clip\" ends earlier)" : "")
+      << (c.contact.friction().clip() ? " (\"allow\" value; \"clip\" ends earlier)" : "")
       << "\n";
   out << "  dt = " << d.dt << " s = t_c/" << d.t_c / d.dt << "; stability limit (conservative) " << d.dt_stable
       << " s; " << d.steps << " steps, a sample every " << d.sample_every << " steps\n";

@@ -27,10 +27,10 @@ ContactAt contact_between(const config::Case& c, double a_i, double a_j, double 
 theory::LatticeCellOptions lattice_options(const config::Case& c, double tolerance) {
   theory::LatticeCellOptions opt;
   opt.tolerance = tolerance;
-  opt.arm_shift = contact::arm_shift(c.contact.lever_arm);
-  opt.kr = c.contact.kr;
-  opt.ko = c.contact.ko;
-  opt.rolling_arm_shift = contact::rolling_shift(c.contact.rolling_lever, c.contact.lever_arm);  // the law's a
+  opt.arm_shift = contact::arm_shift(c.contact.friction().lever_arm);
+  opt.kr = c.contact.rolling().kr;
+  opt.ko = c.contact.rolling().ko;
+  opt.rolling_arm_shift = contact::rolling_shift(c.contact.rolling().rolling_lever, c.contact.friction().lever_arm);  // the law's a
   return opt;
 }
 
@@ -61,8 +61,8 @@ double static_normal_force(const config::Case& c, double a_i, double a_j, double
   return contact_between(c, a_i, a_j, delta).f_n;
 }
 
-std::string contact_law_name(const config::ContactParams& cp) { return config::law_of(cp).name; }
-std::string tangential_history_name(const config::ContactParams& cp) { return config::law_of(cp).history_name(cp); }
+std::string contact_law_name(const contact::LawParams& cp) { return config::law_of(cp).name; }
+std::string tangential_history_name(const contact::LawParams& cp) { return config::law_of(cp).history_name(cp); }
 
 namespace {
 std::atomic<long> g_derivations{0};
@@ -83,16 +83,16 @@ Derived derive(const config::Case& c) {
   d.kt = k0.kt;
   d.gamma_n = k0.gamma_n;
   d.f0 = k0.f_n;
-  const contact::LinearSpringDashpotParams normal{d.kn, d.gamma_n, c.contact.normal_tension == config::NormalTension::clip};
-  const contact::TangentialSpringParams tangential{d.kt, k0.gamma_t, c.contact.mu_static, c.contact.mu_dynamic,
-                                                   c.contact.coulomb_normal == config::CoulombNormal::magnitude};
+  const contact::LinearSpringDashpotParams normal{d.kn, d.gamma_n, c.contact.friction().clip()};
+  const contact::TangentialSpringParams tangential{d.kt, k0.gamma_t, c.contact.friction().mu_static, c.contact.friction().mu_dynamic,
+                                                   c.contact.friction().magnitude()};
   normal.validate();
   tangential.validate();
   d.mass = k.density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
   d.m_ij = contact::reduced_mass(d.mass, d.mass);
   d.omega = contact::contact_frequency(normal, d.m_ij);
   if (!std::isfinite(d.omega))
-    throw InputError(c.path + ": contact.gamma_n = " + std::to_string(c.contact.gamma_n) +
+    throw InputError(c.path + ": contact.gamma_n = " + std::to_string(c.contact.number("gamma_n").value_or(0.0)) +
                      " overdamps a contact (k/m_ij < eta_0^2): no contact time");
   d.t_c = contact::contact_time(normal, d.m_ij);
   d.restitution = contact::restitution(normal, d.m_ij);

@@ -51,7 +51,7 @@ theory::LatticeCellOptions lattice_options(const config::Case& c, double toleran
 double static_normal_force(const config::Case& c, double a_i, double a_j, double delta);
 // The trace's name of the law and of its tangential history (root attributes contact_law,
 // tangential_history; the linear law's spring is a displacement history).
-std::string contact_law_name(const config::ContactParams& contact);
-std::string tangential_history_name(const config::ContactParams& contact);
+std::string contact_law_name(const contact::LawParams& contact);
+std::string tangential_history_name(const contact::LawParams& contact);
 
 }  // namespace granwave::crystal

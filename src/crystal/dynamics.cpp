@@ -45,7 +45,7 @@ double list_skin(const Packing& packing) {
   return 0.1 * a_mean;
 }
 
-Dynamics::Dynamics(const Packing& packing, const config::ContactParams& cp, double dt)
+Dynamics::Dynamics(const Packing& packing, const contact::LawParams& cp, double dt)
     : Dynamics(packing, case_model(cp, packing_density(packing)), dt) {}
 
 Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt, const SlabPlan* slab)

@@ -141,7 +141,7 @@ class ContactModel {
 // law = "linear": contact::LinearLuding with friction (k_t > 0 or gamma_t > 0), else the
 // frictionless contact::HookeLaw; law = "hertz_mindlin": contact::HertzMindlinLaw (its damping's
 // m* from `density`, kg/m^3). Throws InputError for invalid parameters.
-std::shared_ptr<const ContactModel> case_model(const config::ContactParams& contact, double density = 0.0);
+std::shared_ptr<const ContactModel> case_model(const contact::LawParams& contact, double density = 0.0);
 // rho of the packing's particles, m/((4/3) pi a^3) of the first one (0 for an empty packing).
 double packing_density(const Packing& packing);
 
@@ -151,7 +151,7 @@ double list_skin(const Packing& packing);
 class Dynamics {
  public:
   // The packing's fixed particles are not integrated; `dt` is the time step.
-  Dynamics(const Packing& packing, const config::ContactParams& contact, double dt);
+  Dynamics(const Packing& packing, const contact::LawParams& contact, double dt);
   // The same with any contact law (crystal/kernel.hpp: model_of(law)). With a slab plan
   // (crystal/slab.hpp), this rank's slab of an MPI run: the state holds the plan's particles
   // [held_lo, held_hi) only, indexed from 0 (local index = global index - offset()), and every
@@ -357,7 +357,7 @@ struct RelaxResult {
 };
 // With the case's law, frictionless and undamped (its description's relaxation: Hertz, the time step
 // from k_n at the largest initial overlap).
-RelaxResult relax(Packing& packing, const config::ContactParams& contact, double density, double tolerance,
+RelaxResult relax(Packing& packing, const contact::LawParams& contact, double density, double tolerance,
                   long max_steps = 2000000);
 // FIRE with `model` (frictionless and undamped), whose stiffest contact has the contact time t_c.
 RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> model, double t_c, double tolerance,

@@ -71,7 +71,7 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits, std::opti
                          "); change " + keys_dt);
   {  // The rolling and torsion springs turn the spheres: per contact an angular spring (k_r + k_o) a'^2
      // against I = 2/5 m a^2; the same Gershgorin bound omega^2 <= 2 z K/I_min, with a' <= a_max/2.
-    const config::ContactParams& p = c.contact;
+    const contact::RollingTorsionKeys& p = c.contact.rolling();
     const double spring = p.kr + p.ko, dashpot = p.gamma_r + p.gamma_o;
     if (spring > 0.0 || dashpot > 0.0) {
       const double delta0 = k.overlap * 2.0 * k.radius;

@@ -15,19 +15,19 @@
 
 namespace granwave::crystal {
 
-std::shared_ptr<const ContactModel> case_model(const config::ContactParams& cp, double density) {
-  return contact::visit_law(cp.law, [&]<class D>(D) -> std::shared_ptr<const ContactModel> {
-    return D::model(cp, density, [](const auto& law) -> std::shared_ptr<const ContactModel> { return model_of(law); });
+std::shared_ptr<const ContactModel> case_model(const contact::LawParams& cp, double density) {
+  return contact::visit_law(cp.law(), [&]<class D>(D) -> std::shared_ptr<const ContactModel> {
+    return D::model(cp.get<typename D::Params>(), density, [](const auto& law) -> std::shared_ptr<const ContactModel> { return model_of(law); });
   });
 }
 
-RelaxResult relax(Packing& packing, const config::ContactParams& contact, double density, double tolerance,
+RelaxResult relax(Packing& packing, const contact::LawParams& contact, double density, double tolerance,
                   long max_steps) {
   const double a_max = *std::max_element(packing.radius.begin(), packing.radius.end());
   const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
   const double overlap_max = 2.0 * a_max - packing.d_prime;
-  const contact::Relaxation r = contact::visit_law(contact.law, [&]<class D>(D) {
-    return D::relaxation(contact, density, a_max, m_min, overlap_max);
+  const contact::Relaxation r = contact::visit_law(contact.law(), [&]<class D>(D) {
+    return D::relaxation(contact.get<typename D::Params>(), density, a_max, m_min, overlap_max);
   });
   return relax_with(packing, case_model(r.params, density), r.t_c, tolerance, max_steps);
 }

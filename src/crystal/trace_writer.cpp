@@ -68,14 +68,14 @@ void write_trace(const config::Case& c, const Packing& p, const RunResult& r, io
   w.attr("/", "case_toml", c.toml_text);
   w.attr("/", "time_convention", std::string("synchronous"));
   // The contact-law conventions the crosscheck compares (data/SCHEMA.md §3).
-  w.attr("/", "lever_arm", std::string(contact::lever_arm_name(c.contact.lever_arm)));
-  w.attr("/", "normal_tension", std::string(c.contact.normal_tension == config::NormalTension::clip ? "clip" : "allow"));
+  w.attr("/", "lever_arm", std::string(contact::lever_arm_name(c.contact.friction().lever_arm)));
+  w.attr("/", "normal_tension", std::string(c.contact.friction().clip() ? "clip" : "allow"));
   w.attr("/", "coulomb_normal",
-         std::string(c.contact.coulomb_normal == config::CoulombNormal::magnitude ? "magnitude" : "compressive"));
+         std::string(c.contact.friction().magnitude() ? "magnitude" : "compressive"));
   w.attr("/", "contact_law", contact_law_name(c.contact));
   w.attr("/", "tangential_history", tangential_history_name(c.contact));
-  w.attr("/", "rolling_lever", std::string(contact::rolling_lever_name(c.contact.rolling_lever)));
-  w.attr("/", "rolling_history", std::string(contact::rolling_history_name(c.contact.rolling_history)));
+  w.attr("/", "rolling_lever", std::string(contact::rolling_lever_name(c.contact.rolling().rolling_lever)));
+  w.attr("/", "rolling_history", std::string(contact::rolling_history_name(c.contact.rolling().rolling_history)));
   w.attr("/", "status", r.failed ? "failed: " + r.error : std::string("complete"));
   write_system(w, p, c.name, "/system");
   for (const auto& f : trace_fields(c)) w.write(f.path, f.values(r.traces), shape_of(f, r.traces));

@@ -66,19 +66,19 @@ void write_trace(const config::Case& c, const Setup& s, const Series& t, const s
   io::write_provenance(w);
   // The case and the contact-law conventions the run used (data/SCHEMA.md §3, §7.2).
   const config::ContactLawInfo& law = config::law_of(c.contact);
-  const bool clip = c.contact.normal_tension == config::NormalTension::clip;
-  const bool magnitude = c.contact.coulomb_normal == config::CoulombNormal::magnitude;
+  const bool clip = c.contact.friction().clip();
+  const bool magnitude = c.contact.friction().magnitude();
   for (const auto& [name, value] : std::initializer_list<std::pair<const char*, std::string>>{
            {"case_name", c.name},
            {"case_toml", c.toml_text},
            {"time_convention", "synchronous"},
-           {"lever_arm", contact::lever_arm_name(c.contact.lever_arm)},
+           {"lever_arm", contact::lever_arm_name(c.contact.friction().lever_arm)},
            {"normal_tension", clip ? "clip" : "allow"},
            {"coulomb_normal", magnitude ? "magnitude" : "compressive"},
            {"contact_law", law.name},
            {"tangential_history", law.history_name(c.contact)},
-           {"rolling_lever", contact::rolling_lever_name(c.contact.rolling_lever)},
-           {"rolling_history", contact::rolling_history_name(c.contact.rolling_history)},
+           {"rolling_lever", contact::rolling_lever_name(c.contact.rolling().rolling_lever)},
+           {"rolling_history", contact::rolling_history_name(c.contact.rolling().rolling_history)},
            {"status", "complete"}})
     w.attr("/", name, value);
   for (const auto& d : trace_series(s, t).datasets) w.write(d.path, d.values, d.shape);
@@ -86,8 +86,8 @@ void write_trace(const config::Case& c, const Setup& s, const Series& t, const s
   w.attr("/impact", "dt", s.dt);
   w.attr("/impact", "effective_modulus", s.e_star);
   w.attr("/impact", "effective_shear_modulus", s.g_star);
-  w.attr("/impact", "damping_ratio", s.contact.damping_ratio);
-  w.attr("/impact", "gamma_n", s.contact.gamma_n);
+  w.attr("/impact", "damping_ratio", s.contact.number("damping_ratio").value_or(0.0));
+  w.attr("/impact", "gamma_n", s.contact.number("gamma_n").value_or(0.0));
   body_attrs(w, "/impact/body1", s.b1);
   if (s.wall)
     w.attr("/impact/wall", "material", c.impact->wall->material);

@@ -30,7 +30,7 @@ struct Setup {
   // The law's like-sphere material with this pair's E*, G* (see setup.cpp) and the density whose
   // masses give this pair's m* (the damping's).
   double law_youngs_modulus = 0.0, law_poisson_ratio = 0.0, law_density = 0.0;
-  config::ContactParams contact;  // the case's, the damping set from contact.restitution
+  contact::LawParams contact;  // the case's, the damping set from contact.restitution
   bool hertz = false;             // Hertz normal force (else the linear law)
   double approach_speed = 0.0;    // initial closing speed along the line of centres (m/s)
   double gap_time = 0.0;          // until first touch (s)

@@ -48,7 +48,7 @@ Setup resolve(const config::Case& c) {
   // The model evaluates the laws of its own build's registry (contact/case_laws.hpp, simulate.cpp): a law
   // that only a test binary's registry lists (GRANWAVE_TEST_LAW) is refused here, not mid-run.
   try {
-    contact::visit_law(c.contact.law, [](auto) { return 0; });
+    contact::visit_law(c.contact.law(), [](auto) { return 0; });
   } catch (const std::logic_error&) {
     throw InputError(c.path + ": key 'contact.law': \"" + std::string(config::law_of(c.contact).name) +
                      "\" is not a law the impact model runs (model = \"impact\" runs the laws of granwave's own registry)");
@@ -99,19 +99,20 @@ Setup resolve(const config::Case& c) {
 
   s.contact = c.contact;
   s.hertz = config::law_of(c.contact).hertz_normal;
-  const bool clip = c.contact.normal_tension == config::NormalTension::clip;
+  const bool clip = c.contact.friction().clip();
   if (s.hertz) {
-    s.contact.youngs_modulus = s.law_youngs_modulus;
-    s.contact.poisson_ratio = s.law_poisson_ratio;
-    if (k.restitution) s.contact.damping_ratio = theory::hertz_damping_ratio_for(*k.restitution, clip);
+    s.contact.set_number("youngs_modulus", s.law_youngs_modulus);
+    s.contact.set_number("poisson_ratio", s.law_poisson_ratio);
+    if (k.restitution) s.contact.set_number("damping_ratio", theory::hertz_damping_ratio_for(*k.restitution, clip));
     const theory::HertzImpact h = theory::hertz_normal_impact(b, s.e_star, s.approach_speed);
-    s.contact_time = h.contact_time * theory::damped_hertz_impact(s.contact.damping_ratio, clip).time_ratio;
+    s.contact_time = h.contact_time * theory::damped_hertz_impact(*s.contact.number("damping_ratio"), clip).time_ratio;
     if (h.max_overlap > 0.05 * std::min(b.R1, b.R2))
       throw InputError(c.path + ": key 'impact.body1.velocity': Hertz's peak overlap " + num(h.max_overlap) +
                        " m exceeds 5 % of the radius (the small-strain law no longer holds)");
   } else {
-    if (k.restitution) s.contact.gamma_n = theory::linear_damping_for(*k.restitution, s.contact.kn, b.m_eff(), clip);
-    s.contact_time = theory::linear_contact_time(s.contact.kn, s.contact.gamma_n, b.m_eff(), clip).t_c;
+    const double kn = *s.contact.number("kn");
+    if (k.restitution) s.contact.set_number("gamma_n", theory::linear_damping_for(*k.restitution, kn, b.m_eff(), clip));
+    s.contact_time = theory::linear_contact_time(kn, *s.contact.number("gamma_n"), b.m_eff(), clip).t_c;
   }
   s.dt = c.integrator.dt ? *c.integrator.dt : *c.integrator.dt_over_tc * s.contact_time;
   if (s.dt > 0.1 * s.contact_time)

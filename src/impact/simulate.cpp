@@ -131,8 +131,8 @@ Series run_law(const Setup& s, const Law& law) {
 }  // namespace
 
 Series simulate(const Setup& s) {
-  return contact::visit_law(s.contact.law, [&]<class D>(D) {
-    return D::model(s.contact, s.law_density, [&](const auto& law) { return run_law(s, law); });
+  return contact::visit_law(s.contact.law(), [&]<class D>(D) {
+    return D::model(s.contact.get<typename D::Params>(), s.law_density, [&](const auto& law) { return run_law(s, law); });
   });
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "config/contact_laws.hpp"
+#include "contact/hertz_mindlin_params.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/json.hpp"
@@ -90,11 +91,11 @@ json rebound_values(const theory::ObliqueImpact& ob) {
           {"spin_after", ob.w1_after}};
 }
 
-TangentialCompliance compliance_of(config::TangentialHistory h) {
+TangentialCompliance compliance_of(contact::TangentialHistory h) {
   switch (h) {
-    case config::TangentialHistory::displacement: return TangentialCompliance::displacement;
-    case config::TangentialHistory::displacement_rescale: return TangentialCompliance::displacement_rescale;
-    case config::TangentialHistory::force: return TangentialCompliance::force;
+    case contact::TangentialHistory::displacement: return TangentialCompliance::displacement;
+    case contact::TangentialHistory::displacement_rescale: return TangentialCompliance::displacement_rescale;
+    case contact::TangentialHistory::force: return TangentialCompliance::force;
   }
   return TangentialCompliance::displacement;
 }
@@ -103,12 +104,12 @@ TangentialCompliance compliance_of(config::TangentialHistory h) {
 // the simplified Mindlin laws' (the three tangential histories), with the case's normal damping.
 void compliance_theory(const Setup& s, const theory::ImpactBodies& b, const Rebound& in, double mu, json& j,
                        std::ostream& o) {
-  const bool clip = s.contact.normal_tension == config::NormalTension::clip;
-  const double beta = s.contact.damping_ratio;
+  const bool clip = s.contact.friction().clip();
+  const double beta = *s.contact.number("damping_ratio");
   const double kappa = theory::mbf_kappa(s.e_star, s.g_star), chi = theory::mbf_chi(kappa, b);
   const double psi1 = kappa * in.vct_in / (mu * in.vn_in);
   const double boundary = theory::mbf_sliding_boundary(chi, TangentialCompliance::mindlin_deresiewicz);
-  const TangentialCompliance own = compliance_of(s.contact.tangential_history);
+  const TangentialCompliance own = compliance_of(s.contact.get<contact::HertzMindlinCaseParams>().tangential_history);
   j["mbf_kappa"] = kappa;
   j["mbf_chi"] = chi;
   j["mbf_psi1"] = psi1;
@@ -161,7 +162,7 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
   const Setup s = resolve(c);
   const theory::ImpactBodies b = s.bodies();
   const Rebound in = incidence(s);
-  const bool clip = s.contact.normal_tension == config::NormalTension::clip;
+  const bool clip = s.contact.friction().clip();
   json j = {{"schema", "granwave-theory-impact/1"}, {"case", c.name}, {"model", "impact"},
             {"effective_modulus", s.e_star}, {"effective_shear_modulus", s.g_star}, {"effective_radius", b.r_eff()},
             {"effective_mass", b.m_eff()}, {"approach_speed", s.approach_speed}};
@@ -172,17 +173,17 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
   double e = 1.0;
   if (s.hertz) {
     const theory::HertzImpact h = theory::hertz_normal_impact(b, s.e_star, s.approach_speed);
-    const theory::DampedHertzImpact d = theory::damped_hertz_impact(s.contact.damping_ratio, clip);
+    const theory::DampedHertzImpact d = theory::damped_hertz_impact(s.contact.number("damping_ratio").value_or(0.0), clip);
     e = d.restitution;
     j["hertz"] = {{"peak_overlap", h.max_overlap}, {"peak_force", h.peak_force}, {"contact_time", h.contact_time}};
-    j["damping_ratio"] = s.contact.damping_ratio;
+    j["damping_ratio"] = s.contact.number("damping_ratio").value_or(0.0);
     j["restitution"] = e;
     j["contact_time_damped"] = h.contact_time * d.time_ratio;
     o << "  Hertz (elastic): peak overlap " << g6(h.max_overlap) << " m, peak force " << g6(h.peak_force)
       << " N, contact time " << g6(h.contact_time) << " s\n";
-    o << "  damping_ratio " << g6(s.contact.damping_ratio) << " (normal_tension " << (clip ? "clip" : "allow")
+    o << "  damping_ratio " << g6(s.contact.number("damping_ratio").value_or(0.0)) << " (normal_tension " << (clip ? "clip" : "allow")
       << "): restitution " << g6(e) << ", contact time " << g6(h.contact_time * d.time_ratio) << " s\n";
-    if (s.contact.damping_ratio > 0.0) {
+    if (s.contact.number("damping_ratio").value_or(0.0) > 0.0) {
       const double beta = theory::mapped_damping_ratio(e);
       const double e_mapped = theory::damped_hertz_impact(beta, clip).restitution;
       j["mapped_damping_ratio"] = beta;
@@ -191,16 +192,16 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
         << ", which realises e = " << g6(e_mapped) << " with this law\n";
     }
   } else {
-    const theory::ContactTime ct = theory::linear_contact_time(s.contact.kn, s.contact.gamma_n, b.m_eff(), clip);
+    const theory::ContactTime ct = theory::linear_contact_time(s.contact.number("kn").value_or(0.0), s.contact.number("gamma_n").value_or(0.0), b.m_eff(), clip);
     e = ct.restitution;
-    j["linear"] = {{"contact_time", ct.t_c}, {"peak_overlap_elastic", s.approach_speed * std::sqrt(b.m_eff() / s.contact.kn)}};
-    j["gamma_n"] = s.contact.gamma_n;
+    j["linear"] = {{"contact_time", ct.t_c}, {"peak_overlap_elastic", s.approach_speed * std::sqrt(b.m_eff() / s.contact.number("kn").value_or(0.0))}};
+    j["gamma_n"] = s.contact.number("gamma_n").value_or(0.0);
     j["restitution"] = e;
     o << "  linear law: contact time " << g6(ct.t_c) << " s, restitution " << g6(e) << " (gamma_n "
-      << g6(s.contact.gamma_n) << " kg/s)\n";
+      << g6(s.contact.number("gamma_n").value_or(0.0)) << " kg/s)\n";
   }
   if (in.tangent.squaredNorm() > 0.0) {
-    const double mu = s.contact.mu_dynamic;
+    const double mu = s.contact.friction().mu_dynamic;
     const theory::ObliqueImpact ob = theory::coulomb_oblique(b, {in.vn_in, in.vt_in, in.w1_in, in.w2_in}, mu, e);
     const double nu = c.material(c.impact->body1.material).poisson_ratio;
     const double psi = theory::mbf_psi(nu, mu, in.vct_in / in.vn_in), chi = theory::mbf_chi(nu);
@@ -220,7 +221,7 @@ void print_theory(const config::Case& c, bool json_out, std::ostream& out) {
       << g6(ob.w1_after) << " rad/s\n";
     o << "    Maw, Barber & Fawcett: psi1 = " << g6(psi) << ", chi = " << g6(chi) << "; rigid sliding for psi1 >= 2 chi (1 + e) = "
       << g6(2.0 * chi * (1.0 + e)) << "\n";
-    if (s.hertz && s.contact.mindlin && mu > 0.0) compliance_theory(s, b, in, mu, j["oblique"], o);
+    if (s.hertz && config::law_of(s.contact).torques(s.contact) && mu > 0.0) compliance_theory(s, b, in, mu, j["oblique"], o);
   } else if (in.w1_in != 0.0 || in.w2_in != 0.0) {
     // Spins whose contact points move together (Chung & Ooi T7's +-w): no relative tangential velocity, no
     // tangential force, so the spins and the tangential velocities come out as they went in.
@@ -257,9 +258,9 @@ void check(const config::Case& c, std::ostream& out, const ResourceLimits& limit
       << " Pa, G* = " << g6(s.g_star) << " Pa";
   if (s.hertz)
     out << " (the law's like-sphere material: E = " << g6(s.law_youngs_modulus) << " Pa, nu = " << g6(s.law_poisson_ratio)
-        << "), damping_ratio " << g6(s.contact.damping_ratio);
+        << "), damping_ratio " << g6(s.contact.number("damping_ratio").value_or(0.0));
   else
-    out << ", gamma_n " << g6(s.contact.gamma_n) << " kg/s";
+    out << ", gamma_n " << g6(s.contact.number("gamma_n").value_or(0.0)) << " kg/s";
   if (c.impact->restitution) out << " (set by contact.restitution = " << g6(*c.impact->restitution) << ")";
   out << "\n" << law.tangential_line(c.contact);
   out << "  closing speed " << g6(s.approach_speed) << " m/s, first touch at t = " << g6(s.gap_time) << " s, contact time "

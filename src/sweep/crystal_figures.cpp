@@ -128,8 +128,8 @@ TrendPoint trend_point(const CrystalMemberRun& r, const std::vector<double>& pos
   const double z_last = tr.layer_z[tr.nlayers - 1 - r.packing.fixed_layers];
   for (const auto& q : crystal::list_contacts(r.packing, false))
     if (!r.packing.fixed[q.i] && !r.packing.fixed[q.j]) {
-      const double g = r.c.contact.kn * q.overlap / std::sqrt(q.bx * q.bx + q.by * q.by + q.bz * q.bz);  // f0/d'
-      const double K = r.c.contact.kn + r.c.contact.kt;
+      const double g = r.c.contact.number("kn").value_or(0.0) * q.overlap / std::sqrt(q.bx * q.bx + q.by * q.by + q.bz * q.bz);  // f0/d'
+      const double K = r.c.contact.number("kn").value_or(0.0) + r.c.contact.number("kt").value_or(0.0);
       tp.stress_factor = (K - 3.0 * g) / (K - g);
       break;
     }

@@ -53,13 +53,14 @@ config::Case member_case(const CrystalStudy& s, const CrystalMember& m) {
   config::Case c = s.base;
   auto& cr = *c.crystal;
   switch (s.vary) {
-    case CrystalVary::gamma_n: c.contact.gamma_n = m.value; break;
-    case CrystalVary::kt_over_k: c.contact.kt = m.value * c.contact.kn; break;
+    case CrystalVary::gamma_n: c.contact.set_number("gamma_n", m.value); break;
+    case CrystalVary::kt_over_k: c.contact.set_number("kt", m.value * *c.contact.number("kn")); break;
     case CrystalVary::polydispersity: cr.polydispersity = m.value; break;
     case CrystalVary::overlap: cr.overlap = m.value; break;
     case CrystalVary::kr_over_kt:
-      if (s.kt_over_k) c.contact.kt = *s.kt_over_k * c.contact.kn;
-      c.contact.kr = c.contact.ko = m.value * c.contact.kt;  // k_o tied to k_r (data/SCHEMA.md §6)
+      if (s.kt_over_k) c.contact.set_number("kt", *s.kt_over_k * *c.contact.number("kn"));
+      c.contact.set_number("kr", m.value * *c.contact.number("kt"));
+      c.contact.set_number("ko", m.value * *c.contact.number("kt"));  // k_o tied to k_r (data/SCHEMA.md §6)
       break;
   }
   if (s.layers) cr.cells[2] = *s.layers;
@@ -233,7 +234,7 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   const auto th = theory::crystal_prediction(net, {fl, out.packing.layers - 1 - fl});
   const bool S = m.mode == 'S';
   const auto ct = theory::linear_contact_time(der.kn, der.gamma_n, der.m_ij,
-                                              out.c.contact.normal_tension == config::NormalTension::clip);
+                                              out.c.contact.friction().clip());
 
   std::vector<double> v(crystal_value_names(s).size(), kNaN);
   v[cv_value] = m.value;
@@ -264,7 +265,7 @@ CrystalMemberRun run_crystal_member(const CrystalStudy& s, std::size_t index, bo
   v[cv_relax_steps] = static_cast<double>(out.packing.relax_steps);
   v[cv_t_c] = ct.t_c;
   v[cv_restitution] = ct.restitution;
-  v[cv_t_gamma] = out.c.contact.gamma_n > 0.0 ? der.m_ij / out.c.contact.gamma_n : kNaN;  // sec. 3.2
+  v[cv_t_gamma] = out.c.contact.number("gamma_n").value_or(0.0) > 0.0 ? der.m_ij / *out.c.contact.number("gamma_n") : kNaN;  // sec. 3.2
   v[cv_m_ij] = der.m_ij;
   v[cv_steps] = static_cast<double>(out.run.steps);
   // Lattice dynamics with rotations (issue 15), prestress included: the member's mode along z
@@ -355,7 +356,7 @@ DampingSummary damping_summary(const CrystalStudy& s, const std::vector<MemberRe
     if (r.values[cv_mode_s] != 0.0) continue;
     if (r.values[cv_value] > 0.0) pts.push_back({std::log(r.values[cv_value]), &r});
     const double m_ij = r.values[cv_m_ij];
-    d.t_c = std::numbers::pi * std::sqrt(m_ij / s.base.contact.kn);  // gamma_0 -> 0 (sec. 2.1)
+    d.t_c = std::numbers::pi * std::sqrt(m_ij / s.base.contact.number("kn").value_or(0.0));  // gamma_0 -> 0 (sec. 2.1)
   }
   std::sort(pts.begin(), pts.end(), [](auto& a, auto& b) { return a.first < b.first; });
   for (std::size_t k = 0; k < s.positions.size(); ++k) {

@@ -77,7 +77,7 @@ CrystalStudy parse_crystal_study(const std::string& text, const std::string& ori
     s.kt_over_k = r.number_in(*st, "study", "kt_over_k", true, [](double v) { return v > 0.0; }, "> 0");
   }
   // The springs are k_r = k_o = value * kt: without a tangential spring they would all be zero.
-  if (s.vary == CrystalVary::kr_over_kt && !s.kt_over_k && !(s.base.contact.kt > 0.0))
+  if (s.vary == CrystalVary::kr_over_kt && !s.kt_over_k && !(s.base.contact.number("kt").value_or(0.0) > 0.0))
     r.fail("study.kt_over_k", "missing: the base case has kt = 0, and vary = \"kr_over_kt\" sets k_r = k_o = value * kt");
   s.values = r.numbers(*st, "study", "values");
   if (s.values.empty()) r.fail("study.values", "missing (the parameter values)");

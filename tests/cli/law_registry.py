@@ -123,6 +123,18 @@ for good, what in checks:
     if not good:
         fail("theory --json: " + what)
 
+# The test law's parameters come with it: `granwave_testlaw laws --json` lists its own keys (from its
+# file alone) beside friction's, and the real binary does not list it.
+p = run(gw_test, "laws", "--json")
+if p.returncode != 0:
+    fail("granwave_testlaw laws --json", p)
+listed = {d["name"]: d for d in json.loads(p.stdout)["laws"]}
+own = [k["key"] for k in listed.get("test_linear_dashpot", {}).get("keys", []) if k["group"] == "law"]
+if own != ["kn", "gamma_n", "gamma_t"] or not any(k["key"] == "lever_arm" for k in listed["test_linear_dashpot"]["keys"]):
+    fail("laws --json: the test law's keys %r" % own)
+p = run(gw, "laws", "--json")
+if p.returncode != 0 or "test_linear_dashpot" in p.stdout or "hertz_mindlin" not in p.stdout:
+    fail("granwave laws --json must list the real laws only", p)
 # The real binary does not know the test law: exit 2 naming contact.law and the laws it knows.
 p = run(gw, "check", ok)
 if p.returncode != 2 or "contact.law" not in p.stderr or '"hertz_mindlin"' not in p.stderr:

@@ -1,11 +1,11 @@
 #!/bin/sh
 # No code outside the contact-law registry reads config::ContactLaw (issue #26): the enumerators
 # are named only by the registry (src/contact/case_laws.hpp), the descriptions (src/contact/
-# *_case.hpp: their own) and the enum's declaration and default (src/config/case.hpp); and no law
+# *_case.hpp, *_params.hpp: their own) and the enum's declaration (src/contact/law_id.hpp); and no law
 # is compared anywhere but in the registry. usage: law_registry_grep.sh SOURCE_DIR
 cd "$1" || exit 1
 outside=$(grep -rnE 'ContactLaw::' src --include='*.cpp' --include='*.hpp' |
-  grep -vE '^src/contact/case_laws\.hpp:|^src/contact/[a-z_]+_case\.hpp:|^src/config/case\.hpp:')
+  grep -vE '^src/contact/case_laws\.hpp:|^src/contact/[a-z_]+_(case|params)\.hpp:|^src/contact/law_id\.hpp:')
 compared=$(grep -rnE '(==|!=)[[:space:]]*(config::)?ContactLaw::|ContactLaw::[a-z_]+[[:space:]]*(==|!=)|\.law[[:space:]]*(==|!=)|case[[:space:]]+(config::)?ContactLaw::' \
   src --include='*.cpp' --include='*.hpp' | grep -v '^src/contact/case_laws\.hpp:')
 if [ -n "$outside$compared" ]; then

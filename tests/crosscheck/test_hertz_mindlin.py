@@ -97,7 +97,7 @@ def test_lammps_hertz_styles(tmp_path, cases_dir):
 
 
 def test_dashpot_alignment_with_the_hertz_law():
-    """dumps.dashpot_at_half_step with hertz=(E*, zeta): the step's normal force is the elastic
+    """dumps.dashpot_at_half_step with the law's normal_force: the step's normal force is the elastic
     (4/3) E* sqrt(R*) delta^3/2 plus 2 zeta sqrt(m* 2 E* sqrt(R* delta)) times the half-step approach rate."""
     es, zeta, a, m, dt = HM.e_star(63e9, 0.23), 0.1, 1e-3, 8e-6, 1e-8
     p = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 2 * a - 2e-6]])
@@ -108,7 +108,8 @@ def test_dashpot_alignment_with_the_hertz_law():
     # the dumped force on atom 1 from atom 0 (i = 1, j = 0), with some dashpot that saw v(t)
     f_pair = np.array([[0.0, 0.0, 5.0]])
     clip = D.dashpot_at_half_step(p, v, f_atoms, np.array([m, m]), mobile, dt, np.array([1]), np.array([0]), f_pair,
-                                  radius, zeta, 1.0, 1.0, 0.0, True, (es, zeta))
+                                  radius, zeta, 1.0, 1.0, True,
+                                  HM.normal_force({"youngs_modulus": 63e9, "poisson_ratio": 0.23, "damping_ratio": zeta}))
     vh = v - f_atoms / m * dt / 2
     rate = float(vh[0, 2] - vh[1, 2])                       # approach rate d(delta)/dt at the half step
     want = 4 / 3 * es * math.sqrt(a / 2) * 2e-6 ** 1.5 + 2 * zeta * math.sqrt(m / 2 * 2 * es * math.sqrt(a / 2 * 2e-6)) * rate

@@ -5,7 +5,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from xclib import hertz_mindlin as HM
+from xclib import hertz_mindlin_impact as HM
 from xclib import impact as I
 from xclib.codefacts import Unsupported
 

@@ -79,15 +79,16 @@ def test_benchmark_decks_map_or_refuse_the_resistance():
     rolling and twisting sds included; LIGGGHTS' refuses, naming the keys. Both laws."""
     for name in ("rolling", "rolltors_slip"):
         c = contact(name)
-        v = dict(contact=c, radius=MONO, kn=c["kn"], kt=c["kt"], mu=c["mu_static"], youngs=1e9, poisson=0.3)
+        v = dict(contact=c, radius=MONO, mu=c["mu_static"])
         deck = linear.bench_lammps(v)
         assert deck["pair_style"] == "granular"
         assert "pair_coeff      * * " + deck["pair_coeff"] == LM.crystal_style(c, np.ones(4), MONO)["lines"].split("\n")[1]
-        hm = hertz_mindlin.bench_lammps(v)["pair_coeff"]
+        v_hm = dict(v, contact=dict(c, youngs_modulus=1e9, poisson_ratio=0.3))
+        hm = hertz_mindlin.bench_lammps(v_hm)["pair_coeff"]
         assert hm.startswith("hertz/material 1000000000.0 0.0 0.3 tangential mindlin NULL 0.0 0.5 rolling sds 20000.0 ")
-        for law in (linear, hertz_mindlin):
+        for law, values in ((linear, v), (hertz_mindlin, v_hm)):
             with pytest.raises(Unsupported, match="kr = 20000.*LIGGGHTS"):
-                law.bench_liggghts(v)
+                law.bench_liggghts(values)
     assert " twisting sds %r" % (2e4 * 0.5e-3 ** 2) in linear.bench_lammps(v)["pair_coeff"]
 
 

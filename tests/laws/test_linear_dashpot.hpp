@@ -50,42 +50,63 @@ struct TestLinearDashpotLaw {
   TestLinearDashpotLaw<false> without_rates() const { return {normal, 0.0, arm}; }
 };
 
-struct TestLinearDashpotCase {
-  static constexpr config::ContactLaw law = config::ContactLaw::test_linear_dashpot;
-  static constexpr const char* name = "test_linear_dashpot";
-  static constexpr std::array<const char*, 3> keys{"kn", "gamma_n", "gamma_t"};
-  static constexpr const char* refusal_note = " (this case's law is \"test_linear_dashpot\")";
+// Its parameters: the linear law's kn and gamma_n, a tangential dashpot, and friction's conventions
+// (normal_tension and lever_arm act; the friction coefficients are read and unused).
+struct TestLinearDashpotParams {
+  static constexpr ContactLaw law = ContactLaw::test_linear_dashpot;
+  double kn = 0.0, gamma_n = 0.0, gamma_t = 0.0;
+  Friction friction;
 
-  // The linear law's keys and checks: kt is not this law's (a case giving it is refused first), so it stays 0.
+  static constexpr std::array<KeySpec, 3> keys{LinearLudingParams::own_keys[0], LinearLudingParams::own_keys[2],
+                                               LinearLudingParams::own_keys[3]};
   template <class Reader, class Table>
-  static void read(const Reader& r, const Table& t, config::ContactParams& p) {
-    LinearLudingCase::read(r, t, p);
+  static TestLinearDashpotParams read(const Reader& r, const Table& t) {
+    TestLinearDashpotParams p;
+    p.kn = *read_number(r, t, keys[0]);
+    p.gamma_n = *read_number(r, t, keys[1]);
+    p.gamma_t = *read_number(r, t, keys[2]);
+    p.friction = Friction::read(r, t);
+    return p;
   }
-  template <class Reader, class Table>
-  static void check_case(const Reader&, const Table&, const config::Case&) {}
+  double* number(std::string_view key) {
+    return key == "kn" ? &kn : key == "gamma_n" ? &gamma_n : key == "gamma_t" ? &gamma_t : nullptr;
+  }
+};
 
-  static bool torques(const config::ContactParams& p) { return p.gamma_t > 0.0; }
-  static const char* history_name(const config::ContactParams&) { return "none"; }
+struct TestLinearDashpotCase {
+  using Params = TestLinearDashpotParams;
+  static constexpr ContactLaw law = Params::law;
+  static constexpr const char* name = "test_linear_dashpot";
+  static constexpr auto keys = names_of(Params::keys);
+  static constexpr const char* refusal_note = " (this case's law is \"test_linear_dashpot\")";
+  static constexpr const char* summary = "linear spring-dashpot and a viscous tangential dashpot (tests only)";
+
+  template <class Reader, class Table>
+  static Params read(const Reader& r, const Table& t) { return Params::read(r, t); }
+  template <class Reader, class Table>
+  static void check_case(const Reader&, const Table&, const Params&, double) {}
+
+  static bool torques(const Params& p) { return p.gamma_t > 0.0; }
+  static const char* history_name(const Params&) { return "none"; }
 
   // A dashpot has no stiffness: k_t = 0, its damping gamma_t.
   static constexpr bool stiffness_of_overlap = false;
   static constexpr bool hertz_normal = false;
   static constexpr const char* prestress_formula = "2 sqrt(2) k delta / d'^2";
   static constexpr const char* linearisation_note = "the linear spring k; the tangential dashpot adds no stiffness";
-  static LinearisedContact at(const config::ContactParams& p, double, double, double, double delta) {
+  static LinearisedContact at(const Params& p, double, double, double, double delta) {
     return {p.kn * delta, p.kn, 0.0, p.gamma_n, p.gamma_t};
   }
   // The spring alone, as the linear law relaxes (its Hooke form), named as this law.
-  static Relaxation relaxation(const config::ContactParams& p, double density, double a_max, double m_min,
-                               double overlap_max) {
-    Relaxation r = LinearLudingCase::relaxation(p, density, a_max, m_min, overlap_max);
-    r.params.law = law;
-    return r;
+  static Relaxation relaxation(const Params& p, double, double, double m_min, double) {
+    Params spring;
+    spring.kn = p.kn;
+    return {spring, contact_time({p.kn, 0.0, false}, 0.5 * m_min)};
   }
   template <class Make>
-  static auto model(const config::ContactParams& p, double, const Make& make) {
-    const LinearSpringDashpotParams n{p.kn, p.gamma_n, p.normal_tension == config::NormalTension::clip};
-    if (torques(p)) return make(TestLinearDashpotLaw<true>(n, p.gamma_t, p.lever_arm));
+  static auto model(const Params& p, double, const Make& make) {
+    const LinearSpringDashpotParams n{p.kn, p.gamma_n, p.friction.clip()};
+    if (torques(p)) return make(TestLinearDashpotLaw<true>(n, p.gamma_t, p.friction.lever_arm));
     return with_flags([&]<bool Dashpot>() { return make(HookeLaw<Dashpot>(n)); }, n.gamma_n > 0.0);
   }
 
@@ -94,17 +115,17 @@ struct TestLinearDashpotCase {
             "contact.kn, crystal.overlap, crystal.radius", "contact.kn"};
   }
   // The spring's: the linear law's first guard and (no) stability note.
-  static ScaleCheck scale(const config::ContactParams& p, const config::CrystalCase& k, double m) {
-    return LinearLudingCase::scale(p, k, m);
+  static ScaleCheck scale(const Params& p, double, double, double m) {
+    return {"k/m", p.kn / m, "contact.kn, crystal.radius, crystal.density"};
   }
   static std::string stability_note(double delta_max) { return LinearLudingCase::stability_note(delta_max); }
-  static std::string check_line(const config::ContactParams& p, const LinearisedContact&) {
+  static std::string check_line(const Params& p, const LinearisedContact&) {
     std::ostringstream o;
     o << "  contact law test_linear_dashpot: k = " << p.kn << " N/m, gamma_n = " << p.gamma_n
       << " kg/s, tangential dashpot gamma_t = " << p.gamma_t << " kg/s (no spring, no friction)\n";
     return o.str();
   }
-  static std::string tangential_line(const config::ContactParams&) { return ""; }
+  static std::string tangential_line(const Params&) { return ""; }
 };
 
 }  // namespace granwave::contact

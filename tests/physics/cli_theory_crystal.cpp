@@ -55,11 +55,11 @@ Result run_and_analyze(const std::string& case_path, char mode) {
   theory::ContactNetwork net;
   net.box_x = pk.box_x;
   net.box_y = pk.box_y;
-  net.k = c.contact.kn;
-  net.kt = c.contact.kt;
+  net.k = c.contact.get<contact::LinearLudingParams>().kn;
+  net.kt = c.contact.get<contact::LinearLudingParams>().kt;
   for (std::size_t p = 0; p < pk.size(); ++p) net.particles.push_back({pk.mass[p], pk.layer[p], pk.z[p]});
   for (const auto& q : crystal::list_contacts(pk, true))
-    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.kn * q.overlap});
+    net.contacts.push_back({q.i, q.j, theory::Vec3(q.bx, q.by, q.bz), c.contact.get<contact::LinearLudingParams>().kn * q.overlap});
   r.theory = theory::crystal_prediction(net, {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers});
   return r;
 }

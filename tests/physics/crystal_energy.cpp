@@ -38,9 +38,9 @@ Audit audit(const config::Case& c) {
 }
 config::Case small(double gamma_n, double kt, double dt, double mu = 0.5) {
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
-  c.contact.gamma_n = gamma_n;
-  c.contact.kt = kt;
-  c.contact.mu_static = c.contact.mu_dynamic = mu;
+  c.contact.get<contact::LinearLudingParams>().gamma_n = gamma_n;
+  c.contact.get<contact::LinearLudingParams>().kt = kt;
+  c.contact.friction().mu_static = c.contact.friction().mu_dynamic = mu;
   c.integrator.dt = dt;
   c.integrator.t_end = 2e-4;
   return c;
@@ -85,7 +85,7 @@ TEST_CASE("energy audit closes for an S wave with either lever arm", "[crystal][
   for (const auto arm : {config::LeverArm::radius, config::LeverArm::contact_point}) {
     config::Case c = small(0.0, 1e5, 2e-7);
     c.excitation.mode = config::Excitation::Mode::S;
-    c.contact.lever_arm = arm;
+    c.contact.friction().lever_arm = arm;
     const Audit a = audit(c);
     CHECK(a.dissipated == 0.0);
     CHECK(a.residual_shadow < 1e-6 * a.work);
@@ -120,7 +120,7 @@ TEST_CASE("velocity drive: one freed layer in front of the wall, the prestress h
     const double kick = 0.5 * n_source * (k.density * 4.0 / 3.0 * std::numbers::pi * std::pow(k.radius, 3)) * v0 * v0;
     // The FCC prestress from the case alone: 2 sqrt(2) k delta / d'^2 (sec. 2.2, d' = 2a - delta).
     const double delta = k.overlap * 2.0 * k.radius, d_prime = 2.0 * k.radius - delta;
-    const double sigma_0 = 2.0 * std::numbers::sqrt2 * c.contact.kn * delta / (d_prime * d_prime);
+    const double sigma_0 = 2.0 * std::numbers::sqrt2 * c.contact.get<contact::LinearLudingParams>().kn * delta / (d_prime * d_prime);
     // Every layer away from the ends (2 .. L - 3) stays near its t = 0 stress: the wave is a small
     // perturbation of a crystal that stays confined.
     double change = 0.0;

@@ -28,12 +28,12 @@ struct Audit {
 Audit audit(double gamma_t, double mu_static, double mu_dynamic, double dt, config::LeverArm arm, double kt = 1e5,
             double kr = 0.0) {
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
-  c.contact.kt = kt;
-  c.contact.kr = c.contact.ko = kr;
-  c.contact.gamma_t = gamma_t;
-  c.contact.mu_static = mu_static;
-  c.contact.mu_dynamic = mu_dynamic;
-  c.contact.lever_arm = arm;
+  c.contact.get<contact::LinearLudingParams>().kt = kt;
+  c.contact.rolling_keys()->kr = c.contact.rolling_keys()->ko = kr;
+  c.contact.get<contact::LinearLudingParams>().gamma_t = gamma_t;
+  c.contact.friction().mu_static = mu_static;
+  c.contact.friction().mu_dynamic = mu_dynamic;
+  c.contact.friction().lever_arm = arm;
   c.excitation.mode = config::Excitation::Mode::S;
   c.integrator.dt = dt;
   c.integrator.t_end = 2e-4;

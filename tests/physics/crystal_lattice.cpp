@@ -52,8 +52,8 @@ struct Measured {
 // kr_over_k: rolling and torsion springs kr = ko (contact/rolling_torsion.hpp).
 Measured s_wave(double kt_over_k, double kr_over_k = 0.0) {
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_kt10.toml");
-  c.contact.kt = kt_over_k * c.contact.kn;
-  c.contact.kr = c.contact.ko = kr_over_k * c.contact.kn;
+  c.contact.get<contact::LinearLudingParams>().kt = kt_over_k * c.contact.get<contact::LinearLudingParams>().kn;
+  c.contact.rolling_keys()->kr = c.contact.rolling_keys()->ko = kr_over_k * c.contact.get<contact::LinearLudingParams>().kn;
   c.excitation.mode = config::Excitation::Mode::S;
   c.crystal->cells[2] = 100;
   c.output.fields = {"layer_stress_zx", "layer_velocity_x"};
@@ -144,9 +144,9 @@ TEST_CASE("the dynamical matrix is the linearisation of granwave's own contact f
   for (const bool rolling : {false, true})
   for (const auto arm : {config::LeverArm::radius, config::LeverArm::contact_point}) {
     config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_kt10.toml");
-    c.contact.kt = 1.5 * c.contact.kn;
-    c.contact.lever_arm = arm;
-    if (rolling) c.contact.kr = 0.5 * c.contact.kn, c.contact.ko = 0.3 * c.contact.kn;
+    c.contact.get<contact::LinearLudingParams>().kt = 1.5 * c.contact.get<contact::LinearLudingParams>().kn;
+    c.contact.friction().lever_arm = arm;
+    if (rolling) c.contact.rolling_keys()->kr = 0.5 * c.contact.get<contact::LinearLudingParams>().kn, c.contact.rolling_keys()->ko = 0.3 * c.contact.get<contact::LinearLudingParams>().kn;
     c.crystal->cells[2] = 8;
     const crystal::Packing pk = crystal::make_packing(c);
     const Lattice th = lattice_theory(c, pk);

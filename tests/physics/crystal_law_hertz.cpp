@@ -11,6 +11,7 @@
 
 #include "contact/hertz.hpp"
 #include "config/case.hpp"
+#include "contact/hertz_mindlin_params.hpp"
 #include "contact/law.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/kernel.hpp"
@@ -112,14 +113,13 @@ TEST_CASE("the Hertz-Mindlin law of a case: two-body contact time and maximum ov
   const crystal::Packing pk = two_spheres(a, rho);
   const theory::HertzImpact hz = theory::hertz_impact(A, pk.mass[0], pk.mass[1], 2 * v);
   for (const char* history : {"none", "displacement", "displacement_rescale", "force"}) {
-    config::ContactParams cp;
-    cp.law = config::ContactLaw::hertz_mindlin;
+    contact::HertzMindlinCaseParams cp;
     cp.youngs_modulus = E;
     cp.poisson_ratio = nu;
     cp.mindlin = std::string(history) != "none";
-    cp.tangential_history = std::string(history) == "force"                  ? config::TangentialHistory::force
-                            : std::string(history) == "displacement_rescale" ? config::TangentialHistory::displacement_rescale
-                                                                             : config::TangentialHistory::displacement;
+    cp.tangential_history = std::string(history) == "force"                  ? contact::TangentialHistory::force
+                            : std::string(history) == "displacement_rescale" ? contact::TangentialHistory::displacement_rescale
+                                                                             : contact::TangentialHistory::displacement;
     crystal::Dynamics dyn(pk, crystal::case_model(cp, rho), hz.contact_time / 20000);
     CHECK(dyn.torques() == cp.mindlin);
     dyn.vz = {v, -v};
@@ -159,8 +159,7 @@ TEST_CASE("Hertz-Mindlin damping: the restitution does not depend on the impact 
   const crystal::Packing pk = two_spheres(a, rho);
   const double A = contact::hertz_constant_beads(E, nu, a, E, nu, a);
   auto collide = [&](double beta, double v) {
-    config::ContactParams cp;
-    cp.law = config::ContactLaw::hertz_mindlin;
+    contact::HertzMindlinCaseParams cp;
     cp.youngs_modulus = E;
     cp.poisson_ratio = nu;
     cp.damping_ratio = beta;

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "config/case.hpp"
+#include "contact/hertz_mindlin_params.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/kernel.hpp"
 
@@ -41,12 +42,12 @@ crystal::Packing sandwich() {
   return p;
 }
 
-config::ContactParams rolling_case(double kr, double ko, contact::LeverArm arm) {
-  config::ContactParams cp;
+contact::LinearLudingParams rolling_case(double kr, double ko, contact::LeverArm arm) {
+  contact::LinearLudingParams cp;
   cp.kn = kn;
-  cp.kr = kr;
-  cp.ko = ko;
-  cp.lever_arm = arm;
+  cp.rolling.kr = kr;
+  cp.rolling.ko = ko;
+  cp.friction.lever_arm = arm;
   return cp;
 }
 
@@ -64,7 +65,7 @@ struct Oscillation {
 double overlap_of(const crystal::Packing& pk) { return pk.radius[0] + pk.radius[1] - (pk.z[1] - pk.z[0]); }
 // Sphere 1 starts spinning at w0 along `axis` (x: rolling, z: torsion) and oscillates at `omega`.
 // pure: no tangential spring, so the contacts' torques are couples alone and add to zero.
-Oscillation oscillate(const config::ContactParams& cp, double omega, int axis, bool pure = true) {
+Oscillation oscillate(const contact::LawParams& cp, double omega, int axis, bool pure = true) {
   const crystal::Packing pk = sandwich();
   Oscillation o;
   o.omega = omega;
@@ -98,7 +99,7 @@ TEST_CASE("rolling and torsion springs through the kernel: the spin oscillates a
   for (const auto arm : {contact::LeverArm::radius, contact::LeverArm::contact_point}) {
     for (const int axis : {0, 2}) {
       const double k = 4e4;
-      const config::ContactParams cp = axis == 0 ? rolling_case(k, 0.0, arm) : rolling_case(0.0, k, arm);
+      const contact::LawParams cp = axis == 0 ? rolling_case(k, 0.0, arm) : rolling_case(0.0, k, arm);
       const crystal::Packing pk = sandwich();
       const double lever = lever_of(arm, overlap_of(pk));
       const Oscillation o = oscillate(cp, std::sqrt(2 * k * lever * lever / pk.inertia[1]), axis);
@@ -121,10 +122,10 @@ TEST_CASE("rolling_lever = radii through the kernel: the spin oscillates on a' =
   for (const auto history : {contact::RollingHistory::rotated, contact::RollingHistory::fixed})
   for (const int axis : {0, 2}) {
     const double k = 4e4;
-    config::ContactParams cp = axis == 0 ? rolling_case(k, 0.0, contact::LeverArm::contact_point)
-                                         : rolling_case(0.0, k, contact::LeverArm::contact_point);
-    cp.rolling_lever = contact::RollingLever::radii;
-    cp.rolling_history = history;
+    contact::LinearLudingParams cp = axis == 0 ? rolling_case(k, 0.0, contact::LeverArm::contact_point)
+                                               : rolling_case(0.0, k, contact::LeverArm::contact_point);
+    cp.rolling.rolling_lever = contact::RollingLever::radii;
+    cp.rolling.rolling_history = history;
     const crystal::Packing pk = sandwich();
     const double lever = a * b / (a + b);
     REQUIRE(lever / lever_of(contact::LeverArm::contact_point, overlap_of(pk)) - 1 > 5e-4);  // the arm's a' differs
@@ -140,15 +141,15 @@ TEST_CASE("rolling and torsion on Hertz-Mindlin through the kernel: the spin's o
   // xi = a theta against a fixed sphere): omega^2 = 2 (k_t a^2 + k_r a'^2)/I; the torsion has
   // the rolling-torsion spring alone: omega^2 = 2 k_o a'^2/I.
   const crystal::Packing pk = sandwich();
-  config::ContactParams cp = rolling_case(3e4, 2e4, contact::LeverArm::radius);
-  cp.law = config::ContactLaw::hertz_mindlin;
+  contact::HertzMindlinCaseParams cp;
+  cp.rolling = rolling_case(3e4, 2e4, contact::LeverArm::radius).rolling;
   cp.youngs_modulus = 1e9, cp.poisson_ratio = 0.3;
   const double delta0 = overlap_of(pk), r_eff = a * b / (a + b), lever = lever_of(contact::LeverArm::radius, delta0);
   const double g_star = cp.youngs_modulus / (2 * (1 + cp.poisson_ratio)) / (2 * (2 - cp.poisson_ratio));
   const double k_t = 8 * g_star * std::sqrt(r_eff * delta0), I = pk.inertia[1];
   for (const int axis : {0, 2}) {
-    const double omega = axis == 0 ? std::sqrt(2 * (k_t * a * a + cp.kr * lever * lever) / I)
-                                   : std::sqrt(2 * cp.ko * lever * lever / I);
+    const double omega = axis == 0 ? std::sqrt(2 * (k_t * a * a + cp.rolling.kr * lever * lever) / I)
+                                   : std::sqrt(2 * cp.rolling.ko * lever * lever / I);
     const Oscillation o = oscillate(cp, omega, axis, axis == 2);
     std::printf("Hertz-Mindlin %s: omega %.10g 1/s, worst |w - w0 cos(omega_d t)|/w0 = %.2g\n",
                 axis == 0 ? "rolling" : "torsion", o.omega, o.worst);
@@ -160,9 +161,9 @@ TEST_CASE("rolling and torsion through the kernel: a sliding couple is a' mu f_n
           "[crystal][contact]") {
   const double mu_r = 0.05, mu_o = 0.02;
   const crystal::Packing pk = sandwich();
-  config::ContactParams cp = rolling_case(4e4, 4e4, contact::LeverArm::radius);
-  cp.mu_r = mu_r;
-  cp.mu_o = mu_o;
+  contact::LinearLudingParams cp = rolling_case(4e4, 4e4, contact::LeverArm::radius);
+  cp.rolling.mu_r = mu_r;
+  cp.rolling.mu_o = mu_o;
   const double lever = lever_of(contact::LeverArm::radius, 0.0);
   const double dt = 1e-7;
   crystal::Dynamics dyn(pk, crystal::case_model(cp, rho), dt);
@@ -199,7 +200,7 @@ TEST_CASE("rolling and torsion through the kernel: a sliding couple is a' mu f_n
   // slides books the Coulomb force times the slip, not the trial spring's energy beyond the cap:
   // at most k (v dt)^2 per spring and contact.
   const double v_r = lever * 200.0, v_o = lever * 100.0;
-  CHECK(std::abs((e0 - e) - lost) < 2 * (cp.kr * (v_r * dt) * (v_r * dt) + cp.ko * (v_o * dt) * (v_o * dt)));
+  CHECK(std::abs((e0 - e) - lost) < 2 * (cp.rolling.kr * (v_r * dt) * (v_r * dt) + cp.rolling.ko * (v_o * dt) * (v_o * dt)));
 }
 
 namespace {
@@ -208,7 +209,7 @@ namespace {
 struct Audit {
   double error = 0.0, dissipated = 0.0, e0 = 0.0;
 };
-Audit audit(const config::ContactParams& cp, double dt, double t_end) {
+Audit audit(const contact::LawParams& cp, double dt, double t_end) {
   const crystal::Packing pk = sandwich();
   crystal::Dynamics dyn(pk, crystal::case_model(cp, rho), dt);
   dyn.wx[1] = 20.0, dyn.wy[1] = -12.0, dyn.wz[1] = 15.0;
@@ -229,7 +230,7 @@ Audit audit(const config::ContactParams& cp, double dt, double t_end) {
 TEST_CASE("rolling and torsion through the kernel: stored + dissipated = work, the error converging as dt^2",
           "[crystal][contact]") {
   // omega ~ 9e4 1/s for these springs (a' = 0.6 mm).
-  config::ContactParams cp = rolling_case(4e4, 2e4, contact::LeverArm::contact_point);
+  contact::LinearLudingParams cp = rolling_case(4e4, 2e4, contact::LeverArm::contact_point);
   const double t_end = 5e-4;
   // Elastic, no slip: velocity Verlet's error of the oscillation, O(dt^2).
   const Audit e1 = audit(cp, 2e-7, t_end), e2 = audit(cp, 1e-7, t_end);
@@ -240,8 +241,8 @@ TEST_CASE("rolling and torsion through the kernel: stored + dissipated = work, t
   // Dashpots, no slip: the dashpot's force at the end of a step sees the half-step spin (the
   // kernel's velocities), so its losses lag by O(dt), as the tangential dashpot's
   // (tests/unit/contact_laws.cpp): first order, still a small part of what they dissipate.
-  cp.gamma_r = 0.05;
-  cp.gamma_o = 0.03;
+  cp.rolling.gamma_r = 0.05;
+  cp.rolling.gamma_o = 0.03;
   const Audit d1 = audit(cp, 2e-7, t_end), d2 = audit(cp, 1e-7, t_end);
   std::printf("energy audit, dashpots: error %.3g (dt), %.3g (dt/2), ratio %.3f; dissipated %.3g of E_0\n", d1.error,
               d2.error, d1.error / d2.error, d1.dissipated / d1.e0);
@@ -250,12 +251,12 @@ TEST_CASE("rolling and torsion through the kernel: stored + dissipated = work, t
   CHECK(d1.error / d2.error == Approx(2.0).epsilon(0.1));
   // With slip: limits (a couple of a' 0.01 f_n = 1.2e-6 N m) below what the spins would load
   // (5e-3 N on the lever): without dashpots only the slips dissipate; then with dashpots.
-  cp.mu_r = 0.01;
-  cp.mu_o = 0.01;
-  cp.gamma_r = cp.gamma_o = 0.0;
+  cp.rolling.mu_r = 0.01;
+  cp.rolling.mu_o = 0.01;
+  cp.rolling.gamma_r = cp.rolling.gamma_o = 0.0;
   const Audit s0 = audit(cp, 1e-7, t_end);
-  cp.gamma_r = 0.05;
-  cp.gamma_o = 0.03;
+  cp.rolling.gamma_r = 0.05;
+  cp.rolling.gamma_o = 0.03;
   const Audit s1 = audit(cp, 1e-7, t_end);
   std::printf("energy audit, slip: error %.3g, dissipated %.3g of E_0; slip and dashpots: error %.3g, dissipated %.3g\n",
               s0.error, s0.dissipated / s0.e0, s1.error, s1.dissipated / s1.e0);

@@ -83,10 +83,10 @@ void check_observers(const crystal::Dynamics& dyn) {
 
 TEST_CASE("the sample's per-layer sums equal the plain sums bit for bit", "[crystal][sample][route]") {
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
-  c.contact.kt = 1e5;
-  c.contact.gamma_n = 0.1;
-  c.contact.mu_static = 0.3;
-  c.contact.mu_dynamic = 0.2;
+  c.contact.get<contact::LinearLudingParams>().kt = 1e5;
+  c.contact.get<contact::LinearLudingParams>().gamma_n = 0.1;
+  c.contact.friction().mu_static = 0.3;
+  c.contact.friction().mu_dynamic = 0.2;
   crystal::Packing p = crystal::make_packing(c);
   const double delta = 2.0 * c.crystal->radius * c.crystal->overlap;
   // The upper half lifted by 4 overlaps: the contacts across the cut are open (still in the
@@ -144,9 +144,9 @@ TEST_CASE("a list no contact has lost energy in is skipped by the dissipation su
   // until a contact slides or opens with a stretched spring every entry stays +0.0 and the sums
   // skip the list (ContactList::losses_booked). Slow spins: nothing slides; fast spins: slip.
   config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_small.toml");
-  c.contact.kt = 1e5;
-  c.contact.gamma_n = c.contact.gamma_t = 0.0;
-  c.contact.mu_static = c.contact.mu_dynamic = 0.5;
+  c.contact.get<contact::LinearLudingParams>().kt = 1e5;
+  c.contact.get<contact::LinearLudingParams>().gamma_n = c.contact.get<contact::LinearLudingParams>().gamma_t = 0.0;
+  c.contact.friction().mu_static = c.contact.friction().mu_dynamic = 0.5;
   const crystal::Packing p = crystal::make_packing(c);
   for (const double spin : {1e-3, 300.0}) {
     crystal::Dynamics dyn(p, crystal::case_model(c.contact, c.crystal->density), 2e-7);

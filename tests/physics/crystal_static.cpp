@@ -9,6 +9,7 @@
 
 #include "../test_support.hpp"
 #include "config/case.hpp"
+#include "contact/hertz_mindlin_params.hpp"
 #include "core/rng.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/packing.hpp"
@@ -72,7 +73,7 @@ Disturbed disturb(crystal::Packing p) {
   d.p = std::move(p);
   return d;
 }
-crystal::Dynamics forces_of(const Disturbed& d, const config::ContactParams& cp) {
+crystal::Dynamics forces_of(const Disturbed& d, const contact::LawParams& cp) {
   crystal::Dynamics dyn(d.p, cp, 2e-7);
   for (std::size_t q = 0; q < d.p.size(); ++q) {
     dyn.vx[q] = d.v[3 * q], dyn.vy[q] = d.v[3 * q + 1], dyn.vz[q] = d.v[3 * q + 2];
@@ -88,32 +89,34 @@ crystal::Dynamics forces_of(const Disturbed& d, const config::ContactParams& cp)
 // slips included, the linear radius arm without their dashpots, the others with.
 struct RouteLaws {
   config::Case c;
-  config::ContactParams radius, contact_point, hertz;
-  std::vector<config::ContactParams> rolling;
+  contact::LawParams radius, contact_point, hertz;
+  std::vector<contact::LawParams> rolling;
 };
 RouteLaws route_laws() {
   RouteLaws r;
   r.c = load("crystal_small");
-  r.c.contact.kt = 1e5;
-  r.c.contact.gamma_n = 0.1;
-  r.c.contact.mu_static = 0.3;
-  r.c.contact.mu_dynamic = 0.2;
+  r.c.contact.get<contact::LinearLudingParams>().kt = 1e5;
+  r.c.contact.get<contact::LinearLudingParams>().gamma_n = 0.1;
+  r.c.contact.friction().mu_static = 0.3;
+  r.c.contact.friction().mu_dynamic = 0.2;
   r.radius = r.c.contact;
-  r.radius.lever_arm = config::LeverArm::radius;
+  r.radius.friction().lever_arm = config::LeverArm::radius;
   r.contact_point = r.c.contact;
-  r.contact_point.lever_arm = config::LeverArm::contact_point;
-  r.hertz.law = config::ContactLaw::hertz_mindlin;
-  r.hertz.youngs_modulus = 63e9;
-  r.hertz.poisson_ratio = 0.23;
-  r.hertz.damping_ratio = 0.1;
-  r.hertz.mu_static = 0.3;
-  r.hertz.mu_dynamic = 0.2;
-  r.hertz.tangential_history = config::TangentialHistory::displacement_rescale;
-  for (config::ContactParams cp : {r.radius, r.contact_point, r.hertz}) {
-    cp.kr = cp.ko = 5e4;
-    cp.mu_r = cp.mu_o = 0.05;
-    if (cp.law == config::ContactLaw::hertz_mindlin || cp.lever_arm == config::LeverArm::contact_point)
-      cp.gamma_r = cp.gamma_o = 0.01;
+  r.contact_point.friction().lever_arm = config::LeverArm::contact_point;
+  contact::HertzMindlinCaseParams hertz;
+  hertz.youngs_modulus = 63e9;
+  hertz.poisson_ratio = 0.23;
+  hertz.damping_ratio = 0.1;
+  hertz.friction.mu_static = 0.3;
+  hertz.friction.mu_dynamic = 0.2;
+  hertz.tangential_history = contact::TangentialHistory::displacement_rescale;
+  r.hertz = hertz;
+  for (contact::LawParams cp : {r.radius, r.contact_point, r.hertz}) {
+    contact::RollingTorsionKeys& k = *cp.rolling_keys();
+    k.kr = k.ko = 5e4;
+    k.mu_r = k.mu_o = 0.05;
+    if (cp.find<contact::HertzMindlinCaseParams>() || cp.friction().lever_arm == config::LeverArm::contact_point)
+      k.gamma_r = k.gamma_o = 0.01;
     r.rolling.push_back(cp);
   }
   return r;
@@ -123,9 +126,9 @@ RouteLaws route_laws() {
 TEST_CASE("same forces after a shift across the periodic faces and after reordering", "[crystal][static]") {
   config::Case c = load("crystal_small");
   c.crystal->cells = {4, 4, 20};
-  c.contact.kt = 1e5;
-  c.contact.gamma_n = 0.1;
-  c.contact.gamma_t = 0.05;
+  c.contact.get<contact::LinearLudingParams>().kt = 1e5;
+  c.contact.get<contact::LinearLudingParams>().gamma_n = 0.1;
+  c.contact.get<contact::LinearLudingParams>().gamma_t = 0.05;
   const Disturbed base = disturb(crystal::make_packing(c));
   const crystal::Dynamics ref = forces_of(base, c.contact);
   const double f_scale = 1e5 * 2e-6;
@@ -176,19 +179,19 @@ TEST_CASE("results do not depend on the number of threads", "[crystal][static][r
   // The threaded run must really use threads.
   test_support::require_openmp_threads(2, "thread invariance");
   config::Case c = load("crystal_small");
-  c.contact.kt = 1e5;
-  c.contact.gamma_n = 0.1;
+  c.contact.get<contact::LinearLudingParams>().kt = 1e5;
+  c.contact.get<contact::LinearLudingParams>().gamma_n = 0.1;
   const Disturbed base = disturb(crystal::make_packing(c));
   // The linear law of the case, and a damped Hertz-Mindlin law with stick-slip (issue #14).
-  config::ContactParams hertz;
-  hertz.law = config::ContactLaw::hertz_mindlin;
-  hertz.youngs_modulus = 63e9;
-  hertz.poisson_ratio = 0.23;
-  hertz.damping_ratio = 0.1;
-  hertz.mu_static = 0.5;
-  hertz.mu_dynamic = 0.4;
-  hertz.tangential_history = config::TangentialHistory::displacement_rescale;
-  for (const config::ContactParams& cp : {c.contact, hertz}) {
+  contact::HertzMindlinCaseParams hertz_params;
+  hertz_params.youngs_modulus = 63e9;
+  hertz_params.poisson_ratio = 0.23;
+  hertz_params.damping_ratio = 0.1;
+  hertz_params.friction.mu_static = 0.5;
+  hertz_params.friction.mu_dynamic = 0.4;
+  hertz_params.tangential_history = contact::TangentialHistory::displacement_rescale;
+  const contact::LawParams hertz = hertz_params;
+  for (const contact::LawParams& cp : {c.contact, hertz}) {
     const auto model = crystal::case_model(cp, c.crystal->density);
     crystal::Dynamics serial(base.p, model, 2e-7), threaded(base.p, model, 2e-7);
     serial.parallel_min_particles = ~std::size_t{0};  // never threaded
@@ -215,9 +218,9 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
   test_support::require_openmp_threads(2, "the two-pass route");
   const auto [c, radius, contact_point, hertz, rolling] = route_laws();
   const Disturbed base = disturb(crystal::make_packing(c));
-  std::vector<config::ContactParams> laws{radius, contact_point, hertz};
+  std::vector<contact::LawParams> laws{radius, contact_point, hertz};
   laws.insert(laws.end(), rolling.begin(), rolling.end());
-  for (const config::ContactParams& cp : laws) {
+  for (const contact::LawParams& cp : laws) {
     const auto model = crystal::case_model(cp, c.crystal->density);
     crystal::Dynamics one(base.p, model, 2e-7), two(base.p, model, 2e-7);
     one.parallel_min_particles = ~std::size_t{0};  // one thread: the scatter
@@ -245,7 +248,7 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
     // stick/slip flag (after the spring's three components).
     const double* flag = one.contacts.history_column(3);
     CHECK(std::count(flag, flag + one.contacts.size(), 1.0) > 0);
-    if (cp.kr > 0.0) {  // the rolling springs (the four columns after the base law's) are stretched
+    if (cp.rolling().kr > 0.0) {  // the rolling springs (the four columns after the base law's) are stretched
       const double* xi_r = one.contacts.history_column(one.contacts.history_columns - 4);
       CHECK(std::count(xi_r, xi_r + one.contacts.size(), 0.0) < static_cast<std::ptrdiff_t>(one.contacts.size()));
     }
@@ -260,8 +263,8 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   // couples' row), a sliding law, Hertz-Mindlin, and a crystal whose particle count is not a
   // multiple of four.
   const auto [c, radius, contact_point, hertz, rolling] = route_laws();
-  config::ContactParams frictionless = c.contact;
-  frictionless.kt = 0.0;
+  contact::LawParams frictionless = c.contact;
+  frictionless.set_number("kt", 0.0);
   const crystal::Packing whole = crystal::make_packing(c);
   crystal::Packing short_of_three = whole;  // three top-layer (fixed) particles fewer: n % 4 = 1
   for (auto* v : {&short_of_three.x, &short_of_three.y, &short_of_three.z, &short_of_three.radius,
@@ -274,9 +277,9 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   REQUIRE(short_of_three.fixed.back() == 1);
   for (const crystal::Packing* packing : {&whole, static_cast<const crystal::Packing*>(&short_of_three)}) {
     const Disturbed base = disturb(*packing);
-    std::vector<config::ContactParams> laws{frictionless, radius, contact_point, hertz};
+    std::vector<contact::LawParams> laws{frictionless, radius, contact_point, hertz};
     laws.insert(laws.end(), rolling.begin(), rolling.end());
-    for (const config::ContactParams& cp : laws) {
+    for (const contact::LawParams& cp : laws) {
       const auto model = crystal::case_model(cp, c.crystal->density);
       crystal::Dynamics stepped(base.p, model, 2e-7), advanced(base.p, model, 2e-7);
       for (auto* d : {&stepped, &advanced}) {

@@ -209,7 +209,7 @@ TEST_CASE("seed 002 sec. 3.5 kt trend, P wave: the first peaks of stress, v and 
   const int zs[] = {5, 10, 20};
   auto run = [&](double kt_over_k) {
     config::Case c = seed_case("crystal_p.toml");
-    c.contact.kt = kt_over_k * c.contact.kn;
+    c.contact.get<contact::LinearLudingParams>().kt = kt_over_k * c.contact.get<contact::LinearLudingParams>().kn;
     c.crystal->cells = {3, 3, 40};
     c.integrator.t_end = 1.6e-4;
     c.integrator.dt = 1e-7;
@@ -220,7 +220,7 @@ TEST_CASE("seed 002 sec. 3.5 kt trend, P wave: the first peaks of stress, v and 
     Peaks out{lattice_speed(c, pk, false), 0.0, {}};
     for (const auto& q : crystal::list_contacts(pk, false))
       if (!pk.fixed[q.i] && !pk.fixed[q.j]) {
-        out.geometric = c.contact.kn * q.overlap / std::sqrt(q.bx * q.bx + q.by * q.by + q.bz * q.bz);
+        out.geometric = c.contact.get<contact::LinearLudingParams>().kn * q.overlap / std::sqrt(q.bx * q.bx + q.by * q.by + q.bz * q.bz);
         break;
       }
     REQUIRE(out.geometric > 0.0);
@@ -260,7 +260,7 @@ TEST_CASE("seed 002 sec. 3.5 kt trend, S wave: the first peaks of stress and vel
   // statement holds for every quantity. Measured at z/l0 = 10, kt = k: sigma_zx x0.85, v_x x0.58.
   auto peaks = [](double kt_over_k) {
     config::Case c = seed_case("crystal_p.toml");
-    c.contact.kt = kt_over_k * c.contact.kn;
+    c.contact.get<contact::LinearLudingParams>().kt = kt_over_k * c.contact.get<contact::LinearLudingParams>().kn;
     c.excitation.mode = config::Excitation::Mode::S;
     c.crystal->cells = {3, 3, 40};
     c.integrator.t_end = 1.6e-4;

@@ -41,7 +41,7 @@ dt_over_tc = 0.002
 TEST_CASE("the linear law's restitution and contact time are its closed form's", "[impact]") {
   const std::string text = kSphereOnWall + "[impact.wall]\n[contact]\nlaw = \"linear\"\nkn = 1e6\nrestitution = 0.5\n";
   const impact::Setup s = impact::resolve(config::parse_case(text, "linear.toml"));
-  const theory::ContactTime ct = theory::linear_contact_time(s.contact.kn, s.contact.gamma_n, s.b1.mass, false);
+  const theory::ContactTime ct = theory::linear_contact_time(s.contact.get<contact::LinearLudingParams>().kn, s.contact.get<contact::LinearLudingParams>().gamma_n, s.b1.mass, false);
   CHECK(ct.restitution == Approx(0.5).epsilon(1e-12));  // the gamma_n that contact.restitution set
   // The dashpot at the half-step velocity: both errors are first order in dt (halve with it).
   double err_e[2], err_t[2];

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "contact/hertz_mindlin_params.hpp"
 #include "impact_support.hpp"
 #include "theory/impact.hpp"
 
@@ -18,7 +19,7 @@ namespace {
 
 theory::ObliqueImpact coulomb(const impact_test::Outcome& o) {
   const impact::Rebound& r = o.rebound;
-  return theory::coulomb_oblique(o.setup.bodies(), {r.vn_in, r.vt_in, r.w1_in, r.w2_in}, o.setup.contact.mu_dynamic,
+  return theory::coulomb_oblique(o.setup.bodies(), {r.vn_in, r.vt_in, r.w1_in, r.w2_in}, o.setup.contact.friction().mu_dynamic,
                                  r.normal_restitution);
 }
 
@@ -71,7 +72,7 @@ TEST_CASE("T5, T6 and a sliding sphere pair at 85 deg slide throughout: the rebo
     CAPTURE(file);
     impact::Setup s = impact_test::setup_of(file);
     if (!s.wall) s.b2.w = -1.0 * s.b2.w;  // the same sense as body 1: the surfaces slide
-    s.contact.damping_ratio = 0.0;
+    s.contact.set_number("damping_ratio", 0.0);
     const impact_test::Outcome o = impact_test::run_at(s, 0.002);
     const theory::ObliqueImpact c = coulomb(o);
     REQUIRE(c.sliding);
@@ -112,7 +113,7 @@ struct Psi {
 // MBF's variables of a run (theory/impact.hpp): kappa = 4 G*/E*, psi = kappa v_ct/(mu v_n), v_n incident.
 Psi psi_of(const impact_test::Outcome& o) {
   const impact::Rebound& r = o.rebound;
-  const double kappa = theory::mbf_kappa(o.setup.e_star, o.setup.g_star), mu = o.setup.contact.mu_dynamic;
+  const double kappa = theory::mbf_kappa(o.setup.e_star, o.setup.g_star), mu = o.setup.contact.friction().mu_dynamic;
   return {kappa, theory::mbf_chi(kappa, o.setup.bodies()), kappa * r.vct_in / (mu * r.vn_in),
           kappa * r.vct_out / (mu * r.vn_in)};
 }
@@ -132,8 +133,8 @@ TEST_CASE("T4 against Maw, Barber & Fawcett: granwave's Mindlin law, and MBF whe
     const std::string file = std::string("t4/t4_alumina_") + angle + "deg.toml";
     const impact_test::Outcome o = impact_test::run_at(impact_test::setup_of(file), 0.002);
     const Psi p = psi_of(o);
-    const double beta = o.setup.contact.damping_ratio;
-    const bool clip = o.setup.contact.normal_tension == config::NormalTension::clip;
+    const double beta = *o.setup.contact.number("damping_ratio");
+    const bool clip = o.setup.contact.friction().clip();
     const theory::MbfRebound law = theory::mbf_rebound(p.chi, p.psi1, theory::TangentialCompliance::displacement, beta, clip);
     const theory::MbfRebound md = theory::mbf_rebound(p.chi, p.psi1, theory::TangentialCompliance::mindlin_deresiewicz, beta, clip);
     CAPTURE(file, p.psi1, p.psi2, law.psi2, md.psi2);
@@ -148,14 +149,14 @@ TEST_CASE("T4 against Maw, Barber & Fawcett: granwave's Mindlin law, and MBF whe
     // The spin: the tangential impulse of psi2 (theory::oblique_from_psi2), relative.
     const impact::Rebound& r = o.rebound;
     const theory::ObliqueImpact w = theory::oblique_from_psi2(o.setup.bodies(), {r.vn_in, r.vt_in, r.w1_in, r.w2_in},
-                                                             o.setup.contact.mu_dynamic, p.kappa, law.psi2, law.restitution);
+                                                             o.setup.contact.friction().mu_dynamic, p.kappa, law.psi2, law.restitution);
     CHECK(r.w1_out == Approx(w.w1_after).epsilon(2e-3));
 
     // The force history (YADE's, LAMMPS mindlin/force) against its own theory, as the other codes are judged.
     // Its force outlasts the normal force and slips as the contact opens, an error first order in dt
     // (measured at 5 deg: 4.2e-3, 9.5e-4, 1.3e-4 at t_c/500, /2000, /8000): run at t_c/2000, tolerance 1.5e-3.
     impact::Setup sf = o.setup;
-    sf.contact.tangential_history = config::TangentialHistory::force;
+    sf.contact.get<contact::HertzMindlinCaseParams>().tangential_history = contact::TangentialHistory::force;
     const impact_test::Outcome of = impact_test::run_at(sf, 0.0005);
     const theory::MbfRebound force = theory::mbf_rebound(p.chi, p.psi1, theory::TangentialCompliance::force, beta, clip);
     CAPTURE(psi_of(of).psi2, force.psi2);

@@ -60,11 +60,11 @@ TEST_CASE("rolling study: the study file's members are the issue's range at kt =
   REQUIRE(s.kt_over_k == 1.0);
   CHECK(s.values == std::vector<double>{0.05, 0.1, 0.2, 0.5, 1.0, 2.0});
   const config::Case c = sweep::member_case(s, {0.5, 'S'});
-  CHECK(c.contact.kt == c.contact.kn);
-  CHECK(c.contact.kr == 0.5 * c.contact.kt);
-  CHECK(c.contact.ko == c.contact.kr);
-  CHECK(c.contact.gamma_r == 0.0);
-  CHECK(std::isinf(c.contact.mu_r));  // no rolling limit: nothing slips
+  CHECK(c.contact.get<contact::LinearLudingParams>().kt == c.contact.get<contact::LinearLudingParams>().kn);
+  CHECK(c.contact.rolling().kr == 0.5 * c.contact.get<contact::LinearLudingParams>().kt);
+  CHECK(c.contact.rolling().ko == c.contact.rolling().kr);
+  CHECK(c.contact.rolling().gamma_r == 0.0);
+  CHECK(std::isinf(c.contact.rolling().mu_r));  // no rolling limit: nothing slips
 }
 
 TEST_CASE("rolling study: the 2D-FFT ridge and the zone edge against the lattice branches, the speeds against its long "

@@ -73,7 +73,7 @@ TEST_CASE("damping study: first-peak amplitude falls with gamma_0 and with dista
   const auto s = small("gamma_n", "[0.0, 0.01, 0.1, 1.0]", "[\"P\"]", 40, 2.0e-4);
   const auto r = run(s, "damp");
   REQUIRE(r.size() == 4);
-  const double k = s.base.contact.kn;
+  const double k = s.base.contact.get<contact::LinearLudingParams>().kn;
   for (std::size_t i = 0; i < r.size(); ++i) {
     const auto& v = r[i].values;
     const double amp10 = v[cv_count + 0], amp20 = v[cv_count + 1];

@@ -64,7 +64,7 @@ Built build(const config::Case& c) {
   const auto lopt = crystal::lattice_options(c, 1e-6);
   b.slab.contact = b.bulk.contact = lopt;
   b.slab.affine_layers = b.pk.fixed_layers;
-  b.slab.mu = b.bulk.mu = c.contact.mu_static;
+  b.slab.mu = b.bulk.mu = c.contact.friction().mu_static;
   b.bulk.boundary = theory::RelaxedBoundary::bulk;
   b.bulk.box_z = box_z;
   return b;

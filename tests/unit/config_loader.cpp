@@ -93,24 +93,24 @@ TEST_CASE("a good crystal case resolves with defaults", "[config]") {
   REQUIRE(c.crystal);
   CHECK(c.crystal->overlap == 1e-3);
   CHECK(c.crystal->fixed_layers == 2);
-  CHECK(c.contact.mu_static == 0.5);
+  CHECK(c.contact.friction().mu_static == 0.5);
   CHECK(c.excitation.mode == Excitation::Mode::P);
   CHECK(c.excitation.amplitude == 1e-4);
-  CHECK(c.contact.lever_arm == LeverArm::radius);  // seed 002 eq. (4)
+  CHECK(c.contact.friction().lever_arm == LeverArm::radius);  // seed 002 eq. (4)
 }
 
 TEST_CASE("contact-law conventions are case options: each value parses, others are refused", "[config]") {
   const Case defaults = parse_case(kCrystal, "c.toml");
-  CHECK(defaults.contact.lever_arm == LeverArm::radius);                // seed 002 eq. (4)
-  CHECK(defaults.contact.coulomb_normal == CoulombNormal::compressive);  // no friction under tension
+  CHECK(defaults.contact.friction().lever_arm == LeverArm::radius);                // seed 002 eq. (4)
+  CHECK(defaults.contact.friction().coulomb_normal == CoulombNormal::compressive);  // no friction under tension
   struct Option {
     std::string key, value, allowed_other;
-    bool (*is_set)(const ContactParams&);
+    bool (*is_set)(const contact::LawParams&);
   };
   const Option options[] = {
-      {"lever_arm", "contact_point", "radius", [](const ContactParams& p) { return p.lever_arm == LeverArm::contact_point; }},
+      {"lever_arm", "contact_point", "radius", [](const contact::LawParams& p) { return p.friction().lever_arm == LeverArm::contact_point; }},
       {"coulomb_normal", "magnitude", "compressive",
-       [](const ContactParams& p) { return p.coulomb_normal == CoulombNormal::magnitude; }}};
+       [](const contact::LawParams& p) { return p.friction().coulomb_normal == CoulombNormal::magnitude; }}};
   for (const Option& o : options) {
     std::string t = kCrystal;
     t.replace(t.find("kn = 1e5"), 8, "kn = 1e5\n" + o.key + " = \"" + o.value + "\"");

@@ -46,10 +46,10 @@ struct Collision {
 // delta_dot reaches zero (afterwards the spheres fly apart force-free); interpolated.
 Collision collide(double gamma_n, config::NormalTension tension, double dt) {
   const bool clip = tension == config::NormalTension::clip;
-  config::ContactParams cp;
+  contact::LinearLudingParams cp;
   cp.kn = 1e5;
   cp.gamma_n = gamma_n;
-  cp.normal_tension = tension;
+  cp.friction.normal_tension = tension;
   const double v = 0.01;
   crystal::Dynamics dyn(two_spheres(0.0), cp, dt);
   dyn.vz = {v, -v};
@@ -213,10 +213,10 @@ TEST_CASE("tangential spring: sticking -kt xi, sliding at mu f_n, stick-slip swi
 }
 
 TEST_CASE("sphere on sphere with spin: eq. (4) surface velocity and torques on both", "[crystal][contact]") {
-  config::ContactParams cp;
+  contact::LinearLudingParams cp;
   cp.kn = 1e5;
   cp.kt = 5e4;
-  cp.mu_static = cp.mu_dynamic = 0.5;
+  cp.friction.mu_static = cp.friction.mu_dynamic = 0.5;
   const double dt = 1e-8, a = 1e-3;
   crystal::Dynamics dyn(two_spheres(-2e-6), cp, dt);  // 2 um overlap, sphere 1 above sphere 0
   dyn.wx = {0.0, 10.0};                               // sphere 1 spins about x
@@ -247,11 +247,11 @@ TEST_CASE("sphere on sphere with spin: eq. (4) surface velocity and torques on b
 
 TEST_CASE("contact-point lever arm: a - delta/2 in eq. (4) and in both torques, angular momentum exact",
           "[crystal][contact]") {
-  config::ContactParams cp;
+  contact::LinearLudingParams cp;
   cp.kn = 1e5;
   cp.kt = 5e4;
-  cp.mu_static = cp.mu_dynamic = 0.5;
-  cp.lever_arm = config::LeverArm::contact_point;
+  cp.friction.mu_static = cp.friction.mu_dynamic = 0.5;
+  cp.friction.lever_arm = config::LeverArm::contact_point;
   const double dt = 1e-8, a = 1e-3, overlap = 2e-6;
   crystal::Dynamics dyn(two_spheres(-overlap), cp, dt);
   REQUIRE(dyn.lever_arm() == contact::LeverArm::contact_point);

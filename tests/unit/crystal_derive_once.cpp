@@ -47,7 +47,7 @@ TEST_CASE("a crystal run derives its case once and solves its lattice once", "[c
   SECTION("P wave, frictionless") {}
   SECTION("S wave with kt > 0: the analysis's branches and the summary's speed from one solve") {
     c.excitation.mode = config::Excitation::Mode::S;
-    c.contact.kt = c.contact.kn;
+    c.contact.get<contact::LinearLudingParams>().kt = c.contact.get<contact::LinearLudingParams>().kn;
   }
   const Counts n = run_once(c);
   CHECK(n.derivations == 1);

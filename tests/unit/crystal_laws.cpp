@@ -5,6 +5,7 @@
 #include <string>
 
 #include "config/case.hpp"
+#include "contact/hertz_mindlin_params.hpp"
 #include "config/contact_laws.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/simulation.hpp"
@@ -22,17 +23,18 @@ TEST_CASE("contact-law registry: every case's law description agrees with the mo
     const config::ContactLawInfo& law = config::law_of(c.contact);
     const auto model = crystal::case_model(c.contact, c.crystal->density);
     CHECK(model->torques() == law.torques(c.contact));
-    if (model->torques()) CHECK(model->lever_arm() == c.contact.lever_arm);
+    if (model->torques()) CHECK(model->lever_arm() == c.contact.friction().lever_arm);
     CHECK(crystal::contact_law_name(c.contact) == law.name);
     // The linearised contact at delta_0: the linear law's keys, Hertz's k_n = 2 E* a.
     const double delta = 2.0 * c.crystal->radius * c.crystal->overlap;
     const contact::LinearisedContact k0 = crystal::contact_at(c, delta);
     CHECK(k0.f_n == crystal::static_normal_force(c, c.crystal->radius, c.crystal->radius, delta));
     if (!law.stiffness_of_overlap) {
-      CHECK(k0.kn == c.contact.kn);
-      CHECK(k0.kt == c.contact.kt);
+      CHECK(k0.kn == c.contact.get<contact::LinearLudingParams>().kn);
+      CHECK(k0.kt == c.contact.get<contact::LinearLudingParams>().kt);
     } else {
-      const double E_star = c.contact.youngs_modulus / (2.0 * (1.0 - c.contact.poisson_ratio * c.contact.poisson_ratio));
+      const auto& hm = c.contact.get<contact::HertzMindlinCaseParams>();
+      const double E_star = hm.youngs_modulus / (2.0 * (1.0 - hm.poisson_ratio * hm.poisson_ratio));
       CHECK(k0.kn == Approx(2.0 * E_star * std::sqrt(0.5 * c.crystal->radius * delta)).epsilon(1e-14));
     }
   }

@@ -116,10 +116,10 @@ TEST_CASE("check refuses unstable dt, mu_d > mu_s, negative stiffness, warns abo
   c.integrator.dt = 1e-5;
   CHECK_THROWS_AS(crystal::check(c, out), InputError);
   c = small_case();
-  c.contact.mu_dynamic = 0.6;
+  c.contact.friction().mu_dynamic = 0.6;
   CHECK_THROWS_AS(crystal::check(c, out), InputError);
   c = small_case();
-  c.contact.kn = -1.0;
+  c.contact.get<contact::LinearLudingParams>().kn = -1.0;
   CHECK_THROWS_AS(crystal::check(c, out), InputError);
   c = small_case();
   c.crystal->cells = {1, 2, 40};
@@ -183,9 +183,9 @@ TEST_CASE("the source step does not stretch the tangential springs: f_t = 0 at t
     if (p.layer[q] < p.fixed_layers) source.push_back(q);
   const double step = 1e-4 * p.d;
   auto stepped = [&](double kt, bool p_mode) {
-    config::ContactParams cp = c.contact;
+    contact::LinearLudingParams cp = c.contact.get<contact::LinearLudingParams>();
     cp.kt = kt;
-    cp.mu_static = cp.mu_dynamic = 0.5;
+    cp.friction.mu_static = cp.friction.mu_dynamic = 0.5;
     crystal::Dynamics dyn(p, cp, *c.integrator.dt);
     dyn.displace(source, p_mode ? 0.0 : step, 0.0, p_mode ? step : 0.0);
     dyn.compute_forces();
@@ -193,7 +193,7 @@ TEST_CASE("the source step does not stretch the tangential springs: f_t = 0 at t
   };
   for (bool p_mode : {true, false}) {
     CAPTURE(p_mode);
-    const auto frictional = stepped(c.contact.kn, p_mode), frictionless = stepped(0.0, p_mode);
+    const auto frictional = stepped(c.contact.get<contact::LinearLudingParams>().kn, p_mode), frictionless = stepped(0.0, p_mode);
     const auto& C = frictional.contacts;
     REQUIRE(C.history_columns >= 3);  // xi_x, xi_y, xi_z (and a stick/slip flag if mu_s != mu_d)
     for (std::size_t k = 0; k < C.size(); ++k)

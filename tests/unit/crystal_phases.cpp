@@ -42,8 +42,8 @@ TEST_CASE("the phases of a short run add up to its time loop's wall time", "[cry
   config::Case c = short_case();
   SECTION("frictionless") {}
   SECTION("friction, contact-point arm") {
-    c.contact.kt = c.contact.kn;
-    c.contact.lever_arm = contact::LeverArm::contact_point;
+    c.contact.get<contact::LinearLudingParams>().kt = c.contact.get<contact::LinearLudingParams>().kn;
+    c.contact.friction().lever_arm = contact::LeverArm::contact_point;
   }
   const crystal::Packing p = crystal::make_packing(c);
   const crystal::RunResult r = crystal::simulate(c, p);

@@ -47,39 +47,39 @@ theory::LatticeCell cell_of(const config::Case& c, theory::LatticeCellOptions op
 
 TEST_CASE("rolling and torsion keys: read, checked, off by default", "[crystal][contact]") {
   const config::Case off = config::parse_case(case_text(""), "test");
-  CHECK(off.contact.kr == 0.0);
-  CHECK(off.contact.ko == 0.0);
-  CHECK(std::isinf(off.contact.mu_r));  // absent: no limit
+  CHECK(off.contact.rolling().kr == 0.0);
+  CHECK(off.contact.rolling().ko == 0.0);
+  CHECK(std::isinf(off.contact.rolling().mu_r));  // absent: no limit
   CHECK_FALSE(crystal::case_model(off.contact, 2000.0)->couples());
   const config::Case on =
       config::parse_case(case_text("kr = 2e4\ngamma_r = 0.01\nmu_r = 0.1\nko = 1e4\ngamma_o = 0.02\nmu_o = 0.05"), "test");
-  CHECK(on.contact.kr == 2e4);
-  CHECK(on.contact.gamma_r == 0.01);
-  CHECK(on.contact.mu_r == 0.1);
-  CHECK(on.contact.ko == 1e4);
-  CHECK(on.contact.gamma_o == 0.02);
-  CHECK(on.contact.mu_o == 0.05);
+  CHECK(on.contact.rolling().kr == 2e4);
+  CHECK(on.contact.rolling().gamma_r == 0.01);
+  CHECK(on.contact.rolling().mu_r == 0.1);
+  CHECK(on.contact.rolling().ko == 1e4);
+  CHECK(on.contact.rolling().gamma_o == 0.02);
+  CHECK(on.contact.rolling().mu_o == 0.05);
   const auto model = crystal::case_model(on.contact, 2000.0);
   CHECK(model->couples());
   CHECK(model->torques());
   // Without a tangential spring the rolling spring alone still turns the spheres.
   const config::Case alone = config::parse_case(case_text("kn = 1e5\nkr = 2e4", false), "test");
-  CHECK(alone.contact.kt == 0.0);
+  CHECK(alone.contact.get<contact::LinearLudingParams>().kt == 0.0);
   CHECK(crystal::case_model(alone.contact, 2000.0)->torques());
   for (const char* key : {"kr", "gamma_r", "mu_r", "ko", "gamma_o", "mu_o"}) {
     CAPTURE(key);
     CHECK_THAT(refusal(std::string(key) + " = -1"), Catch::Contains(std::string("contact.") + key));
   }
   // rolling_lever: "lever_arm" (default) or "radii"; anything else is refused naming the key and both values.
-  CHECK(on.contact.rolling_lever == contact::RollingLever::lever_arm);
-  CHECK(config::parse_case(case_text("kr = 2e4\nrolling_lever = \"radii\""), "test").contact.rolling_lever ==
+  CHECK(on.contact.rolling().rolling_lever == contact::RollingLever::lever_arm);
+  CHECK(config::parse_case(case_text("kr = 2e4\nrolling_lever = \"radii\""), "test").contact.rolling().rolling_lever ==
         contact::RollingLever::radii);
   CHECK_THAT(refusal("kr = 2e4\nrolling_lever = \"min_radius\""),
              Catch::Contains("contact.rolling_lever") && Catch::Contains("\"lever_arm\"") && Catch::Contains("\"radii\""));
   // rolling_history: "rotated" (default) or "fixed" (the linear law only: LIGGGHTS' luding model).
-  CHECK(on.contact.rolling_history == contact::RollingHistory::rotated);
+  CHECK(on.contact.rolling().rolling_history == contact::RollingHistory::rotated);
   const config::Case fixed = config::parse_case(case_text("kr = 2e4\nrolling_history = \"fixed\""), "test");
-  CHECK(fixed.contact.rolling_history == contact::RollingHistory::fixed);
+  CHECK(fixed.contact.rolling().rolling_history == contact::RollingHistory::fixed);
   CHECK(crystal::case_model(fixed.contact, 2000.0)->couples());
   CHECK_THAT(refusal("kr = 2e4\nrolling_history = \"turned\""),
              Catch::Contains("contact.rolling_history") && Catch::Contains("\"rotated\"") && Catch::Contains("\"fixed\""));
@@ -93,8 +93,8 @@ TEST_CASE("rolling and torsion keys: read, checked, off by default", "[crystal][
   // Hertz-Mindlin carries them.
   const config::Case hm = config::parse_case(
       case_text("law = \"hertz_mindlin\"\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\nkr = 2e4\nmu_o = 0.1", false), "test");
-  CHECK(hm.contact.kr == 2e4);
-  CHECK(hm.contact.mu_o == 0.1);
+  CHECK(hm.contact.rolling().kr == 2e4);
+  CHECK(hm.contact.rolling().mu_o == 0.1);
   CHECK(crystal::case_model(hm.contact, 2000.0)->couples());
 }
 
@@ -105,7 +105,7 @@ TEST_CASE("rolling and torsion keys reach the lattice dynamics: k_roll = kr a'^2
   // Off: the options of the case are the existing theory's (lever arm only), the same cell.
   theory::LatticeCellOptions plain;
   plain.tolerance = 1e-6;
-  plain.arm_shift = contact::arm_shift(off.contact.lever_arm);
+  plain.arm_shift = contact::arm_shift(off.contact.friction().lever_arm);
   const theory::LatticeCell c0 = cell_of(off, crystal::lattice_options(off, 1e-6)), c_plain = cell_of(off, plain);
   const theory::Vec3 ez(0, 0, 1);
   const double l0 = theory::layer_period(c0, ez);

@@ -148,22 +148,22 @@ TEST_CASE("slab ranks as threads give the serial traces bit for bit: P, S with f
   SECTION("P, frictionless") {}
   SECTION("S, kt = k, mu = 0.5, contact-point arm") {
     c.excitation.mode = config::Excitation::Mode::S;
-    c.contact.kt = c.contact.kn;
-    c.contact.lever_arm = config::LeverArm::contact_point;
+    c.contact.get<contact::LinearLudingParams>().kt = c.contact.get<contact::LinearLudingParams>().kn;
+    c.contact.friction().lever_arm = config::LeverArm::contact_point;
   }
   SECTION("sliding and damped with stick-slip: kt = k, mu_s = 0.002, mu_d = 0.001, dashpots, clip") {
     c.excitation.amplitude = 1e-3;
-    c.contact.kt = c.contact.kn;
-    c.contact.mu_static = 0.002;
-    c.contact.mu_dynamic = 0.001;
-    c.contact.gamma_n = 0.05;
-    c.contact.gamma_t = 0.02;
-    c.contact.normal_tension = config::NormalTension::clip;
+    c.contact.get<contact::LinearLudingParams>().kt = c.contact.get<contact::LinearLudingParams>().kn;
+    c.contact.friction().mu_static = 0.002;
+    c.contact.friction().mu_dynamic = 0.001;
+    c.contact.get<contact::LinearLudingParams>().gamma_n = 0.05;
+    c.contact.get<contact::LinearLudingParams>().gamma_t = 0.02;
+    c.contact.friction().normal_tension = config::NormalTension::clip;
   }
   SECTION("velocity drive with friction") {
     c.excitation.drive = config::Excitation::Drive::velocity;
     c.excitation.amplitude = 0.02;
-    c.contact.kt = c.contact.kn;
+    c.contact.get<contact::LinearLudingParams>().kt = c.contact.get<contact::LinearLudingParams>().kn;
   }
   const crystal::Packing p = crystal::make_packing(c);
   const crystal::RunResult serial = crystal::simulate(c, p);

@@ -21,9 +21,9 @@ TEST_CASE("rolling study: kt_over_k sets kt, k_r = k_o = value * kt") {
   const auto s = sweep::parse_crystal_study(study("crystal_p.toml", "kt_over_k = 0.5\n"), "r.toml");
   CHECK(s.vary == sweep::CrystalVary::kr_over_kt);
   const config::Case c = sweep::member_case(s, {2.0, 'S'});
-  CHECK(c.contact.kt == 0.5 * c.contact.kn);
-  CHECK(c.contact.kr == 2.0 * c.contact.kt);
-  CHECK(c.contact.ko == c.contact.kr);
+  CHECK(c.contact.get<contact::LinearLudingParams>().kt == 0.5 * c.contact.get<contact::LinearLudingParams>().kn);
+  CHECK(c.contact.rolling().kr == 2.0 * c.contact.get<contact::LinearLudingParams>().kt);
+  CHECK(c.contact.rolling().ko == c.contact.rolling().kr);
   const auto names = sweep::crystal_value_names(s);
   REQUIRE(names.size() == sweep::rolling_index(s, sweep::rv_count) + s.positions.size());
   CHECK(names[sweep::rolling_index(s, sweep::rv_theory_zone_edge)] == "theory_zone_edge");
