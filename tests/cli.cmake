@@ -165,3 +165,7 @@ grep -q -- '--pulse-field must be auto, stress or velocity' ${CLI_TMP}/pulse_bad
 { ${GW} analyze ${CLI_TMP}/pulse_chain.h5 --pulse-field velocity 2> ${CLI_TMP}/pulse_chain.err; test $? -eq 2; } && \
 grep -q -- 'pulse_chain.h5: --pulse-field is for crystal traces' ${CLI_TMP}/pulse_chain.err")
 set_tests_properties("cli: analyze --pulse-field refuses a bad value and a chain trace (exit 2)" PROPERTIES LABELS "cli")
+# Issue 37's house rules: no source over 600 lines, each opening with its job, design.md's contracts <= 700 lines.
+add_test(NAME "cli: house rules (file sizes, each file's job, design.md)"
+  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/cli/house_rules.py ${CMAKE_SOURCE_DIR})
+set_tests_properties("cli: house rules (file sizes, each file's job, design.md)" PROPERTIES LABELS "cli")
