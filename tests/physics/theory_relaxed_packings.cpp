@@ -88,7 +88,7 @@ TEST_CASE("FCC crystals of data/cases: relaxed bulk = lattice long waves with ro
     CHECK(r.rattlers == 0);
     CHECK(r.mechanisms == 0);
     CHECK(r.unstable_modes == 0);
-    for (const theory::Vec3 h : {theory::Vec3(0, 0, 1), theory::Vec3(1, 2, 3).normalized()}) {
+    for (const theory::Vec3& h : {theory::Vec3(0, 0, 1), theory::Vec3(1, 2, 3).normalized()}) {
       const auto lw = theory::lattice_long_wave(*cell, h);
       const double d = rel_diff(r.relaxed.christoffel(h) / r.rho, lw.with_rotations);
       std::printf("%s: relaxed bulk vs lattice with rotations along (%.3f %.3f %.3f): %.2e\n", name, h.x(), h.y(), h.z(), d);
