@@ -17,9 +17,10 @@ packages=(
   python3-dev python3-pybind11 pybind11-dev python3-tqdm
   yade liggghts lammps libopenmpi-dev openmpi-bin
 )
-# The tests only: Catch2, pytest, the notebook's runner, clang for libFuzzer, ccache.
+# The tests only: Catch2, pytest (and xdist: the cross-code tests on every core), the notebook's runner,
+# clang for libFuzzer, ccache.
 if [[ $tests == ON ]]; then
-  packages+=(catch2 libbenchmark-dev python3-pytest python3-nbconvert python3-ipykernel clang libclang-rt-14-dev ccache)
+  packages+=(catch2 libbenchmark-dev python3-pytest python3-pytest-xdist python3-nbconvert python3-ipykernel clang libclang-rt-14-dev ccache)
 fi
 missing=()
 for p in "${packages[@]}"; do
@@ -35,7 +36,9 @@ if ((${#missing[@]})); then
 fi
 
 echo "==> building granwave (Release) in build/$([[ $tests == ON ]] && echo ', with the tests' || echo ': the program and the Python module')"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests \
+# With the tests: one -fPIC copy of the libraries for the program, the tests and the module (CMakeLists.txt,
+# GRANWAVE_ONE_COPY); without: the program's own copy, the one bench/ times.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests -DGRANWAVE_ONE_COPY=$tests \
   > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 cmake --build build -j"$(nproc)"
 

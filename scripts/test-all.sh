@@ -35,8 +35,9 @@ bash tests/fuzz/seed_corpus.sh build/granwave build-fuzz/corpus
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:allocator_may_return_null=1:max_allocation_size_mb=2000 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   bash tests/fuzz/run_libfuzzer.sh build-fuzz/readers_fuzzer build-fuzz/corpus 60
 
-echo "==> pytest: the cross-code harness, including real YADE and LIGGGHTS runs"
-PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q tests/crosscheck
+echo "==> pytest: the cross-code harness, including real YADE, LIGGGHTS and LAMMPS runs, one worker per core"
+# Each test runs its codes in its own tmp_path, so the tests spread over the cores (pytest-xdist).
+PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q -n "$jobs" tests/crosscheck
 
 echo "==> pytest: the Python module granwave against the program"
 /usr/bin/python3 -m pytest -q tests/python
