@@ -149,6 +149,9 @@ def layer_deck_values(case: dict, system: dict) -> dict:
         bad.append("excitation must be a displacement step (P or S)")
     if np.max(system["radius"]) != np.min(system["radius"]):
         bad.append("polydisperse radii (the decks take one skin and mass from density)")
+    if str(system["attrs"].get("generator", "fcc")) != "fcc":
+        bad.append("a packing file's z-bins (the decks bin particles by their current z from the first layer, "
+                   "the trace by the bin of their initial centre)")
     if bad:
         raise Unsupported("case %s cannot be rendered: %s" % (case["case"]["name"], "; ".join(bad)))
     lay = T.crystal_layout(system)
