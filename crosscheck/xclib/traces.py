@@ -225,9 +225,11 @@ def crystal_layout(system: dict) -> dict:
 
 # ---------------------------------------------------------------- the layer stress (docs/design.md §2.2)
 def layer_stress(pos, radius, layer, fixed, i, j, f_on_i, box_x, box_y, l0, nlayers):
-    """sigma_zz and sigma_zx per layer, compression positive, contact part only:
+    """sigma_zz and sigma_zx per layer (a packing file's: per z-bin), compression positive, contact part only:
 
         sigma_ab(layer) = -(1/(l_x l_y l0)) sum_{p in layer} sum_{c of p} (x_c - x_p)_a f_b
+
+    l0: the FCC's layer spacing, or a packing file's bin width h (crystal_layout's `l0`): the bin's volume.
 
     f is the force on p at contact c, x_c the middle of the overlap, minimum image in x and y,
     contacts between two fixed particles excluded. Component zx = (x_c - x_p)_z f_x.
