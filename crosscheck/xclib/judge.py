@@ -53,6 +53,23 @@ def layer_choice(trace: dict, nlayers: int) -> list[int]:
     return C.choose_layers(z, float(sa.get("bin_width", sa["l0"])), nlayers, nf, free_range=fr)
 
 
+def fit_range(trace: dict):
+    """The z/l0 range of the ruler's speed fits: None for the FCC (analyze's own, z/l0 = 10 .. 150); for a
+    packing file's bins, those between the slabs (xclib.traces.free_layer_range), the same for every code
+    (they share the system). A packing's few bins seldom reach z/l0 = 10."""
+    sa = trace.get("system_attrs", {})
+    gen = str(sa.get("generator", "fcc"))
+    if gen == "fcc" or "/crystal/layer_z" not in trace or "layer" not in trace:
+        return None
+    system = {"attrs": sa, "layer": trace["layer"], "fixed": trace.get("fixed", np.zeros(len(trace["layer"]), int))}
+    if "role" in trace:
+        system["role"] = trace["role"]
+    z = trace["/crystal/layer_z"]
+    lo, hi = T.free_layer_range(trace["layer"], T.roles(system), len(z), gen, int(sa.get("fixed_layers", 0)))
+    h = float(sa.get("bin_width", sa["l0"]))
+    return (z[lo] / h, z[hi - 1] / h) if hi - lo >= 3 else None
+
+
 def traces_for(trace: dict, case: dict, field: str = "stress"):
     """The compared signals: {label: (times, values)} baseline-subtracted. field: "stress" or
     "velocity" (crystal; pulse_field)."""

@@ -158,3 +158,7 @@ def test_judge_picks_bins_between_the_slabs(packing):
     lo, hi = lay["free_layers"]
     assert picked == [lo + (hi - lo) // 2, hi - 1]
     assert all(math.isfinite(v[1][0]) for v in J.traces_for(trace, {"excitation": {"mode": "P"}}).values())
+    # the ruler's speed fits over the same bins (analyze --layers, z/l0 from the source's innermost bin)
+    zlo, zhi = J.fit_range(trace)
+    assert (zlo, zhi) == (lay["layer_z"][lo] / lay["l0"], lay["layer_z"][hi - 1] / lay["l0"]) and zhi - zlo >= 2
+    assert J.fit_range(dict(trace, system_attrs=dict(s["attrs"], generator="fcc"))) is None
