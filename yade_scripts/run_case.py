@@ -295,13 +295,19 @@ def run_crystal(case, system, dt, nsteps, every):
     # velocity, integrated from then on (not moved at a constant velocity), between the fixed layers
     # below it (the wall that holds the prestress) and the first free layer.
     vdrive = ex["drive"] != "displacement"
-    source = T.source_mask(fixed, layer, lay["fixed_layers"], ex["drive"])
+    source = T.source_of(lay, fixed, ex["drive"])   # by layer (FCC) or by role (a packing file's slabs)
     dyn_fixed = fixed & ~source if vdrive else fixed
-    cells = case["crystal"]["cells"]
-    if min(int(cells[0]), int(cells[1])) < 3:
-        fail("YADE keeps one interaction per particle pair: a periodic layer needs >= 3 particles in x "
-             "and y (this case has %d x %d), otherwise a particle touches two images of the same neighbour"
-             % (int(cells[0]), int(cells[1])))
+    # YADE keeps one interaction per particle pair: a particle must not touch two images of one neighbour
+    if lay["generator"] == "fcc":
+        cells = case["crystal"]["cells"]
+        if min(int(cells[0]), int(cells[1])) < 3:
+            fail("YADE keeps one interaction per particle pair: a periodic layer needs >= 3 particles in x "
+                 "and y (this case has %d x %d), otherwise a particle touches two images of the same neighbour"
+                 % (int(cells[0]), int(cells[1])))
+    elif min(lay["box_x"], lay["box_y"]) < 6 * float(np.max(r)):
+        fail("YADE keeps one interaction per particle pair: the periodic box (%g x %g m) must be at least three "
+             "largest diameters (%g m) across, otherwise a particle touches two images of the same neighbour"
+             % (lay["box_x"], lay["box_y"], 6 * float(np.max(r))))
     law = L.law_of(c)   # the law's mapping onto YADE (xclib.linear, xclib.hertz_mindlin)
     has_shear = law.tangential(c)
     if c["mu_static"] != c["mu_dynamic"] and has_shear:

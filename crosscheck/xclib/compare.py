@@ -41,18 +41,22 @@ def rel_diff(x: float, y: float) -> float:
     return abs(x - y) / s if s > 0 else 0.0
 
 
-def choose_layers(layer_z: np.ndarray, l0: float, nlayers: int, fixed_layers: int, wanted=(10, 80, 150)) -> list[int]:
-    """Layer indices at z/l0 = wanted (those inside the free part); if fewer than two exist, the
-    middle and the last free layers are added."""
+def choose_layers(layer_z: np.ndarray, l0: float, nlayers: int, fixed_layers: int, wanted=(10, 80, 150),
+                  free_range: tuple[int, int] | None = None) -> list[int]:
+    """Layer indices at z/l0 = wanted (those inside the free part: the layers between the fixed ones, or
+    `free_range` [first, last + 1) of a packing file's bins, xclib.traces.free_layer_range); if fewer than
+    two exist, the middle and the last free layers are added."""
     zl = np.asarray(layer_z) / l0
-    free = range(fixed_layers, nlayers - fixed_layers)
+    if free_range is None:
+        free_range = (fixed_layers, nlayers - fixed_layers)
+    free = range(*free_range)
     out = []
     for w in wanted:
         k = int(np.argmin(np.abs(zl - w)))
         if abs(zl[k] - w) < 0.5 and k in free and k not in out:
             out.append(k)
     if len(out) < 2:
-        for k in (fixed_layers + (nlayers - 2 * fixed_layers) // 2, nlayers - fixed_layers - 1):
+        for k in (free.start + (free.stop - free.start) // 2, free.stop - 1):
             if k in free and k not in out:
                 out.append(k)
     return sorted(out)

@@ -90,10 +90,10 @@ def velocity_lines(v: np.ndarray) -> str:
 
 def crystal_atoms(x: SimpleNamespace, workdir: str, title: str, atoms: str) -> None:
     """The crystal's data file: types 1 free, 2 fixed (top, and for a velocity drive the wall below the
-    source), 3 the source; x, y periodic with the system's lengths (the packing starts at x = y = 0,
+    source), 3 the source (xclib.traces.source_of: by layer, or by role for a packing file); x, y periodic with the system's lengths (the packing starts at x = y = 0,
     positions wrapped into the box, images by minimum image)."""
     lay, pos = x.lay, x.pos
-    types = np.where(T.source_mask(x.fixed, x.layer, lay["fixed_layers"], x.ex["drive"]), 3, np.where(x.fixed, 2, 1))
+    types = np.where(T.source_of(lay, x.fixed, x.ex["drive"]), 3, np.where(x.fixed, 2, 1))
     zmin, zmax = float(pos[:, 2].min()), float(pos[:, 2].max())
     rmax = float(x.r.max())
     lo = [0.0, 0.0, zmin - 3 * rmax]
@@ -149,6 +149,9 @@ def layer_deck_values(case: dict, system: dict) -> dict:
         bad.append("excitation must be a displacement step (P or S)")
     if np.max(system["radius"]) != np.min(system["radius"]):
         bad.append("polydisperse radii (the decks take one skin and mass from density)")
+    if str(system["attrs"].get("generator", "fcc")) != "fcc":
+        bad.append("a packing file's z-bins (the decks bin particles by their current z from the first layer, "
+                   "the trace by the bin of their initial centre)")
     if bad:
         raise Unsupported("case %s cannot be rendered: %s" % (case["case"]["name"], "; ".join(bad)))
     lay = T.crystal_layout(system)
@@ -224,7 +227,7 @@ def mobile(case: dict, x: SimpleNamespace) -> np.ndarray:
     """The integrated particles: the free ones, and with a velocity drive the source layer."""
     out = ~x.fixed
     if x.ex["drive"] != "displacement":
-        out = out | T.source_mask(x.fixed, x.layer, x.lay["fixed_layers"], "velocity")
+        out = out | T.source_of(x.lay, x.fixed, "velocity")
     return out
 
 

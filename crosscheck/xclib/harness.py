@@ -15,7 +15,7 @@ import tomllib
 from . import ruler as R
 from . import runners as RN
 from . import traces as T
-from .judge import compare_case, pulse_field
+from .judge import compare_case, fit_range, pulse_field
 from .report import fmt, plot_overlay, write_report
 from .runners import XC_DIR, build_system, find_granwave, load_tolerances
 from .sweep import main_sweep
@@ -138,7 +138,7 @@ def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=No
                 try:
                     (vmeasures if field == "velocity" else measures)[code] = R.measure(
                         res["runs"][code]["trace"], granwave_exe or "granwave",
-                        pulse_field="velocity" if field == "velocity" else "auto")
+                        pulse_field="velocity" if field == "velocity" else "auto", fit_range=fit_range(tr))
                 except R.RulerError as e:
                     # the traces are still compared; the missing measures are FAIL rows (compare_case)
                     res["runs"][code]["detail"] = "not measurable (%s): %s" % (field, e)

@@ -6,6 +6,7 @@ import numpy as np
 
 from . import compare as C
 from . import conventions as CV
+from . import traces as T
 from .runners import CODES, tolerance
 
 
@@ -36,6 +37,39 @@ def pulse_field(case: dict, *traces) -> str:
     return "stress"
 
 
+def layer_choice(trace: dict, nlayers: int) -> list[int]:
+    """The layers (bins) of a crystal trace compared pair by pair (compare.choose_layers): with the FCC's
+    fixed layers, or between a packing file's source and top slabs (the trace's /system roles)."""
+    sa = trace.get("system_attrs", {})
+    z = trace["/crystal/layer_z"]
+    gen = str(sa.get("generator", "fcc"))
+    nf = int(sa.get("fixed_layers", 2))
+    if gen == "fcc":
+        return C.choose_layers(z, float(sa["l0"]), nlayers, nf)
+    system = {"attrs": sa, "layer": trace["layer"], "fixed": trace.get("fixed", np.zeros(len(trace["layer"]), int))}
+    if "role" in trace:
+        system["role"] = trace["role"]
+    fr = T.free_layer_range(trace["layer"], T.roles(system), nlayers, gen, nf)
+    return C.choose_layers(z, float(sa.get("bin_width", sa["l0"])), nlayers, nf, free_range=fr)
+
+
+def fit_range(trace: dict):
+    """The z/l0 range of the ruler's speed fits: None for the FCC (analyze's own, z/l0 = 10 .. 150); for a
+    packing file's bins, those between the slabs (xclib.traces.free_layer_range), the same for every code
+    (they share the system). A packing's few bins seldom reach z/l0 = 10."""
+    sa = trace.get("system_attrs", {})
+    gen = str(sa.get("generator", "fcc"))
+    if gen == "fcc" or "/crystal/layer_z" not in trace or "layer" not in trace:
+        return None
+    system = {"attrs": sa, "layer": trace["layer"], "fixed": trace.get("fixed", np.zeros(len(trace["layer"]), int))}
+    if "role" in trace:
+        system["role"] = trace["role"]
+    z = trace["/crystal/layer_z"]
+    lo, hi = T.free_layer_range(trace["layer"], T.roles(system), len(z), gen, int(sa.get("fixed_layers", 0)))
+    h = float(sa.get("bin_width", sa["l0"]))
+    return (z[lo] / h, z[hi - 1] / h) if hi - lo >= 3 else None
+
+
 def traces_for(trace: dict, case: dict, field: str = "stress"):
     """The compared signals: {label: (times, values)} baseline-subtracted. field: "stress" or
     "velocity" (crystal; pulse_field)."""
@@ -58,7 +92,7 @@ def traces_for(trace: dict, case: dict, field: str = "stress"):
         sa = trace.get("system_attrs", {})
         l0 = float(sa["l0"])
         z = trace["/crystal/layer_z"]
-        for k in C.choose_layers(z, l0, s.shape[1], int(sa.get("fixed_layers", 2))):
+        for k in layer_choice(trace, s.shape[1]):
             out["%s z/l0=%.0f" % (name, z[k] / l0)] = (t, s[:, k] - s[0, k])
     return out
 
@@ -161,9 +195,7 @@ def compare_case(case, case_name, model, traces: dict, measures: dict, tol: dict
             la, lb = ma["layers"], mb["layers"]
             spd = [("speed_peak", "front speed from first-peak times (m/s)"),
                    ("speed_half", "front speed from half-peak crossings (m/s)")]
-            sa_ = traces[ca].get("system_attrs", {})
-            z = traces[ca]["/crystal/layer_z"]
-            for k in C.choose_layers(z, float(sa_["l0"]), len(z), int(sa_.get("fixed_layers", 2))):
+            for k in layer_choice(traces[ca], len(traces[ca]["/crystal/layer_z"])):
                 if k in la and k in lb:
                     peak_rows("layer %d" % k, la[k], lb[k], "m/s" if field == "velocity" else "Pa")
         for key, what in spd:

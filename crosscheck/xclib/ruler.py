@@ -77,10 +77,15 @@ def translate(raw: dict) -> dict:
                 speed_range=fr.get("z_over_l0"), speed_range_note=fr.get("note", ""), ruler="granwave analyze")
 
 
-def measure(trace_path: str, granwave: str = "granwave", pulse_field: str = "auto") -> dict:
+def measure(trace_path: str, granwave: str = "granwave", pulse_field: str = "auto", fit_range=None) -> dict:
     """The one ruler the harness uses (raises RulerError when it cannot measure). pulse_field: the
-    field of a crystal's per-layer measures (analyze --pulse-field: auto, stress or velocity)."""
-    raw = granwave_analyze(trace_path, granwave, extra_args=() if pulse_field == "auto" else ("--pulse-field", pulse_field))
+    field of a crystal's per-layer measures (analyze --pulse-field: auto, stress or velocity); fit_range:
+    (lo, hi) z/l0 of the speed fits (analyze --layers; a packing file's free bins, judge.fit_range), or
+    None for analyze's own (the seed's z/l0 = 10 .. 150)."""
+    extra = () if pulse_field == "auto" else ("--pulse-field", pulse_field)
+    if fit_range is not None:
+        extra += ("--layers", "%.17g:%.17g" % tuple(fit_range))
+    raw = granwave_analyze(trace_path, granwave, extra_args=extra)
     res = translate(raw)
     res["granwave_analyze"] = raw
     return res

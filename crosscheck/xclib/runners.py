@@ -202,13 +202,21 @@ def build_system(case_path, casedir, granwave, fixture, timeout, resume=False):
     if fixture:
         from . import sysbuild
         case, _ = T.load_case(case_path)
-        sysbuild.build(case, path)
+        sysbuild.build(case, path, os.path.dirname(os.path.abspath(case_path)))
         return path, "python fixture builder (crosscheck/xclib/sysbuild.py) -- TEST ONLY"
     if not granwave:
         raise RuntimeError("granwave not found: the system file comes from `granwave build` (or --fixture-system)")
     st, rc, _, _ = run_cmd([granwave, "build", case_path, "-o", path + ".tmp"], casedir, timeout, "build.log")
     if st != "ok" or not os.path.exists(path + ".tmp"):
-        raise RuntimeError("granwave build failed (%s): see %s" % (st, os.path.join(casedir, "build.log")))
+        log = os.path.join(casedir, "build.log")
+        last = ([ln.strip() for ln in open(log, errors="replace") if ln.strip()] or [""])[-1] if os.path.exists(log) else ""
+        case, _ = T.load_case(case_path)
+        if rc == 2 and case.get("crystal", {}).get("lattice", "fcc") == "file":
+            # a packing case (issue 38) that this granwave refuses: said as such, never a silent skip
+            raise RuntimeError("this granwave (%s) cannot build a packing case ([crystal] lattice = \"file\"): %s -- "
+                               "the codes were not run (with --fixture-system the Python builder makes the system "
+                               "file, unrelaxed; see crosscheck/README.md)" % (granwave, last))
+        raise RuntimeError("granwave build failed (%s): %s; see %s" % (st, last, log))
     os.replace(path + ".tmp", path)
     return path, "granwave build"
 

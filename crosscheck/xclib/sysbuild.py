@@ -1,11 +1,13 @@
 """A small Python writer of system files (SCHEMA.md §2) for TEST FIXTURES ONLY.
 
 Real crosschecks consume the system file of `granwave build`; this exists so that the drivers and
-the harness can be tested without granwave (chains with explicit spins; monodisperse FCC crystals).
+the harness can be tested without granwave (chains with explicit spins; monodisperse FCC crystals; a
+packing file, `lattice = "file"`, LAMMPS data files only, cut into slabs and NOT relaxed).
 """
 from __future__ import annotations
 
 import math
+import os
 
 import h5py
 import numpy as np
@@ -134,5 +136,91 @@ def build_crystal(case: dict, path: str) -> None:
         f["layer"] = lay
 
 
-def build(case: dict, path: str) -> None:
-    (build_chain if case["case"]["model"] == "chain" else build_crystal)(case, path)
+def read_lammps_data(path: str):
+    """(box [[lo, hi]] x 3, ids, diameters, densities, centres [n, 3]) of a LAMMPS data file with
+    `atom_style sphere` rows (id type diameter density x y z [ix iy iz]), SI units."""
+    lines = open(path).read().splitlines()
+    box, n, rows = [None] * 3, None, []
+    k = 0
+    while k < len(lines):
+        w = lines[k].split("#")[0].split()
+        if len(w) == 2 and w[1] == "atoms":
+            n = int(w[0])
+        elif len(w) == 4 and w[2][1:] == "lo" and w[3][1:] == "hi":
+            box["xyz".index(w[2][0])] = (float(w[0]), float(w[1]))
+        elif w == ["Atoms"]:
+            k += 2
+            while len(rows) < n:
+                rows.append([float(v) for v in lines[k].split()[:7]])
+                k += 1
+            continue
+        k += 1
+    if n is None or None in box or len(rows) != n:
+        raise ValueError("%s: not a LAMMPS data file with atom_style sphere rows" % path)
+    a = np.array(rows)
+    return np.array(box), a[:, 0].astype(int), a[:, 2], a[:, 3], a[:, 4:7]
+
+
+def build_packing(case: dict, path: str, case_dir: str) -> None:
+    """A crystal of `lattice = "file"` (the contract of issue 38: data/SCHEMA.md §2): the packing file's
+    particles with the case's density (`[packing] density = "case"`), the box periodic in x and y from 0,
+    z cut open: the bottom `source_thickness` (default 2 largest diameters) the source slab (role 1), the
+    top `fixed_thickness` the fixed slab (role 2), z-bins of `bin_width` (default the mean diameter) from
+    the box's lower z, particles stored bin by bin. No relaxation (relax_steps 0, relaxed 0)."""
+    pk = case["packing"]
+    if pk.get("format", "lammps_data") != "lammps_data" or pk.get("units", "si") != "si":
+        raise NotImplementedError("fixture builder: [packing] format = \"lammps_data\", units = \"si\" only")
+    if pk.get("density", "case") != "case":
+        raise NotImplementedError("fixture builder: [packing] density = \"case\" only")
+    src = os.path.normpath(os.path.join(case_dir, pk["file"]))
+    box, ids, dia, _, pos = read_lammps_data(src)
+    r = 0.5 * dia
+    rmax, dmean = float(r.max()), float(np.mean(dia))
+    lx, ly = box[0, 1] - box[0, 0], box[1, 1] - box[1, 0]
+    pos = pos.copy()
+    for ax, ln in ((0, lx), (1, ly)):   # wrapped into [0, L): the FCC's convention, the box starts at x = y = 0
+        pos[:, ax] = np.mod(pos[:, ax] - box[ax, 0], ln)
+    zlo, zhi = box[2]
+    pos[:, 2] = zlo + np.mod(pos[:, 2] - zlo, zhi - zlo)   # z-periodic packing: cut at its box's z faces
+    t_src = float(pk.get("source_thickness", 4 * rmax))
+    t_top = float(pk.get("fixed_thickness", t_src))
+    h = float(pk.get("bin_width", dmean))
+    layers = max(1, int(math.ceil((zhi - zlo) / h - 1e-9)))
+    bins = np.clip(np.floor((pos[:, 2] - zlo) / h), 0, layers - 1).astype(np.int64)
+    order = np.argsort(bins, kind="stable")
+    pos, r, ids, bins = pos[order], r[order], ids[order], bins[order]
+    role = np.where(pos[:, 2] < zlo + t_src, 1, np.where(pos[:, 2] >= zhi - t_top, 2, 0)).astype(np.int64)
+    n = len(r)
+    rho = float(case["crystal"]["density"])
+    m = rho * 4.0 / 3.0 * math.pi * r ** 3
+    with h5py.File(path, "w", libver=("v110", "latest")) as f:
+        set_attr(f.attrs, "model", "crystal")
+        f.attrs["schema_version"] = SCHEMA_VERSION
+        set_attr(f.attrs, "case_name", case["case"]["name"])
+        set_attr(f.attrs, "generator", "file")
+        set_attr(f.attrs, "source_file", pk["file"])
+        set_attr(f.attrs, "source_format", "lammps_data")
+        for k, v in dict(box_x=lx, box_y=ly, d=dmean, d_prime=dmean, l0=h, delta=0.0, bin_origin=float(zlo),
+                         bin_width=h, source_thickness=t_src, fixed_thickness=t_top).items():
+            f.attrs[k] = v
+        for k, v in dict(layers=layers, cells_x=0, cells_y=0, fixed_layers=0, relax_steps=0,
+                         relaxed=0).items():
+            f.attrs[k] = v
+        f.attrs["relax_ratio"] = 0.0
+        f.create_dataset("material_names", data=np.array([b"grain"]))
+        f["material_index"] = np.zeros(n, dtype=np.int64)
+        f["mass"], f["radius"], f["inertia"] = m, r, 0.4 * m * r ** 2
+        f["fixed"] = (role != 0).astype(np.int64)
+        f["role"] = role
+        f["position"], f["velocity"] = pos, np.zeros((n, 3))
+        f["layer"] = bins
+        f["source_id"] = ids
+
+
+def build(case: dict, path: str, case_dir: str = ".") -> None:
+    if case["case"]["model"] == "chain":
+        build_chain(case, path)
+    elif case.get("crystal", {}).get("lattice", "fcc") == "file":
+        build_packing(case, path, case_dir)
+    else:
+        build_crystal(case, path)

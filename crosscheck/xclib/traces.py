@@ -84,13 +84,31 @@ def excitation(case: dict) -> dict:
 
 
 def source_mask(fixed, layer, fixed_layers: int, drive: str):
-    """The particles the excitation moves (SCHEMA.md §1, `drive`): every bottom fixed layer for a
-    displacement step; for the velocity drive only the innermost one, freed with its initial
-    velocity, the fixed layers below it staying as the wall that holds the prestress."""
+    """The particles the excitation moves (SCHEMA.md §1, `drive`) in an FCC system (or a file without
+    `role`): every bottom fixed layer for a displacement step; for the velocity drive only the innermost
+    one, freed with its initial velocity, the fixed layers below it staying as the wall that holds the
+    prestress."""
     fixed = np.asarray(fixed, bool)
     layer = np.asarray(layer)
     first = fixed_layers - 1 if drive != "displacement" else 0
     return fixed & (layer < fixed_layers) & (layer >= first)
+
+
+# Particle roles of the system file's `role` dataset (SCHEMA.md §2): free, the source slab, the fixed top.
+FREE, SOURCE, TOP = 0, 1, 2
+
+
+def source_of(lay: dict, fixed, drive: str):
+    """The particles the excitation moves, for any system (crystal_layout's `lay`). A system with roles
+    from a packing file (generator "file"): the source slab (role 1) for a displacement step; for the
+    velocity drive its upper half (centres above the slab's middle), the lower half staying as the wall.
+    The FCC (and a file without `role`): by layer, source_mask."""
+    if lay["generator"] == "fcc":
+        return source_mask(fixed, lay["layer"], lay["fixed_layers"], drive)
+    src = lay["role"] == SOURCE
+    if drive == "displacement":
+        return src
+    return src & (lay["z0"] >= lay["source_middle"])
 
 
 def read_system(path: str) -> dict:
@@ -142,23 +160,76 @@ def chain_layout(system: dict) -> dict:
                 wall_x=float(system["attrs"].get("wall_position", np.nan)))
 
 
+def roles(system: dict):
+    """Each particle's role (FREE, SOURCE, TOP): the system's `role` dataset, or for a file without it
+    (SCHEMA.md §2 before issue 38) the FCC rule: fixed particles below layer `fixed_layers` are the source,
+    the other fixed ones the top."""
+    if "role" in system:
+        return np.asarray(system["role"], dtype=int)
+    fixed = np.asarray(system["fixed"], int).astype(bool)
+    layer = np.asarray(system["layer"], dtype=int)
+    nf = int(system["attrs"].get("fixed_layers", 2))
+    return np.where(fixed, np.where(layer < nf, SOURCE, TOP), FREE)
+
+
+def free_layer_range(layer, role, nlayers: int, generator: str, fixed_layers: int) -> tuple[int, int]:
+    """[first, last + 1) of the free layers (bins) the crosscheck judges: the FCC's layers between its
+    fixed layers; for a packing file's bins, those between the last bin holding a source particle and
+    the first bin holding a top particle (a bin shared by a slab and free particles is not judged)."""
+    if generator == "fcc":
+        return fixed_layers, nlayers - fixed_layers
+    layer, role = np.asarray(layer, int), np.asarray(role, int)
+    lo = int(layer[role == SOURCE].max()) + 1 if np.any(role == SOURCE) else 0
+    hi = int(layer[role == TOP].min()) if np.any(role == TOP) else nlayers
+    return lo, max(lo, hi)
+
+
 def crystal_layout(system: dict) -> dict:
+    """The crystal's layers (the FCC's) or z-bins (a packing file's, generator "file"; SCHEMA.md §2):
+    nlayers, l0 (the bin width h: each bin's stress is over box_x box_y h), fixed_layers (0 for a file),
+    the free layers' range, box, d (the excitation's length), layer_z, and each particle's layer and role.
+
+    layer_z (the trace's /crystal/layer_z): FCC, the mean z of each layer minus that of the innermost
+    driven layer (the relaxed positions); a file's bins, their centres bin_origin + (bin + 1/2) bin_width
+    from that of the source's innermost bin (the bin below the first one holding a particle that is not
+    the source's), as granwave writes it: (bin - innermost) bin_width.
+    """
     a = system["attrs"]
     layer = np.asarray(system["layer"], dtype=int)
-    nl = int(layer.max()) + 1
+    pos = np.asarray(system["position"], float)
+    generator = str(a.get("generator", "fcc"))
     nf = int(a.get("fixed_layers", 2))
-    l0 = float(a["l0"])
-    # layer_z: distance from the innermost driven layer (layer nf - 1), with the actual spacing.
-    zc = np.array([np.mean(system["position"][layer == k, 2]) for k in range(nl)])
+    role = roles(system)
+    if generator == "fcc":
+        nl = int(layer.max()) + 1
+        l0 = float(a["l0"])
+        zc = np.array([np.mean(pos[layer == k, 2]) for k in range(nl)])
+        layer_z = zc - zc[nf - 1]
+        source_middle = None
+    else:
+        nl = max(int(a.get("layers", 0)), int(layer.max()) + 1)
+        l0 = float(a.get("bin_width", a["l0"]))
+        origin = float(a.get("bin_origin", 0.0))
+        innermost = int(layer[role != SOURCE].min()) - 1 if np.any(role != SOURCE) else nl - 1
+        layer_z = (np.arange(nl) - innermost) * l0
+        # the source slab [origin, origin + source_thickness]; a file without the attribute: up to its
+        # highest source centre
+        top = (origin + float(a["source_thickness"]) if "source_thickness" in a else
+               float(pos[role == SOURCE, 2].max()) if np.any(role == SOURCE) else origin)
+        source_middle = 0.5 * (origin + top)
+    lo, hi = free_layer_range(layer, role, nl, generator, nf)
     return dict(nlayers=nl, fixed_layers=nf, l0=l0, box_x=float(a["box_x"]), box_y=float(a["box_y"]),
-                d=float(a.get("d", 2 * np.mean(system["radius"]))), layer_z=zc - zc[nf - 1], layer=layer)
+                d=float(a.get("d", 2 * np.mean(system["radius"]))), layer_z=layer_z, layer=layer, role=role,
+                generator=generator, free_layers=(lo, hi), z0=pos[:, 2], source_middle=source_middle)
 
 
 # ---------------------------------------------------------------- the layer stress (docs/design.md §2.2)
 def layer_stress(pos, radius, layer, fixed, i, j, f_on_i, box_x, box_y, l0, nlayers):
-    """sigma_zz and sigma_zx per layer, compression positive, contact part only:
+    """sigma_zz and sigma_zx per layer (a packing file's: per z-bin), compression positive, contact part only:
 
         sigma_ab(layer) = -(1/(l_x l_y l0)) sum_{p in layer} sum_{c of p} (x_c - x_p)_a f_b
+
+    l0: the FCC's layer spacing, or a packing file's bin width h (crystal_layout's `l0`): the bin's volume.
 
     f is the force on p at contact c, x_c the middle of the overlap, minimum image in x and y,
     contacts between two fixed particles excluded. Component zx = (x_c - x_p)_z f_x.
@@ -292,6 +363,7 @@ def read_trace(path: str) -> dict:
         f.visititems(visit)
         if "system" in f:
             out["system_attrs"] = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["system"].attrs.items()}
-            if "layer" in f["system"]:
-                out["layer"] = f["system/layer"][()]
+            for k in ("layer", "role", "fixed"):
+                if k in f["system"]:
+                    out[k] = f["system/" + k][()]
     return out
