@@ -116,7 +116,7 @@ def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dic
             # YADE, LAMMPS). LIGGGHTS zeroes the shear history only in surfacesClose, which pair_gran_base.h
             # calls for a non-touching pair closer than contact_distance_factor x (r_i + r_j): at the default
             # factor 1 never, so an opened contact kept its last spring and took it up again on reclosing
-            # (relaxed polydisperse packing, kt = k, mu = 0.5: 6.1e-6 of the peak, crosscheck/README.md). Any
+            # (relaxed polydisperse packing, kt = k, mu = 0.5: 6.1e-6 of the peak, docs/validation.md). Any
             # factor above 1 + (one step's opening)/(r_i + r_j) zeroes it in the step the contact opens; 1.01 is
             # LIGGGHTS' own choice for its energy bookkeeping. Touching pairs and the dumps (touching rows only)
             # are unchanged; the neighbour list reaches 1 % further. (${exclude} is the neigh_modify tail.)

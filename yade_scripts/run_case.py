@@ -324,7 +324,7 @@ def run_crystal(case, system, dt, nsteps, every):
         if float(np.max(r)) != float(np.min(r)):
             fail("%s: %s YADE: rolling/torsion resistance is mapped for YADE for equal radii only (CohesionMoment's "
                  "stiffness a_i a_j and limit lever min(a_i, a_j))" % (case["case"]["name"], NOT_EXPRESSIBLE))
-        mat.young = c["kn"] / float(r[0])    # Ip2_CohFrict: kn = 2 E a_i a_j/(a_i + a_j) = E a
+        mat.young = law.yade_young(c, float(r[0]))    # the law's map of its kn for these radii
     mat = O.materials.append(mat)
     zoff = 2 * float(np.max(r))
     lz = float(np.ptp(pos[:, 2])) + 4 * zoff + 10 * float(np.max(r))

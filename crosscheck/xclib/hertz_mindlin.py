@@ -13,7 +13,6 @@ import numpy as np
 from xclib.hertz_mindlin_maps import (  # noqa: F401 (the law's maps, as HM.<name>)
     LAMMPS_TANGENTIAL,
     LIGGGHTS_TANGENTIAL_HISTORY,
-    TSUJI,
     YADE_TANGENTIAL_HISTORY,
     e_star,
     g_star,

@@ -7,23 +7,12 @@ from __future__ import annotations
 
 import math
 
-from xclib.hertz_mindlin import _g, _properties  # noqa: F401
-from xclib.hertz_mindlin_maps import (  # noqa: F401
-    LAMMPS_TANGENTIAL,
+from xclib.hertz_mindlin import _g
+from xclib.hertz_mindlin_maps import (  # noqa: F401 (YADE_TANGENTIAL_HISTORY: for yade_scripts' impact run, as HM.<name>)
     LIGGGHTS_TANGENTIAL_HISTORY,
-    TSUJI,
     YADE_TANGENTIAL_HISTORY,
-    e_star,
-    g_star,
-    history_used,
-    k_t_rows,
-    lammps_pair_coeff,
     lammps_tsuji_restitution,
-    liggghts_pair_style,
     liggghts_restitution,
-    params,
-    restitution,
-    tsuji_alpha,
 )
 
 # ------------------------------------------------------------------- impact cases (data/SCHEMA.md §7)

@@ -72,13 +72,18 @@ def _yade_resisted(c: dict, W, phi: float):
                           % (", ".join(resistance_keys(c)), ", ".join(bad) or "gamma_r, gamma_o"))
     kn, kt = float(c["kn"]), float(c["kt"])
     eta = lambda mu: 0.5 * float(mu) if mu is not None else -1.0  # noqa: E731  (-1: no limit)
-    # young is set per radius by run_case.py (kn = E a); here the ratios, which do not depend on a
+    # young is set per radius by run_case.py (yade_young); here the ratios, which do not depend on a
     mat = W.CohFrictMat(young=1.0, poisson=kt / kn, frictionAngle=phi, density=1000.0, isCohesive=False,
                         momentRotationLaw=True, alphaKr=float(c.get("kr", 0.0)) / (4.0 * kt),
                         alphaKtw=float(c.get("ko", 0.0)) / (4.0 * kt), etaRoll=eta(c.get("mu_r")),
                         etaTwist=eta(c.get("mu_o")), normalCohesion=0.0, shearCohesion=0.0)
     law2 = W.Law2_ScGeom6D_CohFrictPhys_CohesionMoment(useIncrementalForm=True, always_use_moment_law=True)
     return mat, W.Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(), law2
+
+
+def yade_young(c: dict, a: float) -> float:
+    """CohFrictMat's young for spheres of equal radius a (Ip2_CohFrict: kn = 2 E a_i a_j/(a_i + a_j) = E a)."""
+    return float(c["kn"]) / a
 
 
 def yade_attrs(c: dict) -> dict:

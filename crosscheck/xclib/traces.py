@@ -130,7 +130,9 @@ def read_system(path: str) -> dict:
 def timestep(case: dict, system: dict) -> float:
     """dt of the run. A system attribute `dt` (granwave's build writes the resolved one) wins; then
     `dt` as written; `dt_over_tc` of a crystal from the two-body contact time of its law's linearised
-    contact (the law's mapping module: `contact_time`)."""
+    contact (the law's mapping module: `contact_time`) for two spheres of the case's [crystal] radius and
+    density, as granwave derives it (src/crystal/derive.cpp; not the system's masses, which vary in a
+    polydisperse packing)."""
     integ = case.get("integrator", {})
     if "dt" in system["attrs"]:
         return float(system["attrs"]["dt"])
@@ -138,7 +140,8 @@ def timestep(case: dict, system: dict) -> float:
         return float(integ["dt"])
     if "dt_over_tc" in integ and case["case"]["model"] == "crystal":
         c = contact_params(case)
-        return float(integ["dt_over_tc"]) * law_of(c).contact_time(c, case, float(np.min(system["mass"])))
+        m = float(case["crystal"]["density"]) * 4.0 / 3.0 * math.pi * float(case["crystal"]["radius"]) ** 3
+        return float(integ["dt_over_tc"]) * law_of(c).contact_time(c, case, m)
     raise ValueError("case gives dt_over_tc for a chain and the system file has no resolved `dt` attribute")
 
 

@@ -20,13 +20,18 @@ from ._config import DATA_DIR as _DATA_DIR
 
 __all__ = ["Case", "Result", "data_path", "run", "analyze", "theory", "build", "sweep"]
 
-# Units of the trace file's datasets (data/SCHEMA.md §3; the file says "SI").
-_UNITS = {
-    "time": "s", "layer_z": "m", "layer_stress_zz": "Pa", "layer_stress_zx": "Pa",
-    "layer_displacement_z": "m", "layer_displacement_x": "m", "layer_velocity_z": "m/s",
-    "layer_velocity_x": "m/s", "coordination": "1", "bead_force": "N", "contact_force": "N",
-    "kinetic": "J", "potential": "J", "dissipated": "J", "work_in": "J", "verlet_correction": "J",
-}
+
+
+def _units(table):
+    """{dataset name: unit} of the trace file's datasets (data/SCHEMA.md §3; the file says "SI"): the
+    crystal's from its table of observables (`granwave observables --json`), /time, /crystal/layer_z
+    (always written) and the chain's."""
+    units = {"time": "s", "layer_z": "m", "bead_force": "N", "contact_force": "N"}
+    units.update({o["name"]: o["unit"] for o in table["crystal"]})
+    return units
+
+
+_UNITS = _units(_json.loads(_granwave.observables(["--json"])))
 
 
 def data_path(relative=""):

@@ -8,13 +8,15 @@
 
 namespace granwave::analysis {
 
-FileReport report_file(const std::string& path, const CrystalAnalysisOptions& options) {
-  return report_file(io::H5Reader(path), options);
+FileReport report_file(const std::string& path, const std::vector<crystal::Observable>& observables,
+                       const CrystalAnalysisOptions& options) {
+  return report_file(io::H5Reader(path), observables, options);
 }
 
-FileReport report_file(const io::H5Reader& file, const CrystalAnalysisOptions& options) {
+FileReport report_file(const io::H5Reader& file, const std::vector<crystal::Observable>& observables,
+                       const CrystalAnalysisOptions& options) {
   FileReport r;
-  const TraceFile f = read_trace(file);
+  const TraceFile f = read_trace(file, observables);
   const std::string& path = file.path();
   try {
     if (f.model == "chain") {

@@ -2,13 +2,10 @@
 // under "analysis" (JSON) for the trace it has just written -- one ruler.
 #pragma once
 #include <string>
+#include <vector>
 
-#include "analysis/trace_analysis.hpp"
+#include "analysis/trace_analysis.hpp"  // and trace_file.hpp: io::H5Reader, crystal::Observable
 #include "core/json.hpp"
-
-namespace granwave::io {
-class H5Reader;
-}
 
 namespace granwave::analysis {
 
@@ -19,8 +16,11 @@ struct FileReport {
   std::string text, error;
   Json json;
 };
-FileReport report_file(const std::string& path, const CrystalAnalysisOptions& options = {});
+// `observables`: the crystal's table, as read_trace takes it (no_observables() for a chain's).
+FileReport report_file(const std::string& path, const std::vector<crystal::Observable>& observables,
+                       const CrystalAnalysisOptions& options = {});
 // The same of an open file: a run's trace built in memory (io::H5Writer::Storage::memory).
-FileReport report_file(const io::H5Reader& r, const CrystalAnalysisOptions& options = {});
+FileReport report_file(const io::H5Reader& r, const std::vector<crystal::Observable>& observables,
+                       const CrystalAnalysisOptions& options = {});
 
 }  // namespace granwave::analysis

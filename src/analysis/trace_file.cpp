@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "config/case.hpp"
 #include "core/error.hpp"
+#include "crystal/observables.hpp"
 #include "io/h5.hpp"
 
 namespace granwave::analysis {
@@ -22,14 +24,19 @@ void require_finite(const io::H5Reader& r, const std::string& path, const std::v
                        ": only finite values can be measured");
 }
 
-std::vector<double> read_matrix(const io::H5Reader& r, const std::string& path, std::size_t nt, std::size_t ncols) {
-  if (!r.has(path)) return {};
+// An observable's dataset, [nt, nlayers] or [nt] as the table says.
+std::vector<double> read_series(const io::H5Reader& r, const crystal::Observable& o, std::size_t nt, std::size_t nlayers) {
+  const std::string path = o.path();
   std::vector<std::size_t> dims;
   auto v = r.read_double(path, &dims);
-  if (dims.size() != 2 || dims[0] != nt || dims[1] != ncols)
-    throw InputError(r.path() + ": " + path + " must have shape [nt, n] = [" + std::to_string(nt) + ", " +
-                     std::to_string(ncols) + "]");
-  require_finite(r, path, v, ncols);
+  if (o.shape == crystal::Shape::per_layer) {
+    if (dims.size() != 2 || dims[0] != nt || dims[1] != nlayers)
+      throw InputError(r.path() + ": " + path + " must have shape [nt, nlayers] = [" + std::to_string(nt) + ", " +
+                       std::to_string(nlayers) + "]");
+  } else if (dims.size() != 1 || dims[0] != nt) {
+    throw InputError(r.path() + ": " + path + " must have shape [nt] = [" + std::to_string(nt) + "]");
+  }
+  require_finite(r, path, v, o.shape == crystal::Shape::per_layer ? nlayers : 1);
   return v;
 }
 
@@ -60,9 +67,28 @@ double max_abs_change(const std::vector<double>& f, std::size_t nt, std::size_t 
 
 }  // namespace
 
-TraceFile read_trace(const std::string& path) { return read_trace(io::H5Reader(path)); }
+std::vector<double>& CrystalTrace::series(const std::string& name) {
+  // What the measures read, by the table's names (as crystal::analysis_trace fills them).
+  static const std::pair<const char*, std::vector<double> CrystalTrace::*> measured[] = {
+      {"layer_stress_zz", &CrystalTrace::stress_zz},           {"layer_stress_zx", &CrystalTrace::stress_zx},
+      {"layer_displacement_z", &CrystalTrace::displacement_z}, {"layer_displacement_x", &CrystalTrace::displacement_x},
+      {"layer_velocity_z", &CrystalTrace::velocity_z},         {"layer_velocity_x", &CrystalTrace::velocity_x},
+      {"coordination", &CrystalTrace::coordination}};
+  for (const auto& [n, member] : measured)
+    if (name == n) return this->*member;
+  return other[name];
+}
 
-TraceFile read_trace(const io::H5Reader& r) {
+const std::vector<crystal::Observable>& no_observables() {
+  static const std::vector<crystal::Observable> none;
+  return none;
+}
+
+TraceFile read_trace(const std::string& path, const std::vector<crystal::Observable>& observables) {
+  return read_trace(io::H5Reader(path), observables);
+}
+
+TraceFile read_trace(const io::H5Reader& r, const std::vector<crystal::Observable>& observables) {
   const std::string& path = r.path();
   TraceFile f;
   f.path = path;
@@ -89,13 +115,9 @@ TraceFile read_trace(const io::H5Reader& r) {
     c.nlayers = c.layer_z.size();
     if (c.nlayers < 4) throw InputError(path + ": /crystal/layer_z has fewer than 4 layers");
     require_finite(r, "/crystal/layer_z", c.layer_z, 1);
-    c.stress_zz = read_matrix(r, "/crystal/layer_stress_zz", nt, c.nlayers);
-    c.stress_zx = read_matrix(r, "/crystal/layer_stress_zx", nt, c.nlayers);
-    c.displacement_z = read_matrix(r, "/crystal/layer_displacement_z", nt, c.nlayers);
-    c.displacement_x = read_matrix(r, "/crystal/layer_displacement_x", nt, c.nlayers);
-    c.velocity_z = read_matrix(r, "/crystal/layer_velocity_z", nt, c.nlayers);
-    c.velocity_x = read_matrix(r, "/crystal/layer_velocity_x", nt, c.nlayers);
-    if (r.has("/crystal/coordination")) c.coordination = r.read_double("/crystal/coordination");
+    // The layer series: every /crystal observable of the table the file holds (/energy is not measured).
+    for (const crystal::Observable& o : observables)
+      if (o.group == "/crystal" && r.has(o.path())) c.series(o.name) = read_series(r, o, nt, c.nlayers);
     c.l0 = r.has_attr("/system", "l0") ? r.attr_double("/system", "l0") : median_spacing(c.layer_z);
     if (!(c.l0 > 0.0 && std::isfinite(c.l0)))
       throw InputError(path + ": the layer spacing l0 = " + std::to_string(c.l0) +

@@ -1,9 +1,12 @@
 // Reading a trace file (data/SCHEMA.md §3) of any code -- granwave, YADE, LIGGGHTS, LAMMPS -- into
 // memory: the crystal's layer series or the chain's contact forces, with what the root attributes
 // and the case text say (excitation mode, the case's [analysis] readings). Nothing is measured here.
+// Which /crystal datasets a trace may hold, and their shapes, is the crystal's table of observables
+// (crystal/observables.hpp), which the caller hands over: a new observable is read as it is written.
 #pragma once
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +15,9 @@
 
 namespace granwave::io {
 class H5Reader;
+}
+namespace granwave::crystal {
+struct Observable;
 }
 
 namespace granwave::analysis {
@@ -29,6 +35,10 @@ struct CrystalTrace {
   // Row-major [nt, nlayers]; empty when the trace lacks the dataset.
   std::vector<double> stress_zz, stress_zx, displacement_z, displacement_x, velocity_z, velocity_x;
   std::vector<double> coordination;
+  // The table's other /crystal series (none of the above: e.g. the test-only one), by dataset name.
+  std::map<std::string, std::vector<double>> other;
+  // Where the series of /crystal dataset `name` is held: the member above of that name, else other[name].
+  std::vector<double>& series(const std::string& name);
   // The case's `[analysis] period` (data/SCHEMA.md §1), when its text is in the trace and sets it.
   std::optional<PeriodReading> period;
   // The case's `[analysis] wavenumber_speed`, likewise.
@@ -49,7 +59,11 @@ struct TraceFile {
   CrystalTrace crystal;
   ChainTrace chain;
 };
-TraceFile read_trace(const std::string& path);  // throws InputError
-TraceFile read_trace(const io::H5Reader& r);    // the same, of an open file (or an image in memory)
+// `observables`: the table (crystal::observables()); its /crystal entries are read where present, each
+// checked for its shape and finite values. A chain's trace needs none (no_observables()). Throws InputError.
+TraceFile read_trace(const std::string& path, const std::vector<crystal::Observable>& observables);
+const std::vector<crystal::Observable>& no_observables();  // an empty table, for a reader of chains
+// The same, of an open file (or an image in memory).
+TraceFile read_trace(const io::H5Reader& r, const std::vector<crystal::Observable>& observables);
 
 }  // namespace granwave::analysis

@@ -168,8 +168,8 @@ int run(const config::Case& c, const RunRequest& request, std::ostream& out) {
   }  // the series are freed (or kept by the caller) before the analysis reads them back
 
   // The measures: `granwave analyze` of the trace just written (one ruler, src/analysis).
-  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace)
-                                                     : analysis::report_file(path);
+  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, analysis::no_observables())
+                                                     : analysis::report_file(path, analysis::no_observables());
   const double t_run = static_cast<double>(f.steps) * f.dt;
   const double bead_steps_per_second = static_cast<double>(f.nbeads) * f.steps / std::max(f.seconds, 1e-12);
   if (request.json) {

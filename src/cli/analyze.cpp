@@ -11,6 +11,7 @@
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
 #include "crystal/case_lattice.hpp"
+#include "crystal/observables.hpp"
 #include "impact/impact.hpp"
 
 namespace granwave::cli {
@@ -147,7 +148,7 @@ int cmd_analyze(const Args& args, std::ostream& out) {
     impact::print_analysis(impact::read_trace(pos[0]), json, out);
     return 0;
   }
-  const auto file = analysis::read_trace(pos[0]);
+  const auto file = analysis::read_trace(pos[0], crystal::observables());
 
   if (file.model == "chain") {
     if (!option_value(args, "", "--period").empty())

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 
+#include "cli/theory_json.hpp"
 #include "cli/theory_relaxed.hpp"
 #include "cli/verbs.hpp"
 #include "config/case.hpp"
@@ -67,25 +68,8 @@ Index convention: C[a][b][g][f] with a, g branch (gradient) directions and b, f 
                    relaxed {slab, bulk}, effective_medium (data/SCHEMA.md), ...
 )";
 
-Json quantity(double v, const char* unit) { return {{"value", v}, {"unit", unit}}; }
-Json values(const std::vector<double>& v, const char* unit) { return {{"unit", unit}, {"values", v}}; }
-Json tensor_json(const theory::Tensor4& C) {
-  Json values = Json::array();
-  for (int a = 0; a < 3; ++a) {
-    Json A = Json::array();
-    for (int b = 0; b < 3; ++b) {
-      Json B = Json::array();
-      for (int g = 0; g < 3; ++g) {
-        Json G = Json::array();
-        for (int f = 0; f < 3; ++f) G.push_back(C(a, b, g, f));
-        B.push_back(G);
-      }
-      A.push_back(B);
-    }
-    values.push_back(A);
-  }
-  return {{"unit", "Pa"}, {"index_order", "C[a][b][g][f]: a,g branch, b,f displacement"}, {"values", values}};
-}
+// Eq. (10)'s index convention (the help's "Index convention").
+constexpr const char* kCIndexOrder = "C[a][b][g][f]: a,g branch, b,f displacement";
 
 int parse_nk(const std::string& s) {
   std::size_t used = 0;
@@ -318,8 +302,8 @@ int cmd_theory(const Args& args, std::ostream& out) {
     } else {
       o["lattice"] = {{"available", false}, {"note", L.note}};
     }
-    o["C"] = tensor_json(r.C);
-    o["C_frictionless"] = tensor_json(r.C_frictionless);
+    o["C"] = tensor_json(r.C, kCIndexOrder);
+    o["C_frictionless"] = tensor_json(r.C_frictionless, kCIndexOrder);
     Json voigt = Json::array();
     for (int I = 0; I < 6; ++I) {
       Json row = Json::array();

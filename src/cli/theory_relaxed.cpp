@@ -6,43 +6,24 @@
 #include <cstdio>
 #include <limits>
 
+#include "cli/theory_json.hpp"
 #include "config/contact_laws.hpp"
 #include "crystal/simulation.hpp"
 
 namespace granwave::cli {
 namespace {
 
-Json q(double v, const char* unit) { return {{"value", v}, {"unit", unit}}; }
-
-Json tensor_values(const theory::Tensor4& C) {
-  Json A = Json::array();
-  for (int a = 0; a < 3; ++a) {
-    Json B = Json::array();
-    for (int b = 0; b < 3; ++b) {
-      Json G = Json::array();
-      for (int g = 0; g < 3; ++g) {
-        Json F = Json::array();
-        for (int f = 0; f < 3; ++f) F.push_back(C(a, b, g, f));
-        G.push_back(F);
-      }
-      B.push_back(G);
-    }
-    A.push_back(B);
-  }
-  return {{"unit", "Pa"}, {"index_order", "A[a][b][g][f]: a,g gradient, b,f displacement"}, {"values", A}};
-}
-
 Json moduli_json(const theory::RelaxedModuli& r) {
   return {{"boundary", theory::boundary_name(r.boundary)},
-          {"V_pz", q(r.V_pz, "m/s")},
-          {"V_sz", q(r.V_sz, "m/s")},
-          {"V_sy", q(r.V_sy, "m/s")},
-          {"V_pz_affine", q(r.V_pz_affine, "m/s")},
-          {"V_sz_affine", q(r.V_sz_affine, "m/s")},
-          {"rho", q(r.rho, "kg/m^3")},
-          {"volume", q(r.volume, "m^3")},
-          {"pressure", q(r.pressure, "Pa")},
-          {"coordination", q(r.coordination, "1")},
+          {"V_pz", quantity(r.V_pz, "m/s")},
+          {"V_sz", quantity(r.V_sz, "m/s")},
+          {"V_sy", quantity(r.V_sy, "m/s")},
+          {"V_pz_affine", quantity(r.V_pz_affine, "m/s")},
+          {"V_sz_affine", quantity(r.V_sz_affine, "m/s")},
+          {"rho", quantity(r.rho, "kg/m^3")},
+          {"volume", quantity(r.volume, "m^3")},
+          {"pressure", quantity(r.pressure, "Pa")},
+          {"coordination", quantity(r.coordination, "1")},
           {"particles", r.particles},
           {"free_particles", r.free_particles},
           {"rattlers", r.rattlers},
@@ -57,7 +38,7 @@ Json moduli_json(const theory::RelaxedModuli& r) {
           {"sliding_contacts", r.sliding_contacts},
           {"forcing_on_zero_modes", r.forcing_on_zero_modes},
           {"residual", r.residual},
-          {"A_relaxed", tensor_values(r.relaxed)}};
+          {"A_relaxed", tensor_json(r.relaxed, "A[a][b][g][f]: a,g gradient, b,f displacement")}};
 }
 
 }  // namespace
@@ -142,14 +123,14 @@ void add_relaxed_json(Json& o, const RelaxedPart& r) {
                      "(rough), G_smooth = (3/5) K; isotropic contacts, every contact strained affinely"
                    : "linear springs, isotropic contacts strained affinely: K = Z phi k_n/(6 pi R), G = Z phi (2 k_n + 3 "
                      "k_t)/(20 pi R), G_smooth = Z phi k_n/(10 pi R)"},
-      {"Z", q(r.Z, "1")},
-      {"phi", q(r.phi, "1")},
-      {"p", q(r.p, "Pa")},
-      {"K", q(r.medium.K, "Pa")},
-      {"G", q(r.medium.G, "Pa")},
-      {"G_smooth", q(r.medium.G_smooth, "Pa")},
-      {"V_p", q(r.medium.V_p, "m/s")},
-      {"V_s", q(r.medium.V_s, "m/s")}};
+      {"Z", quantity(r.Z, "1")},
+      {"phi", quantity(r.phi, "1")},
+      {"p", quantity(r.p, "Pa")},
+      {"K", quantity(r.medium.K, "Pa")},
+      {"G", quantity(r.medium.G, "Pa")},
+      {"G_smooth", quantity(r.medium.G_smooth, "Pa")},
+      {"V_p", quantity(r.medium.V_p, "m/s")},
+      {"V_s", quantity(r.medium.V_s, "m/s")}};
 }
 
 void print_relaxed(const RelaxedPart& r) {

@@ -96,6 +96,22 @@ std::optional<double> read_number(const Reader& r, const Table& t, const KeySpec
   if (v || std::isnan(s.fallback)) return v;
   return s.fallback;
 }
+// The number keys of `specs` read into their fields (`fields[i]` holds specs[i]'s value; nullptr for a
+// choice key, read apart); an absent key without a default leaves its field as it is.
+template <class Reader, class Table, std::size_t N>
+void read_numbers(const Reader& r, const Table& t, const std::array<KeySpec, N>& specs,
+                  const std::array<double*, N>& fields) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (fields[i])
+      if (const std::optional<double> v = read_number(r, t, specs[i])) *fields[i] = *v;
+}
+// The field of number key `key` (studies vary them by name); nullptr if `specs` has no such number key.
+template <std::size_t N>
+double* number_field(const std::array<KeySpec, N>& specs, const std::array<double*, N>& fields, std::string_view key) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (fields[i] && key == specs[i].key) return fields[i];
+  return nullptr;
+}
 // A choice key of [contact] (absent: the first choice).
 template <class Reader, class Table>
 std::string read_choice(const Reader& r, const Table& t, const KeySpec& s) {

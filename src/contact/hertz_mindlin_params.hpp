@@ -39,13 +39,13 @@ struct HertzMindlinCaseParams {
       choice_key("tangential_history", {"displacement", "displacement_rescale", "force"},
                  "what the Mindlin spring keeps: the displacement (rescaled when a shrinks) or the force")};
   static constexpr auto keys = joined(own_keys, RollingTorsionKeys::keys);
+  // own_keys' order; the two choices are read apart.
+  std::array<double*, 5> fields() { return {&youngs_modulus, &poisson_ratio, &damping_ratio, nullptr, nullptr}; }
 
   template <class Reader, class Table>
   static HertzMindlinCaseParams read(const Reader& r, const Table& t) {
     HertzMindlinCaseParams p;
-    p.youngs_modulus = *read_number(r, t, own_keys[0]);
-    p.poisson_ratio = *read_number(r, t, own_keys[1]);
-    p.damping_ratio = *read_number(r, t, own_keys[2]);
+    read_numbers(r, t, own_keys, p.fields());
     p.mindlin = read_choice(r, t, own_keys[3]) == "mindlin";
     const std::string h = read_choice(r, t, own_keys[4]);
     p.tangential_history = h == "force"                  ? TangentialHistory::force
@@ -65,10 +65,8 @@ struct HertzMindlinCaseParams {
     return p;
   }
   double* number(std::string_view key) {
-    for (auto [name, field] : {std::pair<std::string_view, double*>{"youngs_modulus", &youngs_modulus},
-                               {"poisson_ratio", &poisson_ratio}, {"damping_ratio", &damping_ratio}})
-      if (name == key) return field;
-    return rolling.number(key);
+    double* f = number_field(own_keys, fields(), key);
+    return f ? f : rolling.number(key);
   }
 };
 

@@ -27,23 +27,19 @@ struct LinearLudingParams {
       number_key("gamma_n", "kg/s", 0.0, false, 0.0, "normal dashpot gamma_0"),
       number_key("gamma_t", "kg/s", 0.0, false, 0.0, "tangential dashpot gamma_t")};
   static constexpr auto keys = joined(own_keys, RollingTorsionKeys::keys);
+  std::array<double*, 4> fields() { return {&kn, &kt, &gamma_n, &gamma_t}; }  // own_keys' order
 
   template <class Reader, class Table>
   static LinearLudingParams read(const Reader& r, const Table& t) {
     LinearLudingParams p;
-    p.kn = *read_number(r, t, own_keys[0]);
-    p.gamma_n = *read_number(r, t, own_keys[2]);
-    p.kt = *read_number(r, t, own_keys[1]);
-    p.gamma_t = *read_number(r, t, own_keys[3]);
+    read_numbers(r, t, own_keys, p.fields());
     p.rolling = RollingTorsionKeys::read(r, t);
     p.friction = Friction::read(r, t);
     return p;
   }
   double* number(std::string_view key) {
-    for (auto [name, field] : {std::pair<std::string_view, double*>{"kn", &kn}, {"gamma_n", &gamma_n}, {"kt", &kt},
-                               {"gamma_t", &gamma_t}})
-      if (name == key) return field;
-    return rolling.number(key);
+    double* f = number_field(own_keys, fields(), key);
+    return f ? f : rolling.number(key);
   }
 };
 

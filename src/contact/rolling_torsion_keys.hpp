@@ -31,26 +31,19 @@ struct RollingTorsionKeys {
       choice_key("rolling_lever", {"lever_arm", "radii"}, "the arms of the lever a' = arm_i arm_j/(arm_i + arm_j)"),
       choice_key("rolling_history", {"rotated", "fixed"}, "the rolling spring: turned with the contact or fixed in space")};
 
+  // keys' order (an absent mu_r, mu_o stays "no limit"); the two choices are read apart.
+  std::array<double*, 8> fields() { return {&kr, &gamma_r, &mu_r, &ko, &gamma_o, &mu_o, nullptr, nullptr}; }
+
   template <class Reader, class Table>
   static RollingTorsionKeys read(const Reader& r, const Table& t) {
     RollingTorsionKeys k;
-    k.kr = *read_number(r, t, keys[0]);
-    k.gamma_r = *read_number(r, t, keys[1]);
-    k.ko = *read_number(r, t, keys[3]);
-    k.gamma_o = *read_number(r, t, keys[4]);
-    if (const auto mu = read_number(r, t, keys[2])) k.mu_r = *mu;
-    if (const auto mu = read_number(r, t, keys[5])) k.mu_o = *mu;
+    read_numbers(r, t, keys, k.fields());
     k.rolling_lever = read_choice(r, t, keys[6]) == "radii" ? RollingLever::radii : RollingLever::lever_arm;
     k.rolling_history = read_choice(r, t, keys[7]) == "fixed" ? RollingHistory::fixed : RollingHistory::rotated;
     return k;
   }
   // A number key by name (studies vary kr, ko); nullptr if it is not one of these.
-  double* number(std::string_view key) {
-    for (auto [name, field] : {std::pair<std::string_view, double*>{"kr", &kr}, {"gamma_r", &gamma_r}, {"mu_r", &mu_r},
-                               {"ko", &ko}, {"gamma_o", &gamma_o}, {"mu_o", &mu_o}})
-      if (name == key) return field;
-    return nullptr;
-  }
+  double* number(std::string_view key) { return number_field(keys, fields(), key); }
 
   RollingTorsionParams params(const Friction& f) const {
     return {kr, gamma_r, mu_r, ko, gamma_o, mu_o, f.magnitude(), rolling_lever, rolling_history};

@@ -15,6 +15,7 @@
 #include "core/json.hpp"
 #include "crystal/case_lattice.hpp"
 #include "crystal/guards.hpp"
+#include "crystal/observables.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 #include "crystal/trace_writer.hpp"
@@ -199,8 +200,8 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   analysis::CrystalAnalysisOptions measure;
   double v_lattice = 0.0;
   add_case_lattice(measure, c, d, LatticeNeed::when_not_sine, &v_lattice);
-  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, measure)
-                                                 : analysis::report_file(trace_path, measure);
+  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, observables(), measure)
+                                                 : analysis::report_file(trace_path, observables(), measure);
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;
   const double pss = static_cast<double>(packing.size()) * steps / std::max(seconds, 1e-12);
   if (req.json) {

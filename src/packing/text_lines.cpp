@@ -62,4 +62,20 @@ double positive_radius(const TextFile& file, const TextLine& line, double radius
   return radius;
 }
 
+Packing text_packing(const TextFile& file, const Box& box) {
+  Packing packing;
+  packing.source = file.path();
+  packing.box = box;
+  return packing;
+}
+
+Particle sphere_of(const TextFile& file, const TextLine& line, std::size_t first, std::int64_t id) {
+  Particle p;
+  p.line = line.number;
+  p.id = id;
+  p.centre = Vec3(file.number(line, first, "x"), file.number(line, first + 1, "y"), file.number(line, first + 2, "z"));
+  p.radius = positive_radius(file, line, file.number(line, first + 3, "r"), p.id);
+  return p;
+}
+
 }  // namespace granwave::packing

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "packing/packing.hpp"
+
 namespace granwave::packing {
 
 struct TextLine {
@@ -32,5 +34,9 @@ class TextFile {
 
 // A radius read from a file: finite and > 0, else InputError naming the place and the particle.
 double positive_radius(const TextFile& file, const TextLine& line, double radius, std::int64_t id);
+// What an importer of a text file fills: no particles yet, the file as source, the caller's box.
+Packing text_packing(const TextFile& file, const Box& box);
+// A row's sphere: words first..first+3 as x y z r (metres; finite, r > 0), with its line and id.
+Particle sphere_of(const TextFile& file, const TextLine& line, std::size_t first, std::int64_t id);
 
 }  // namespace granwave::packing

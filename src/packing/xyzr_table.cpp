@@ -7,20 +7,14 @@ namespace granwave::packing {
 
 Packing read_xyzr_table(const std::string& path, const Box& box, const Limits& limits) {
   TextFile file(path);
-  Packing packing;
-  packing.source = path;
-  packing.box = box;
+  Packing packing = text_packing(file, box);
   for (const TextLine& line : file.lines()) {
     if (line.words.empty() || line.words[0][0] == '#') continue;
     if (line.words.size() != 4)
       throw InputError(file.at(line) + ": " + std::to_string(line.words.size()) +
                        " values (allowed: four, x y z r, in metres)");
-    Particle p;
-    p.line = line.number;
-    p.id = static_cast<std::int64_t>(packing.particles.size()) + 1;  // 1-based row order
-    p.centre = Vec3(file.number(line, 0, "x"), file.number(line, 1, "y"), file.number(line, 2, "z"));
-    p.radius = positive_radius(file, line, file.number(line, 3, "r"), p.id);
-    packing.particles.push_back(p);
+    const auto id = static_cast<std::int64_t>(packing.particles.size()) + 1;  // 1-based row order
+    packing.particles.push_back(sphere_of(file, line, 0, id));
   }
   wrap_into_box(packing);
   check_packing(packing, limits);

@@ -9,9 +9,7 @@ namespace granwave::packing {
 // ymport.textExt skips every '#' line, switches format at "#format", and assumes x_y_z_r before one.
 Packing read_yade_text(const std::string& path, const Box& box, const Limits& limits) {
   TextFile file(path);
-  Packing packing;
-  packing.source = path;
-  packing.box = box;
+  Packing packing = text_packing(file, box);
   std::string format = "x_y_z_r";
   for (const TextLine& line : file.lines()) {
     if (line.words.empty()) continue;
@@ -30,12 +28,9 @@ Packing read_yade_text(const std::string& path, const Box& box, const Limits& li
     if (line.words.size() != columns)
       throw InputError(file.at(line) + ": " + std::to_string(line.words.size()) + " values where format " + format +
                        " has " + std::to_string(columns));
-    Particle p;
-    p.line = line.number;
     // YADE body ids start at 0; the file's order stands in where the format has none.
-    p.id = first ? file.integer(line, 0, "id") : static_cast<std::int64_t>(packing.particles.size());
-    p.centre = Vec3(file.number(line, first, "x"), file.number(line, first + 1, "y"), file.number(line, first + 2, "z"));
-    p.radius = positive_radius(file, line, file.number(line, first + 3, "r"), p.id);
+    Particle p = sphere_of(file, line, first,
+                           first ? file.integer(line, 0, "id") : static_cast<std::int64_t>(packing.particles.size()));
     if (format != "x_y_z_r") p.type = static_cast<int>(file.integer(line, columns - 1, "matId"));
     packing.particles.push_back(p);
   }

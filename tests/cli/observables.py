@@ -6,7 +6,10 @@
     `[output] fields` name is accepted there and refused by `granwave` (exit 2), and every other
     dataset of the trace is the same, bit for bit, as `granwave`'s;
   * physics of the new series: an S wave with tangential springs turns the free layers' particles
-    (w_y != 0 where the wave has passed) while the fixed layers never turn (w_y = 0 exactly).
+    (w_y != 0 where the wave has passed) while the fixed layers never turn (w_y = 0 exactly);
+  * the trace reader (src/analysis/trace_file.cpp) reads the table too: `granwave_testobservable
+    analyze` refuses a trace whose layer_spin_y holds a NaN or has the wrong shape (exit 2, naming
+    the dataset), which `granwave analyze`, whose table lacks it, measures as before.
 
 usage: observables.py GRANWAVE GRANWAVE_TESTOBSERVABLE SOURCE_DIR WORKDIR
 """
@@ -106,6 +109,34 @@ if spin is not None:
         if not np.max(np.abs(spin[:, fixed:nl - fixed])) > 0.0:
             fail("no free layer turns in an S wave with kt = kn")
 
+# The reader: the test build checks the new dataset as it checks the others; granwave ignores it.
+def analyze(exe, path):  # layers the short run's wave has reached
+    return subprocess.run([exe, "analyze", path, "--json", "--layers", "2:8"], capture_output=True, text=True)
+
+
+p = analyze(gw_test, traces["test"])
+if p.returncode != 0:
+    fail("granwave_testobservable analyze of its own trace: exit %d: %s" % (p.returncode, p.stderr))
+elif analyze(gw, traces["test"]).stdout != p.stdout:
+    fail("the analysis of the trace differs between granwave and granwave_testobservable")
+for label, damage in (("nan", lambda a: np.where(np.arange(a.size).reshape(a.shape) == a.size // 2, np.nan, a)),
+                      ("shape", lambda a: a[:, :-1])):
+    bad = os.path.join(work, "bad_%s.h5" % label)
+    with open(traces["test"], "rb") as f_in, open(bad, "wb") as f_out:
+        f_out.write(f_in.read())
+    with h5py.File(bad, "r+") as h:
+        spin = h["crystal/layer_spin_y"][()]
+        del h["crystal/layer_spin_y"]
+        h["crystal/layer_spin_y"] = damage(spin)
+    p = analyze(gw_test, bad)
+    if p.returncode != 2 or "/crystal/layer_spin_y" not in p.stderr:
+        fail("granwave_testobservable analyze of a trace with a damaged layer_spin_y (%s): exit %d, %r "
+             "(want 2 naming /crystal/layer_spin_y)" % (label, p.returncode, p.stderr))
+    p = analyze(gw, bad)
+    if p.returncode != 0:
+        fail("granwave analyze of a trace with a damaged layer_spin_y (%s), not its observable: exit %d: %s"
+             % (label, p.returncode, p.stderr))
+
 # The field name: accepted by the test build alone.
 sel = text.replace("vtk_every = 0", 'vtk_every = 0\nfields = ["layer_spin_y"]')
 sel_case = os.path.join(work, "spin_field.toml")
@@ -127,4 +158,4 @@ else:
 
 if failures:
     sys.exit("%d failure(s)" % len(failures))
-print("ok: %d observables, SCHEMA.md §3 lists each; the test observable reaches the trace" % len(real["crystal"]))
+print("ok: %d observables, SCHEMA.md §3 lists each; the test observable reaches the trace and its reader" % len(real["crystal"]))

@@ -90,7 +90,7 @@ def test_chain_fixture_hertz_constant(tmp_path, cases_dir):
 def test_timestep_of_a_hertz_crystal_from_the_system_file_or_the_laws_contact_time():
     """dt_over_tc of Hertz-Mindlin: the system's resolved dt wins; without it, the law's mapping module's
     contact time of the contact linearised at delta_0 (xclib.hertz_mindlin.contact_time), which is
-    granwave's own (`granwave theory --json`'s t_c for two mean particles)."""
+    granwave's own (`granwave theory --json`'s t_c for two spheres of the case's radius and density)."""
     import math
     import subprocess
     from xclib import runners as RN
@@ -106,4 +106,7 @@ def test_timestep_of_a_hertz_crystal_from_the_system_file_or_the_laws_contact_ti
         pytest.skip("granwave not built")
     theory = json.loads(subprocess.run([gw, "theory", path, "--json"], capture_output=True, text=True, check=True).stdout)
     t_c = theory["t_c"]["value"] if isinstance(theory["t_c"], dict) else theory["t_c"]
+    assert math.isclose(T.timestep(case, system), case["integrator"]["dt_over_tc"] * t_c, rel_tol=1e-12)
+    # granwave's t_c is of two spheres of the case's radius and density, whatever the packing's masses.
+    system["mass"] = np.array([0.8 * m, m, 1.3 * m])
     assert math.isclose(T.timestep(case, system), case["integrator"]["dt_over_tc"] * t_c, rel_tol=1e-12)

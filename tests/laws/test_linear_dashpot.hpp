@@ -59,18 +59,16 @@ struct TestLinearDashpotParams {
 
   static constexpr std::array<KeySpec, 3> keys{LinearLudingParams::own_keys[0], LinearLudingParams::own_keys[2],
                                                LinearLudingParams::own_keys[3]};
+  std::array<double*, 3> fields() { return {&kn, &gamma_n, &gamma_t}; }  // keys' order
+
   template <class Reader, class Table>
   static TestLinearDashpotParams read(const Reader& r, const Table& t) {
     TestLinearDashpotParams p;
-    p.kn = *read_number(r, t, keys[0]);
-    p.gamma_n = *read_number(r, t, keys[1]);
-    p.gamma_t = *read_number(r, t, keys[2]);
+    read_numbers(r, t, keys, p.fields());
     p.friction = Friction::read(r, t);
     return p;
   }
-  double* number(std::string_view key) {
-    return key == "kn" ? &kn : key == "gamma_n" ? &gamma_n : key == "gamma_t" ? &gamma_t : nullptr;
-  }
+  double* number(std::string_view key) { return number_field(keys, fields(), key); }
 };
 
 struct TestLinearDashpotCase {

@@ -20,7 +20,7 @@ TEST_CASE("oriented20: per-contact first peak, leading-pulse maximum and front s
   req.quiet = true;
   std::ostringstream out;
   REQUIRE(chain::run(c, req, out) == 0);
-  const auto f = analysis::read_trace(trace);
+  const auto f = analysis::read_trace(trace, analysis::no_observables());
   std::filesystem::remove(trace);
   REQUIRE(f.model == "chain");
   const auto a = analysis::analyze_chain(f.chain);

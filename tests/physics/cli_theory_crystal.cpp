@@ -13,6 +13,7 @@
 
 #include "analysis/trace_analysis.hpp"
 #include "config/case.hpp"
+#include "crystal/observables.hpp"
 #include "crystal/packing.hpp"
 #include "models.hpp"
 #include "theory/crystal_theory.hpp"
@@ -45,7 +46,7 @@ Result run_and_analyze(const std::string& case_path, char mode) {
   REQUIRE(crystal::run(c, req, out) == 0);
   Result r;
   r.dt = *c.integrator.dt;
-  const auto f = analysis::read_trace(trace);
+  const auto f = analysis::read_trace(trace, crystal::observables());
   REQUIRE(f.crystal.mode == mode);
   r.a = analysis::analyze_crystal(f.crystal);
   std::filesystem::remove(trace);

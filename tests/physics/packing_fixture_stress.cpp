@@ -5,18 +5,16 @@
 #include <catch2/catch.hpp>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <string>
 
 #include "packing/contacts.hpp"
 #include "packing/importers.hpp"
+#include "../packing_fixtures.hpp"
 
 using namespace granwave::packing;
 
 namespace {
-std::string fixture(const std::string& name) { return std::string(GRANWAVE_SOURCE_DIR) + "/data/packings/" + name; }
-
 // Diagonal of (1/V) sum over contacts of f_n n (x) l, with f_n = kn(a_i, a_j) overlap and
 // l = |x_j - x_i| n the branch vector (normal forces only: both preparations were frictionless).
 std::array<double, 3> love_stress(const Packing& p, const std::function<double(double, double)>& kn) {
@@ -37,7 +35,7 @@ std::array<double, 3> love_stress(const Packing& p, const std::function<double(d
 }  // namespace
 
 TEST_CASE("lammps_periodic: the contacts give LAMMPS' pressure", "[packing][fixture]") {
-  const Packing p = read_lammps_data(fixture("lammps_periodic/packing.data"), "si", "p p p");
+  const Packing p = read_lammps_data(fixtures::path("lammps_periodic/packing.data"), "si", "p p p");
   // make.lmp: pair_style gran/hooke with kn = 1000 N/m for every pair. log.lammps, step 125000
   // (write_data's): Press 5190.9151 Pa, with the kinetic part (KE 1.8e-9 J: 5e-4 Pa) and the
   // dashpots of moving rattlers, both far below the tolerance.
@@ -46,12 +44,7 @@ TEST_CASE("lammps_periodic: the contacts give LAMMPS' pressure", "[packing][fixt
 }
 
 TEST_CASE("yade_periodic: the contacts give YADE's cell stress on each axis", "[packing][fixture]") {
-  std::ifstream cell(fixture("yade_periodic/cell.txt"));
-  std::string comment;
-  std::getline(cell, comment);
-  Box box;
-  REQUIRE(cell >> box.hi[0] >> box.hi[1] >> box.hi[2]);
-  const Packing p = read_yade_text(fixture("yade_periodic/packing.txt"), box);
+  const Packing p = fixtures::yade_periodic();
   // make.py: FrictMat E = 1e8 Pa, so Ip2_FrictMat_FrictMat_FrictPhys gives kn = 2 E a_i a_j / (a_i + a_j).
   // log.txt, "goal reached": stress (-99940.45, -100006.91, -100077.02) Pa (compression negative),
   // one step before the export.

@@ -331,3 +331,18 @@ def test_the_namespace_holds_the_api_only():
     p = subprocess.run(["/usr/bin/python3", "-c", code], cwd=ROOT, env=env, capture_output=True, text=True, timeout=60)
     assert p.returncode == 0, p.stderr
     assert p.stdout.splitlines() == ["[] []", "[] []"], p.stdout
+
+
+def test_units_are_the_table_of_observables():
+    """Result.units reads the crystal's one table of observables (issue #37), not a list of its own:
+    every entry of `granwave observables --json` with its unit, and the test-only observable of
+    granwave_testobservable's table (tests/observables/) with its own."""
+    table = json.loads(subprocess.run([PROGRAM, "observables", "--json"], capture_output=True, check=True).stdout)
+    assert {o["name"]: o["unit"] for o in table["crystal"]}.items() <= g._UNITS.items()
+    test_program = os.path.join(BUILD, "granwave_testobservable")
+    if not os.path.exists(test_program):
+        pytest.skip("no granwave_testobservable in the build (GRANWAVE_TESTS off)")
+    test_table = json.loads(subprocess.run([test_program, "observables", "--json"], capture_output=True,
+                                           check=True).stdout)
+    assert "layer_spin_y" not in g._UNITS
+    assert g._units(test_table)["layer_spin_y"] == "rad/s"

@@ -12,6 +12,7 @@
 #include "analysis/trace_analysis.hpp"
 #include "analysis/trace_json.hpp"
 #include "core/rng.hpp"
+#include "crystal/observables.hpp"
 #include "io/h5.hpp"
 
 using namespace granwave;
@@ -281,7 +282,7 @@ TEST_CASE("trace file round trip: any code's file, mode from the data, S polarit
     w.write("/crystal/layer_displacement_z", uz, {nt, static_cast<std::size_t>(layers)});
     w.commit();
   }
-  const auto f = read_trace(path);
+  const auto f = read_trace(path, crystal::observables());
   CHECK(f.model == "crystal");
   CHECK(f.code == "yade");
   CHECK(f.crystal.mode == 'S');
@@ -314,7 +315,7 @@ TEST_CASE("trace file provenance attributes are readable", "[analysis]") {
     w.write("/crystal/layer_z", std::vector<double>{-l0, 0.0, l0, 2 * l0, 3 * l0});
     w.commit();
   }
-  const auto f = read_trace(path);
+  const auto f = read_trace(path, crystal::observables());
   std::filesystem::remove(path);
   CHECK(f.code == "liggghts");
 }

@@ -3,18 +3,16 @@
 // jammed (touching pairs and a solid fraction near random close packing).
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <string>
 
 #include "packing/contacts.hpp"
 #include "packing/importers.hpp"
+#include "../packing_fixtures.hpp"
 
 using namespace granwave::packing;
 
 namespace {
-std::string fixture(const std::string& name) { return std::string(GRANWAVE_SOURCE_DIR) + "/data/packings/" + name; }
-
 // Radii made uniform in r0 (1 +- 0.15) with r0 = 0.5 mm, all three scripts.
 void check_radii_and_jamming(const Packing& p, double phi_lo, double phi_hi) {
   const PackingStats s = measure(p);
@@ -32,7 +30,7 @@ void check_radii_and_jamming(const Packing& p, double phi_lo, double phi_hi) {
 }  // namespace
 
 TEST_CASE("fixture lammps_periodic: data file and custom dump of the same packing", "[packing][fixture]") {
-  const Packing data = read_lammps_data(fixture("lammps_periodic/packing.data"), "si", "p p p");
+  const Packing data = read_lammps_data(fixtures::path("lammps_periodic/packing.data"), "si", "p p p");
   REQUIRE(data.particles.size() == 3000);
   for (int a = 0; a < 3; ++a) {
     CHECK(data.box.lo[a] == 0.0);
@@ -49,7 +47,7 @@ TEST_CASE("fixture lammps_periodic: data file and custom dump of the same packin
   CHECK(first.velocity->y() == 0.00316322428493666);
   check_radii_and_jamming(data, 0.64, 0.67);
 
-  const Packing dump = read_lammps_dump(fixture("lammps_periodic/packing.dump"), "si");
+  const Packing dump = read_lammps_dump(fixtures::path("lammps_periodic/packing.dump"), "si");
   REQUIRE(dump.particles.size() == 3000);
   CHECK(dump.box.hi[1] == Approx(0.0134848865771451).epsilon(1e-15));
   std::map<std::int64_t, const Particle*> by_id;
@@ -62,7 +60,7 @@ TEST_CASE("fixture lammps_periodic: data file and custom dump of the same packin
 }
 
 TEST_CASE("fixture liggghts_periodic: custom dump", "[packing][fixture]") {
-  const Packing p = read_lammps_dump(fixture("liggghts_periodic/packing.dump"), "si");
+  const Packing p = read_lammps_dump(fixtures::path("liggghts_periodic/packing.dump"), "si");
   REQUIRE(p.particles.size() == 2000);
   CHECK(p.box.periodic == std::array<bool, 3>{true, true, true});
   // LIGGGHTS writes the bounds with 6 digits: the deck's box edge was 0.0118639681699891 m.
@@ -78,12 +76,7 @@ TEST_CASE("fixture liggghts_periodic: custom dump", "[packing][fixture]") {
 }
 
 TEST_CASE("fixture yade_periodic: yade.export.text with the cell the script wrote", "[packing][fixture]") {
-  std::ifstream cell(fixture("yade_periodic/cell.txt"));
-  std::string comment;
-  std::getline(cell, comment);
-  Box box;
-  REQUIRE(cell >> box.hi[0] >> box.hi[1] >> box.hi[2]);
-  const Packing p = read_yade_text(fixture("yade_periodic/packing.txt"), box);
+  const Packing p = fixtures::yade_periodic();
   REQUIRE(p.particles.size() == 2000);
   const Particle& first = p.particles[0];  // "0.000712096	0.00798192	0.00244498	0.000574963"
   CHECK(first.id == 0);
