@@ -1,6 +1,6 @@
 // A wave through a packing from another code (crystal.lattice = "file", data/cases/packing_lammps.toml
 // on data/packings/lammps_periodic): the relaxed packing stands still without a source, and the P
-// front of a displacement step is no faster than eq. (10)'s affine speed over the same network.
+// pulse a displacement step drives travels just below eq. (10)'s affine speed over the same network.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -61,26 +61,27 @@ TEST_CASE("packing from LAMMPS: a quiescent run (no source) stays still", "[phys
   CHECK(v_max < bound);
 }
 
-TEST_CASE("packing from LAMMPS: the P front is bounded by eq. (10)'s affine speed over the network", "[physics][packing]") {
+TEST_CASE("packing from LAMMPS: the P pulse travels just below eq. (10)'s affine speed over the network", "[physics][packing]") {
   const config::Case& c = lammps_case();
   const Packing& p = relaxed();
   const Derived d = derive(c);
   const RunResult r = simulate(c, d, p);
   REQUIRE_FALSE(r.failed);
   const Traces& tr = r.traces;
-  const std::vector<double>& uz = tr["layer_displacement_z"];
+  const std::vector<double>& vz = tr["layer_velocity_z"];
   const std::size_t nl = tr.nlayers, nt = tr.samples();
-  const double step = c.excitation.amplitude * p.d;
-  // The step's front: when a bin's mean displacement first reaches half the step, in the free bins
-  // clear of the top slab (whose held wall keeps the far bins below half the step).
+  // The pulse the step drives: each free bin's mean velocity, its first peak (the first local maximum
+  // after it passes half its largest value), over the free bins but the last two.
   std::vector<double> z, t;
-  const int first = p.source_bins() + 1;
-  for (int b = first; b < static_cast<int>(nl); ++b) {
-    std::size_t i = 0;
-    while (i < nt && uz[i * nl + b] < 0.5 * step) ++i;
-    if (i == nt) break;
+  const int first = p.source_bins(), last = static_cast<int>(nl) - 2 * p.source_bins() - 1;
+  for (int b = first; b <= last; ++b) {
+    double top = 0.0;
+    for (std::size_t i = 0; i < nt; ++i) top = std::max(top, vz[i * nl + b]);
+    std::size_t best = 0;
+    while (best < nt && vz[best * nl + b] < 0.5 * top) ++best;  // on the pulse's rising side
+    while (best + 1 < nt && vz[(best + 1) * nl + b] >= vz[best * nl + b]) ++best;  // up to its first peak
     z.push_back(p.bin_origin + (b + 0.5) * p.bin_width);
-    t.push_back(tr.time[i]);
+    t.push_back(tr.time[best]);
   }
   REQUIRE(z.size() >= 5);
   // Least-squares slope dz/dt.
@@ -89,9 +90,10 @@ TEST_CASE("packing from LAMMPS: the P front is bounded by eq. (10)'s affine spee
   for (std::size_t k = 0; k < z.size(); ++k) sz += z[k], st += t[k], stt += t[k] * t[k], szt += z[k] * t[k];
   const double v = (n * szt - sz * st) / (n * stt - st * st);
   INFO("front speed " << v << " m/s over " << z.size() << " bins; eq. (10) affine V_p = " << d.v_p << " m/s");
-  // The affine speed is the Voigt (upper) bound: relaxations within a disordered packing only soften
-  // it. The lower side is a sanity bound (a packing at 6.8 contacts per particle, above isostatic 6,
-  // keeps most of its affine stiffness; measured 0.71).
+  // The affine speed is an upper bound: relaxations within a disordered packing only soften it (the
+  // Voigt bound), and a pulse of finite width travels below the long-wave speed of the discrete
+  // network. Close to it: a packing at 6.8 contacts per particle, above isostatic 6, keeps most of
+  // its affine stiffness (measured 0.96 of it; 0.9 is the bound asserted).
   CHECK(v < d.v_p);
-  CHECK(v > 0.5 * d.v_p);
+  CHECK(v > 0.9 * d.v_p);
 }
