@@ -82,7 +82,7 @@ struct PackingKeys {
   double fixed_thickness = 0.0;      // top slab (held); default source_thickness
   double bin_width = 0.0;            // z-bin width h; default the mean diameter
   double max_overlap = 0.05;         // of the smaller radius
-  double relax_tolerance = 1e-7;     // E_kin/E_pot that ends the relaxation before the wave
+  double relax_tolerance = 1e-14;    // E_kin/E_pot that ends the relaxation before the wave
 };
 
 struct CrystalCase {
