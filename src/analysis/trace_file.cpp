@@ -122,7 +122,9 @@ TraceFile read_trace(const io::H5Reader& r, const std::vector<crystal::Observabl
     if (!(c.l0 > 0.0 && std::isfinite(c.l0)))
       throw InputError(path + ": the layer spacing l0 = " + std::to_string(c.l0) +
                        " (/system attribute l0, or the median spacing of /crystal/layer_z) is not a positive number");
-    if (r.has_attr("/system", "fixed_layers")) {
+    // A file's packing has slabs, not fixed layers: its source bins are the layers below layer_z = 0.
+    const bool from_file = r.has_attr("/system", "generator") && r.attr_string("/system", "generator") == "file";
+    if (r.has_attr("/system", "fixed_layers") && !from_file) {
       const double fl = r.attr_double("/system", "fixed_layers");
       if (!(std::abs(fl) < 1e9))
         throw InputError(path + ": /system attribute fixed_layers = " + std::to_string(fl) + " is not a layer count");

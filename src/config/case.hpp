@@ -5,12 +5,14 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "config/impact_case.hpp"
 #include "contact/law_params.hpp"
+#include "packing/packing.hpp"
 
 namespace granwave::config {
 
@@ -66,8 +68,25 @@ using NormalTension = contact::NormalTension;
 using LeverArm = contact::LeverArm;
 using CoulombNormal = contact::CoulombNormal;
 
+// [packing] of a crystal with lattice = "file" (data/SCHEMA.md §1): where the packing comes from
+// and how it becomes a run's (slabs, bins, relaxation). Lengths in m, resolved by the loader.
+struct PackingKeys {
+  std::string file;                  // resolved against the case file's directory
+  std::string format;                // lammps_data | lammps_dump | yade_text | xyzr
+  std::string units = "si";          // lammps_*: si | cgs | micro | nano
+  std::string boundary = "p p p";    // lammps_data: "p p p" | "p p f"
+  std::array<std::array<double, 2>, 3> box{};  // yade_text, xyzr: [[xlo, xhi], [ylo, yhi], [zlo, zhi]]
+  bool box_periodic_z = true;        // yade_text, xyzr
+  bool density_from_file = false;    // density = "file": each particle's mass from the file
+  double source_thickness = 0.0;     // bottom slab (source); default 2 x the largest diameter
+  double fixed_thickness = 0.0;      // top slab (held); default source_thickness
+  double bin_width = 0.0;            // z-bin width h; default the mean diameter
+  double max_overlap = 0.05;         // of the smaller radius
+  double relax_tolerance = 1e-14;    // E_kin/E_pot that ends the relaxation before the wave
+};
+
 struct CrystalCase {
-  std::string lattice = "fcc";
+  std::string lattice = "fcc";       // "fcc" (the generator of sec. 2.2) | "file" ([packing])
   std::array<int, 3> cells{0, 0, 0};  // particles per layer in x, y; layers in z
   double radius = 0.0;                // m (mean radius a)
   double density = 0.0;               // kg/m^3
@@ -76,6 +95,12 @@ struct CrystalCase {
   int fixed_layers = 2;               // at each z end; the bottom ones are the source
   std::uint64_t seed = 1;             // radii draw
   double relax_tolerance = 1e-7;      // kinetic/potential energy that ends the relaxation
+  // lattice = "file": the keys and the packing as imported (SI, checked). radius is then the
+  // packing's mean radius and overlap its contacts' mean overlap over the mean diameter (what
+  // the law is linearised at), filled by the loader; cells, polydispersity, seed are unused.
+  std::optional<PackingKeys> packing_file;
+  std::shared_ptr<const packing::Packing> imported;
+  bool from_file() const { return lattice == "file"; }
 };
 
 struct Excitation {

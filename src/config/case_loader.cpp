@@ -9,6 +9,7 @@
 #include "config/case.hpp"
 #include "config/contact_law_keys.hpp"
 #include "config/impact_loader.hpp"
+#include "config/packing_loader.hpp"
 #include "config/toml_reader.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -194,7 +195,12 @@ CrystalCase read_crystal(const TomlReader& r, const toml::table& t) {
   r.allow_only(t, "crystal", {"lattice", "cells", "radius", "density", "overlap", "polydispersity", "fixed_layers", "seed",
                               "relax_tolerance"});
   CrystalCase c;
-  c.lattice = r.choice(t, "crystal", "lattice", {"fcc"}, "fcc");
+  c.lattice = r.choice(t, "crystal", "lattice", {"fcc", "file"}, "fcc");
+  if (c.from_file()) {  // the rest is [packing]'s (config/packing_loader.cpp)
+    c.density = *r.number_in(t, "crystal", "density", true, [](double v) { return v > 0; }, "> 0 (kg/m^3)");
+    c.fixed_layers = 0;
+    return c;
+  }
   auto cells = r.integers(t, "crystal", "cells");
   if (cells.size() != 3) r.fail("crystal.cells", "must be [nx, ny, layers] (three integers)", t.get("cells"));
   c.fixed_layers = static_cast<int>(r.integer(t, "crystal", "fixed_layers", false).value_or(2));
@@ -256,8 +262,8 @@ const Material& Case::material(const std::string& n) const {
 Case parse_case(const std::string& toml_text, const std::string& origin) {
   const TomlReader r(origin);
   const toml::table root = parse_toml(toml_text, origin);
-  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "impact", "contact", "excitation", "integrator", "stop",
-                      "output", "analysis"});
+  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "packing", "impact", "contact", "excitation", "integrator",
+                      "stop", "output", "analysis"});
 
   Case c;
   c.path = origin;
@@ -272,14 +278,14 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
     r.fail("impact", "belongs to impact cases (model = \"impact\")", root.get("impact"));
 
   if (c.model == Model::impact) {
-    for (const char* k : {"chain", "crystal", "excitation", "stop", "analysis"}) {
+    for (const char* k : {"chain", "crystal", "packing", "excitation", "stop", "analysis"}) {
       if (root.contains(k)) r.fail(k, "not used by impact cases (model = \"impact\")", root.get(k));
     }
     c.materials = read_impact_materials(r, root);
     c.impact = read_impact(r, root, c.materials);
     c.contact = read_contact(r, impact_contact_table(r, root, c));
   } else if (c.model == Model::chain) {
-    for (const char* k : {"crystal", "contact", "excitation"}) {
+    for (const char* k : {"crystal", "packing", "contact", "excitation"}) {
       if (root.contains(k)) r.fail(k, "belongs to crystal cases; this case has model = \"chain\"", root.get(k));
     }
     c.materials = read_materials(r, root);
@@ -293,13 +299,15 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
                                           (std::string(k) == "materials" ? ": the crystal's material is [crystal] radius and density" : ""),
                                    root.get(k));
     }
-    c.crystal = read_crystal(r, *r.table(root, "", "crystal", true));
+    const toml::table* crystal = r.table(root, "", "crystal", true);
+    c.crystal = read_crystal(r, *crystal);
+    read_packing(r, root, *crystal, *c.crystal, origin);  // lattice = "file": [packing] and its import
     c.contact = read_contact(r, *r.table(root, "", "contact", true));
     check_contact_law(r, root, c);  // what the law needs of the rest of the case
     if (const toml::table* e = r.table(root, "", "excitation", false)) c.excitation = read_excitation(r, *e);
     // The velocity drive frees the innermost bottom fixed layer; the layers below it stay as the
     // wall that holds the prestress (freed, they would be pushed out by it).
-    if (c.excitation.drive == Excitation::Drive::velocity && c.crystal->fixed_layers < 2)
+    if (c.excitation.drive == Excitation::Drive::velocity && !c.crystal->from_file() && c.crystal->fixed_layers < 2)
       r.fail("crystal.fixed_layers", "must be >= 2 with excitation.drive = \"velocity\" (one driven layer in front of a "
              "fixed wall layer; got " + std::to_string(c.crystal->fixed_layers) + ")", root.get("crystal"));
   }

@@ -65,6 +65,10 @@ void add_case_lattice(analysis::CrystalAnalysisOptions& options, const config::C
     options.no_lattice = sine;
     return;
   }
+  if (c.crystal->from_file()) {
+    options.no_lattice = branches ? "a packing from a file has no lattice branches" : sine;
+    return;
+  }
   if (c.crystal->polydispersity > 0.0) {
     options.no_lattice = branches ? "a polydisperse packing has no lattice branches" : sine;
     return;

@@ -7,12 +7,14 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <string>
 
 #include "config/contact_laws.hpp"
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/tangential_spring.hpp"
 #include "core/error.hpp"
+#include "theory/stiffness.hpp"
 
 namespace granwave::crystal {
 
@@ -66,6 +68,48 @@ std::string tangential_history_name(const contact::LawParams& cp) { return confi
 
 namespace {
 std::atomic<long> g_derivations{0};
+
+// lattice = "file": what derive() takes from the FCC's closed forms, from the imported packing's
+// contact network instead (the state before the relaxation, z cut open, every contact the case's
+// law at its own overlap): the stability bound with the largest per-particle coordination and the
+// stiffest contact at its overlap plus the source's; sigma_0 = the Love-Weber sigma_zz,
+// (1/V) sum f_n b_z^2/|b|; V_p and V_s from eq. (10) over the network (theory/stiffness.hpp),
+// affine, V_s without kt as for the FCC.
+void network_numbers(const config::Case& c, Derived& d) {
+  const Packing pk = imported_packing(c);
+  const auto contacts = list_contacts(pk, true);
+  if (contacts.empty()) throw InputError(c.path + ": packing.file: the packing has no contacts (it is not jammed)");
+  std::vector<int> coordination(pk.size(), 0);
+  const double extra = d.delta_max - 2.0 * c.crystal->radius * c.crystal->overlap;  // the source's
+  double kn = 0.0, kt = 0.0, gn = 0.0, gt = 0.0, szz = 0.0;
+  std::vector<theory::ContactGeometry> geometry, frictionless;
+  for (const PackingContact& q : contacts) {
+    ++coordination[q.i];
+    ++coordination[q.j];
+    const ContactAt top = contact_between(c, pk.radius[q.i], pk.radius[q.j], q.overlap + extra);
+    kn = std::max(kn, top.kn);
+    kt = std::max(kt, top.kt);
+    gn = std::max(gn, top.gamma_n);
+    gt = std::max(gt, top.gamma_t);
+    const ContactAt now = contact_between(c, pk.radius[q.i], pk.radius[q.j], q.overlap);
+    const theory::Vec3 b(q.bx, q.by, q.bz);
+    szz += now.f_n * q.bz * q.bz / b.norm();
+    geometry.push_back({b, now.kn, now.kt, 1.0});
+    frictionless.push_back({b, now.kn, 0.0, 1.0});
+  }
+  const double z = *std::max_element(coordination.begin(), coordination.end());
+  const double m_min = *std::min_element(pk.mass.begin(), pk.mass.end());
+  const double omega_max = std::sqrt(2.0 * z * (kn + 3.5 * kt) / m_min);
+  const double zeta = z * (gn + gt) / (2.0 * m_min) / omega_max;
+  d.dt_stable = 2.0 / omega_max * (std::sqrt(1.0 + zeta * zeta) - zeta);
+  const double height = c.crystal->imported->box.length(2);
+  const double volume = pk.box_x * pk.box_y * height;
+  d.sigma_0 = szz / volume;
+  const double rho = std::accumulate(pk.mass.begin(), pk.mass.end(), 0.0) / volume;
+  d.v_p = std::sqrt(theory::stiffness_tensor(geometry, volume, true)(2, 2, 2, 2) / rho);
+  d.v_s = std::sqrt(theory::stiffness_tensor(frictionless, volume, false)(2, 0, 2, 0) / rho);
+  d.max_coordination = static_cast<int>(z);
+}
 }
 
 long derivations() { return g_derivations.load(); }
@@ -117,6 +161,12 @@ Derived derive(const config::Case& c) {
   // 3.5 = 1 + m a^2/I couples the tangential spring to rotation. With dashpots the explicit
   // limit shrinks to (sqrt(1 + zeta^2) - zeta) 2/omega_max, zeta = eta_max/omega_max.
   // Hertz: the stiffnesses and damping at the largest expected overlap delta_max.
+  if (k.from_file()) {  // no lattice: the packing's own network
+    network_numbers(c, d);
+    d.steps = std::llround(c.integrator.t_end / d.dt);
+    d.sample_every = c.output.interval > 0.0 ? std::max(1LL, std::llround(c.output.interval / d.dt)) : 1;
+    return d;
+  }
   const double a_min = a - k.polydispersity * delta;
   const double m_min = k.density * 4.0 / 3.0 * std::numbers::pi * a_min * a_min * a_min;
   const double z = 12.0;

@@ -18,8 +18,11 @@ struct Derived {
   double restitution = 1.0;             // exp(-eta_0 t_c) ("allow")
   double dt = 0.0;                      // resolved time step
   double dt_stable = 0.0;               // velocity-Verlet limit (conservative estimate)
-  double sigma_0 = 0.0;                 // isotropic prestress 2 sqrt(2) k delta / d'^2 (monodisperse)
-  double v_p = 0.0, v_s = 0.0;          // long-wave speeds along z from eq. (10) with branch d'
+  double sigma_0 = 0.0;                 // isotropic prestress 2 sqrt(2) k delta / d'^2 (monodisperse);
+                                        // "file": the initial network's Love-Weber sigma_zz
+  double v_p = 0.0, v_s = 0.0;          // long-wave speeds along z from eq. (10) with branch d';
+                                        // "file": eq. (10) affine over the packing's contact network
+  int max_coordination = 12;            // the stability bound's z (FCC: 12; "file": the network's largest)
   // The contact as eq. (10) and the guards see it: linear law, the keys kn, kt, gamma_n and
   // f0 = k delta; hertz_mindlin, linearised at the static overlap delta_0 = overlap d:
   // k_n = 2 E* sqrt(R* delta_0), k_t = 8 G* sqrt(R* delta_0) (0 with tangential = "none"),

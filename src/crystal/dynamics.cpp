@@ -83,8 +83,14 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   packing_.relaxed = packing.relaxed;
   packing_.relax_steps = packing.relax_steps;
   packing_.relax_ratio = packing.relax_ratio;
+  packing_.generator = packing.generator;
+  packing_.bin_origin = packing.bin_origin;
+  packing_.bin_width = packing.bin_width;
+  packing_.source_thickness = packing.source_thickness;
+  packing_.relax_unbalanced = packing.relax_unbalanced;
   packing_.layer = part(packing.layer);
   packing_.fixed = part(packing.fixed);
+  if (!packing.role.empty()) packing_.role = part(packing.role);
   x = x0 = part(packing.x);
   y = y0 = part(packing.y);
   z = z0 = part(packing.z);

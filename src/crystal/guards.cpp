@@ -45,11 +45,17 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits, std::opti
   const Derived d = derive(c);  // refuses bad contact parameters (overdamped, negative, ...)
   if (derived) *derived = d;
   ResourceEstimate& e = a.estimate;
-  const double layers = k.cells[2];
-  const double n = static_cast<double>(k.cells[0]) * k.cells[1] * layers;
+  // The particles and the layers (z-bins) the run stores: the FCC's cells, or the file's packing.
+  double layers = k.cells[2];
+  double n = static_cast<double>(k.cells[0]) * k.cells[1] * layers;
+  if (k.from_file()) {
+    n = static_cast<double>(k.imported->particles.size());
+    layers = std::max(1.0, std::ceil(k.imported->box.length(2) / k.packing_file->bin_width - 1e-9));
+  }
   e.size = fmt("%.6g particles", n);
   e.steps_keys = "integrator.t_end or integrator.dt";
-  e.memory_keys = "crystal.cells, integrator.t_end or output.interval";
+  e.memory_keys = k.from_file() ? "packing.file, packing.bin_width, integrator.t_end or output.interval"
+                                : "crystal.cells, integrator.t_end or output.interval";
   const std::string keys_dt = c.integrator.dt ? "integrator.dt" : "integrator.dt_over_tc";
 
   const std::string material = "crystal.radius, crystal.density";
@@ -66,7 +72,8 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits, std::opti
 
   if (d.dt > d.dt_stable)
     a.refusals.push_back("integrator.dt = " + fmt("%.4g", d.dt) + " s is above the stability limit " + fmt("%.4g", d.dt_stable) +
-                         " s of velocity Verlet for this crystal (2/omega_max, omega_max^2 <= 2 z (k + 3.5 k_t)/m_min, z = 12" +
+                         " s of velocity Verlet for this crystal (2/omega_max, omega_max^2 <= 2 z (k + 3.5 k_t)/m_min, z = " +
+                         std::to_string(d.max_coordination) +
                          law.stability_note(d.delta_max) +
                          "); change " + keys_dt);
   {  // The rolling and torsion springs turn the spheres: per contact an angular spring (k_r + k_o) a'^2
@@ -94,7 +101,9 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits, std::opti
 
   // The largest overlap: the initial one plus what the source puts into one contact.
   const double diameter = 2.0 * k.radius, delta0 = k.overlap * diameter;
-  const double a_min = k.radius - k.polydispersity * delta0;
+  double a_min = k.radius - k.polydispersity * delta0;
+  if (k.from_file())
+    for (const auto& q : k.imported->particles) a_min = std::min(a_min, q.radius);
   const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
   const double added = velocity ? std::abs(c.excitation.amplitude) * std::sqrt(d.mass / d.kn)
                                 : std::abs(c.excitation.amplitude) * diameter;

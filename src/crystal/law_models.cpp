@@ -25,7 +25,11 @@ RelaxResult relax(Packing& packing, const contact::LawParams& contact, double de
                   long max_steps) {
   const double a_max = *std::max_element(packing.radius.begin(), packing.radius.end());
   const double m_min = *std::min_element(packing.mass.begin(), packing.mass.end());
-  const double overlap_max = 2.0 * a_max - packing.d_prime;
+  double overlap_max = 2.0 * a_max - packing.d_prime;
+  if (packing.from_file()) {  // no lattice: the largest overlap there is
+    overlap_max = 0.0;
+    for (const PackingContact& c : list_contacts(packing, false)) overlap_max = std::max(overlap_max, c.overlap);
+  }
   const contact::Relaxation r = contact::visit_law(contact.law(), [&]<class D>(D) {
     return D::relaxation(contact.get<typename D::Params>(), density, a_max, m_min, overlap_max);
   });

@@ -123,7 +123,9 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
     zx[L] /= volume;
   }
   if (particle_stress) {
-    const double share = volume / (static_cast<double>(pk.nx) * pk.ny);
+    // A particle's share of its layer's volume (a file's bins: the mean share over the packing).
+    const double share = pk.from_file() ? volume * pk.layers / static_cast<double>(dyn.size())
+                                        : volume / (static_cast<double>(pk.nx) * pk.ny);
     for (double& s : *particle_stress) s /= share;
   }
 }

@@ -1,6 +1,8 @@
-// The packing of seed 002 sec. 2.2 (crystal/packing.hpp): the FCC crystal, polydispersity, the system file.
+// The packing of a crystal case (crystal/packing.hpp): the generators' dispatch, the FCC crystal of
+// seed 002 sec. 2.2 with its polydispersity, the system file.
 #include "crystal/packing.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -44,6 +46,8 @@ Packing lattice_packing(const config::Case& c) {
   const double half_width = k.polydispersity * p.delta;
   if (half_width >= k.radius) throw InputError(c.path + ": crystal.polydispersity makes radii <= 0");
   const std::size_t n = static_cast<std::size_t>(nx) * ny * layers;
+  p.bin_origin = k.radius - 0.5 * p.l0;  // the bins are the layers
+  p.bin_width = p.l0;
   p.x.reserve(n);
   for (int L = 0; L < layers; ++L) {
     const double shift = (L % 2) ? 0.5 * p.d_prime : 0.0;  // every second layer in the holes
@@ -64,12 +68,42 @@ Packing lattice_packing(const config::Case& c) {
         p.inertia.push_back(0.4 * m * a * a);
         p.layer.push_back(L);
         p.fixed.push_back(L < k.fixed_layers || L >= layers - k.fixed_layers);
+        p.role.push_back(L < k.fixed_layers ? role_source : L >= layers - k.fixed_layers ? role_fixed_top : role_free);
       }
   }
   return p;
 }
 
+std::uint8_t Packing::role_of(std::size_t p) const {
+  if (!role.empty()) return role[p];
+  return !fixed[p] ? role_free : layer[p] < fixed_layers ? role_source : role_fixed_top;  // a packing made by hand
+}
+
+bool Packing::driven(std::size_t p, bool velocity_drive) const {
+  if (role_of(p) != role_source) return false;
+  if (!velocity_drive) return true;
+  return from_file() ? z[p] >= bin_origin + 0.5 * source_thickness : layer[p] == fixed_layers - 1;
+}
+
+int Packing::source_bins() const {
+  if (!from_file()) return fixed_layers;
+  int first_other = layers;
+  for (std::size_t p = 0; p < size(); ++p)
+    if (role[p] != role_source) first_other = std::min(first_other, layer[p]);
+  return first_other;
+}
+
+// The generators, one per crystal.lattice (ARCHITECTURE.md: "add a packing generator"); the next
+// one (a prepared random packing) is a branch of these two and a file of its own.
+Packing initial_packing(const config::Case& c) {
+  if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
+  if (c.crystal->from_file()) return imported_packing(c);
+  return lattice_packing(c);
+}
+
 Packing make_packing(const config::Case& c) {
+  if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
+  if (c.crystal->from_file()) return relaxed_imported_packing(c);
   Packing p = lattice_packing(c);
   if (c.crystal->polydispersity > 0.0) {
     const RelaxResult r = relax(p, c.contact, c.crystal->density, c.crystal->relax_tolerance);
@@ -116,6 +150,9 @@ void write_system(io::H5Writer& w, const Packing& p, const std::string& case_nam
   w.write(pre + "inertia", p.inertia);
   w.write(pre + "fixed", std::vector<std::int64_t>(p.fixed.begin(), p.fixed.end()));
   w.write(pre + "layer", std::vector<std::int64_t>(p.layer.begin(), p.layer.end()));
+  std::vector<std::int64_t> role(n);
+  for (std::size_t q = 0; q < n; ++q) role[q] = p.role_of(q);
+  w.write(pre + "role", role);
   std::vector<double> pos(3 * n), vel(3 * n, 0.0);
   for (std::size_t q = 0; q < n; ++q) {
     pos[3 * q] = p.x[q];
@@ -137,6 +174,15 @@ void write_system(io::H5Writer& w, const Packing& p, const std::string& case_nam
   w.attr(g, "relaxed", std::int64_t{p.relaxed});
   w.attr(g, "relax_steps", std::int64_t{p.relax_steps});
   w.attr(g, "relax_ratio", p.relax_ratio);
+  w.attr(g, "relax_unbalanced", p.relax_unbalanced);
+  w.attr(g, "generator", p.generator);
+  w.attr(g, "bin_origin", p.bin_origin);
+  w.attr(g, "bin_width", p.bin_width);
+  if (p.from_file()) {
+    w.attr(g, "source_thickness", p.source_thickness);
+    w.attr(g, "source_file", p.source_file);
+    w.attr(g, "source_format", p.source_format);
+  }
 }
 
 Packing read_system(const std::string& path) {
@@ -183,21 +229,47 @@ Packing read_system(const std::string& path) {
   p.d_prime = number("d_prime", true);
   p.l0 = number("l0", true);
   p.delta = number("delta", false);
-  p.nx = static_cast<int>(count("cells_x", 1, static_cast<double>(n)));
-  p.ny = static_cast<int>(count("cells_y", 1, static_cast<double>(n)));
-  p.layers = static_cast<int>(count("layers", 1, static_cast<double>(n)));
+  p.generator = r.has_attr(g, "generator") ? r.attr_string(g, "generator") : "fcc";
+  if (p.generator != "fcc" && p.generator != "file") refuse("attribute 'generator' must be \"fcc\" or \"file\"");
+  const bool file = p.from_file();
+  p.nx = static_cast<int>(count("cells_x", file ? 0 : 1, static_cast<double>(n)));
+  p.ny = static_cast<int>(count("cells_y", file ? 0 : 1, static_cast<double>(n)));
+  p.layers = static_cast<int>(count("layers", 1, static_cast<double>(file ? 1e7 : n)));
   p.fixed_layers = static_cast<int>(count("fixed_layers", 0, p.layers));
   p.relaxed = count("relaxed", 0, 1) != 0.0;
   p.relax_steps = static_cast<long>(count("relax_steps", 0, 1e15));
   p.relax_ratio = number("relax_ratio", false);
-  if (static_cast<double>(n) != static_cast<double>(p.nx) * p.ny * p.layers)
+  if (r.has_attr(g, "relax_unbalanced")) p.relax_unbalanced = number("relax_unbalanced", false);
+  // Older files have no bins: the FCC's are its layers.
+  p.bin_width = r.has_attr(g, "bin_width") ? number("bin_width", true) : p.l0;
+  p.bin_origin = r.has_attr(g, "bin_origin") ? r.attr_double(g, "bin_origin") : p.z.empty() ? 0.0 : p.z[0] - 0.5 * p.l0;
+  if (!std::isfinite(p.bin_origin)) refuse("attribute 'bin_origin' must be a finite number");
+  if (file) {
+    p.source_thickness = number("source_thickness", true);
+    p.source_file = r.has_attr(g, "source_file") ? r.attr_string(g, "source_file") : "";
+    p.source_format = r.has_attr(g, "source_format") ? r.attr_string(g, "source_format") : "";
+  } else if (static_cast<double>(n) != static_cast<double>(p.nx) * p.ny * p.layers) {
     refuse("holds " + std::to_string(n) + " particles, not cells_x * cells_y * layers");
-  const double zmax = 2.0 * (p.layers + 2) * p.l0 + 10.0 * p.d;  // far beyond any packing: bounds the grid
+  }
+  if (r.has(pre + "role")) {
+    const auto role = r.read_int(pre + "role");
+    if (role.size() != n) refuse("role has " + std::to_string(role.size()) + " entries, not one per particle");
+    for (std::size_t q = 0; q < n; ++q) {
+      if (role[q] < 0 || role[q] > 2) refuse("role of particle " + std::to_string(q) + " is not 0, 1 or 2");
+      if ((role[q] != 0) != p.fixed[q]) refuse("role of particle " + std::to_string(q) + " disagrees with fixed");
+      p.role.push_back(static_cast<std::uint8_t>(role[q]));
+    }
+  } else {  // a file without roles: layer < fixed_layers is the source, the rest of fixed the top
+    if (file) refuse("a \"file\" packing needs the dataset role");
+    for (std::size_t q = 0; q < n; ++q)
+      p.role.push_back(!p.fixed[q] ? role_free : p.layer[q] < p.fixed_layers ? role_source : role_fixed_top);
+  }
+  const double zmax = std::abs(p.bin_origin) + 2.0 * (p.layers + 2) * p.l0 + 10.0 * p.d;  // far beyond any packing: bounds the grid
   for (std::size_t q = 0; q < n; ++q) {
     if (p.layer[q] < 0 || p.layer[q] >= p.layers) refuse("layer of particle " + std::to_string(q) + " is not a layer index");
     if (!(std::isfinite(p.mass[q]) && p.mass[q] > 0 && std::isfinite(p.inertia[q]) && p.inertia[q] > 0 &&
-          p.radius[q] > 0 && p.radius[q] <= p.d))
-      refuse("particle " + std::to_string(q) + " has a mass, inertia or radius out of range (radius in (0, d])");
+          p.radius[q] > 0 && p.radius[q] <= (file ? 2.0 : 1.0) * p.d))
+      refuse("particle " + std::to_string(q) + " has a mass, inertia or radius out of range (radius in (0, d]; \"file\": (0, 2 d])");
     if (!(std::abs(p.x[q]) <= 2 * p.box_x && std::abs(p.y[q]) <= 2 * p.box_y && std::abs(p.z[q]) <= zmax))
       refuse("particle " + std::to_string(q) + " lies outside the box (or its position is not finite)");
   }

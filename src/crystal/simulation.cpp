@@ -60,7 +60,14 @@ namespace {
 // Positions along z: the mean z of each layer's particles in the (relaxed) packing, from that
 // of the innermost driven layer. A relaxed polydisperse packing is not at the lattice's
 // (L - F + 1) l0 (crystal_poly2: 1.3e-5 m short at the top, a 2e-5 error in front speeds).
+// A file's bins: their centres bin_origin + (L + 1/2) h, from that of the source's innermost bin.
 std::vector<double> layer_positions(const Packing& packing) {
+  if (packing.from_file()) {
+    std::vector<double> layer_z;
+    const int driven = packing.source_bins() - 1;
+    for (int L = 0; L < packing.layers; ++L) layer_z.push_back((L - driven) * packing.bin_width);
+    return layer_z;
+  }
   std::vector<double> z_sum(packing.layers, 0.0), layer_z;
   std::vector<int> count(packing.layers, 0);
   for (std::size_t p = 0; p < packing.size(); ++p) {
@@ -74,18 +81,17 @@ std::vector<double> layer_positions(const Packing& packing) {
 }
 
 // Excitation at t = 0 (secs. 2.2 B, 3.1): a displacement step moves all bottom fixed layers
-// together; the velocity drive ("an initial velocity as a perturbation of the layer, without
-// controlling its displacement further on", sec. 3.1) frees the innermost one only, the layers
-// below it staying fixed as the wall that holds the prestress. Returns the energy the run may
+// (a file's source slab) together; the velocity drive ("an initial velocity as a perturbation of the layer, without
+// controlling its displacement further on", sec. 3.1) frees the innermost one only (a file's
+// source slab's upper half), the layers below it staying fixed as the wall that holds the prestress. Returns the energy the run may
 // hold: the stored energy before, plus the work put in.
 // (By global index; `held`: the local indices of those this rank holds, owned or halo: every
 // rank moves its copies the same way.)
 double excite(const config::Case& c, const Packing& packing, Dynamics& dyn) {
-  const int first_source_layer =
-      c.excitation.drive == config::Excitation::Drive::velocity ? packing.fixed_layers - 1 : 0;
+  const bool velocity = c.excitation.drive == config::Excitation::Drive::velocity;
   std::vector<std::size_t> source, held;
   for (std::size_t p = 0; p < packing.size(); ++p)
-    if (packing.fixed[p] && packing.layer[p] < packing.fixed_layers && packing.layer[p] >= first_source_layer) {
+    if (packing.driven(p, velocity)) {
       source.push_back(p);
       if (p >= dyn.offset() && p - dyn.offset() < dyn.size()) held.push_back(p - dyn.offset());
     }

@@ -19,7 +19,7 @@ analysis::CrystalTrace analysis_trace(const config::Case& c, const Packing& pack
   t.nt = tr.samples();
   t.nlayers = tr.nlayers;
   t.l0 = packing.l0;
-  t.fixed_layers = packing.fixed_layers;
+  t.fixed_layers = packing.source_bins();  // FCC: fixed_layers; a file: the bins of its source slab
   t.mode = c.excitation.mode == config::Excitation::Mode::S ? 'S' : 'P';
   t.mode_source = "case_toml";
   // What the analysis measures (analysis/trace_file.hpp), by the table's names.

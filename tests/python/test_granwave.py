@@ -346,3 +346,33 @@ def test_units_are_the_table_of_observables():
                                            check=True).stdout)
     assert "layer_spin_y" not in g._UNITS
     assert g._units(test_table)["layer_spin_y"] == "rad/s"
+
+
+def test_a_case_with_a_packing_file_runs_as_the_program(tmp_path):
+    """granwave.Case with [packing] (crystal.lattice = "file", issue 38): the packing LAMMPS wrote is
+    imported, relaxed and run as `granwave run` does, bit for bit."""
+    case = g.data_path("cases/packing_lammps.toml")
+    ref = tmp_path / "program.h5"
+    subprocess.run([PROGRAM, "run", case, "-o", str(ref), "--quiet"], check=True, capture_output=True)
+    c = g.Case.load(case)
+    assert c.to_dict()["crystal"]["lattice"] == "file"
+    g.run(c, out=tmp_path / "module.h5")
+    want, want_attrs = datasets(ref)
+    got, _ = datasets(tmp_path / "module.h5")
+    assert sorted(got) == sorted(want)
+    for k in want:
+        assert same_bits(got[k], want[k]), k
+    with h5py.File(tmp_path / "module.h5", "r") as f:
+        s = f["system"]
+        assert s.attrs["generator"] in (b"file", "file")
+        assert s["position"].shape == (3000, 3)
+        assert set(np.unique(s["role"][()])) == {0, 1, 2}
+        assert np.all(np.diff(s["layer"][()]) >= 0)  # stored bin by bin
+
+
+def test_a_bad_packing_key_names_it():
+    c = g.Case.load(g.data_path("cases/packing_lammps.toml"))
+    with pytest.raises(ValueError, match="packing.source_thickness"):
+        c.replace({"packing.source_thickness": 1e-4})
+    with pytest.raises(ValueError, match="crystal.cells"):
+        c.replace({"crystal.cells": [2, 2, 10]})
