@@ -154,6 +154,8 @@ def twins(case: dict, attrs: dict) -> list:
     return [tuple(e) for e in out]
 
 
-def derive(case_text: str, changes: dict) -> str:
-    """The case text with [contact] KEY = value for each convention."""
-    return M.derive_case(case_text, {("contact", k): v for k, v in changes.items()})
+def derive(case_text: str, changes: dict, case_path: str | None = None) -> str:
+    """The case text with [contact] KEY = value for each convention; with case_path, a text that will be
+    written to another directory (its packing file made absolute: sweepmath.moved_case)."""
+    ch = {("contact", k): v for k, v in changes.items()}
+    return M.moved_case(case_text, ch, case_path) if case_path else M.derive_case(case_text, ch)

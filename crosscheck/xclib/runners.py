@@ -281,7 +281,7 @@ def run_codes(case_path, system_path, casedir, codes, timeout, granwave, resume=
         if not (resume and os.path.exists(twin_case)):
             with open(twin_case, "w") as f:
                 f.write("# %s: the case with the conventions %s record (crosscheck convention twin)\n"
-                        % (os.path.basename(case_path), ", ".join(members)) + CV.derive(text, changes))
+                        % (os.path.basename(case_path), ", ".join(members)) + CV.derive(text, changes, case_path))
         if log:
             log("running %s (granwave with %s) ..." % (name, ", ".join("%s = %s" % kv for kv in changes.items())))
         r = run_code(name, twin_case, system_path, os.path.join(twin_dir, "run"), timeout, granwave, resume)

@@ -69,7 +69,7 @@ def make_case(template_path: str, name: str, changes: dict, out_dir: str) -> str
     path = os.path.join(out_dir, name + ".toml")
     with open(path, "w") as f:
         f.write("# derived by crosscheck sweep from %s\n" % os.path.relpath(template_path, RN.REPO)
-                + M.derive_case(text, ch))
+                + M.moved_case(text, ch, template_path))
     return path
 
 

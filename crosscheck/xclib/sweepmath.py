@@ -2,6 +2,8 @@
 
 - `derive_case`: a case text with some `key = value` lines replaced (or added) in their [section];
   comments and every other line are kept, so a derived case is its template plus the swept keys.
+- `moved_case`: the same, for a case written to another directory: a relative `[packing] file` made
+  absolute against the original case's directory (where the case loader resolves it).
 - `peaks_at`: first-peak amplitudes at wanted z/l0 positions from the ruler's per-layer table.
 - `pairwise`: per pair of codes, relative differences of one number (the same `rel_diff` as the
   harness: |a - b| / max(|a|, |b|)).
@@ -11,6 +13,7 @@
 from __future__ import annotations
 
 import math
+import os
 import re
 
 from .compare import rel_diff
@@ -84,6 +87,29 @@ def layer_table(raw: dict) -> list[dict]:
         out.append(dict(layer=int(k), z=float(col("z_over_l0")[i]), arrived=bool(col("arrived")[i]),
                         peak=col("peak_value")[i], peak_time=col("peak_time")[i]))
     return out
+
+
+def moved_case(text: str, changes: dict, case_path: str) -> str:
+    """derive_case for a case text that will live in another directory than case_path: the packing file
+    (a path relative to the case file, data/SCHEMA.md §1) is made absolute so the moved case still finds it."""
+    m = re.search(r'^\s*file\s*=\s*"([^"]+)"', _section_text(text, "packing"), re.M)
+    changes = dict(changes)
+    if m and not os.path.isabs(m.group(1)):
+        changes[("packing", "file")] = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(case_path)), m.group(1)))
+    return derive_case(text, changes)
+
+
+def _section_text(text: str, section: str) -> str:
+    """The lines of [section] (without its header), or "" if the text has none."""
+    out, inside = [], False
+    for ln in text.split("\n"):
+        h = re.match(r"^\s*\[([^\[\]]+)\]\s*(#.*)?$", ln)
+        if h:
+            inside = h.group(1).strip() == section
+            continue
+        if inside:
+            out.append(ln)
+    return "\n".join(out)
 
 
 def peaks_at(rows: list[dict], positions, max_dz: float = 0.5) -> dict:

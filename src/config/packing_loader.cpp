@@ -120,8 +120,13 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
   p.relax_tolerance = r.number_in(*t, "packing", "relax_tolerance", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)")
                           .value_or(1e-14);
 
-  packing::Packing pk = import(p);
-  if (pk.particles.empty()) throw InputError(p.file + ": no particles");
+  packing::Packing pk;
+  try {  // the importer names the packing file, its line and particle; the case that named the file leads
+    pk = import(p);
+  } catch (const InputError& e) {
+    throw InputError(origin + ": packing.file: " + e.what());
+  }
+  if (pk.particles.empty()) throw InputError(origin + ": packing.file: " + p.file + ": no particles");
   apply_density(pk, p, k.density);
   double r_sum = 0.0, r_max = 0.0;
   for (const packing::Particle& q : pk.particles) {

@@ -125,6 +125,13 @@ def test_twins_run_the_conventions_a_code_recorded():
     import tomllib
     d = tomllib.loads(CV.derive(text, dict(lever_arm="radius", normal_tension="allow")))
     assert d["contact"] == {"kn": 1e5, "lever_arm": "radius", "normal_tension": "allow"}
+    # a twin lives in its own directory: a relative packing file is made absolute against the case's
+    # directory (the loader's rule), an absolute one is kept
+    text_p = text.replace("[contact]", '[packing]\nfile = "../packings/p.data"\nformat = "xyzr"\n\n[contact]')
+    d = tomllib.loads(CV.derive(text_p, dict(lever_arm="radius"), "/repo/data/cases/c.toml"))
+    assert d["packing"]["file"] == "/repo/data/packings/p.data" and d["contact"]["lever_arm"] == "radius"
+    d = tomllib.loads(CV.derive(text_p.replace("../packings/p.data", "/abs/p.data"), {}, "/repo/data/cases/c.toml"))
+    assert d["packing"]["file"] == "/abs/p.data"
 
 
 def test_xclib_names_only_modules_that_exist_and_imports_without_a_cycle():
