@@ -190,14 +190,17 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   a.measure_field = S ? "layer_stress_zx" : "layer_stress_zz";
   if (opt.pulse_field == "stress" && mf->empty())
     throw InputError("analyze: --pulse-field stress: the trace has no " + a.measure_field);
-  // a trace without stresses (auto), or on request: the layer velocity is the next best pulse
-  if (opt.pulse_field == "velocity" || mf->empty()) {
+  // a trace without stresses (auto), or on request: the layer velocity is the next best pulse. A
+  // disordered packing smooths a step's stress front into a ramp without a first peak; the bins' mean
+  // velocity keeps the pulse the step drives (auto takes it there).
+  if (opt.pulse_field == "velocity" || mf->empty() || (opt.pulse_field == "auto" && tr.packing_bins)) {
     mf = S ? &tr.velocity_x : &tr.velocity_z;
     a.measure_field = S ? "layer_velocity_x" : "layer_velocity_z";
   }
   if (mf->empty()) throw InputError("analyze: the trace has no " + a.measure_field);
 
-  const int last_index = static_cast<int>(nl) - 1 - tr.fixed_layers;
+  const bool by_role = tr.packing_bins && tr.last_free_bin >= 0;
+  const int last_index = by_role ? tr.last_free_bin : static_cast<int>(nl) - 1 - tr.fixed_layers;
   a.last_free = static_cast<int>(std::lround(tr.layer_z[last_index] / tr.l0));
   auto column = [&](const std::vector<double>& f, std::size_t p) {
     std::vector<double> y(nt);
@@ -205,9 +208,13 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
     return y;
   };
 
-  // Default fit range (sec. 3.3): z/l0 = 10 .. min(150, last - 20).
-  a.requested_lo = opt.lo >= 0 ? opt.lo : 10;
-  a.requested_hi = opt.hi >= 0 ? opt.hi : std::min(150, a.last_free - 20);
+  // Default fit range (sec. 3.3): z/l0 = 10 .. min(150, last - 20). A packing's few bins: its free bins, those
+  // the crosscheck judges (a packing without roles: from the first bin above the source to two short of the last).
+  const int first_free = by_role ? static_cast<int>(std::lround(tr.layer_z[tr.first_free_bin] / tr.l0)) : 1;
+  a.requested_lo = opt.lo >= 0 ? opt.lo : tr.packing_bins ? first_free : 10;
+  a.requested_hi = opt.hi >= 0 ? opt.hi
+                   : tr.packing_bins ? (by_role ? a.last_free : std::max(2, a.last_free - 2))
+                                     : std::min(150, a.last_free - 20);
   if (a.requested_hi - a.requested_lo < 2)
     throw InputError("analyze: the fit range z/l0 = " + std::to_string(a.requested_lo) + ".." +
                      std::to_string(a.requested_hi) + " has fewer than 3 layers (last free layer: " +

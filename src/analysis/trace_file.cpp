@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "config/case.hpp"
@@ -65,6 +66,27 @@ double max_abs_change(const std::vector<double>& f, std::size_t nt, std::size_t 
   return m;
 }
 
+// A packing's free bins: after the last bin holding a source particle (role 1), before the first holding
+// one held at the top (role 2) (data/SCHEMA.md §2: /system/role, /system/layer, one per particle).
+std::pair<int, int> free_bins(const io::H5Reader& r, const std::string& path, std::size_t nlayers) {
+  const auto role = r.read_int("/system/role"), layer = r.read_int("/system/layer");
+  if (role.size() != layer.size())
+    throw InputError(path + ": /system/role has " + std::to_string(role.size()) + " entries and /system/layer " +
+                     std::to_string(layer.size()) + " (allowed: one each per particle)");
+  std::int64_t last_source = -1, first_top = static_cast<std::int64_t>(nlayers);
+  for (std::size_t q = 0; q < role.size(); ++q) {
+    if (role[q] < 0 || role[q] > 2 || layer[q] < 0 || layer[q] >= static_cast<std::int64_t>(nlayers))
+      throw InputError(path + ": /system/role or /system/layer of particle " + std::to_string(q) +
+                       " is out of range (allowed: role 0, 1 or 2; layer 0 .. " + std::to_string(nlayers - 1) + ")");
+    if (role[q] == 1) last_source = std::max(last_source, layer[q]);
+    if (role[q] == 2) first_top = std::min(first_top, layer[q]);
+  }
+  if (first_top - last_source < 4)
+    throw InputError(path + ": the packing's free bins (/system/role, /system/layer) are " +
+                     std::to_string(first_top - last_source - 1) + " between the source and the top slab (allowed: >= 3)");
+  return {static_cast<int>(last_source + 1), static_cast<int>(first_top - 1)};
+}
+
 }  // namespace
 
 std::vector<double>& CrystalTrace::series(const std::string& name) {
@@ -123,7 +145,8 @@ TraceFile read_trace(const io::H5Reader& r, const std::vector<crystal::Observabl
       throw InputError(path + ": the layer spacing l0 = " + std::to_string(c.l0) +
                        " (/system attribute l0, or the median spacing of /crystal/layer_z) is not a positive number");
     // A file's packing has slabs, not fixed layers: its source bins are the layers below layer_z = 0.
-    const bool from_file = r.has_attr("/system", "generator") && r.attr_string("/system", "generator") == "file";
+    const bool from_file = r.has_attr("/system", "generator") && r.attr_string("/system", "generator") != "fcc";
+    c.packing_bins = from_file;
     if (r.has_attr("/system", "fixed_layers") && !from_file) {
       const double fl = r.attr_double("/system", "fixed_layers");
       if (!(std::abs(fl) < 1e9))
@@ -134,6 +157,9 @@ TraceFile read_trace(const io::H5Reader& r, const std::vector<crystal::Observabl
       for (double z : c.layer_z) below += z < -0.5 * c.l0;
       c.fixed_layers = below + 1;
     }
+    // A packing's top slab is its own thickness: the bins from the lowest one holding a top particle.
+    if (from_file && r.has("/system/role") && r.has("/system/layer"))
+      std::tie(c.first_free_bin, c.last_free_bin) = free_bins(r, path, c.nlayers);
     // Driven layers at each end; the measured ones, from the innermost driven layer at the source
     // to the last free one (at least 2), must be layers.
     if (c.fixed_layers < 1 || 2 * static_cast<std::size_t>(c.fixed_layers) + 1 > c.nlayers)

@@ -29,7 +29,11 @@ struct CrystalTrace {
   std::vector<double> layer_z;   // [nlayers] m, from the innermost driven layer
   std::size_t nt = 0, nlayers = 0;
   double l0 = 0.0;               // layer spacing (m): /system attr l0, else from layer_z
-  int fixed_layers = 0;          // at each end
+  int fixed_layers = 0;          // at each end (a packing's: the source bins)
+  bool packing_bins = false;     // z-bins of a packing that is not the FCC (/system attribute generator)
+  // A packing's free bins by role (/system/role, /system/layer): after the last bin holding a source particle,
+  // before the first holding a top one (the bins the crosscheck judges); -1 without roles.
+  int first_free_bin = -1, last_free_bin = -1;
   char mode = 'P';               // 'P' or 'S' (from case_toml, else from the field amplitudes)
   std::string mode_source;       // "case_toml" | "inferred"
   // Row-major [nt, nlayers]; empty when the trace lacks the dataset.

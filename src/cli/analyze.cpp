@@ -31,7 +31,8 @@ Crystal traces (seed 002):
   lambda = V T (T: --period), the first oscillation's length in the snapshot at the layer's first
   peak (the wavelength in space), k(z) = (2/l0) arccos(V_k/V(k->0)) (V_k: --wavenumber-speed);
   speeds: least-squares z against arrival time (first peak, half peak, 1 %) with standard errors
-  over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20)), shortened, with a note, where
+  over z/l0 = LO..HI (default 10 .. min(150, last free layer - 20); a packing's z-bins (l0 = the bin
+  width h): its free bins by role, measured on the bins' mean velocity), shortened, with a note, where
   the first peak has not arrived before the end of the trace. A layer has arrived when its first
   peak lies before the last sample and it is on the front: from the first layer that arrived
   outwards, every nearer layer arrived, and its first peak is not earlier than the previous
@@ -167,7 +168,10 @@ int cmd_analyze(const Args& args, std::ostream& out) {
   }
 
   analysis::CrystalAnalysisOptions opt;
-  crystal::add_case_lattice(opt, file.case_toml, pos[0] + ":/case_toml");
+  if (file.crystal.packing_bins)
+    opt.no_lattice = crystal::kNoBranchesOfPacking;  // its case would import the packing file again
+  else
+    crystal::add_case_lattice(opt, file.case_toml, pos[0] + ":/case_toml");
   opt.lo = lo;
   opt.hi = hi;
   if (const auto f = option_value(args, "", "--field"); !f.empty()) opt.field = f;

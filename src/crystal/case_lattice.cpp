@@ -66,7 +66,7 @@ void add_case_lattice(analysis::CrystalAnalysisOptions& options, const config::C
     return;
   }
   if (c.crystal->from_file()) {
-    options.no_lattice = branches ? "a packing from a file has no lattice branches" : sine;
+    options.no_lattice = kNoBranchesOfPacking;
     return;
   }
   if (c.crystal->polydispersity > 0.0) {

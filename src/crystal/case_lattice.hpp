@@ -12,6 +12,9 @@ namespace granwave::crystal {
 
 // Which branches to build: only those a sine cannot stand for (when_not_sine), or always.
 enum class LatticeNeed { when_not_sine, always };
+// Why a packing that is not a lattice (z-bins of a file's or a generator's packing) has no branches: the
+// run and `analyze` of its trace (which cannot import the packing again) say the same.
+inline constexpr const char* kNoBranchesOfPacking = "a packing that is not a lattice has no lattice branches";
 
 // Sets options.lattice from the case's monodisperse packing (lattice_packing, the contact network
 // of the case's law at its static overlap, theory::lattice_dispersion along z); otherwise leaves it

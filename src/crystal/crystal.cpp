@@ -242,15 +242,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   analysis::CrystalAnalysisOptions measure;
   double v_lattice = 0.0;
   add_case_lattice(measure, c, d, LatticeNeed::when_not_sine, &v_lattice);
-  if (packing.from_file()) {
-    // A few bins, not a 300-layer crystal: the fits over the free bins but the last. A disordered
-    // packing smooths a step's stress front into a ramp without a first peak; the bins' mean
-    // velocity keeps the pulse the step drives.
-    const int last_free = packing.layers - 1 - packing.source_bins() - (packing.source_bins() - 1);
-    measure.lo = 1;
-    measure.hi = std::max(2, last_free - 2);
-    measure.pulse_field = "velocity";
-  }
+  // (a packing's bins: the analysis takes its slabs, fit range and pulse field from the trace's roles)
   const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, observables(), measure)
                                                  : analysis::report_file(trace_path, observables(), measure);
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;

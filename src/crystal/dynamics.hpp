@@ -15,10 +15,13 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "config/case.hpp"
+#include "core/error.hpp"
 #include "contact/lever_arm.hpp"
 #include "crystal/layer_sums.hpp"
 #include "crystal/packing.hpp"
@@ -349,11 +352,27 @@ class Dynamics {
 
 // Frictionless relaxation of a packing (FIRE, Bitzek et al. 2006, on the mobile particles; the
 // fixed layers stay): stops when E_kin/E_pot < tolerance has held for the last 50 steps.
-// Velocities are zero afterwards. Returns the number of steps; throws RunError if it does not
-// converge within max_steps.
+// Velocities are zero afterwards. Returns the number of steps; throws NotStanding if the contacts
+// open (the packing is unjammed without friction), RunError if it does not converge within max_steps.
 struct RelaxResult {
   long steps = 0;
   double ratio = 0.0;
+};
+// The relaxation lost the packing: its contact energy fell below kNotStanding of the start (or there was
+// none), so without friction nothing holds it (a loose or friction-prepared packing).
+inline constexpr double kNotStanding = 1e-6;
+struct NotStanding : RunError {
+  NotStanding(double e_start, double e_now, long steps)
+      : RunError("the packing does not stand without friction: frictionless relaxation took its contact energy from " +
+                 energy(e_start) + " to " + energy(e_now) + " in " + std::to_string(steps) + " steps"),
+        e_start(e_start), e_now(e_now), steps(steps) {}
+  static std::string energy(double e) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.3g J", e);
+    return s;
+  }
+  double e_start, e_now;
+  long steps;
 };
 // With the case's law, frictionless and undamped (its description's relaxation: Hertz, the time step
 // from k_n at the largest initial overlap).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <numbers>
+#include <sstream>
 
 #include "core/error.hpp"
 #include "crystal/derive.hpp"
@@ -55,6 +57,12 @@ double unbalanced_force(const config::Case& c, const Packing& p) {
   return count && sum > 0.0 ? worst / (sum / static_cast<double>(count)) : 0.0;
 }
 
+double solid_fraction(const Packing& p, double height) {
+  double v = 0.0;
+  for (double r : p.radius) v += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  return v / (p.box_x * p.box_y * height);
+}
+
 }  // namespace
 
 Packing imported_packing(const config::Case& c) {
@@ -105,7 +113,19 @@ Packing imported_packing(const config::Case& c) {
 
 Packing relaxed_imported_packing(const config::Case& c) {
   Packing p = imported_packing(c);
-  const RelaxResult r = relax(p, c.contact, c.crystal->density, c.crystal->packing_file->relax_tolerance);
+  RelaxResult r;
+  try {
+    r = relax(p, c.contact, c.crystal->density, c.crystal->packing_file->relax_tolerance);
+  } catch (const NotStanding& e) {
+    // An imported packing is relaxed frictionless and carries no tangential history (data/SCHEMA.md §1).
+    const config::PackingKeys& keys = *c.crystal->packing_file;
+    std::ostringstream why;
+    why << c.path << ": packing.file " << keys.file << ": " << e.what() << " (solid fraction " << solid_fraction(p, c.crystal->imported->box.length(2))
+        << "): a loose or friction-prepared packing. granwave relaxes an imported packing under the case's normal law "
+           "without friction and carries no tangential history (allowed: a packing that stands without friction, "
+           "e.g. compressed past frictionless jamming)";
+    throw InputError(why.str());
+  }
   p.relaxed = true;
   p.relax_steps = r.steps;
   p.relax_ratio = r.ratio;

@@ -21,6 +21,10 @@ RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> mod
   const std::size_t n = dyn.size();
   long since_reset = 0, quiet = 0;
   RelaxResult res;
+  // Without friction a packing below jamming has nothing to stand on: its contacts open and the
+  // contact energy falls toward zero (E_kin/E_pot would never settle). Stopped here, named.
+  const double e_pot_start = dyn.potential_energy();
+  if (!(e_pot_start > 0.0)) throw NotStanding(e_pot_start, e_pot_start, 0);
   for (long s = 0; s < max_steps; ++s) {
     // FIRE mixing: power P = F.v over the mobile particles.
     double power = 0.0, v2 = 0.0, f2 = 0.0;
@@ -50,7 +54,9 @@ RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> mod
     }
     dyn.set_dt(dt);
     dyn.step();
-    const double ratio = dyn.kinetic_energy() / dyn.potential_energy();
+    const double e_pot = dyn.potential_energy();
+    if (e_pot < kNotStanding * e_pot_start) throw NotStanding(e_pot_start, e_pot, s + 1);
+    const double ratio = dyn.kinetic_energy() / e_pot;
     quiet = (ratio < tolerance && since_reset > 0) ? quiet + 1 : 0;
     if (quiet >= n_quiet) {
       res.steps = s + 1;

@@ -11,6 +11,7 @@ set(ruler_tmp ${CMAKE_BINARY_DIR}/cli-tests/ruler)
 foreach(spec
     "chain oriented20|data/cases/oriented20.toml|"
     "crystal small|data/cases/crystal_small.toml|"
+    "a packing from LAMMPS (its free bins by role)|data/cases/packing_lammps.toml|"
     "crystal cut at 160 layers and 0.9 ms (the issue's case)|tests/cli/cases/crystal_p_cut160.toml|--cut"
     "crystal cut at 160 layers and 0.6 ms, range shortened|tests/cli/cases/crystal_p_cut160_short.toml|--shortened")
   string(REPLACE "|" ";" parts "${spec}")

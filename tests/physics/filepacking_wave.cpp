@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -96,4 +99,47 @@ TEST_CASE("packing from LAMMPS: the P pulse travels just below eq. (10)'s affine
   // its affine stiffness (measured 0.96 of it; 0.9 is the bound asserted).
   CHECK(v < d.v_p);
   CHECK(v > 0.9 * d.v_p);
+}
+
+namespace {
+// LAMMPS' packing with every centre and the box scaled by `s`: a looser packing of the same spheres.
+std::string loosened_case(double s, const std::string& name) {
+  const config::Case& c = lammps_case();
+  const std::string dir = (std::filesystem::temp_directory_path() / "granwave-test-packings").string();
+  std::filesystem::create_directories(dir);
+  const std::string table = dir + "/" + name + ".xyzr";
+  std::ofstream out(table);
+  out.precision(17);
+  for (const auto& q : c.crystal->imported->particles)
+    out << q.centre.x() * s << ' ' << q.centre.y() * s << ' ' << q.centre.z() * s << ' ' << q.radius << '\n';
+  const double L = c.crystal->imported->box.length(0) * s;
+  std::ostringstream box;
+  box.precision(17);
+  box << "[[0.0, " << L << "], [0.0, " << L << "], [0.0, " << L << "]]";
+  return "[case]\nname = \"" + name + "\"\nmodel = \"crystal\"\n[crystal]\nlattice = \"file\"\ndensity = 2500\n[packing]\nfile = \"" +
+         table + "\"\nformat = \"xyzr\"\nbox = " + box.str() +
+         "\n[contact]\nkn = 1000\n[excitation]\nmode = \"P\"\namplitude = 1e-4\n[integrator]\ndt_over_tc = 0.02\nt_end = 1e-4\n";
+}
+}  // namespace
+
+TEST_CASE("packing from a file: one that does not stand without friction is refused, named", "[physics][packing]") {
+  // LAMMPS' packing (solid fraction 0.653, jammed without friction) spread by 1 %: solid fraction 0.634, below
+  // frictionless jamming. Its few remaining contacts open under a frictionless relaxation (as a loose,
+  // friction-prepared packing's would): refused within a hundred steps, not relaxed for ever. (Spread by
+  // 0.6 %, solid fraction 0.641, it still jams and relaxes.)
+  {
+    const std::string name = "loose_1pc";
+    const auto origin = std::filesystem::temp_directory_path() / "granwave-test-packings" / (name + ".toml");
+    const config::Case c = config::parse_case(loosened_case(1.01, name), origin.string());
+    REQUIRE_THROWS_WITH(make_packing(c), Catch::Matchers::Contains("does not stand without friction") &&
+                                             Catch::Matchers::Contains(name + ".xyzr") &&
+                                             Catch::Matchers::Contains("solid fraction 0.634") &&
+                                             Catch::Matchers::Contains("allowed: a packing that stands without friction"));
+  }
+  // Spread by 3 %, no two spheres touch: refused before a step.
+  const std::string name = "loose_3pc";
+  const auto origin = std::filesystem::temp_directory_path() / "granwave-test-packings" / (name + ".toml");
+  const config::Case c = config::parse_case(loosened_case(1.03, name), origin.string());
+  REQUIRE_THROWS_WITH(make_packing(c), Catch::Matchers::Contains("does not stand without friction") &&
+                                           Catch::Matchers::Contains("in 0 steps"));
 }
