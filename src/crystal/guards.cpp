@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "config/contact_laws.hpp"
@@ -82,16 +83,26 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits, std::opti
     const double spring = p.kr + p.ko, dashpot = p.gamma_r + p.gamma_o;
     if (spring > 0.0 || dashpot > 0.0) {
       const double delta0 = k.overlap * 2.0 * k.radius;
-      const double a_lo = k.radius - k.polydispersity * delta0, a_hi = k.radius + k.polydispersity * delta0;
-      const double inertia = 0.4 * k.density * 4.0 / 3.0 * std::numbers::pi * std::pow(a_lo, 5);
-      const double arm2 = 0.25 * a_hi * a_hi, z = 12.0;
+      const double a_lo = k.radius - k.polydispersity * delta0;
+      double a_hi = k.radius + k.polydispersity * delta0, z = 12.0;
+      double inertia = 0.4 * k.density * 4.0 / 3.0 * std::numbers::pi * std::pow(a_lo, 5);
+      if (k.from_file() && k.imported) {  // the packing's own radii, masses and largest coordination
+        a_hi = 0.0;
+        inertia = std::numeric_limits<double>::infinity();
+        for (const auto& q : k.imported->particles) {
+          a_hi = std::max(a_hi, q.radius);
+          inertia = std::min(inertia, 0.4 * q.mass * q.radius * q.radius);
+        }
+        z = d.max_coordination;
+      }
+      const double arm2 = 0.25 * a_hi * a_hi;
       const double omega = std::sqrt(2.0 * z * spring * arm2 / inertia), eta = z * dashpot * arm2 / (2.0 * inertia);
       const double dt_turn = omega > 0.0 ? 2.0 / omega * (std::sqrt(1.0 + (eta / omega) * (eta / omega)) - eta / omega)
                                          : 1.0 / eta;
       if (d.dt > dt_turn)
         a.refusals.push_back("integrator.dt = " + fmt("%.4g", d.dt) + " s is above the stability limit " +
                              fmt("%.4g", dt_turn) + " s of the rolling and torsion springs (2/omega, omega^2 <= 2 z (k_r + k_o) a'^2/I_min, " +
-                             "a' = a/2, I = 2/5 m a^2, z = 12, with their dashpots); change " + keys_dt +
+                             "a' = a/2, I = 2/5 m a^2, z = " + fmt("%.0f", z) + ", with their dashpots); change " + keys_dt +
                              " or contact.kr, contact.ko");
     }
   }
