@@ -197,7 +197,8 @@ int cmd_theory(const Args& args, std::ostream& out) {
   // sqrt(R* delta_0)); the prestress f0 is each contact's own static force (k delta, or Hertz's).
   const config::ContactLawInfo& law = config::law_of(c.contact);
   const bool hertz = law.hertz_normal;  // Hertz's normal force: its two-body impact (theory/hertz.hpp)
-  const crystal::ContactAt k0 = crystal::contact_at(c, pk.delta);
+  const double delta_0 = crystal::linearisation_overlap(c, pk);
+  const crystal::ContactAt k0 = crystal::contact_at(c, delta_0);
   const theory::ContactNetwork net = crystal::contact_network(c, pk);
 
   theory::SlabSelection slab{pk.fixed_layers, pk.layers - 1 - pk.fixed_layers};
@@ -239,7 +240,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
               {"k_t", quantity(k0.kt, "N/m")},
               {"gamma_n", quantity(k0.gamma_n, "kg/s")},
               {"f0", quantity(k0.f_n, "N")},
-              {"delta_0", quantity(pk.delta, "m")}};
+              {"delta_0", quantity(delta_0, "m")}};
     if (law.linearisation_note) o["linearisation"] = law.linearisation_note;
     if (hertz)
       o["hertz_impact"] = {
@@ -334,7 +335,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
   if (hertz) {
     std::printf("Hertz-Mindlin linearised at delta_0 = %.6g m: k_n = 2 E* sqrt(R* delta_0) = %.6g N/m, k_t = 8 G* sqrt(R* "
                 "delta_0) = %.6g N/m, f0 = %.6g N, gamma_n = %.6g kg/s\n",
-                pk.delta, k0.kn, k0.kt, k0.f_n, k0.gamma_n);
+                delta_0, k0.kn, k0.kt, k0.f_n, k0.gamma_n);
     std::printf("Hertz impact of two free particles at %.4g m/s: t_c = %.6g s, delta_max = %.6g m, peak force %.6g N "
                 "(elastic); with damping_ratio %g: restitution %.6f, t_c = %.6g s (at any velocity: t_c ~ v^(-1/5))\n",
                 impact.velocity, impact.contact_time, impact.max_overlap, impact.peak_force, c.contact.number("damping_ratio").value_or(0.0),

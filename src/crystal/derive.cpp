@@ -22,6 +22,10 @@ ContactAt contact_at(const config::Case& c, double delta) {
   return contact_between(c, c.crystal->radius, c.crystal->radius, delta);
 }
 
+double linearisation_overlap(const config::Case& c, const Packing& pk) {
+  return pk.from_file() ? 2.0 * c.crystal->radius * c.crystal->overlap : pk.delta;
+}
+
 ContactAt contact_between(const config::Case& c, double a_i, double a_j, double delta) {
   return config::law_of(c.contact).at(c.contact, c.crystal->density, a_i, a_j, delta);
 }
@@ -38,7 +42,7 @@ theory::LatticeCellOptions lattice_options(const config::Case& c, double toleran
 
 theory::ContactNetwork contact_network(const config::Case& c, const Packing& pk) {
   const bool own_stiffness = config::law_of(c.contact).stiffness_of_overlap;
-  const ContactAt k0 = contact_at(c, pk.delta);
+  const ContactAt k0 = contact_at(c, linearisation_overlap(c, pk));
   theory::ContactNetwork net;
   net.box_x = pk.box_x;
   net.box_y = pk.box_y;

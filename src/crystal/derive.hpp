@@ -40,6 +40,9 @@ long derivations();
 // The case's contact between two particles of the mean radius at overlap delta: normal force,
 // tangent stiffnesses, normal damping (linear law: kn delta, kn, kt, gamma_n at any delta).
 using ContactAt = contact::LinearisedContact;  // f_n, kn, kt, gamma_n, gamma_t
+// The overlap a packing's law is linearised at: the lattice's delta_0, or for a file's packing (no lattice
+// overlap) the contacts' mean overlap, 2 crystal.radius crystal.overlap, as derive takes it.
+double linearisation_overlap(const config::Case& c, const Packing& pk);
 ContactAt contact_at(const config::Case& c, double delta);
 // The same for a contact of radii a_i, a_j (Hertz: R* = a_i a_j/(a_i + a_j), m* of the two masses).
 ContactAt contact_between(const config::Case& c, double a_i, double a_j, double delta);
