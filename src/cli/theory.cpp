@@ -212,8 +212,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
   if (slab.layer_hi >= pk.layers) throw InputError("--layers: the case has " + std::to_string(pk.layers) + " layers");
   const auto r = theory::crystal_prediction(net, slab);
   const LatticePart L = lattice_part(c, net, slab, nk);
-  // The relaxed moduli of a packing from a file are an issue of their own (issue 38's door).
-  const RelaxedPart relaxed = pk.from_file() ? RelaxedPart{} : relaxed_part(c, pk, net);
+  const RelaxedPart relaxed = relaxed_part(c, pk, net);
   const theory::Vec3 ex = theory::Vec3::UnitX(), ey = theory::Vec3::UnitY(), ez = theory::Vec3::UnitZ();
 
   // Sec. 2.1: the collision of two particles of the mean radius.
@@ -319,7 +318,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
       voigt.push_back(row);
     }
     o["C_voigt_sym"] = {{"unit", "Pa"}, {"order", {"xx", "yy", "zz", "yz", "xz", "xy"}}, {"values", voigt}};
-    if (!pk.from_file()) add_relaxed_json(o, relaxed);
+    add_relaxed_json(o, relaxed);
     out << json_text(o);
     return 0;
   }
@@ -385,10 +384,7 @@ int cmd_theory(const Args& args, std::ostream& out) {
     for (int J = 0; J < 6; ++J) std::printf(" %12.5e", r.C_voigt_sym(I, J));
     std::printf("\n");
   }
-  if (pk.from_file())
-    std::printf("relaxed (non-affine) moduli: not computed for a packing from a file (not yet)\n");
-  else
-    print_relaxed(relaxed);
+  print_relaxed(relaxed);
   return 0;
 }
 

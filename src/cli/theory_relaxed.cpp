@@ -5,10 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 #include "cli/theory_json.hpp"
 #include "config/contact_laws.hpp"
+#include "crystal/relaxed_inputs.hpp"
 #include "crystal/simulation.hpp"
+#include "packing/packing.hpp"
 
 namespace granwave::cli {
 namespace {
@@ -37,6 +40,7 @@ Json moduli_json(const theory::RelaxedModuli& r) {
           {"unstable_modes", r.unstable_modes},
           {"sliding_contacts", r.sliding_contacts},
           {"forcing_on_zero_modes", r.forcing_on_zero_modes},
+          {"unbalanced", r.unbalanced},
           {"residual", r.residual},
           {"A_relaxed", tensor_json(r.relaxed, "A[a][b][g][f]: a,g gradient, b,f displacement")}};
 }
@@ -45,35 +49,48 @@ Json moduli_json(const theory::RelaxedModuli& r) {
 
 RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, const theory::ContactNetwork& net) {
   RelaxedPart R;
-  theory::RelaxedOptions slab;
-  slab.contact = crystal::lattice_options(c, 1e-6);
-  slab.affine_layers = std::max(1, pk.fixed_layers);
-  slab.mu = c.contact.friction().mu_static;
-  slab.unstressed = false;
+  theory::RelaxedOptions slab = crystal::relaxed_slab_options(c, pk);
   R.slab = theory::relaxed_moduli(net, slab);
+  auto contact_of = [&](int i, int j, const theory::Vec3&, double overlap) {
+    const auto k = crystal::contact_between(c, pk.radius[i], pk.radius[j], overlap);
+    theory::NetworkContact nc;
+    nc.normal_force = k.f_n, nc.k = k.kn, nc.kt = k.kt;
+    return nc;
+  };
+  std::vector<theory::Vec3> centres;
+  for (std::size_t p = 0; p < pk.size(); ++p) centres.emplace_back(pk.x[p], pk.y[p], pk.z[p]);
 
-  // The bulk: the network closed across z, the end layers' centres one mean layer spacing apart;
-  // an ABAB stack closes only with an even number of layers.
-  if (pk.layers % 2 != 0) {
+  if (pk.from_file()) {
+    // The file's packing is triply periodic before crystal/file_packing.cpp cuts it: relaxed as such
+    // under the case's normal law (crystal/periodic_bulk.hpp), every particle free.
+    if (c.crystal->imported->box.z_walls()) {
+      R.bulk_note = "omitted: the file's packing lies between z walls (not periodic in z)";
+    } else {
+      const crystal::PeriodicBulk pb = crystal::periodic_bulk(c);
+      theory::RelaxedOptions bulk = slab;
+      bulk.prescribed.clear();
+      bulk.boundary = theory::RelaxedBoundary::bulk;
+      bulk.box_z = pb.box_z;
+      R.bulk = theory::relaxed_moduli(pb.net, bulk);
+      R.bulk_available = true;
+      R.bulk_note = "the file's triply periodic packing (before the cut into slabs) relaxed by FIRE under the case's "
+                    "normal law, every particle free, in " + std::to_string(pb.steps) + " steps";
+    }
+  } else if (pk.layers % 2 != 0) {
+    // The bulk: the network closed across z, the end layers' centres one mean layer spacing apart;
+    // an ABAB stack closes only with an even number of layers.
     R.bulk_note = "omitted: an odd number of layers does not close the ABAB stack across z";
   } else {
-    std::vector<theory::Vec3> centres;
     double zlo = 0.0, zhi = 0.0;
     int nlo = 0, nhi = 0;
     for (std::size_t p = 0; p < pk.size(); ++p) {
-      centres.emplace_back(pk.x[p], pk.y[p], pk.z[p]);
       if (pk.layer[p] == 0) zlo += pk.z[p], ++nlo;
       if (pk.layer[p] == pk.layers - 1) zhi += pk.z[p], ++nhi;
     }
     theory::RelaxedOptions bulk = slab;
     bulk.boundary = theory::RelaxedBoundary::bulk;
     bulk.box_z = (zhi / nhi - zlo / nlo) * pk.layers / (pk.layers - 1);
-    const auto periodic = theory::periodic_in_z(net, centres, bulk.box_z, [&](int i, int j, const theory::Vec3&, double overlap) {
-      const auto k = crystal::contact_between(c, pk.radius[i], pk.radius[j], overlap);
-      theory::NetworkContact nc;
-      nc.normal_force = k.f_n, nc.k = k.kn, nc.kt = k.kt;
-      return nc;
-    });
+    const auto periodic = theory::periodic_in_z(net, centres, bulk.box_z, contact_of);
     R.bulk = theory::relaxed_moduli(periodic, bulk);
     R.bulk_available = true;
     R.bulk_note = pk.relaxed ? "closed across z through the fixed end layers, which were not relaxed against each other"
@@ -84,6 +101,11 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
   const theory::RelaxedModuli& ref = R.bulk_available && R.bulk.contacts_used > 0 ? R.bulk : R.slab;
   R.Z = ref.coordination;
   R.phi = ref.rho / c.crystal->density;  // overlaps neglected
+  if (pk.from_file()) {  // the file's masses may follow its own densities: the spheres' volume instead
+    double v = 0.0;
+    for (double a : pk.radius) v += 4.0 / 3.0 * std::numbers::pi * a * a * a;
+    R.phi = v / ref.volume;
+  }
   R.p = ref.pressure;
   const config::ContactLawInfo& law = config::law_of(c.contact);
   if (!(R.Z > 0.0)) {
@@ -105,7 +127,8 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
 void add_relaxed_json(Json& o, const RelaxedPart& r) {
   Json rel = {{"note", "non-affine: free particles' translations and rotations relaxed under a homogeneous strain; "
                        "A_relaxed = A_affine - Xi^T H^+ Xi / V with the initial-stress term (rho V^2 = eigenvalues of "
-                       "A_abgf m_a m_g); slab: fixed layers moved affinely; rattlers and zero modes removed, never "
+                       "A_abgf m_a m_g); slab: fixed layers (a file's packing: its source and top slabs, every contact weighted 1, V = box_x box_y "
+                       "L_z of the file) moved affinely; rattlers and zero modes removed, never "
                        "divided by; every contact treated as sticking"},
               {"slab", moduli_json(r.slab)}};
   if (r.bulk_available) {
@@ -140,8 +163,9 @@ void print_relaxed(const RelaxedPart& r) {
                 theory::boundary_name(m.boundary), m.V_pz, m.V_sz, m.V_sy, m.V_pz_affine, m.V_sz_affine, m.pressure,
                 m.coordination);
     std::printf("  rattlers %d, zero modes: %d free rotations, %d translations, %d mechanisms; unstable %d; sliding "
-                "contacts %d (treated as sticking)\n",
-                m.rattlers, m.free_rotation_modes, m.translation_modes, m.mechanisms, m.unstable_modes, m.sliding_contacts);
+                "contacts %d (treated as sticking); unbalanced %.2e\n",
+                m.rattlers, m.free_rotation_modes, m.translation_modes, m.mechanisms, m.unstable_modes, m.sliding_contacts,
+                m.unbalanced);
   };
   line(r.slab);
   if (r.bulk_available)

@@ -168,19 +168,32 @@ RelaxedModuli relaxed_moduli(const ContactNetwork& net, const RelaxedOptions& op
   }
   // Prescribed (affine) particles and the weights of the slab's end layers.
   std::vector<char> prescribed(np, 0);
-  if (!bulk) {
+  const bool by_role = !bulk && !opt.prescribed.empty();
+  if (by_role) {
+    if (static_cast<int>(opt.prescribed.size()) != np)
+      throw InputError("relaxed moduli: prescribed needs one flag per particle");
+    if (!(opt.slab_volume > 0.0)) throw InputError("relaxed moduli: a slab prescribed by flags needs slab_volume > 0");
+    prescribed = opt.prescribed;
+    if (std::find(prescribed.begin(), prescribed.end(), 0) == prescribed.end())
+      throw InputError("relaxed moduli: no particle left to relax in the slab");
+  } else if (!bulk) {
     if (lmax - lmin + 1 <= 2 * opt.affine_layers) throw InputError("relaxed moduli: no layer left to relax in the slab");
     for (int p = 0; p < np; ++p) {
       const int l = net.particles[p].layer;
       prescribed[p] = (l < lmin + opt.affine_layers || l > lmax - opt.affine_layers) ? 1 : 0;
     }
   }
-  auto end_layer = [&](int p) { return !bulk && (net.particles[p].layer == lmin || net.particles[p].layer == lmax); };
+  auto end_layer = [&](int p) {
+    return !bulk && !by_role && (net.particles[p].layer == lmin || net.particles[p].layer == lmax);
+  };
 
   // Volume and density.
   double mass = 0.0;
   if (bulk) {
     r.volume = net.box_x * net.box_y * opt.box_z;
+    for (const auto& p : net.particles) mass += p.mass;
+  } else if (by_role) {
+    r.volume = opt.slab_volume;
     for (const auto& p : net.particles) mass += p.mass;
   } else {
     double zlo = 0.0, zhi = 0.0;
@@ -243,6 +256,21 @@ RelaxedModuli relaxed_moduli(const ContactNetwork& net, const RelaxedOptions& op
     if (s.kt != 0.0 || s.k_roll != 0.0 || s.k_twist != 0.0) turns[c.i] = turns[c.j] = 1;
     const double ft = opt.tangential_force.empty() ? 0.0 : std::abs(opt.tangential_force[ci]);
     if (s.kt != 0.0 && ft >= opt.mu * s.f0 * (1.0 - 1e-12)) ++r.sliding_contacts;
+  }
+  {
+    std::vector<Vec3> net_force(np, Vec3::Zero());
+    double f_sum = 0.0;
+    for (const auto& c : net.contacts) {
+      if (rattler[c.i] || rattler[c.j]) continue;
+      const Vec3 n = c.branch.normalized();  // f0 > 0 pushes j along n, i against it
+      net_force[c.i] -= c.normal_force * n;
+      net_force[c.j] += c.normal_force * n;
+      f_sum += std::abs(c.normal_force);
+    }
+    double worst = 0.0;
+    for (int p = 0; p < np; ++p)
+      if (!prescribed[p] && !rattler[p]) worst = std::max(worst, net_force[p].norm());
+    r.unbalanced = f_sum > 0.0 ? worst * r.contacts_used / f_sum : 0.0;
   }
   const int nonrattlers = np - r.rattlers;
   r.coordination = nonrattlers > 0 ? 2.0 * r.contacts_used / nonrattlers : 0.0;

@@ -33,6 +33,8 @@
 //         (theta = 0, as the source and top slabs of the simulation), the rest relaxed;
 //         V = box_x box_y (mean z of the top layer - mean z of the bottom layer), contacts inside the
 //         bottom or top layer weighted 1/2 (so a regular stack's affine A is eq. (10)'s).
+//         Or, for a packing whose slabs are roles rather than layers (a file's, issue 38), the
+//         particles of `prescribed` held affinely, every contact weighted 1, V = `slab_volume`.
 //
 // Rattlers: free particles with fewer than 4 load-bearing contacts (k_n > 0, f0 >= 0) to non-rattlers, or
 // whose contact normals lie in a closed hemisphere (repulsive forces cannot balance), removed
@@ -59,6 +61,10 @@ enum class RelaxedBoundary { bulk, slab };
 struct RelaxedOptions {
   RelaxedBoundary boundary = RelaxedBoundary::slab;
   int affine_layers = 1;      // slab: layers moved affinely at each z end (>= 1)
+  // slab: if not empty, the particles moved affinely (one flag per particle; affine_layers unused),
+  // every contact weighted 1 and V = slab_volume (> 0)
+  std::vector<char> prescribed;
+  double slab_volume = 0.0;
   double box_z = 0.0;         // bulk: the z period (m), > 0
   // Lever arms (arm_shift) and rolling/torsion springs (k_roll, k_twist, kr, ko, rolling_arm_shift)
   // as the lattice dynamics reads them; `tolerance` unused.
@@ -93,6 +99,9 @@ struct RelaxedModuli {
   // |Z^T Xi| / sqrt(V max A_ii max H_ii): the strain pushes a mechanism if not round-off
   double forcing_on_zero_modes = 0.0;
   double residual = 0.0;                // max relative residual of the solves
+  // The network's own static balance: the largest |sum f0 n| on a free non-rattler particle over
+  // the mean f0 of the contacts used (0 for a network at rest; the linear theory assumes it is)
+  double unbalanced = 0.0;
   // Speeds along z from Gamma = A.christoffel(z)/rho: sqrt(Gamma_zz), sqrt(Gamma_xx), sqrt(Gamma_yy)
   double V_pz = 0.0, V_sz = 0.0, V_sy = 0.0;
   double V_pz_affine = 0.0, V_sz_affine = 0.0;
