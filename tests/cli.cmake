@@ -36,7 +36,7 @@ granwave_cli_refuses(hertz_history hertz_history.toml "contact.tangential_histor
 add_test(NAME "cli: missing case file exits 2" COMMAND sh -c "${GW} check /nonexistent/case.toml; test $? -eq 2")
 add_test(NAME "cli: unknown verb exits 2" COMMAND sh -c "${GW} frobnicate; test $? -eq 2")
 add_test(NAME "cli: unknown option exits 2" COMMAND sh -c "${GW} check ${BAD}/unknown_key.toml --frob; test $? -eq 2")
-add_test(NAME "cli: every verb has --help" COMMAND sh -c "for v in build run check analyze theory sweep figures; do ${GW} $v --help > /dev/null || { echo $v; exit 1; }; done")
+add_test(NAME "cli: every verb has --help" COMMAND sh -c "for v in build run check analyze theory probe sweep figures; do ${GW} $v --help > /dev/null || { echo $v; exit 1; }; done")
 set_tests_properties("cli: missing case file exits 2" "cli: unknown verb exits 2" "cli: unknown option exits 2"
                      "cli: every verb has --help" PROPERTIES LABELS "cli;unit")
 add_test(NAME "cli: sweep --threads -3 names the option and its range"
@@ -84,6 +84,18 @@ assert r['slab']['rattlers'] == 0 and r['slab']['zero_modes']['mechanisms'] == 0
 e = d['effective_medium']; assert e['label'] == 'affine estimate' and e['model'] == 'linear_springs'; \
 h = json.load(open('${CLI_TMP}/relaxed_hm.json'))['effective_medium']; assert h['model'] == 'walton_hertz_mindlin' and h['K']['value'] > 0\"")
 set_tests_properties("cli: theory --json gives the relaxed slab and bulk moduli and the effective-medium estimate" PROPERTIES LABELS "cli")
+# Issue 39: the static probe through the command line on the YADE packing (JSON keys, agreement with
+# the relaxed slab tensor, nothing slides); xy and a bad amplitude exit 2 naming what is allowed.
+add_test(NAME "cli: probe --json agrees with the relaxed slab tensor; --strain xy and a bad amplitude exit 2"
+  COMMAND sh -c "${GW} probe ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/packing_yade_p.toml --strain zx --json > ${CLI_TMP}/probe.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/probe.json')); s = d['strains'][0]; \
+assert s['strain'] == 'zx' and d['max_relative_error'] < 1e-4 and s['sliding'] == 0 and s['contacts_changed'] == 0, d; \
+assert 'first Piola-Kirchhoff' in d['stress'] and abs(s['dP']['value'] / s['A_relaxed']['value'] - 1) < 1e-4\" && \
+${GW} probe ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/packing_yade_p.toml --strain xy 2> ${CLI_TMP}/probe_xy.err; rc=$?; \
+test $rc -eq 2 && grep -q 'allowed: zz, zx, xx, yy' ${CLI_TMP}/probe_xy.err || { cat ${CLI_TMP}/probe_xy.err; exit 1; }; \
+${GW} probe ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/packing_yade_p.toml --amplitude 0.1 2> ${CLI_TMP}/probe_a.err; rc=$?; \
+test $rc -eq 2 && grep -q 'amplitude' ${CLI_TMP}/probe_a.err || { cat ${CLI_TMP}/probe_a.err; exit 1; }")
+set_tests_properties("cli: probe --json agrees with the relaxed slab tensor; --strain xy and a bad amplitude exit 2" PROPERTIES LABELS "cli")
 # Crystal studies honour --limit (stop, keep the batches, resume) and --threads (the study file does
 # not depend on it): `granwave sweep` used to pass neither to crystal studies.
 add_test(NAME "cli: crystal sweep --limit stops and resumes, --threads changes nothing"

@@ -27,6 +27,7 @@ usage: granwave VERB [ARGS] (granwave VERB --help for each verb)
   analyze traces.h5 [--json] [--layers LO:HI]
                                         wave speeds, arrivals, peaks, dispersion (any code's traces)
   theory CASE.toml [--json]             stiffness tensor, V_p, V_s, omega_0, t_c
+  probe CASE.toml [--strain S] [--json] the static probe: strain, relax, stress change vs the relaxed tensor
   sweep STUDY.toml [-o study.h5] [--quiet]
                                         ensembles and parameter studies, resumable
   figures chain|crystal [--out DIR]     the seeds' figures as PNG, from fresh runs
@@ -52,7 +53,7 @@ int main(int argc, char** argv) {
       {"build", cli::cmd_build},   {"run", cli::cmd_run},       {"check", cli::cmd_check},     {"analyze", cli::cmd_analyze},
       {"theory", cli::cmd_theory}, {"sweep", cli::cmd_sweep},   {"figures", cli::cmd_figures},
       {"observables", cli::cmd_observables},
-      {"laws", cli::cmd_laws},
+      {"laws", cli::cmd_laws},     {"probe", cli::cmd_probe},
   };
   if (verb == "version" || verb == "--version") {
     std::cout << "granwave " << version() << " (" << git_describe() << ")\n";

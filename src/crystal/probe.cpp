@@ -1,0 +1,274 @@
+// The static probe (crystal/probe.hpp): strain, FIRE relaxation under the full law, the stress change.
+#include "crystal/probe.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.hpp"
+
+namespace granwave::crystal {
+
+const char* probe_strain_name(ProbeStrain s) {
+  switch (s) {
+    case ProbeStrain::zz: return "zz";
+    case ProbeStrain::zx: return "zx";
+    case ProbeStrain::xx: return "xx";
+    case ProbeStrain::yy: return "yy";
+  }
+  return "?";
+}
+
+ProbeStrain parse_probe_strain(const std::string& s) {
+  for (ProbeStrain p : {ProbeStrain::zz, ProbeStrain::zx, ProbeStrain::xx, ProbeStrain::yy})
+    if (s == probe_strain_name(p)) return p;
+  if (s == "xy" || s == "yx")
+    throw InputError("--strain " + s + ": not offered (the kernel's periodic box is orthogonal, no Lees-Edwards shift); "
+                     "allowed: zz, zx, xx, yy");
+  throw InputError("--strain " + s + ": allowed: zz, zx, xx, yy (gradient direction, then displacement direction)");
+}
+
+std::pair<int, int> probe_strain_indices(ProbeStrain s) {
+  switch (s) {
+    case ProbeStrain::zz: return {2, 2};
+    case ProbeStrain::zx: return {2, 0};
+    case ProbeStrain::xx: return {0, 0};
+    case ProbeStrain::yy: return {1, 1};
+  }
+  return {2, 2};
+}
+
+namespace {
+
+// The largest force (and torque / radius) on a mobile particle.
+double largest_force(const Dynamics& d) {
+  double worst = 0.0;
+  for (std::size_t p = 0; p < d.size(); ++p) {
+    if (!d.mobile[p]) continue;
+    worst = std::max(worst, std::hypot(d.fx[p], d.fy[p], d.fz[p]));
+    if (d.torques()) worst = std::max(worst, std::hypot(d.tx[p], d.ty[p], d.tz[p]) / d.radius[p]);
+  }
+  return worst;
+}
+
+// FIRE (Bitzek et al., PRL 97, 170201 (2006)) on translations and rotations (angular velocity scaled
+// by the radius, torque divided by it, so both are m/s and N) until every mobile particle's force is
+// below f_tol. Velocities are zero afterwards; the forces are those of the final positions.
+long fire(Dynamics& d, double t_c, double f_tol, long max_steps, double* residual) {
+  const double dt_max = 0.1 * t_c, f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
+  const int n_min = 5;
+  double dt = 0.02 * t_c, alpha = alpha_0;
+  long since_reset = 0;
+  const std::size_t n = d.size();
+  const bool rot = d.torques();
+  auto stop = [&] {
+    for (auto* v : {&d.vx, &d.vy, &d.vz, &d.wx, &d.wy, &d.wz}) std::fill(v->begin(), v->end(), 0.0);
+  };
+  for (long s = 0; s < max_steps; ++s) {
+    const double f = largest_force(d);
+    if (f <= f_tol) {
+      *residual = f;
+      stop();
+      d.compute_forces_of_state();  // the dashpots see the velocities gone
+      return s;
+    }
+    double power = 0.0, v2 = 0.0, f2 = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      if (!d.mobile[p]) continue;
+      power += d.fx[p] * d.vx[p] + d.fy[p] * d.vy[p] + d.fz[p] * d.vz[p];
+      v2 += d.vx[p] * d.vx[p] + d.vy[p] * d.vy[p] + d.vz[p] * d.vz[p];
+      f2 += d.fx[p] * d.fx[p] + d.fy[p] * d.fy[p] + d.fz[p] * d.fz[p];
+      if (rot) {
+        const double a = d.radius[p];
+        power += d.tx[p] * d.wx[p] + d.ty[p] * d.wy[p] + d.tz[p] * d.wz[p];
+        v2 += a * a * (d.wx[p] * d.wx[p] + d.wy[p] * d.wy[p] + d.wz[p] * d.wz[p]);
+        f2 += (d.tx[p] * d.tx[p] + d.ty[p] * d.ty[p] + d.tz[p] * d.tz[p]) / (a * a);
+      }
+    }
+    if (power > 0.0) {
+      const double scale = f2 > 0.0 ? alpha * std::sqrt(v2 / f2) : 0.0;
+      for (std::size_t p = 0; p < n; ++p) {
+        if (!d.mobile[p]) continue;
+        d.vx[p] = (1.0 - alpha) * d.vx[p] + scale * d.fx[p];
+        d.vy[p] = (1.0 - alpha) * d.vy[p] + scale * d.fy[p];
+        d.vz[p] = (1.0 - alpha) * d.vz[p] + scale * d.fz[p];
+        if (rot) {  // a w' = (1 - alpha) a w + scale T/a
+          const double a2 = d.radius[p] * d.radius[p];
+          d.wx[p] = (1.0 - alpha) * d.wx[p] + scale * d.tx[p] / a2;
+          d.wy[p] = (1.0 - alpha) * d.wy[p] + scale * d.ty[p] / a2;
+          d.wz[p] = (1.0 - alpha) * d.wz[p] + scale * d.tz[p] / a2;
+        }
+      }
+      if (++since_reset > n_min) {
+        dt = std::min(dt * f_inc, dt_max);
+        alpha *= f_alpha;
+      }
+    } else {
+      stop();
+      dt *= f_dec;
+      alpha = alpha_0;
+      since_reset = 0;
+    }
+    d.set_dt(dt);
+    d.step();
+  }
+  throw RunError("probe: FIRE did not bring every free particle's force below " + std::to_string(f_tol) + " N within " +
+                 std::to_string(max_steps) + " steps (largest " + std::to_string(largest_force(d)) + " N)");
+}
+
+// U = e eps^T x of the strain on every particle, made as velocities over one force evaluation so
+// that the tangential springs stretch by the relative displacement; then at rest.
+void apply_affine(Dynamics& d, ProbeStrain s, double e, double z_origin) {
+  const auto [g, f] = probe_strain_indices(s);
+  const double dt = d.dt();
+  std::vector<double>* pos[3] = {&d.x, &d.y, &d.z};
+  std::vector<double>* vel[3] = {&d.vx, &d.vy, &d.vz};
+  for (std::size_t p = 0; p < d.size(); ++p) {
+    const double xg = (*pos[g])[p] - (g == 2 ? z_origin : 0.0);
+    const double u = e * xg;
+    (*pos[f])[p] += u;
+    for (int a = 0; a < 3; ++a) (*vel[a])[p] = a == f ? u / dt : 0.0;
+    d.wx[p] = d.wy[p] = d.wz[p] = 0.0;
+  }
+  d.compute_forces();  // springs advance by the relative tangential velocity times dt
+  for (auto* v : {&d.vx, &d.vy, &d.vz}) std::fill(v->begin(), v->end(), 0.0);
+  d.compute_forces_of_state();
+}
+
+struct StressSum {
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero(), S = Eigen::Matrix3d::Zero();  // sum w B f_j, sum w b f_j
+  int touching = 0, sliding = 0;
+  double max_slip = 0.0;
+};
+
+// Over the touching contacts of d: all, or (pairs_only) those of two particles not mobile in `held`.
+// X, Y, Z: the unstrained positions (B); bx, by: the unstrained box.
+void add_stress(StressSum& out, const Dynamics& d, const std::vector<double>& X, const std::vector<double>& Y,
+                const std::vector<double>& Z, double bx, double by, const std::vector<std::uint8_t>* held,
+                const Packing& pk, double mu) {
+  const ContactList& cl = d.contacts;
+  const double box_x = d.packing().box_x, box_y = d.packing().box_y;
+  for (std::size_t c = 0; c < cl.size(); ++c) {
+    if (!(cl.delta[c] > 0.0)) continue;
+    const int i = cl.i[c], j = cl.j[c];
+    if (held && ((*held)[i] || (*held)[j])) continue;  // held = mobile flags of the free dynamics: skip unless both fixed
+    double w = 1.0;
+    if (!pk.from_file() && pk.layer[i] == pk.layer[j] && (pk.layer[i] == 0 || pk.layer[i] == pk.layers - 1)) w = 0.5;
+    const Eigen::Vector3d B(X[j] + cl.image_x[c] * bx - X[i], Y[j] + cl.image_y[c] * by - Y[i], Z[j] - Z[i]);
+    const Eigen::Vector3d b(d.x[j] + cl.image_x[c] * box_x - d.x[i], d.y[j] + cl.image_y[c] * box_y - d.y[i],
+                            d.z[j] - d.z[i]);
+    const Eigen::Vector3d f_i(cl.f_x[c], cl.f_y[c], cl.f_z[c]);  // on i; on j: -f_i
+    out.P += w * B * f_i.transpose();
+    out.S += w * b * f_i.transpose();
+    ++out.touching;
+    const Eigen::Vector3d n = b.normalized();
+    const double fn = f_i.dot(n), ft = (f_i - fn * n).norm();
+    if (mu > 0.0 && fn != 0.0) {
+      const double slip = ft / (mu * std::abs(fn));
+      out.max_slip = std::max(out.max_slip, slip);
+      out.sliding += slip >= 1.0 - 1e-9 ? 1 : 0;
+    }
+  }
+}
+
+}  // namespace
+
+struct StaticProbe::Strained {
+  StressSum sum;
+  long steps = 0;
+  double residual = 0.0;
+};
+
+StaticProbe::StaticProbe(const config::Case& c, const Packing& pk, const theory::ContactNetwork& net, double volume,
+                         const ProbeOptions& opt)
+    : pk_(pk), opt_(opt), volume_(volume) {
+  if (!(opt.amplitude > 0.0 && opt.amplitude <= 1e-3)) throw InputError("--amplitude must be in (0, 1e-3]");
+  if (!(opt.tolerance > 0.0 && opt.tolerance < 1.0)) throw InputError("--tolerance must be in (0, 1)");
+  if (!(volume > 0.0)) throw InputError("probe: the slab's volume must be > 0");
+  model_ = case_model(c.contact, c.crystal->density);
+  tangential = model_->torques();
+  mu_ = c.contact.friction().mu_static;
+  // The force scale of the strain and the stiffest contact's time.
+  double k_sum = 0.0, l_sum = 0.0, k_max = 0.0;
+  for (const auto& nc : net.contacts) {
+    const double k = nc.k_of(net.k);
+    k_sum += k, l_sum += nc.branch.norm();
+    k_max = std::max({k_max, k, nc.kt_of(net.kt)});
+  }
+  if (net.contacts.empty() || !(k_max > 0.0)) throw InputError("probe: the packing has no stiff contacts");
+  const double nc = static_cast<double>(net.contacts.size());
+  force_scale = opt.amplitude * (k_sum / nc) * (l_sum / nc);
+  const double m_min = *std::min_element(pk.mass.begin(), pk.mass.end());
+  t_c_ = std::numbers::pi * std::sqrt(0.5 * m_min / k_max);
+  base_ = std::make_unique<Dynamics>(pk_, model_, 0.02 * t_c_);
+  base_steps = fire(*base_, t_c_, opt.tolerance * force_scale, opt.max_steps, &base_residual);
+  base_residual /= force_scale;
+  Packing all = pk_;
+  std::fill(all.fixed.begin(), all.fixed.end(), 0);
+  pairs_ = std::make_unique<Dynamics>(all, model_, 0.02 * t_c_);
+  StressSum s0;
+  add_stress(s0, *base_, base_->x, base_->y, base_->z, pk_.box_x, pk_.box_y, nullptr, pk_, mu_);
+  add_stress(s0, *pairs_, pairs_->x, pairs_->y, pairs_->z, pk_.box_x, pk_.box_y, &base_->mobile, pk_, mu_);
+  P0 = s0.P / volume_;
+}
+
+StaticProbe::Strained StaticProbe::strained(ProbeStrain s, double e) const {
+  Strained out;
+  const bool box = s == ProbeStrain::xx || s == ProbeStrain::yy;
+  if (!box) {
+    Dynamics d = *base_, q = *pairs_;
+    apply_affine(d, s, e, pk_.bin_origin);
+    apply_affine(q, s, e, pk_.bin_origin);
+    out.steps = fire(d, t_c_, opt_.tolerance * force_scale, opt_.max_steps, &out.residual);
+    add_stress(out.sum, d, base_->x, base_->y, base_->z, pk_.box_x, pk_.box_y, nullptr, pk_, mu_);
+    add_stress(out.sum, q, pairs_->x, pairs_->y, pairs_->z, pk_.box_x, pk_.box_y, &base_->mobile, pk_, mu_);
+  } else {
+    if (tangential)
+      throw InputError(std::string("probe --strain ") + probe_strain_name(s) +
+                       ": a box strain needs a law without tangential springs (the kernel's periodic images carry no "
+                       "box velocity to stretch them); use zz or zx");
+    // The relaxed state wrapped into the box (the reference), then box and positions scaled.
+    Packing p = pk_;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      p.x[k] = base_->x[k] - std::floor(base_->x[k] / pk_.box_x) * pk_.box_x;
+      p.y[k] = base_->y[k] - std::floor(base_->y[k] / pk_.box_y) * pk_.box_y;
+      p.z[k] = base_->z[k];
+    }
+    const std::vector<double> X = p.x, Y = p.y, Z = p.z;
+    auto& v = s == ProbeStrain::xx ? p.x : p.y;
+    for (double& q : v) q *= 1.0 + e;
+    (s == ProbeStrain::xx ? p.box_x : p.box_y) *= 1.0 + e;
+    Dynamics d(p, model_, 0.02 * t_c_);
+    Packing all = p;
+    std::fill(all.fixed.begin(), all.fixed.end(), 0);
+    Dynamics q(all, model_, 0.02 * t_c_);
+    out.steps = fire(d, t_c_, opt_.tolerance * force_scale, opt_.max_steps, &out.residual);
+    add_stress(out.sum, d, X, Y, Z, pk_.box_x, pk_.box_y, nullptr, pk_, mu_);
+    add_stress(out.sum, q, X, Y, Z, pk_.box_x, pk_.box_y, &d.mobile, pk_, mu_);
+  }
+  out.residual /= force_scale;
+  return out;
+}
+
+ProbeResult StaticProbe::run(ProbeStrain s) const {
+  const double e = opt_.amplitude;
+  const Strained plus = strained(s, e), minus = strained(s, -e);
+  ProbeResult r;
+  r.strain = s;
+  r.dP = (plus.sum.P - minus.sum.P) / (2.0 * e * volume_);
+  // Cauchy: sigma = S / (V (1 + tr eps)); tr eps = +-e for zz, xx, yy, 0 for zx.
+  const auto [g, f] = probe_strain_indices(s);
+  const double tr = g == f ? e : 0.0;
+  r.dsigma = (plus.sum.S / (1.0 + tr) - minus.sum.S / (1.0 - tr)) / (2.0 * e * volume_);
+  r.steps_plus = plus.steps, r.steps_minus = minus.steps;
+  r.residual = std::max(plus.residual, minus.residual);
+  r.max_slip = std::max(plus.sum.max_slip, minus.sum.max_slip);
+  r.sliding = std::max(plus.sum.sliding, minus.sum.sliding);
+  StressSum base;
+  add_stress(base, *base_, base_->x, base_->y, base_->z, pk_.box_x, pk_.box_y, nullptr, pk_, mu_);
+  add_stress(base, *pairs_, pairs_->x, pairs_->y, pairs_->z, pk_.box_x, pk_.box_y, &base_->mobile, pk_, mu_);
+  r.contacts_changed = std::max(std::abs(plus.sum.touching - base.touching), std::abs(minus.sum.touching - base.touching));
+  return r;
+}
+
+}  // namespace granwave::crystal
