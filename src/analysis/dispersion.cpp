@@ -96,6 +96,27 @@ DispersionResult dispersion(const std::vector<double>& field, std::size_t nt, st
   }
   plan.reset();
 
+  // The small-k slope: omega_max = V k through the origin.
+  {
+    double kk = 0.0, kw = 0.0;
+    std::vector<std::size_t> small;
+    for (std::size_t i = 0; i < r.k.size(); ++i)
+      if (r.k[i] * dz <= kSmallKdz + 1e-12 && r.weight[i] > 0.0) {
+        kk += r.k[i] * r.k[i], kw += r.k[i] * r.omega_max[i];
+        small.push_back(i);
+        r.small_k_max = r.k[i];
+      }
+    r.small_k_n = small.size();
+    if (r.small_k_n >= 2) {
+      r.small_k_slope = kw / kk;
+      double rss = 0.0;
+      for (auto i : small) rss += std::pow(r.omega_max[i] - r.small_k_slope * r.k[i], 2);
+      r.small_k_slope_error = std::sqrt(rss / (r.small_k_n - 1) / kk);
+    } else {
+      r.small_k_slope = r.small_k_slope_error = std::nan("");
+    }
+  }
+
   // Least squares omega_max = omega_0 s_k, s_k = sin(k dz/2): linear in omega_0.
   const double k_edge = std::numbers::pi / dz;
   double ss = 0.0, sw = 0.0;

@@ -15,6 +15,10 @@
 
 namespace granwave::analysis {
 
+// The small-k range of DispersionResult::small_k_slope: a sine branch omega_0 sin(k dz/2) is within
+// 1.1 % of its slope there ((k dz)^2/24 at 0.5).
+inline constexpr double kSmallKdz = 0.5;
+
 struct DispersionOptions {
   double phi = 4.0;             // power of |F| in the weighted average (seed: 4)
   // Wavenumbers used by the sine fit, as fractions of the zone edge pi/dz: (k_min, k_max].
@@ -36,6 +40,12 @@ struct DispersionResult {
   double v_k0 = 0.0, v_k0_error = 0.0;      // omega_0 dz/2 (m/s)
   double fit_rms = 0.0;                     // rms residual of omega_max (1/s)
   std::size_t n_fit = 0;
+  // The small-k slope (issue 39): omega_max = V k through the origin over the bins with
+  // k dz <= kSmallKdz, least squares; NaN with fewer than two such bins (a record too short in z).
+  // No model of the branch: the speed a disordered packing's long waves show, beside the sine's v_k0.
+  double small_k_slope = 0.0, small_k_slope_error = 0.0;  // m/s
+  double small_k_max = 0.0;                                // the largest k used (1/m)
+  std::size_t small_k_n = 0;
   // Optional |F| on omega_m >= 0 (rows, m = 0..nt/2) by signed k (columns, ascending from
   // -(nz-1)/2 dk .. nz/2 dk), row-major; k_axis, omega_axis give the axes.
   std::vector<double> spectrum, k_axis, omega_axis;

@@ -78,6 +78,11 @@ Json to_json(const TraceFile& f, const CrystalAnalysis& a) {
   const auto& d = a.dispersion;
   o["omega_0"] = qty(Measured{d.omega0, d.omega0_error}, "1/s");
   o["v_k0"] = qty(Measured{d.v_k0, d.v_k0_error}, "m/s");
+  Json slope = qty(Measured{d.small_k_slope, d.small_k_slope_error}, "m/s");
+  slope["label"] = "small-k slope: omega_max = V k through the origin, k dz <= 0.5, no model of the branch";
+  slope["k_max"] = qty(d.small_k_max, "1/m");
+  slope["n"] = d.small_k_n;
+  o["small_k_slope"] = slope;
   const LongWaveFit& w = a.long_wave;
   o["dispersion_model"] = w.model;
   Json lw = {{"model", w.model}, {"reason", w.reason}, {"value", w.value}, {"error", w.error}, {"unit", "m/s"}};

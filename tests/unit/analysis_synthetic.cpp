@@ -197,6 +197,39 @@ TEST_CASE("dispersion: omega_0 sin(k l0/2) recovered within the FFT resolution",
   CHECK(std::abs(r.v_k0 - omega0 * l0 / 2) <= 3 * se_model * l0 / 2);
 }
 
+TEST_CASE("dispersion: the small-k slope of a non-dispersive and of a sine branch", "[analysis]") {
+  // One travelling mode per bin k_q (q = 1..nz/2), omega = V k (non-dispersive) or omega_0 sin(k l0/2).
+  // Each omega_max is within domega/2 of its tone (test above), so the slope through the origin over
+  // the bins with k l0 <= 0.5 is within (domega/2) sum k / sum k^2 of the branch's mean slope there.
+  const std::size_t nt = 1200, nz = 200;
+  const double dt = 1e-6, omega0 = 309019.0, V = 0.5 * omega0 * l0;
+  const double dk = 2 * std::numbers::pi / (nz * l0);
+  for (const bool sine : {false, true}) {
+    std::vector<double> f(nt * nz, 0.0);
+    CounterRng rng(7, 0);
+    for (std::size_t q = 1; q <= nz / 2; ++q) {
+      const double k = q * dk, w = sine ? omega0 * std::sin(0.5 * k * l0) : V * k;
+      const double phase = 2 * std::numbers::pi * rng.uniform();
+      for (std::size_t n = 0; n < nt; ++n)
+        for (std::size_t p = 0; p < nz; ++p) f[n * nz + p] += std::cos(k * p * l0 - w * n * dt + phase);
+    }
+    const auto r = dispersion(f, nt, nz, dt, l0);
+    double sk = 0.0, skk = 0.0;
+    std::size_t n = 0;
+    for (double k : r.k)
+      if (k * l0 <= kSmallKdz) sk += k, skk += k * k, ++n;
+    REQUIRE(r.small_k_n == n);
+    REQUIRE(n == 15);  // q dk l0 = 2 pi q / 200 <= 0.5
+    const double bound = 0.5 * r.domega * sk / skk;
+    // The sine's chord slope over the range lies between V (1 - (k l0)^2/24) at its end and V.
+    const double lo = sine ? V * (1 - kSmallKdz * kSmallKdz / 24) : V;
+    INFO((sine ? "sine" : "linear") << ": slope " << r.small_k_slope << " +- " << r.small_k_slope_error << ", V " << V);
+    CHECK(r.small_k_slope >= lo - bound);
+    CHECK(r.small_k_slope <= V + bound);
+    CHECK(r.small_k_max == Approx(15 * dk));
+  }
+}
+
 TEST_CASE("wavenumber from speed inverts the group speed of the sine branch", "[analysis]") {
   const double vk0 = 218.3;
   for (double k : {100.0, 500.0, 1500.0}) {
