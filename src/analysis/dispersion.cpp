@@ -98,11 +98,11 @@ DispersionResult dispersion(const std::vector<double>& field, std::size_t nt, st
 
   // The small-k slope: omega_max = V k through the origin.
   {
-    double kk = 0.0, kw = 0.0;
+    double kk = 0.0, kw = 0.0, ks = 0.0;
     std::vector<std::size_t> small;
     for (std::size_t i = 0; i < r.k.size(); ++i)
       if (r.k[i] * dz <= kSmallKdz + 1e-12 && r.weight[i] > 0.0) {
-        kk += r.k[i] * r.k[i], kw += r.k[i] * r.omega_max[i];
+        kk += r.k[i] * r.k[i], kw += r.k[i] * r.omega_max[i], ks += r.k[i];
         small.push_back(i);
         r.small_k_max = r.k[i];
       }
@@ -112,8 +112,9 @@ DispersionResult dispersion(const std::vector<double>& field, std::size_t nt, st
       double rss = 0.0;
       for (auto i : small) rss += std::pow(r.omega_max[i] - r.small_k_slope * r.k[i], 2);
       r.small_k_slope_error = std::sqrt(rss / (r.small_k_n - 1) / kk);
+      r.small_k_resolution = 0.5 * r.domega * ks / kk;
     } else {
-      r.small_k_slope = r.small_k_slope_error = std::nan("");
+      r.small_k_slope = r.small_k_slope_error = r.small_k_resolution = std::nan("");
     }
   }
 

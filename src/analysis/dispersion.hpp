@@ -45,6 +45,9 @@ struct DispersionResult {
   // No model of the branch: the speed a disordered packing's long waves show, beside the sine's v_k0.
   double small_k_slope = 0.0, small_k_slope_error = 0.0;  // m/s
   double small_k_max = 0.0;                                // the largest k used (1/m)
+  // (domega/2) sum k / sum k^2: the slope's worst case when every omega_max sits half a frequency
+  // bin off its tone (a short record: at the smallest k, omega may be below one bin)
+  double small_k_resolution = 0.0;                         // m/s
   std::size_t small_k_n = 0;
   // Optional |F| on omega_m >= 0 (rows, m = 0..nt/2) by signed k (columns, ascending from
   // -(nz-1)/2 dk .. nz/2 dk), row-major; k_axis, omega_axis give the axes.

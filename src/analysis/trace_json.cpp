@@ -81,6 +81,7 @@ Json to_json(const TraceFile& f, const CrystalAnalysis& a) {
   Json slope = qty(Measured{d.small_k_slope, d.small_k_slope_error}, "m/s");
   slope["label"] = "small-k slope: omega_max = V k through the origin, k dz <= 0.5, no model of the branch";
   slope["k_max"] = qty(d.small_k_max, "1/m");
+  slope["resolution"] = qty(d.small_k_resolution, "m/s");
   slope["n"] = d.small_k_n;
   o["small_k_slope"] = slope;
   const LongWaveFit& w = a.long_wave;

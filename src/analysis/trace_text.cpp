@@ -73,7 +73,8 @@ std::string to_text(const TraceFile& f, const CrystalAnalysis& a, bool table) {
     o += fmt("  (s V_branch, V_branch = %.6g m/s: the lattice's long-wave speed)\n", w.v_lattice);
   }
   o += measured_line("  small-k slope", {d.small_k_slope, d.small_k_slope_error}, "m/s");
-  o += fmt("  (omega_max = V k through the origin over %zu bins, k l0 <= 0.5: no model of the branch)\n", d.small_k_n);
+  o += fmt("  (omega_max = V k through the origin over %zu bins, k l0 <= 0.5, no model of the branch; frequency\n"
+           "  resolution bound +- %.3g m/s)\n", d.small_k_n, d.small_k_resolution);
   o += fmt("local speeds need (l0/V)/dt = %.3g samples per layer delay here\n", a.delay_samples);
   o += fmt("wavelength V T: T = %s (period = \"%s\", %s)\n",
            a.period_reading == PeriodReading::pulse ? "the leading pulse, 1 % arrival to the next 1 % crossing"

@@ -6,10 +6,12 @@
 #include <string>
 
 #include "analysis/trace_analysis.hpp"
+#include "analysis/pulse_fronts.hpp"
 #include "analysis/trace_json.hpp"
 #include "analysis/trace_text.hpp"
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "crystal/case_lattice.hpp"
 #include "crystal/observables.hpp"
 #include "impact/impact.hpp"
@@ -192,11 +194,24 @@ int cmd_analyze(const Args& args, std::ostream& out) {
     if (!opt.wavenumber_speed) throw InputError("--wavenumber-speed " + v + ": must be displacement_peak or first_peak");
   }
   const auto a = measured(pos[0], [&] { return analysis::analyze_crystal(file.crystal, opt); });
+  const auto fronts = analysis::pulse_fronts(file.crystal, opt, a);
   if (json) {
-    out << json_text(analysis::to_json(file, a));
+    Json j = analysis::to_json(file, a);
+    j["pulse_fronts"] = analysis::pulse_fronts_json(fronts);
+    out << json_text(j);
     return 0;
   }
   out << analysis::to_text(file, a);
+  out << "front speeds of longer pulses (the source history smoothed by a Hann window of duration T):\n";
+  for (const auto& f : fronts) {
+    if (!f.error.empty()) {
+      out << fmt("  T = %.4g s (%g layers): %s\n", f.duration, f.travel_layers, f.error.c_str());
+      continue;
+    }
+    out << fmt("  T = %.4g s (%g layers): first peak %.6g +- %.2g m/s, half peak %.6g +- %.2g m/s\n", f.duration,
+               f.travel_layers, f.first_peak.speed.value, f.first_peak.speed.error, f.half_peak.speed.value,
+               f.half_peak.speed.error);
+  }
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "analysis/dispersion.hpp"
+#include "analysis/pulse_fronts.hpp"
 #include "analysis/trace_analysis.hpp"
 #include "analysis/trace_json.hpp"
 #include "core/rng.hpp"
@@ -227,7 +228,38 @@ TEST_CASE("dispersion: the small-k slope of a non-dispersive and of a sine branc
     CHECK(r.small_k_slope >= lo - bound);
     CHECK(r.small_k_slope <= V + bound);
     CHECK(r.small_k_max == Approx(15 * dk));
+    CHECK(r.small_k_resolution == Approx(bound));
   }
+}
+
+TEST_CASE("pulse fronts: a Hann-smoothed step rises over T to the step; a non-dispersive pulse keeps its speed", "[analysis]") {
+  // A unit step at sample 100 in one layer: smoothed over T = 20 samples it is 0 before, the
+  // window's running sum over the 20 samples (monotone), and exactly 1 from sample 119 on.
+  CrystalTrace st;
+  st.nt = 300, st.nlayers = 1;
+  for (std::size_t n = 0; n < st.nt; ++n) st.time.push_back(n * h), st.velocity_z.push_back(n >= 100 ? 1.0 : 0.0);
+  const CrystalTrace sm = smoothed(st, 20 * h);
+  for (std::size_t n = 0; n < 100; ++n) CHECK(sm.velocity_z[n] == 0.0);
+  for (std::size_t n = 100; n < 119; ++n) CHECK(sm.velocity_z[n] < sm.velocity_z[n + 1]);
+  for (std::size_t n = 119; n < st.nt; ++n) CHECK(sm.velocity_z[n] == Approx(1.0).epsilon(1e-14));
+  // A Gaussian pulse at exactly V: the symmetric window delays every layer alike, so each
+  // duration's first-peak speed is V to the raw parabola bound (the smoothed pulse is broader).
+  const double sigma = 10e-6;
+  const auto tr = pulse_trace(200, 1200, sigma);
+  const auto a = analyze_crystal(tr);
+  const auto fronts = pulse_fronts(tr, {}, a);
+  REQUIRE(fronts.size() == 4);
+  const double eps_p = h * h * h / (8 * sigma * sigma);
+  int measured = 0;
+  for (const auto& f : fronts) {
+    INFO("T = " << f.duration << " s: " << f.error);
+    CHECK(f.duration == Approx(f.travel_layers * l0 / a.v_first_peak.speed.value));
+    if (!f.error.empty()) continue;  // the longest pulse may not reach the range's end in the record
+    const double span_t = (f.first_peak.hi - f.first_peak.lo) * l0 / V;
+    CHECK(std::abs(f.first_peak.speed.value - V) <= V * 3 * eps_p / span_t);
+    ++measured;
+  }
+  CHECK(measured >= 3);
 }
 
 TEST_CASE("wavenumber from speed inverts the group speed of the sine branch", "[analysis]") {

@@ -1,0 +1,83 @@
+// Front speeds against pulse duration (analysis/pulse_fronts.hpp).
+#include "analysis/pulse_fronts.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/error.hpp"
+
+namespace granwave::analysis {
+
+CrystalTrace smoothed(const CrystalTrace& trace, double duration) {
+  CrystalTrace out = trace;
+  if (trace.nt < 2) return out;
+  const double dt = trace.time[1] - trace.time[0];
+  const std::size_t m = static_cast<std::size_t>(std::lround(duration / dt));
+  if (m < 2) return out;
+  // Hann window over m samples, sin^2(pi (j + 1/2) / m), normalised to unit sum.
+  std::vector<double> w(m);
+  double sum = 0.0;
+  for (std::size_t j = 0; j < m; ++j) sum += w[j] = std::pow(std::sin(std::numbers::pi * (j + 0.5) / m), 2);
+  for (double& x : w) x /= sum;
+  const std::size_t nt = trace.nt, nl = trace.nlayers;
+  auto convolve = [&](std::vector<double>& v) {
+    if (v.size() != nt * nl) return;
+    const std::vector<double> src = v;
+    for (std::size_t n = 0; n < nt; ++n)
+      for (std::size_t p = 0; p < nl; ++p) {
+        double acc = 0.0;
+        for (std::size_t j = 0; j < m; ++j) acc += w[j] * src[(n >= j ? n - j : 0) * nl + p];
+        v[n * nl + p] = acc;
+      }
+  };
+  for (auto* v : {&out.stress_zz, &out.stress_zx, &out.displacement_z, &out.displacement_x, &out.velocity_z,
+                  &out.velocity_x})
+    convolve(*v);
+  for (auto& [name, v] : out.other) convolve(v);
+  return out;
+}
+
+std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAnalysisOptions& options,
+                                     const CrystalAnalysis& raw, const std::vector<double>& travel_layers) {
+  std::vector<PulseFront> out;
+  const double v = raw.v_first_peak.speed.value;
+  if (!(v > 0.0) || !(raw.l0 > 0.0)) return out;
+  CrystalAnalysisOptions o = options;
+  o.lattice.reset();  // the fronts only: no ridge against a branch
+  for (double m : travel_layers) {
+    PulseFront f;
+    f.travel_layers = m;
+    f.duration = m * raw.l0 / v;
+    try {
+      const CrystalAnalysis a = analyze_crystal(smoothed(trace, f.duration), o);
+      f.first_peak = a.v_first_peak;
+      f.half_peak = a.v_half_peak;
+    } catch (const InputError& e) {
+      f.error = e.what();
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+Json pulse_fronts_json(const std::vector<PulseFront>& fronts) {
+  Json list = Json::array();
+  auto fit = [](const SpeedFit& s) {
+    return Json{{"value", s.speed.value}, {"error", s.speed.error}, {"unit", "m/s"}, {"z_over_l0", {s.lo, s.hi}}, {"n", s.n}};
+  };
+  for (const auto& f : fronts) {
+    Json j = {{"duration", {{"value", f.duration}, {"unit", "s"}}}, {"travel_layers", f.travel_layers}};
+    if (f.error.empty()) {
+      j["v_first_peak"] = fit(f.first_peak);
+      j["v_half_peak"] = fit(f.half_peak);
+    } else {
+      j["error"] = f.error;
+    }
+    list.push_back(j);
+  }
+  return {{"label", "front speeds of the trace's source history smoothed by a Hann window of duration T (linear "
+                    "response: the pulse a source of that duration would send)"},
+          {"durations", list}};
+}
+
+}  // namespace granwave::analysis

@@ -1,0 +1,34 @@
+// What a pulse's front measures against its duration (issue 39 item 4): the trace's own source
+// history smoothed by a Hann window of duration T, for several T, and the front speeds of each.
+// In the linear regime the response to the source's motion convolved with a kernel is the trace
+// convolved with it, so one run gives the fronts of every longer pulse: a displacement step becomes
+// a step rising over T (its velocity a Hann pulse of duration T). Longer pulses carry less of the
+// short waves, and their fronts run towards the long-wave speed from the side of the dispersion
+// (slower in a lattice whose group velocity falls with k).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "analysis/trace_analysis.hpp"
+#include "core/json.hpp"
+
+namespace granwave::analysis {
+
+struct PulseFront {
+  double duration = 0.0;         // T (s)
+  double travel_layers = 0.0;    // T V / l0: the pulse's length in layers (bins), V the raw first-peak speed
+  SpeedFit first_peak, half_peak;
+  std::string error;             // the analysis' refusal for this T (then the fits are empty)
+};
+
+// Durations T = m l0 / V_first_peak(raw) for m in travel_layers (default 4, 8, 16, 32).
+std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAnalysisOptions& options,
+                                     const CrystalAnalysis& raw, const std::vector<double>& travel_layers = {4, 8, 16, 32});
+
+// The trace with every layer series convolved in time with the Hann window of duration T (unit sum;
+// the values before t = 0 taken as the first sample's).
+CrystalTrace smoothed(const CrystalTrace& trace, double duration);
+
+Json pulse_fronts_json(const std::vector<PulseFront>& fronts);
+
+}  // namespace granwave::analysis
