@@ -103,6 +103,10 @@ for the trace it writes: the same code, the same numbers.
                      wavenumber_speed_field, last_free_layer_z_over_l0, fit_range {z_over_l0, requested, shortened, note},
                      v_first_peak, v_half_peak, v_one_percent (m/s, + z_over_l0 range, n),
                      omega_0 (1/s), v_k0 (m/s) (the sine fit, whatever the model),
+                     small_k_slope {value, error, unit, label, k_max, n, resolution} (omega_max = V k
+                     through the origin, k l0 <= 0.5), pulse_fronts {label, durations [{duration,
+                     travel_layers, v_first_peak, v_half_peak}]} (the source history smoothed by a
+                     Hann window of 4, 8, 16, 32 layer delays; analyze only, not run),
                      dispersion_model ("sine" | "lattice_branch"), long_wave {model, reason,
                      value, error, unit: V(k->0) of that model; with the case's lattice also
                      branch, v_lattice, sine_deviation; lattice_branch also ridge {scale,

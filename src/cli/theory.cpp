@@ -49,8 +49,9 @@ packing's actual contact network (polydisperse packings are relaxed first, as in
            Bravais lattice: omitted, with a note, for a polydisperse packing.
   relaxed  the non-affine tensor A_relaxed (theory/relaxed_moduli.hpp): every free particle's
            translation and rotation relaxed under a homogeneous strain, with the prestress's
-           geometric term; rho V^2 = eigenvalues of A_abgf m_a m_g. Slab: the fixed layers moved
-           affinely; bulk: the packing closed across z. V_pz, V_sz, V_sy, rattlers, zero modes
+           geometric term; rho V^2 = eigenvalues of A_abgf m_a m_g. Slab: the fixed layers (a
+           file's packing: its source and top slabs) moved affinely; bulk: the packing closed across
+           z (a file's: its triply periodic packing relaxed by FIRE). V_pz, V_sz, V_sy, rattlers, zero modes
            (free rotations, translations, mechanisms), sliding contacts (all treated as sticking)
   effective medium   the affine estimate at the packing's non-rattler Z, solid fraction and mean
            stress: Walton's K, G for Hertz-Mindlin, the isotropic linear-spring K, G otherwise
