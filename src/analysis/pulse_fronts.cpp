@@ -60,24 +60,8 @@ std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAna
   return out;
 }
 
-Json pulse_fronts_json(const std::vector<PulseFront>& fronts) {
-  Json list = Json::array();
-  auto fit = [](const SpeedFit& s) {
-    return Json{{"value", s.speed.value}, {"error", s.speed.error}, {"unit", "m/s"}, {"z_over_l0", {s.lo, s.hi}}, {"n", s.n}};
-  };
-  for (const auto& f : fronts) {
-    Json j = {{"duration", {{"value", f.duration}, {"unit", "s"}}}, {"travel_layers", f.travel_layers}};
-    if (f.error.empty()) {
-      j["v_first_peak"] = fit(f.first_peak);
-      j["v_half_peak"] = fit(f.half_peak);
-    } else {
-      j["error"] = f.error;
-    }
-    list.push_back(j);
-  }
-  return {{"label", "front speeds of the trace's source history smoothed by a Hann window of duration T (linear "
-                    "response: the pulse a source of that duration would send)"},
-          {"durations", list}};
+void add_pulse_fronts(const CrystalTrace& trace, const CrystalAnalysisOptions& options, CrystalAnalysis& a) {
+  a.pulse_fronts = pulse_fronts(trace, options, a);
 }
 
 }  // namespace granwave::analysis

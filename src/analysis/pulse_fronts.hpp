@@ -10,25 +10,18 @@
 #include <vector>
 
 #include "analysis/trace_analysis.hpp"
-#include "core/json.hpp"
 
 namespace granwave::analysis {
-
-struct PulseFront {
-  double duration = 0.0;         // T (s)
-  double travel_layers = 0.0;    // T V / l0: the pulse's length in layers (bins), V the raw first-peak speed
-  SpeedFit first_peak, half_peak;
-  std::string error;             // the analysis' refusal for this T (then the fits are empty)
-};
 
 // Durations T = m l0 / V_first_peak(raw) for m in travel_layers (default 4, 8, 16, 32).
 std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAnalysisOptions& options,
                                      const CrystalAnalysis& raw, const std::vector<double>& travel_layers = {4, 8, 16, 32});
 
+// a.pulse_fronts = pulse_fronts(trace, options, a) (what `analyze` and `run` report).
+void add_pulse_fronts(const CrystalTrace& trace, const CrystalAnalysisOptions& options, CrystalAnalysis& a);
+
 // The trace with every layer series convolved in time with the Hann window of duration T (unit sum;
 // the values before t = 0 taken as the first sample's).
 CrystalTrace smoothed(const CrystalTrace& trace, double duration);
-
-Json pulse_fronts_json(const std::vector<PulseFront>& fronts);
 
 }  // namespace granwave::analysis

@@ -1,6 +1,7 @@
 // What `granwave run` prints and holds for the trace it wrote (analysis/report.hpp).
 #include "analysis/report.hpp"
 
+#include "analysis/pulse_fronts.hpp"
 #include "analysis/trace_json.hpp"
 #include "analysis/trace_text.hpp"
 #include "core/error.hpp"
@@ -24,7 +25,8 @@ FileReport report_file(const io::H5Reader& file, const std::vector<crystal::Obse
       r.text = to_text(f, a, false);
       r.json = to_json(f, a);
     } else {
-      const CrystalAnalysis a = analyze_crystal(f.crystal, options);
+      CrystalAnalysis a = analyze_crystal(f.crystal, options);
+      add_pulse_fronts(f.crystal, options, a);
       r.text = to_text(f, a, false);
       r.json = to_json(f, a);
     }

@@ -72,6 +72,15 @@ struct SpeedFit {
   std::size_t n = 0;
 };
 
+// The front of a longer pulse (analysis/pulse_fronts.hpp): the trace's source history smoothed by a
+// Hann window of duration T, measured as the trace itself.
+struct PulseFront {
+  double duration = 0.0;         // T (s)
+  double travel_layers = 0.0;    // T V / l0: the pulse's length in layers (bins), V the raw first-peak speed
+  SpeedFit first_peak, half_peak;
+  std::string error;             // the analysis' refusal for this T (then the fits are empty)
+};
+
 struct CrystalAnalysisOptions {
   int lo = -1, hi = -1;       // z/l0 range of the fits (< 0: default 10 .. min(150, last - 20))
   // Dispersion field: "auto" (the layer velocity; without it the time derivative of the layer
@@ -115,6 +124,9 @@ struct CrystalAnalysis {
   double delay_samples = kNaN;
   DispersionResult dispersion;
   LongWaveFit long_wave;  // V(k->0) and the model of the branch it comes from
+  // Longer pulses' fronts: filled by add_pulse_fronts (analysis/pulse_fronts.hpp) where a report is
+  // made (`analyze`, `run`), not by analyze_crystal itself
+  std::vector<PulseFront> pulse_fronts;
 };
 
 CrystalAnalysis analyze_crystal(const CrystalTrace& trace, const CrystalAnalysisOptions& options = {});

@@ -84,6 +84,23 @@ Json to_json(const TraceFile& f, const CrystalAnalysis& a) {
   slope["resolution"] = qty(d.small_k_resolution, "m/s");
   slope["n"] = d.small_k_n;
   o["small_k_slope"] = slope;
+  Json fronts = Json::array();
+  auto front_fit = [](const SpeedFit& f) {
+    return Json{{"value", f.speed.value}, {"error", f.speed.error}, {"unit", "m/s"}, {"z_over_l0", {f.lo, f.hi}}, {"n", f.n}};
+  };
+  for (const auto& f : a.pulse_fronts) {
+    Json j = {{"duration", qty(f.duration, "s")}, {"travel_layers", f.travel_layers}};
+    if (f.error.empty()) {
+      j["v_first_peak"] = front_fit(f.first_peak);
+      j["v_half_peak"] = front_fit(f.half_peak);
+    } else {
+      j["error"] = f.error;
+    }
+    fronts.push_back(j);
+  }
+  o["pulse_fronts"] = {{"label", "front speeds of the trace's source history smoothed by a Hann window of duration T "
+                                 "(linear response: the trace a source pulse of that duration would give)"},
+                       {"durations", fronts}};
   const LongWaveFit& w = a.long_wave;
   o["dispersion_model"] = w.model;
   Json lw = {{"model", w.model}, {"reason", w.reason}, {"value", w.value}, {"error", w.error}, {"unit", "m/s"}};

@@ -75,6 +75,17 @@ std::string to_text(const TraceFile& f, const CrystalAnalysis& a, bool table) {
   o += measured_line("  small-k slope", {d.small_k_slope, d.small_k_slope_error}, "m/s");
   o += fmt("  (omega_max = V k through the origin over %zu bins, k l0 <= 0.5, no model of the branch; frequency\n"
            "  resolution bound +- %.3g m/s)\n", d.small_k_n, d.small_k_resolution);
+  if (!a.pulse_fronts.empty())
+    o += "front speeds of longer pulses (the source history smoothed by a Hann window of duration T):\n";
+  for (const auto& f : a.pulse_fronts) {
+    if (!f.error.empty()) {
+      o += fmt("  T = %.4g s (%g layers): %s\n", f.duration, f.travel_layers, f.error.c_str());
+      continue;
+    }
+    o += fmt("  T = %.4g s (%g layers): first peak %.6g +- %.2g m/s, half peak %.6g +- %.2g m/s\n", f.duration,
+             f.travel_layers, f.first_peak.speed.value, f.first_peak.speed.error, f.half_peak.speed.value,
+             f.half_peak.speed.error);
+  }
   o += fmt("local speeds need (l0/V)/dt = %.3g samples per layer delay here\n", a.delay_samples);
   o += fmt("wavelength V T: T = %s (period = \"%s\", %s)\n",
            a.period_reading == PeriodReading::pulse ? "the leading pulse, 1 % arrival to the next 1 % crossing"

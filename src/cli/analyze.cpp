@@ -11,7 +11,6 @@
 #include "analysis/trace_text.hpp"
 #include "cli/verbs.hpp"
 #include "core/error.hpp"
-#include "core/format.hpp"
 #include "crystal/case_lattice.hpp"
 #include "crystal/observables.hpp"
 #include "impact/impact.hpp"
@@ -106,7 +105,7 @@ for the trace it writes: the same code, the same numbers.
                      small_k_slope {value, error, unit, label, k_max, n, resolution} (omega_max = V k
                      through the origin, k l0 <= 0.5), pulse_fronts {label, durations [{duration,
                      travel_layers, v_first_peak, v_half_peak}]} (the source history smoothed by a
-                     Hann window of 4, 8, 16, 32 layer delays; analyze only, not run),
+                     Hann window of 4, 8, 16, 32 layer delays),
                      dispersion_model ("sine" | "lattice_branch"), long_wave {model, reason,
                      value, error, unit: V(k->0) of that model; with the case's lattice also
                      branch, v_lattice, sine_deviation; lattice_branch also ridge {scale,
@@ -197,25 +196,13 @@ int cmd_analyze(const Args& args, std::ostream& out) {
     opt.wavenumber_speed = analysis::parse_wavenumber_speed(v);
     if (!opt.wavenumber_speed) throw InputError("--wavenumber-speed " + v + ": must be displacement_peak or first_peak");
   }
-  const auto a = measured(pos[0], [&] { return analysis::analyze_crystal(file.crystal, opt); });
-  const auto fronts = analysis::pulse_fronts(file.crystal, opt, a);
+  auto a = measured(pos[0], [&] { return analysis::analyze_crystal(file.crystal, opt); });
+  analysis::add_pulse_fronts(file.crystal, opt, a);
   if (json) {
-    Json j = analysis::to_json(file, a);
-    j["pulse_fronts"] = analysis::pulse_fronts_json(fronts);
-    out << json_text(j);
+    out << json_text(analysis::to_json(file, a));
     return 0;
   }
   out << analysis::to_text(file, a);
-  out << "front speeds of longer pulses (the source history smoothed by a Hann window of duration T):\n";
-  for (const auto& f : fronts) {
-    if (!f.error.empty()) {
-      out << fmt("  T = %.4g s (%g layers): %s\n", f.duration, f.travel_layers, f.error.c_str());
-      continue;
-    }
-    out << fmt("  T = %.4g s (%g layers): first peak %.6g +- %.2g m/s, half peak %.6g +- %.2g m/s\n", f.duration,
-               f.travel_layers, f.first_peak.speed.value, f.first_peak.speed.error, f.half_peak.speed.value,
-               f.half_peak.speed.error);
-  }
   return 0;
 }
 

@@ -1,6 +1,5 @@
 // granwave probe CASE [--strain zz|zx|xx|yy|all] [--amplitude E] [--tolerance T] [--json]: the static
 // probe of issue 39 (crystal/probe.hpp) against the relaxed slab tensor of `granwave theory`.
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

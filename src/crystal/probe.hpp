@@ -18,7 +18,6 @@
 // the O(e^2) terms cancel). The Cauchy stress's change is reported beside it:
 // d sigma_af = dP_af + eps_ga P_gf - tr(eps) P_af.
 #pragma once
-#include <Eigen/Dense>
 #include <memory>
 #include <string>
 #include <vector>

@@ -2,7 +2,6 @@
 // triply periodic relaxation of a file's packing for the bulk.
 #include "crystal/relaxed_inputs.hpp"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
