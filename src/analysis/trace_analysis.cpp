@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "analysis/coda.hpp"
 #include "core/error.hpp"
 
 namespace granwave::analysis {
@@ -289,6 +290,22 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   a.v_half_peak = fit_speed("half_peak", th, zz, zl, a.requested_lo, hi);
   a.v_one_percent = fit_speed("one_percent", t1, zz, zl, a.requested_lo, hi);
   if (a.v_first_peak.speed.value > 0.0) a.delay_samples = tr.l0 / a.v_first_peak.speed.value / a.dt;
+
+  // The coherent front and the coda (analysis/coda.hpp), up to the front's earliest return from the
+  // top wall (the first fixed layer above the free ones), at the 1 % arrival speed.
+  {
+    const double v = std::max(a.v_one_percent.speed.value, a.v_first_peak.speed.value);
+    const double z_wall = tr.layer_z[std::min<std::size_t>(last_index + 1, nl - 1)];
+    for (std::size_t q = 0; q < above.size(); ++q) {
+      LayerMeasures& L = a.layers[q];
+      if (!L.arrived) continue;
+      auto y = column(*mf, above[q]);
+      for (auto& x : y) x *= a.polarity;
+      const double t_back = v > 0.0 ? L.one_percent_time.value + 2.0 * (z_wall - L.z) / v : kNaN;
+      const FrontCoda fc = front_and_coda(t, y, L.one_percent_time.value, L.duration.value, t_back);
+      L.front_energy = fc.front, L.coda_energy = fc.coda;
+    }
+  }
 
   // Local speeds need consecutive layers: the layers vector holds every layer above the source.
   {

@@ -62,6 +62,8 @@ struct LayerMeasures {
   Measured displacement_peak_time;
   Measured k_speed;          // m/s, the local speed V put into k: by CrystalAnalysis::wavenumber_speed
   Measured k_from_speed;     // (2/l0) arccos(V/V(k->0)) (1/m), V = k_speed
+  // sum y^2 dt of the measured signal over the coherent front and over the coda (analysis/coda.hpp)
+  double front_energy = kNaN, coda_energy = kNaN;
 };
 
 struct SpeedFit {

@@ -75,6 +75,15 @@ std::string to_text(const TraceFile& f, const CrystalAnalysis& a, bool table) {
   o += measured_line("  small-k slope", {d.small_k_slope, d.small_k_slope_error}, "m/s");
   o += fmt("  (omega_max = V k through the origin over %zu bins, k l0 <= 0.5, no model of the branch; frequency\n"
            "  resolution bound +- %.3g m/s)\n", d.small_k_n, d.small_k_resolution);
+  {
+    std::string line;
+    for (const auto& L : a.layers) {
+      const long zq = std::lround(L.z_over_l0);
+      if (!L.arrived || !std::isfinite(L.front_energy) || (zq != 10 && zq != 20 && zq != 40 && zq != 80 && zq != 150)) continue;
+      line += fmt(" %ld: %.3f", zq, L.coda_energy / (L.front_energy + L.coda_energy));
+    }
+    if (!line.empty()) o += "coda share of the energy (coda / (front + coda)) at z/l0 =" + line + "\n";
+  }
   if (!a.pulse_fronts.empty())
     o += "front speeds of longer pulses (the source history smoothed by a Hann window of duration T):\n";
   for (const auto& f : a.pulse_fronts) {

@@ -105,7 +105,9 @@ for the trace it writes: the same code, the same numbers.
                      small_k_slope {value, error, unit, label, k_max, n, resolution} (omega_max = V k
                      through the origin, k l0 <= 0.5), pulse_fronts {label, durations [{duration,
                      travel_layers, v_first_peak, v_half_peak}]} (the source history smoothed by a
-                     Hann window of 4, 8, 16, 32 layer delays),
+                     Hann window of 4, 8, 16, 32 layer delays), front_and_coda {label, z_over_l0,
+                     front_energy, coda_energy, coda_fraction} (the leading pulse's energy and the
+                     rest's until the front could return from the top),
                      dispersion_model ("sine" | "lattice_branch"), long_wave {model, reason,
                      value, error, unit: V(k->0) of that model; with the case's lattice also
                      branch, v_lattice, sine_deviation; lattice_branch also ridge {scale,

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "analysis/coda.hpp"
 #include "analysis/dispersion.hpp"
 #include "analysis/pulse_fronts.hpp"
 #include "analysis/trace_analysis.hpp"
@@ -260,6 +261,32 @@ TEST_CASE("pulse fronts: a Hann-smoothed step rises over T to the step; a non-di
     ++measured;
   }
   CHECK(measured >= 3);
+}
+
+TEST_CASE("front and coda: a lone pulse has no coda; a trailing pulse is the coda's energy", "[analysis]") {
+  // y = Gaussian front (rms sigma) + b times the same Gaussian delayed by D, well after the front:
+  // front energy A^2 sigma sqrt(pi), coda energy b^2 A^2 sigma sqrt(pi) (sums of sampled Gaussians
+  // of sigma = 10 samples equal the integral to round-off).
+  const double sigma = 10e-6, b = 0.3, D = 200e-6;
+  std::vector<double> t, y1, y2;
+  for (int n = 0; n < 1200; ++n) {
+    t.push_back(n * h);
+    const double g = A * std::exp(-std::pow(n * h - 300e-6, 2) / (2 * sigma * sigma));
+    const double g2 = A * std::exp(-std::pow(n * h - 300e-6 - D, 2) / (2 * sigma * sigma));
+    y1.push_back(g), y2.push_back(g + b * g2);
+  }
+  const double t1 = 300e-6 - 6 * sigma, dur = 12 * sigma;  // the pulse's 1e-8 tails either side
+  const double e = A * A * sigma * std::sqrt(std::numbers::pi);
+  const FrontCoda lone = front_and_coda(t, y1, t1, dur, 1.1e-3);
+  CHECK(lone.front == Approx(e).epsilon(1e-7));
+  CHECK(lone.coda < 1e-12 * e);
+  const FrontCoda two = front_and_coda(t, y2, t1, dur, 1.1e-3);
+  CHECK(two.front == Approx(e).epsilon(1e-6));
+  CHECK(two.coda == Approx(b * b * e).epsilon(1e-6));
+  // The coda window stops at the return time: before the trailing pulse, no coda.
+  CHECK(front_and_coda(t, y2, t1, dur, 400e-6).coda < 1e-12 * e);
+  // Not arrived: NaN.
+  CHECK(std::isnan(front_and_coda(t, y2, kNaN, dur, 1e-3).front));
 }
 
 TEST_CASE("wavenumber from speed inverts the group speed of the sine branch", "[analysis]") {
