@@ -84,6 +84,20 @@ assert r['slab']['rattlers'] == 0 and r['slab']['zero_modes']['mechanisms'] == 0
 e = d['effective_medium']; assert e['label'] == 'affine estimate' and e['model'] == 'linear_springs'; \
 h = json.load(open('${CLI_TMP}/relaxed_hm.json'))['effective_medium']; assert h['model'] == 'walton_hertz_mindlin' and h['K']['value'] > 0\"")
 set_tests_properties("cli: theory --json gives the relaxed slab and bulk moduli and the effective-medium estimate" PROPERTIES LABELS "cli")
+# Issue 39: the relaxed moduli of a packing from a file. The FCC of tests/data/theory as an x y z r
+# table: its bulk (the file's periodic packing relaxed, at rest already) is the built crystal's to
+# 1e-9, the effective medium too; its slab (V = the file's box, 12 layers, no end-layer weights) has
+# the zz-type components of the built slab (11 layer spacings) times 11/12: V_pz by sqrt(11/12).
+add_test(NAME "cli: theory --json of an FCC read from a file: the built crystal's bulk, the slab's volume convention"
+  COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/tests/data/theory/fcc_kt10_small.toml --json --nk 3 > ${CLI_TMP}/th_built.json && \
+${GW} theory ${CMAKE_SOURCE_DIR}/tests/data/theory/fcc_kt10_small_file.toml --json > ${CLI_TMP}/th_file.json && \
+/usr/bin/python3 -c \"import json, math; b = json.load(open('${CLI_TMP}/th_built.json')); f = json.load(open('${CLI_TMP}/th_file.json')); \
+v = lambda x: x['value']; rb, rf = b['relaxed'], f['relaxed']; \
+assert all(abs(v(rf['bulk'][k]) / v(rb['bulk'][k]) - 1) < 1e-9 for k in ('V_pz', 'V_sz', 'V_sy', 'pressure')), (rf['bulk'], rb['bulk']); \
+assert 'triply periodic' in rf['bulk']['note'] and rf['bulk']['unbalanced'] < 1e-10 and rf['bulk']['unstable_modes'] == 0; \
+assert abs(v(rf['slab']['V_pz']) / v(rb['slab']['V_pz']) - math.sqrt(11 / 12)) < 1e-9, (rf['slab'], rb['slab']); \
+assert all(abs(v(f['effective_medium'][k]) / v(b['effective_medium'][k]) - 1) < 1e-9 for k in ('Z', 'phi', 'K', 'G'))\"")
+set_tests_properties("cli: theory --json of an FCC read from a file: the built crystal's bulk, the slab's volume convention" PROPERTIES LABELS "cli")
 # Issue 39: the static probe through the command line on the YADE packing (JSON keys, agreement with
 # the relaxed slab tensor, nothing slides); xy and a bad amplitude exit 2 naming what is allowed.
 add_test(NAME "cli: probe --json agrees with the relaxed slab tensor; --strain xy and a bad amplitude exit 2"
