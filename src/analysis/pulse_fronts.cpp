@@ -1,7 +1,9 @@
 // Front speeds against pulse duration (analysis/pulse_fronts.hpp).
 #include "analysis/pulse_fronts.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "core/error.hpp"
@@ -44,10 +46,28 @@ std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAna
   if (!(v > 0.0) || !(raw.l0 > 0.0)) return out;
   CrystalAnalysisOptions o = options;
   o.lattice.reset();  // the fronts only: no ridge against a branch
+  // The smoothed first peak comes about T/2 after the raw one: that must lie in the record at the
+  // range's last layer; and the whole smoothed pulse must pass there before its reflection from the
+  // top wall (one layer above the last free one) returns: T <= 2 (z_wall - z_hi) / V.
+  double t_last = kNaN;
+  for (const auto& L : raw.layers)
+    if (std::lround(L.z_over_l0) == raw.v_first_peak.hi) t_last = L.peak_time.value;
+  const double t_end = options.t_max >= 0.0 ? std::min(options.t_max, trace.time.back()) : trace.time.back();
   for (double m : travel_layers) {
     PulseFront f;
     f.travel_layers = m;
     f.duration = m * raw.l0 / v;
+    const double t_back = 2.0 * (raw.last_free + 1 - raw.v_first_peak.hi) * raw.l0 / v;
+    if (!(t_last + 0.5 * f.duration <= t_end) || !(f.duration <= t_back)) {
+      char buf[240];
+      std::snprintf(buf, sizeof buf,
+                    "not measured: at z/l0 = %d the raw first peak (t = %.4g s) plus T/2 passes the record's end (%.4g "
+                    "s), or T exceeds the %.4g s before the top wall's reflection returns",
+                    raw.v_first_peak.hi, t_last, t_end, t_back);
+      f.error = buf;
+      out.push_back(f);
+      continue;
+    }
     try {
       const CrystalAnalysis a = analyze_crystal(smoothed(trace, f.duration), o);
       f.first_peak = a.v_first_peak;
