@@ -145,7 +145,7 @@ PeriodicBulk periodic_bulk(const config::Case& c, double tolerance, long max_ste
   // The network of the relaxed state.
   theory::ContactNetwork& net = out.net;
   net.box_x = s.box[0], net.box_y = s.box[1];
-  const ContactAt k0 = contact_at(c, 0.0);
+  const ContactAt k0 = contact_at(c, linearisation_overlap(c, pk));  // the fallback k, kt (each contact has its own)
   net.k = k0.kn, net.kt = k0.kt;
   for (std::size_t p = 0; p < n; ++p) net.particles.push_back({s.m[p], 0, s.x[p].z(), s.a[p], pk.inertia[p]});
   for (const auto& [i, j] : s.pairs) {
