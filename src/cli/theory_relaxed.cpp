@@ -9,6 +9,7 @@
 
 #include "cli/theory_json.hpp"
 #include "config/contact_laws.hpp"
+#include "core/error.hpp"
 #include "crystal/relaxed_inputs.hpp"
 #include "crystal/simulation.hpp"
 #include "packing/packing.hpp"
@@ -65,8 +66,8 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
     // under the case's normal law (crystal/periodic_bulk.hpp), every particle free.
     if (c.crystal->imported->box.z_walls()) {
       R.bulk_note = "omitted: the file's packing lies between z walls (not periodic in z)";
-    } else {
-      const crystal::PeriodicBulk pb = crystal::periodic_bulk(c);
+    } else try {
+      const crystal::PeriodicBulk pb = crystal::periodic_bulk(c, 1e-10, 200000);
       theory::RelaxedOptions bulk = slab;
       bulk.prescribed.clear();
       bulk.boundary = theory::RelaxedBoundary::bulk;
@@ -75,6 +76,9 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
       R.bulk_available = true;
       R.bulk_note = "the file's triply periodic packing (before the cut into slabs) relaxed by FIRE under the case's "
                     "normal law, every particle free, in " + std::to_string(pb.steps) + " steps";
+    } catch (const RunError& e) {
+      R.bulk_available = false;
+      R.bulk_note = std::string("omitted: ") + e.what();
     }
   } else if (pk.layers % 2 != 0) {
     // The bulk: the network closed across z, the end layers' centres one mean layer spacing apart;
