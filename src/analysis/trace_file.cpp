@@ -123,7 +123,8 @@ TraceFile read_trace(const io::H5Reader& r, const std::vector<crystal::Observabl
       throw InputError(path + ": the layer spacing l0 = " + std::to_string(c.l0) +
                        " (/system attribute l0, or the median spacing of /crystal/layer_z) is not a positive number");
     // A file's packing has slabs, not fixed layers: its source bins are the layers below layer_z = 0.
-    const bool from_file = r.has_attr("/system", "generator") && r.attr_string("/system", "generator") == "file";
+    const std::string generator = r.has_attr("/system", "generator") ? r.attr_string("/system", "generator") : "fcc";
+    const bool from_file = generator == "file" || generator == "random";
     if (r.has_attr("/system", "fixed_layers") && !from_file) {
       const double fl = r.attr_double("/system", "fixed_layers");
       if (!(std::abs(fl) < 1e9))
