@@ -21,7 +21,8 @@ std::string random_case(const std::string& random_extra = "", const std::string&
   return "[case]\nname = \"r\"\nmodel = \"crystal\"\n[crystal]\nlattice = \"random\"\ndensity = 2500\n" + crystal_extra +
          "[random]\nradius = 5e-4\nshape = " + shape + "\npressure = " + pressure + "\n" + random_extra +
          (random_extra.find("count") == std::string::npos ? "count = 300\n" : "") +
-         "[contact]\nkn = 1000\n[integrator]\n" + integrator + "t_end = 1e-5\n";
+         "[contact]\nkn = 1000\n[integrator]\n" + integrator +
+         (integrator.find("t_end") == std::string::npos ? "t_end = 1e-5\n" : "");
 }
 
 void require_refused(const std::string& text, std::initializer_list<std::string> fragments) {
@@ -58,7 +59,7 @@ TEST_CASE("random: a pressure whose overlaps break the overlap bound or the stab
   require_refused(random_case("", "", "dt_over_tc = 0.02\n", "[1, 1, 3]", "1e5"),
                   {"random.pressure", "overlap bound", "allowed: pressure <="});
   // A fixed time step of 1e-4 s is above 2/omega_max for kn = 1000 N/m and 0.65 mg spheres (~ 1.7e-5 s).
-  require_refused(random_case("", "", "dt = 1e-4\n"), {"random.pressure", "stability limit", "integrator.dt"});
+  require_refused(random_case("", "", "dt = 1e-4\nt_end = 1e-3\n"), {"random.pressure", "stability limit", "integrator.dt"});
 }
 
 TEST_CASE("random: a compression that cannot reach its target in max_steps says so", "[config][random]") {
