@@ -81,7 +81,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
       r.fail(std::string("crystal.") + key, "is not used with lattice = \"random\": [random] gives the particles", crystal.get(key));
   const toml::table& t = *r.table(root, "", "random", true);
   r.allow_only(t, "random", {"distribution", "radius", "width", "radii", "fractions", "count", "shape", "seed", "pressure",
-                             "preparation_friction", "damping", "inertia_number", "servo_time", "initial_solid_fraction",
+                             "preparation_friction", "damping", "background_damping", "inertia_number", "servo_time", "initial_solid_fraction",
                              "pressure_tolerance", "kinetic_ratio", "unbalanced_force", "max_steps", "max_overlap",
                              "source_thickness", "fixed_thickness", "bin_width", "relax_tolerance"});
   packing::RandomSpec s;
@@ -106,8 +106,9 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
     r.fail("random.preparation_friction", "= " + fmt("%g", mu) + ": a frictional preparation is not yet available (its "
            "tangential history cannot yet be carried into the system file); allowed: 0", t.get("preparation_friction"));
   s.damping = in("damping", 0.0, 1.0, true, 0.98, " (fraction of the critical damping of a contact)");
+  s.background_damping = in("background_damping", 0.0, 1e3, false, 1.0, " (drag rate in units of sqrt(d p / m))");
   s.inertia_number = in("inertia_number", 0.0, 0.1, true, 1e-2, "");
-  s.servo_time = in("servo_time", 0.0, 1e6, true, 1.0, " (units of sqrt(m/(d p)))");
+  s.servo_time = in("servo_time", 0.0, 1e6, true, 0.02, " (units of sqrt(m/(d p)))");
   s.initial_solid_fraction = in("initial_solid_fraction", 0.0, 0.3, true, 0.3, "");
   s.pressure_tolerance = in("pressure_tolerance", 0.0, 0.1, true, 1e-3, " (of the target)");
   s.kinetic_ratio = in("kinetic_ratio", 0.0, 1.0, true, 1e-8, " (E_kin/E_pot)");

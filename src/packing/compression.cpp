@@ -118,14 +118,19 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
   const double d_mean = 2.0 * a_sum / n, m_mean = m_sum / n, p_t = spec.pressure;
   // The inertial time at the target pressure, sqrt(m/(d p)): the inertia number I = |strain rate| of it.
   const double t_inertial = std::sqrt(m_mean / (d_mean * p_t));
-  const double rate_max = spec.inertia_number / t_inertial, tau = spec.servo_time * t_inertial;
+  const double rate_max = spec.inertia_number / t_inertial;
   // The time step: 1/25 of the contact time of the lightest pair at the stiffness of the largest
   // spheres pressed by 4 mean contact forces at the target (f = pi d^2 p / (z Phi), z 6, Phi 0.64).
   const double f_mean = std::numbers::pi * d_mean * d_mean * p_t / (6.0 * 0.64);
   const double k_max = law(a_max, a_max, overlap_at_force(law, a_max, 4.0 * f_mean)).k;
   const double dt = std::numbers::pi * std::sqrt(0.5 * m_min / k_max) / 25.0;
+  const double tau = std::max(spec.servo_time * t_inertial, 10.0 * dt);  // a step cannot overshoot
   const double skin = 0.2 * d_mean;
   const double zeta = spec.damping;
+  // A background drag on every particle's velocity (relative to the box's affine motion), decay
+  // time t_inertial / background_damping: a rattler's cage is wide and its collisions rare, and
+  // the contacts' dashpots alone would leave it rattling long after the rest is static.
+  const double drag = 1.0 / (1.0 + spec.background_damping * dt / t_inertial);
 
   PairList pl;
   double scale = 1.0;  // the box's linear scale since the start
@@ -205,15 +210,19 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
                        state(s, p, ratio, unb) + "; wanted |p/p_target - 1| <= " + std::to_string(spec.pressure_tolerance) +
                        ", E_kin/E_pot <= " + std::to_string(spec.kinetic_ratio) + ", unbalanced <= " +
                        std::to_string(spec.unbalanced_force) + "); allowed: a larger max_steps or looser tolerances");
-    // Berendsen's barostat on the box: dp/dt = -S rate with S = (1/3V) sum k |b|^2 the affine
-    // stiffness, so rate = (p - p_target) / (S tau) relaxes p in tau; bounded by the inertia number.
+    // The servo: proportional to the pressure's relative error, rate = rate_max (p - p_target) /
+    // p_target, the bound rate_max being the inertia number's; never faster than Berendsen's barostat
+    // with relaxation time tau, rate = (p - p_target) / (S tau), S = (1/3V) sum k |b|^2 the affine
+    // stiffness (dp/dt = -S rate), so that p cannot overshoot within a step.
     const double S = stiff / (3.0 * volume);
-    rate = S > 0.0 ? std::clamp((p - p_t) / (S * tau), -rate_max, rate_max) : -rate_max;
+    const double error = std::clamp((p - p_t) / p_t, -1.0, 1.0);
+    rate = rate_max * error;
+    if (S > 0.0 && std::abs(rate) > std::abs(p - p_t) / (S * tau)) rate = (p - p_t) / (S * tau);
     // Leapfrog, then the box and every centre scaled affinely by (1 + rate dt).
     const double grow = 1.0 + rate * dt;
     for (std::size_t q = 0; q < n; ++q)
       for (int d = 0; d < 3; ++d) {
-        v[3 * q + d] += dt * ft[3 * q + d] / m[q];
+        v[3 * q + d] = (v[3 * q + d] + dt * ft[3 * q + d] / m[q]) * drag;
         double& xq = x[3 * q + d];
         xq = (xq + dt * v[3 * q + d]) * grow;
       }

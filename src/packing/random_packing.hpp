@@ -36,8 +36,9 @@ struct RandomSpec {
   double pressure = 0.0;                   // target isotropic pressure (Pa)
   double initial_solid_fraction = 0.3;     // of the gas
   double damping = 0.98;                   // normal contact dashpot, fraction of critical
+  double background_damping = 1.0;         // drag rate on every velocity, in units of sqrt(d p/m)
   double inertia_number = 1e-2;            // bound on |strain rate| sqrt(m/(d p))
-  double servo_time = 1.0;                 // Berendsen's tau_p in units of sqrt(m/(d p))
+  double servo_time = 0.02;                // Berendsen's tau_p in units of sqrt(m/(d p)) (at least 10 steps)
   double pressure_tolerance = 1e-3;        // |p - p_target| / p_target
   double kinetic_ratio = 1e-8;             // E_kin / E_pot
   double unbalanced_force = 1e-3;          // largest net force over the mean contact force
