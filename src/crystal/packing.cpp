@@ -93,8 +93,8 @@ int Packing::source_bins() const {
   return first_other;
 }
 
-// The generators, one per crystal.lattice (ARCHITECTURE.md: "add a packing generator"); the next
-// one (a prepared random packing) is a branch of these two and a file of its own.
+// The generators, one per crystal.lattice (ARCHITECTURE.md: "add a packing generator"); "random"
+// is prepared when the case is loaded (config/random_loader.cpp) and then goes the file's way.
 Packing initial_packing(const config::Case& c) {
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
   if (c.crystal->from_file()) return imported_packing(c);

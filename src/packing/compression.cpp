@@ -141,8 +141,9 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
   auto clock_last = std::chrono::steady_clock::now();
   const auto state = [&](long s, double p, double ratio, double unb) {
     std::ostringstream o;
-    o << "step " << s << ": p/p_target " << p / p_t << ", E_kin/E_pot " << ratio << ", unbalanced " << unb
-      << ", solid fraction " << [&] {
+    o << "step " << s << ": p/p_target " << p / p_t << ", E_kin/E_pot " << ratio;
+    if (std::isfinite(unb)) o << ", unbalanced " << unb;  // measured once the other two hold
+    o << ", solid fraction " << [&] {
            double vs = 0.0;
            for (double r : a) vs += 4.0 / 3.0 * std::numbers::pi * r * r * r;
            return vs / (L[0] * L[1] * L[2]);
