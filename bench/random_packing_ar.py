@@ -67,6 +67,8 @@ def main():
                 rows.append((seed, float(at["prepare_solid_fraction"]), float(at["prepare_coordination_backbone"]),
                              int(at["prepare_rattlers"]), float(at["prepare_coordination"]), int(at["prepare_steps"]),
                              float(at["prepare_pressure"]), float(at["prepare_unbalanced"]), time.time() - t0))
+            print("seed %d: Phi %.4f, z* %.3f, rattlers %d, Z %.3f, %d steps, p %.6g Pa, unbalanced %.2g, %.0f s" % rows[-1],
+                  file=sys.stderr, flush=True)
     print("| seed | Phi | z* | rattlers | Z | steps | p (Pa) | unbalanced | s |")
     print("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
