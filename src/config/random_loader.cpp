@@ -171,14 +171,20 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
              t.get("pressure"));
   }
 
-  packing::Packing pk = packing::random_gas(s);
-  const packing::Preparation prep = packing::compress(pk, s, law, [](const std::string& line) {
-    std::cerr << "granwave: preparing the random packing: " << line << "\n";
-  });
-  packing::wrap_into_box(pk);
-  packing::Limits limits;
-  limits.max_overlap = max_overlap;
-  packing::check_packing(pk, limits);
+  packing::Packing pk;
+  packing::Preparation prep;
+  try {  // the generator's refusals name their key; here they get the case file's name
+    pk = packing::random_gas(s);
+    prep = packing::compress(pk, s, law, [](const std::string& line) {
+      std::cerr << "granwave: preparing the random packing: " << line << "\n";
+    });
+    packing::wrap_into_box(pk);
+    packing::Limits limits;
+    limits.max_overlap = max_overlap;
+    packing::check_packing(pk, limits);
+  } catch (const InputError& e) {
+    throw InputError(c.path + ": " + e.what());
+  }
   resolve_slabs(r, t, "random", p, pk, k);
   k.random = s;
   k.preparation = std::make_shared<const packing::Preparation>(prep);

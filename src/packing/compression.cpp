@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "packing/contacts.hpp"
 #include "packing/random_packing.hpp"
 
@@ -190,8 +191,8 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
     const double volume = L[0] * L[1] * L[2];
     p = virial / (3.0 * volume);
     if (!std::isfinite(p) || worst > 0.5)
-      throw InputError("random.inertia_number = " + std::to_string(spec.inertia_number) + ": the compression overshot (an overlap of " +
-                       std::to_string(worst) + " of the smaller radius at step " + std::to_string(s) +
+      throw InputError("random.inertia_number = " + fmt("%g", spec.inertia_number) + ": the compression overshot (an overlap of " +
+                       fmt("%g", worst) + " of the smaller radius at step " + std::to_string(s) +
                        "); allowed: a smaller inertia number or a larger servo_time");
     double e_kin = 0.0;
     for (std::size_t q = 0; q < n; ++q)
@@ -208,9 +209,9 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
     }
     if (s == spec.max_steps)
       throw InputError("random.max_steps = " + std::to_string(spec.max_steps) + ": the compression did not reach its target (" +
-                       state(s, p, ratio, unb) + "; wanted |p/p_target - 1| <= " + std::to_string(spec.pressure_tolerance) +
-                       ", E_kin/E_pot <= " + std::to_string(spec.kinetic_ratio) + ", unbalanced <= " +
-                       std::to_string(spec.unbalanced_force) + "); allowed: a larger max_steps or looser tolerances");
+                       state(s, p, ratio, unb) + "; wanted |p/p_target - 1| <= " + fmt("%g", spec.pressure_tolerance) +
+                       ", E_kin/E_pot <= " + fmt("%g", spec.kinetic_ratio) + ", unbalanced <= " +
+                       fmt("%g", spec.unbalanced_force) + "); allowed: a larger max_steps or looser tolerances");
     // The servo: proportional to the pressure's relative error, rate = rate_max (p - p_target) /
     // p_target, the bound rate_max being the inertia number's; never faster than Berendsen's barostat
     // with relaxation time tau, rate = (p - p_target) / (S tau), S = (1/3V) sum k |b|^2 the affine

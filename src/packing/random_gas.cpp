@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/rng.hpp"
 #include "packing/random_packing.hpp"
 
@@ -88,7 +89,7 @@ Packing random_gas(const RandomSpec& spec) {
       if (ok) centre[q] = c;
     }
     if (!ok)
-      throw InputError("random.initial_solid_fraction = " + std::to_string(spec.initial_solid_fraction) +
+      throw InputError("random.initial_solid_fraction = " + fmt("%g", spec.initial_solid_fraction) +
                        ": no place found for particle " + std::to_string(q + 1) + " in " + std::to_string(tries) +
                        " tries (a gas needs a low solid fraction: use at most 0.3)");
     placed.push_back(q);
