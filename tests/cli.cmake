@@ -26,6 +26,8 @@ granwave_cli_refuses(unknown_key unknown_key.toml "case.colour")
 granwave_cli_refuses(negative_modulus negative_modulus.toml "materials.steel.youngs_modulus")
 granwave_cli_refuses(off_grid_m off_grid_m.toml "magnetisation")
 granwave_cli_refuses(crystal_mu crystal_mu.toml "contact.mu_dynamic")
+# Issue 40: a random packing whose radius law makes radii negative (refused before any compression).
+granwave_cli_refuses(random_width random_width.toml "random.width")
 # Issue #14: the Hertz-Mindlin law's keys.
 granwave_cli_refuses(hertz_negative_modulus hertz_negative_modulus.toml "contact.youngs_modulus")
 granwave_cli_refuses(hertz_poisson_half hertz_poisson_half.toml "contact.poisson_ratio")
@@ -195,3 +197,12 @@ set_tests_properties("cli: analyze --pulse-field refuses a bad value and a chain
 add_test(NAME "cli: house rules (file sizes, each file's job, design.md)"
   COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/cli/house_rules.py ${CMAKE_SOURCE_DIR})
 set_tests_properties("cli: house rules (file sizes, each file's job, design.md)" PROPERTIES LABELS "cli")
+
+# Issue 40: a random packing is the same bits on one thread and on two (the compression is serial,
+# its pair sums sorted; the relaxation after it is the crystal's).
+add_test(NAME "cli: a random packing builds the same bits on 1 and 2 threads"
+  COMMAND sh -c "cd ${CLI_TMP} && rm -f random1.h5 random2.h5 && \
+OMP_NUM_THREADS=1 ${GW} build ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml -o random1.h5 2>/dev/null && \
+OMP_NUM_THREADS=2 ${GW} build ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml -o random2.h5 2>/dev/null && \
+for d in /position /radius /mass /layer /role; do h5diff random1.h5 random2.h5 $d || exit 1; done")
+set_tests_properties("cli: a random packing builds the same bits on 1 and 2 threads" PROPERTIES LABELS "cli")

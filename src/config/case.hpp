@@ -13,6 +13,7 @@
 #include "config/impact_case.hpp"
 #include "contact/law_params.hpp"
 #include "packing/packing.hpp"
+#include "packing/random_packing.hpp"
 
 namespace granwave::config {
 
@@ -86,7 +87,7 @@ struct PackingKeys {
 };
 
 struct CrystalCase {
-  std::string lattice = "fcc";       // "fcc" (the generator of sec. 2.2) | "file" ([packing])
+  std::string lattice = "fcc";       // "fcc" (the generator of sec. 2.2) | "file" ([packing]) | "random" ([random])
   std::array<int, 3> cells{0, 0, 0};  // particles per layer in x, y; layers in z
   double radius = 0.0;                // m (mean radius a)
   double density = 0.0;               // kg/m^3
@@ -100,7 +101,13 @@ struct CrystalCase {
   // the law is linearised at), filled by the loader; cells, polydispersity, seed are unused.
   std::optional<PackingKeys> packing_file;
   std::shared_ptr<const packing::Packing> imported;
-  bool from_file() const { return lattice == "file"; }
+  // lattice = "random": the generator's keys, and what its preparation reached. The prepared
+  // periodic packing is then `imported` and packing_file holds its slabs' keys (format "random"),
+  // so that it is cut open and run exactly as a periodic packing from a file.
+  std::optional<packing::RandomSpec> random;
+  std::shared_ptr<const packing::Preparation> preparation;
+  // Not a lattice: a packing, from a file or from the random generator (the run treats both alike).
+  bool from_file() const { return lattice == "file" || lattice == "random"; }
 };
 
 struct Excitation {

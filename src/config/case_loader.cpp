@@ -10,6 +10,7 @@
 #include "config/contact_law_keys.hpp"
 #include "config/impact_loader.hpp"
 #include "config/packing_loader.hpp"
+#include "config/random_loader.hpp"
 #include "config/toml_reader.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -195,8 +196,8 @@ CrystalCase read_crystal(const TomlReader& r, const toml::table& t) {
   r.allow_only(t, "crystal", {"lattice", "cells", "radius", "density", "overlap", "polydispersity", "fixed_layers", "seed",
                               "relax_tolerance"});
   CrystalCase c;
-  c.lattice = r.choice(t, "crystal", "lattice", {"fcc", "file"}, "fcc");
-  if (c.from_file()) {  // the rest is [packing]'s (config/packing_loader.cpp)
+  c.lattice = r.choice(t, "crystal", "lattice", {"fcc", "file", "random"}, "fcc");
+  if (c.from_file()) {  // the rest is [packing]'s or [random]'s (config/packing_loader.cpp, random_loader.cpp)
     c.density = *r.number_in(t, "crystal", "density", true, [](double v) { return v > 0; }, "> 0 (kg/m^3)");
     c.fixed_layers = 0;
     return c;
@@ -262,7 +263,7 @@ const Material& Case::material(const std::string& n) const {
 Case parse_case(const std::string& toml_text, const std::string& origin) {
   const TomlReader r(origin);
   const toml::table root = parse_toml(toml_text, origin);
-  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "packing", "impact", "contact", "excitation", "integrator",
+  r.allow_only(root, "", {"case", "materials", "chain", "crystal", "packing", "random", "impact", "contact", "excitation", "integrator",
                       "stop", "output", "analysis"});
 
   Case c;
@@ -278,14 +279,14 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
     r.fail("impact", "belongs to impact cases (model = \"impact\")", root.get("impact"));
 
   if (c.model == Model::impact) {
-    for (const char* k : {"chain", "crystal", "packing", "excitation", "stop", "analysis"}) {
+    for (const char* k : {"chain", "crystal", "packing", "random", "excitation", "stop", "analysis"}) {
       if (root.contains(k)) r.fail(k, "not used by impact cases (model = \"impact\")", root.get(k));
     }
     c.materials = read_impact_materials(r, root);
     c.impact = read_impact(r, root, c.materials);
     c.contact = read_contact(r, impact_contact_table(r, root, c));
   } else if (c.model == Model::chain) {
-    for (const char* k : {"crystal", "packing", "contact", "excitation"}) {
+    for (const char* k : {"crystal", "packing", "random", "contact", "excitation"}) {
       if (root.contains(k)) r.fail(k, "belongs to crystal cases; this case has model = \"chain\"", root.get(k));
     }
     c.materials = read_materials(r, root);
@@ -330,6 +331,9 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
     s << "must be >= dt (" << *c.integrator.dt << " s; got " << c.integrator.t_end << ")";
     r.fail("integrator.t_end", s.str(), integ->get("t_end"));
   }
+
+  // lattice = "random": prepared now, with the case's law and time step known (config/random_loader.cpp).
+  if (c.crystal) read_random(r, root, c);
 
   // [stop] (chains)
   int nbeads = c.chain ? chain_bead_count(*c.chain) : 0;

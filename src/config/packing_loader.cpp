@@ -73,7 +73,7 @@ void apply_density(packing::Packing& pk, const PackingKeys& keys, double case_de
 void read_packing(const TomlReader& r, const toml::table& root, const toml::table& crystal, CrystalCase& k,
                   const std::string& origin) {
   const toml::node* table = root.get("packing");
-  if (!k.from_file()) {
+  if (k.lattice != "file") {
     if (table) r.fail("packing", "belongs to crystal.lattice = \"file\" (this crystal is \"" + k.lattice + "\")", table);
     return;
   }
@@ -110,9 +110,6 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
     p.box_periodic_z = r.boolean(*t, "packing", "box_periodic_z").value_or(true);
   }
   p.density_from_file = r.choice(*t, "packing", "density", {"case", "file"}, "case") == "file";
-  const auto positive = [](double v) { return v > 0; };
-  const auto length = [&](const char* key) { return r.number_in(*t, "packing", key, false, positive, "> 0 (m)"); };
-  const std::optional<double> source = length("source_thickness"), fixed = length("fixed_thickness"), bin = length("bin_width");
   p.max_overlap = r.number_in(*t, "packing", "max_overlap", false, [](double v) { return v > 0 && v < 1; },
                               "in (0, 1) (of the smaller radius)").value_or(0.05);
   // 1e-14: a disordered packing has soft modes; stopped at 1e-7, one of LAMMPS' fixture's particles
@@ -128,6 +125,16 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
   }
   if (pk.particles.empty()) throw InputError(origin + ": packing.file: " + p.file + ": no particles");
   apply_density(pk, p, k.density);
+  resolve_slabs(r, *t, "packing", p, pk, k);
+  k.imported = std::make_shared<const packing::Packing>(std::move(pk));
+}
+
+void resolve_slabs(const TomlReader& r, const toml::table& t, const std::string& table, PackingKeys& p,
+                   const packing::Packing& pk, CrystalCase& k) {
+  const auto positive = [](double v) { return v > 0; };
+  const auto length = [&](const char* key) { return r.number_in(t, table, key, false, positive, "> 0 (m)"); };
+  const std::optional<double> source = length("source_thickness"), fixed = length("fixed_thickness"), bin = length("bin_width");
+  const auto key = [&](const char* name) { return table + "." + name; };
   double r_sum = 0.0, r_max = 0.0;
   for (const packing::Particle& q : pk.particles) {
     r_sum += q.radius;
@@ -140,19 +147,19 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
   p.fixed_thickness = fixed.value_or(p.source_thickness);
   p.bin_width = bin.value_or(2.0 * r_mean);
   if (p.source_thickness < 2.0 * r_max)
-    r.fail("packing.source_thickness", "must be >= the largest contact reach, the largest diameter " + std::to_string(2.0 * r_max) + " m",
-           t->get("source_thickness"));
+    r.fail(key("source_thickness"), "must be >= the largest contact reach, the largest diameter " + std::to_string(2.0 * r_max) + " m",
+           t.get("source_thickness"));
   if (p.fixed_thickness < 2.0 * r_max)
-    r.fail("packing.fixed_thickness", "must be >= the largest contact reach, the largest diameter " + std::to_string(2.0 * r_max) + " m",
-           t->get("fixed_thickness"));
+    r.fail(key("fixed_thickness"), "must be >= the largest contact reach, the largest diameter " + std::to_string(2.0 * r_max) + " m",
+           t.get("fixed_thickness"));
   const double height = pk.box.length(2);
   if (p.source_thickness + p.fixed_thickness + p.bin_width > height)
-    r.fail("packing.source_thickness", "and packing.fixed_thickness (" + std::to_string(p.source_thickness) + " + " +
+    r.fail(key("source_thickness"), "and " + key("fixed_thickness") + " (" + std::to_string(p.source_thickness) + " + " +
                                            std::to_string(p.fixed_thickness) + " m) leave less than a bin of free particles in the box's " +
                                            std::to_string(height) + " m along z",
-           t->get("source_thickness"));
+           t.get("source_thickness"));
   if (p.bin_width > height / 3.0)
-    r.fail("packing.bin_width", "must be <= a third of the box's height " + std::to_string(height) + " m", t->get("bin_width"));
+    r.fail(key("bin_width"), "must be <= a third of the box's height " + std::to_string(height) + " m", t.get("bin_width"));
   // What the law is linearised at (crystal::derive): the mean radius and the contacts' mean overlap.
   double overlap_sum = 0.0;
   const auto touching = packing::touching_pairs(pk);
@@ -162,7 +169,6 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
   k.polydispersity = 0.0;
   k.relax_tolerance = p.relax_tolerance;
   k.packing_file = p;
-  k.imported = std::make_shared<const packing::Packing>(std::move(pk));
 }
 
 }  // namespace granwave::config

@@ -14,4 +14,11 @@ namespace granwave::config {
 void read_packing(const TomlReader& r, const toml::table& root, const toml::table& crystal, CrystalCase& k,
                   const std::string& origin);
 
+// The slabs' and bins' keys of a periodic packing `pk` (in table `table`: "packing" or "random")
+// with their defaults (source 2 largest diameters deep, top as deep, bins a mean diameter), their
+// refusals, and what the law is linearised at (k.radius, k.overlap from pk's contacts); sets
+// k.packing_file = p (p's other keys as the caller filled them).
+void resolve_slabs(const TomlReader& r, const toml::table& t, const std::string& table, PackingKeys& p,
+                   const packing::Packing& pk, CrystalCase& k);
+
 }  // namespace granwave::config

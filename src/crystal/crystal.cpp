@@ -71,8 +71,19 @@ void describe_file_packing(const config::Case& c, const Packing& p, std::ostream
   std::size_t source = 0, top = 0;
   for (std::uint8_t r : p.role) source += r == role_source, top += r == role_fixed_top;
   const auto contacts = list_contacts(p, true);
-  out << "crystal case " << c.name << ": " << p.size() << " particles from " << keys.file << " (" << keys.format
-      << "), box " << p.box_x << " x " << p.box_y << " x " << c.crystal->imported->box.length(2) << " m, z cut open\n";
+  if (c.crystal->random) {
+    const packing::Preparation& q = *c.crystal->preparation;
+    out << "crystal case " << c.name << ": " << p.size() << " particles, random (seed " << c.crystal->random->seed
+        << "), prepared at " << c.crystal->random->pressure << " Pa: box " << p.box_x << " x " << p.box_y << " x "
+        << c.crystal->imported->box.length(2) << " m, z cut open\n";
+    out << "  preparation: " << q.steps << " steps of " << q.time_step << " s; pressure " << q.pressure
+        << " Pa, E_kin/E_pot " << q.kinetic_ratio << ", unbalanced force " << q.unbalanced_force
+        << " of the mean contact force; solid fraction " << q.solid_fraction << ", coordination " << q.coordination
+        << " (" << q.coordination_backbone << " without the " << q.rattlers << " rattlers)\n";
+  } else {
+    out << "crystal case " << c.name << ": " << p.size() << " particles from " << keys.file << " (" << keys.format
+        << "), box " << p.box_x << " x " << p.box_y << " x " << c.crystal->imported->box.length(2) << " m, z cut open\n";
+  }
   out << "  mean diameter " << p.d << " m; " << contacts.size() << " contacts (" << 2.0 * contacts.size() / p.size()
       << " per particle), mean overlap " << c.crystal->overlap << " of the mean diameter\n";
   out << "  source slab " << keys.source_thickness << " m (" << source << " particles), top slab " << keys.fixed_thickness
@@ -81,9 +92,10 @@ void describe_file_packing(const config::Case& c, const Packing& p, std::ostream
   std::size_t differ = 0;
   for (const auto& q : c.crystal->imported->particles) differ += std::isfinite(q.density) &&
                                                                   std::abs(q.density - c.crystal->density) > 1e-9 * c.crystal->density;
-  out << "  masses: " << (keys.density_from_file ? "the file's" : "crystal.density x 4/3 pi r^3 (the case's density wins)");
-  if (!keys.density_from_file) out << "; " << differ << " particles' file densities differ from the case's";
-  out << "\n  relaxed before the wave until E_kin/E_pot < " << keys.relax_tolerance
+  if (!c.crystal->random)
+    out << "  masses: " << (keys.density_from_file ? "the file's" : "crystal.density x 4/3 pi r^3 (the case's density wins)");
+  if (!c.crystal->random && !keys.density_from_file) out << "; " << differ << " particles' file densities differ from the case's";
+  out << (c.crystal->random ? "" : "\n") << "  relaxed before the wave until E_kin/E_pot < " << keys.relax_tolerance
       << " (frictionless, the case's normal law, slabs held)\n";
 }
 
@@ -161,7 +173,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   std::ostream& out = root ? out_all : none;
   std::ostream& err = root ? std::cerr : none;
   if (ranks > 1 && c.crystal->from_file())
-    throw InputError(c.path + ": crystal.lattice = \"file\": a packing from a file runs on one MPI rank only (the slabs "
+    throw InputError(c.path + ": crystal.lattice = \"" + c.crystal->lattice + "\": a packing that is not a lattice runs on one MPI rank only (the slabs "
                      "of an MPI run are whole FCC layers); run without mpirun");
   if (ranks > 1) {
     const int nl = c.crystal->cells[2];

@@ -1,5 +1,6 @@
 // The generator of crystal.lattice = "file" (crystal/packing.hpp): a packing imported by src/packing
 // made a run's: z cut open, roles by slab, z-bins, relaxed under the case's law before the wave.
+// lattice = "random" takes the same road: its prepared periodic packing is the case's `imported`.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -68,11 +69,13 @@ double solid_fraction(const Packing& p, double height) {
 Packing imported_packing(const config::Case& c) {
   const config::CrystalCase& k = *c.crystal;
   if (!k.from_file() || !k.imported || !k.packing_file)
-    throw InputError(c.path + ": crystal.lattice = \"file\" needs its [packing] (not imported)");
+    throw InputError(c.path + ": crystal.lattice = \"" + k.lattice + "\" needs its packing (not imported or prepared)");
   const packing::Packing& src = *k.imported;
   const config::PackingKeys& keys = *k.packing_file;
   Packing p;
-  p.generator = "file";
+  p.generator = k.lattice;  // "file" or "random"
+  if (k.preparation) p.preparation = *k.preparation;
+  if (k.random) p.seed = k.random->seed;
   p.source_file = keys.file;
   p.source_format = keys.format;
   p.source_thickness = keys.source_thickness;

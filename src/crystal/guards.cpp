@@ -55,8 +55,9 @@ Assessment assess(const config::Case& c, const ResourceLimits& limits, std::opti
   }
   e.size = fmt("%.6g particles", n);
   e.steps_keys = "integrator.t_end or integrator.dt";
-  e.memory_keys = k.from_file() ? "packing.file, packing.bin_width, integrator.t_end or output.interval"
-                                : "crystal.cells, integrator.t_end or output.interval";
+  e.memory_keys = k.random        ? "random.count, random.bin_width, integrator.t_end or output.interval"
+                  : k.from_file() ? "packing.file, packing.bin_width, integrator.t_end or output.interval"
+                                  : "crystal.cells, integrator.t_end or output.interval";
   const std::string keys_dt = c.integrator.dt ? "integrator.dt" : "integrator.dt_over_tc";
 
   const std::string material = "crystal.radius, crystal.density";

@@ -93,8 +93,8 @@ int Packing::source_bins() const {
   return first_other;
 }
 
-// The generators, one per crystal.lattice (ARCHITECTURE.md: "add a packing generator"); the next
-// one (a prepared random packing) is a branch of these two and a file of its own.
+// The generators, one per crystal.lattice (ARCHITECTURE.md: "add a packing generator"); "random"
+// is prepared when the case is loaded (config/random_loader.cpp) and then goes the file's way.
 Packing initial_packing(const config::Case& c) {
   if (!c.crystal) throw InputError(c.path + ": [crystal] is missing");
   if (c.crystal->from_file()) return imported_packing(c);
@@ -183,6 +183,19 @@ void write_system(io::H5Writer& w, const Packing& p, const std::string& case_nam
     w.attr(g, "source_file", p.source_file);
     w.attr(g, "source_format", p.source_format);
   }
+  if (p.generator == "random") {  // the preparation's residuals (data/SCHEMA.md §2)
+    const packing::Preparation& q = p.preparation;
+    w.attr(g, "random_seed", static_cast<std::int64_t>(p.seed));
+    w.attr(g, "prepare_steps", std::int64_t{q.steps});
+    w.attr(g, "prepare_time_step", q.time_step);
+    w.attr(g, "prepare_pressure", q.pressure);
+    w.attr(g, "prepare_kinetic_ratio", q.kinetic_ratio);
+    w.attr(g, "prepare_unbalanced", q.unbalanced_force);
+    w.attr(g, "prepare_solid_fraction", q.solid_fraction);
+    w.attr(g, "prepare_coordination", q.coordination);
+    w.attr(g, "prepare_coordination_backbone", q.coordination_backbone);
+    w.attr(g, "prepare_rattlers", std::int64_t{q.rattlers});
+  }
 }
 
 Packing read_system(const std::string& path) {
@@ -230,7 +243,8 @@ Packing read_system(const std::string& path) {
   p.l0 = number("l0", true);
   p.delta = number("delta", false);
   p.generator = r.has_attr(g, "generator") ? r.attr_string(g, "generator") : "fcc";
-  if (p.generator != "fcc" && p.generator != "file") refuse("attribute 'generator' must be \"fcc\" or \"file\"");
+  if (p.generator != "fcc" && p.generator != "file" && p.generator != "random")
+    refuse("attribute 'generator' must be \"fcc\", \"file\" or \"random\"");
   const bool file = p.from_file();
   p.nx = static_cast<int>(count("cells_x", file ? 0 : 1, static_cast<double>(n)));
   p.ny = static_cast<int>(count("cells_y", file ? 0 : 1, static_cast<double>(n)));
@@ -248,6 +262,19 @@ Packing read_system(const std::string& path) {
     p.source_thickness = number("source_thickness", true);
     p.source_file = r.has_attr(g, "source_file") ? r.attr_string(g, "source_file") : "";
     p.source_format = r.has_attr(g, "source_format") ? r.attr_string(g, "source_format") : "";
+    if (p.generator == "random") {
+      packing::Preparation& q = p.preparation;
+      p.seed = static_cast<std::uint64_t>(count("random_seed", 0, 9007199254740992.0));
+      q.steps = static_cast<long>(count("prepare_steps", 0, 1e15));
+      q.time_step = number("prepare_time_step", true);
+      q.pressure = number("prepare_pressure", true);
+      q.kinetic_ratio = number("prepare_kinetic_ratio", false);
+      q.unbalanced_force = number("prepare_unbalanced", false);
+      q.solid_fraction = number("prepare_solid_fraction", true);
+      q.coordination = number("prepare_coordination", false);
+      q.coordination_backbone = number("prepare_coordination_backbone", false);
+      q.rattlers = static_cast<long>(count("prepare_rattlers", 0, static_cast<double>(n)));
+    }
   } else if (static_cast<double>(n) != static_cast<double>(p.nx) * p.ny * p.layers) {
     refuse("holds " + std::to_string(n) + " particles, not cells_x * cells_y * layers");
   }

@@ -35,7 +35,7 @@ struct Packing {
   std::vector<std::uint8_t> role;  // role_free, role_source (bottom slab), role_fixed_top
 
   double box_x = 0.0, box_y = 0.0;  // periodic lengths (m)
-  std::string generator = "fcc";    // "fcc" | "file"
+  std::string generator = "fcc";    // "fcc" | "file" | "random"
   double bin_origin = 0.0, bin_width = 0.0;  // z-bins: bin = floor((z - origin) / width) (FCC: layers)
   double d = 0.0;                   // nominal diameter 2a (m); "file": the mean diameter
   double d_prime = 0.0;             // contact distance d' = d (1 - overlap)
@@ -44,7 +44,9 @@ struct Packing {
   int nx = 0, ny = 0, layers = 0;   // cells of the case
   int fixed_layers = 0;             // at each z end ("file": 0, the slabs hold roles instead)
   double source_thickness = 0.0;    // "file": the source slab's depth (its upper half is the velocity drive's)
-  std::string source_file, source_format;  // "file": where the packing came from
+  std::string source_file, source_format;  // "file": where the packing came from ("random": "", "random")
+  packing::Preparation preparation;         // "random": what the compression reached (its keys: the case's)
+  std::uint64_t seed = 0;                   // "random": the generator's seed
 
   bool relaxed = false;        // came out of a relaxation (polydisperse)
   long relax_steps = 0;        // steps the relaxation took
@@ -52,7 +54,8 @@ struct Packing {
   double relax_unbalanced = 0.0;  // largest unbalanced force on a free particle / mean contact force
 
   std::size_t size() const { return x.size(); }
-  bool from_file() const { return generator == "file"; }
+  // Not a lattice: a packing from a file or from the random generator, cut open in z, slabs, bins.
+  bool from_file() const { return generator == "file" || generator == "random"; }
   // Moved by the excitation: the source's particles (displacement step); with the velocity drive
   // the innermost fixed layer (FCC) or the source slab's upper half (file); the rest of the source
   // stays as the wall.

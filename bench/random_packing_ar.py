@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""Agnolin & Roux's frictionless check of the random generator (issue 40 item 2), run by hand.
+
+  bench/random_packing_ar.py [--granwave build/granwave] [--count 4000] [--seeds 1 2 3] [--pressure 1e4]
+
+Glass beads (E = 70 GPa, nu = 0.3, 2500 kg/m^3, d = 1 mm, Hertz, frictionless), monodisperse, fast
+isotropic compression to p (10 kPa: their reduced pressure kappa = (E / ((1 - nu^2) p))^(2/3) ~ 39000)
+with `granwave build` of a `lattice = "random"` case per seed; reads the preparation's residuals
+from each system file and judges them against Agnolin & Roux, PRE 76, 061302 (2007):
+Phi = 0.639 +- 0.005 and z* = 6 +- 0.15 (z*: the coordination of the particles with at least 4
+contacts). Prints a table (markdown) and exits 1 when a mean is out of its bound.
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import h5py
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+CASE = """[case]
+name = "ar_{seed}"
+model = "crystal"
+[crystal]
+lattice = "random"
+density = 2500
+[random]
+radius = 5e-4
+count = {count}
+seed = {seed}
+pressure = {pressure}
+[contact]
+law = "hertz_mindlin"
+youngs_modulus = 70e9
+poisson_ratio = 0.3
+damping_ratio = 0.0
+mu_static = 0.0
+mu_dynamic = 0.0
+tangential = "none"
+[integrator]
+dt_over_tc = 0.02
+t_end = 1e-5
+"""
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--granwave", default=os.path.join(ROOT, "build", "granwave"))
+    ap.add_argument("--count", type=int, default=4000)
+    ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    ap.add_argument("--pressure", type=float, default=1e4)
+    a = ap.parse_args()
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for seed in a.seeds:
+            case = os.path.join(tmp, "ar_%d.toml" % seed)
+            with open(case, "w") as f:
+                f.write(CASE.format(seed=seed, count=a.count, pressure=a.pressure))
+            out = os.path.join(tmp, "ar_%d.h5" % seed)
+            t0 = time.time()
+            subprocess.run([a.granwave, "build", case, "-o", out], check=True, stdout=subprocess.DEVNULL)
+            with h5py.File(out, "r") as h:
+                at = h.attrs
+                rows.append((seed, float(at["prepare_solid_fraction"]), float(at["prepare_coordination_backbone"]),
+                             int(at["prepare_rattlers"]), float(at["prepare_coordination"]), int(at["prepare_steps"]),
+                             float(at["prepare_pressure"]), float(at["prepare_unbalanced"]), time.time() - t0))
+            print("seed %d: Phi %.4f, z* %.3f, rattlers %d, Z %.3f, %d steps, p %.6g Pa, unbalanced %.2g, %.0f s" % rows[-1],
+                  file=sys.stderr, flush=True)
+    print("| seed | Phi | z* | rattlers | Z | steps | p (Pa) | unbalanced | s |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print("| %d | %.4f | %.3f | %d | %.3f | %d | %.6g | %.2g | %.0f |" % r)
+    n = len(rows)
+    phi = sum(r[1] for r in rows) / n
+    zs = sum(r[2] for r in rows) / n
+    ok = abs(phi - 0.639) <= 0.005 and abs(zs - 6.0) <= 0.15
+    print("\nmean over %d seeds, N = %d, p = %g Pa: Phi = %.4f (Agnolin & Roux 0.639 +- 0.005), z* = %.3f (6 +- 0.15): %s"
+          % (n, a.count, a.pressure, phi, zs, "PASS" if ok else "FAIL"))
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

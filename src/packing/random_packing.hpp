@@ -1,0 +1,73 @@
+// A random packing prepared at a pressure (crystal.lattice = "random", issue 40): radii drawn from a
+// distribution, a granular gas placed at random in a triply periodic box, compressed by a servo on
+// the box under the case's normal law until the pressure is reached and the packing is static.
+// The protocol and its sources: docs/random-packing.md; the keys: data/SCHEMA.md §1 [random].
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "packing/packing.hpp"
+
+namespace granwave::packing {
+
+struct RadiusLaw {
+  enum class Kind { monodisperse, uniform, lognormal, mixture } kind = Kind::monodisperse;
+  double radius = 0.0;  // m: the mean radius (monodisperse, uniform, lognormal)
+  double width = 0.0;   // uniform: half-width over the mean, a = r (1 + width (2u - 1)); lognormal: sigma of ln a
+  std::vector<double> radii, fractions;  // mixture: radii (m) and number fractions (sum 1)
+};
+
+// The normal contact of two spheres under the case's law at overlap delta: its force (N) and its
+// tangent stiffness df/ddelta (N/m).
+struct NormalContact {
+  double f = 0.0, k = 0.0;
+};
+using NormalLaw = std::function<NormalContact(double a_i, double a_j, double delta)>;
+
+struct RandomSpec {
+  RadiusLaw radii;
+  long count = 0;                          // particles
+  std::array<double, 3> shape{1.0, 1.0, 1.0};  // the box's proportions (kept by the isotropic servo)
+  std::uint64_t seed = 1;
+  double density = 0.0;                    // kg/m^3
+  double pressure = 0.0;                   // target isotropic pressure (Pa)
+  double initial_solid_fraction = 0.3;     // of the gas
+  double damping = 0.98;                   // normal contact dashpot, fraction of critical
+  double background_damping = 1.0;         // drag rate on every velocity, in units of sqrt(d p/m)
+  double inertia_number = 1e-2;            // bound on |strain rate| sqrt(m/(d p))
+  double servo_time = 0.02;                // Berendsen's tau_p in units of sqrt(m/(d p)) (at least 10 steps)
+  double pressure_tolerance = 1e-3;        // |p - p_target| / p_target
+  double kinetic_ratio = 1e-8;             // E_kin / E_pot
+  double unbalanced_force = 1e-3;          // largest net force over the mean contact force
+  long max_steps = 2000000;
+};
+
+// What the preparation reached (recorded in the system file).
+struct Preparation {
+  long steps = 0;
+  double pressure = 0.0;            // Love-Weber pressure of the elastic contact forces (Pa)
+  double kinetic_ratio = 0.0;       // E_kin / E_pot
+  double unbalanced_force = 0.0;    // largest net force over the mean contact force
+  double solid_fraction = 0.0;
+  double coordination = 0.0;        // 2 contacts / particles
+  double coordination_backbone = 0.0;  // z*: over the particles with at least 4 contacts
+  long rattlers = 0;                // particles with fewer than 4 contacts (frictionless)
+  double time_step = 0.0;           // s
+};
+
+// Radii of `count` particles, particle q from the counter-based stream (seed, q).
+std::vector<double> draw_radii(const RadiusLaw& law, long count, std::uint64_t seed);
+
+// The gas: radii drawn, centres placed one by one at random (stream (seed, count + q)) where they
+// overlap nothing, in a box of `shape` at initial_solid_fraction. Throws InputError naming the key.
+Packing random_gas(const RandomSpec& spec);
+
+// Compresses the gas to spec.pressure and rest (docs/random-packing.md). `progress` (may be empty)
+// gets a line now and then. Throws InputError naming random.max_steps when the budget runs out.
+Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
+                     const std::function<void(const std::string&)>& progress);
+
+}  // namespace granwave::packing

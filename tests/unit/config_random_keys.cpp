@@ -1,0 +1,101 @@
+// The [random] keys of crystal.lattice = "random" (config/random_loader.cpp): each refusal names the
+// key and what is allowed, before anything is compressed (or, for the step budget, when it runs out).
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "config/case.hpp"
+#include "core/error.hpp"
+#include "packing/random_packing.hpp"
+
+using namespace granwave;
+using namespace granwave::config;
+
+namespace {
+const std::string kOrigin = std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/t.toml";
+
+// 300 monodisperse spheres of 0.5 mm at 1 kPa under a linear law kn = 1000 N/m (random_small's).
+std::string random_case(const std::string& random_extra = "", const std::string& crystal_extra = "",
+                        const std::string& integrator = "dt_over_tc = 0.02\n", const std::string& shape = "[1, 1, 3]",
+                        const std::string& pressure = "1000") {
+  return "[case]\nname = \"r\"\nmodel = \"crystal\"\n[crystal]\nlattice = \"random\"\ndensity = 2500\n" + crystal_extra +
+         "[random]\nradius = 5e-4\nshape = " + shape + "\npressure = " + pressure + "\n" + random_extra +
+         (random_extra.find("count") == std::string::npos ? "count = 300\n" : "") +
+         "[contact]\nkn = 1000\n[integrator]\n" + integrator +
+         (integrator.find("t_end") == std::string::npos ? "t_end = 1e-5\n" : "");
+}
+
+void require_refused(const std::string& text, std::initializer_list<std::string> fragments) {
+  try {
+    parse_case(text, kOrigin);
+    FAIL("accepted a bad case:\n" << text);
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    INFO(msg);
+    for (const auto& f : fragments) CHECK(msg.find(f) != std::string::npos);
+  }
+}
+}  // namespace
+
+TEST_CASE("random: a width that makes a radius negative is refused", "[config][random]") {
+  require_refused(random_case("distribution = \"uniform\"\nwidth = 1.2\n"), {"random.width", "<= 0", "[0, 1)"});
+  require_refused(random_case("distribution = \"lognormal\"\nwidth = -0.1\n"), {"random.width", "(0, 1]"});
+  require_refused(random_case("distribution = \"mixture\"\nradii = [5e-4, -1e-4]\nfractions = [0.5, 0.5]\n"),
+                  {"random.radius", "mixture"});  // radius is the mixture's own: refused first
+  require_refused("[case]\nname = \"r\"\nmodel = \"crystal\"\n[crystal]\nlattice = \"random\"\ndensity = 2500\n[random]\n"
+                  "distribution = \"mixture\"\nradii = [5e-4, -1e-4]\nfractions = [0.5, 0.5]\ncount = 300\npressure = 1\n"
+                  "[contact]\nkn = 1000\n[integrator]\ndt_over_tc = 0.02\nt_end = 1e-5\n",
+                  {"random.radii", "> 0"});
+}
+
+TEST_CASE("random: a count too small for three particles across the box is refused", "[config][random]") {
+  require_refused(random_case("count = 20\n"), {"random.count", "three largest diameters", "count >= about"});
+  // The same count is enough in a cube, not in a flat box.
+  require_refused(random_case("count = 300\n", "", "dt_over_tc = 0.02\n", "[1, 1, 30]"), {"random.count"});
+}
+
+TEST_CASE("random: a pressure whose overlaps break the overlap bound or the stability limit is refused", "[config][random]") {
+  // kn = 1000 N/m, d = 1 mm: 0.05 of the radius is reached near 0.05 * 5e-4 * 1000 / (4 * 0.82e-6) ~ 7.6 kPa.
+  require_refused(random_case("", "", "dt_over_tc = 0.02\n", "[1, 1, 3]", "1e5"),
+                  {"random.pressure", "overlap bound", "allowed: pressure <="});
+  // A fixed time step of 1e-4 s is above 2/omega_max for kn = 1000 N/m and 0.65 mg spheres (~ 1.7e-5 s).
+  require_refused(random_case("", "", "dt = 1e-4\nt_end = 1e-3\n"), {"random.pressure", "stability limit", "integrator.dt"});
+}
+
+TEST_CASE("random: a compression that cannot reach its target in max_steps says so", "[config][random]") {
+  require_refused(random_case("max_steps = 500\n"), {"random.max_steps = 500", "did not reach", "p/p_target"});
+}
+
+TEST_CASE("random: a frictional preparation is refused as not yet available", "[config][random]") {
+  require_refused(random_case("preparation_friction = 0.3\n"), {"random.preparation_friction", "not yet", "allowed: 0"});
+}
+
+TEST_CASE("random: the lattice's keys and [random] elsewhere are refused", "[config][random]") {
+  require_refused(random_case("", "cells = [4, 4, 9]\n"), {"crystal.cells", "lattice = \"random\""});
+  require_refused("[case]\nname = \"r\"\nmodel = \"crystal\"\n[crystal]\ncells = [4, 4, 9]\nradius = 5e-4\ndensity = 2500\n"
+                  "[random]\ncount = 3\n[contact]\nkn = 1000\n[integrator]\ndt_over_tc = 0.02\nt_end = 1e-5\n",
+                  {"random", "belongs to crystal.lattice = \"random\""});
+  require_refused(random_case("unknown_key = 1\n"), {"random.unknown_key", "unknown key"});
+}
+
+TEST_CASE("random: radii are drawn per particle from the seed, in their law's range", "[config][random]") {
+  packing::RadiusLaw law;
+  law.kind = packing::RadiusLaw::Kind::uniform;
+  law.radius = 1.0;
+  law.width = 0.2;
+  const auto a = packing::draw_radii(law, 2000, 7);
+  double mean = 0.0;
+  for (double r : a) {
+    REQUIRE(r >= 0.8);
+    REQUIRE(r < 1.2);
+    mean += r / a.size();
+  }
+  CHECK(mean == Approx(1.0).margin(0.01));  // the uniform law's mean, within 3 standard errors (0.115/sqrt(2000))
+  CHECK(packing::draw_radii(law, 10, 7)[3] == a[3]);  // particle 3's radius does not depend on the count
+  law.kind = packing::RadiusLaw::Kind::lognormal;
+  law.width = 0.3;
+  const auto g = packing::draw_radii(law, 4000, 7);
+  mean = 0.0;
+  for (double r : g) mean += r / g.size();
+  CHECK(mean == Approx(1.0).margin(0.015));  // mean exp(mu + sigma^2/2) = radius; sd ~ 0.31/sqrt(4000)
+}
