@@ -123,7 +123,9 @@ Packing relaxed_imported_packing(const config::Case& c) {
     // An imported packing is relaxed frictionless and carries no tangential history (data/SCHEMA.md §1).
     const config::PackingKeys& keys = *c.crystal->packing_file;
     std::ostringstream why;
-    why << c.path << ": packing.file " << keys.file << ": " << e.what() << " (solid fraction " << solid_fraction(p, c.crystal->imported->box.length(2))
+    const std::string source = keys.file.empty() ? "the prepared packing" : "packing.file " + keys.file;
+    why << c.path << ": " << source << ": " << e.what() << " (solid fraction "
+        << solid_fraction(p, c.crystal->imported->box.length(2))
         << "): a loose or friction-prepared packing. granwave relaxes an imported packing under the case's normal law "
            "without friction and carries no tangential history (allowed: a packing that stands without friction, "
            "e.g. compressed past frictionless jamming)";
