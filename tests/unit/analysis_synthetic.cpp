@@ -233,7 +233,7 @@ TEST_CASE("dispersion: the small-k slope of a non-dispersive and of a sine branc
   }
 }
 
-TEST_CASE("pulse fronts: a Hann-smoothed step rises over T to the step; a non-dispersive pulse keeps its speed", "[analysis]") {
+TEST_CASE("pulse fronts: a Hann-smoothed step rises over T to the step, a non-dispersive pulse keeps its speed", "[analysis]") {
   // A unit step at sample 100 in one layer: smoothed over T = 20 samples it is 0 before, the
   // window's running sum over the 20 samples (monotone), and exactly 1 from sample 119 on.
   CrystalTrace st;
@@ -263,7 +263,7 @@ TEST_CASE("pulse fronts: a Hann-smoothed step rises over T to the step; a non-di
   CHECK(measured >= 3);
 }
 
-TEST_CASE("front and coda: a lone pulse has no coda; a trailing pulse is the coda's energy", "[analysis]") {
+TEST_CASE("front and coda: a lone pulse has no coda, a trailing pulse is the coda's energy", "[analysis]") {
   // y = Gaussian front (rms sigma) + b times the same Gaussian delayed by D, well after the front:
   // front energy A^2 sigma sqrt(pi), coda energy b^2 A^2 sigma sqrt(pi) (sums of sampled Gaussians
   // of sigma = 10 samples equal the integral to round-off).
