@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "crystal/fire.hpp"
 
 namespace granwave::crystal {
 
@@ -55,10 +56,7 @@ double largest_force(const Dynamics& d) {
 // by the radius, torque divided by it, so both are m/s and N) until every mobile particle's force is
 // below f_tol. Velocities are zero afterwards; the forces are those of the final positions.
 long fire(Dynamics& d, double t_c, double f_tol, long max_steps, double* residual) {
-  const double dt_max = 0.1 * t_c, f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
-  const int n_min = 5;
-  double dt = 0.02 * t_c, alpha = alpha_0;
-  long since_reset = 0;
+  Fire fire(t_c);
   const std::size_t n = d.size();
   const bool rot = d.torques();
   auto stop = [&] {
@@ -85,31 +83,24 @@ long fire(Dynamics& d, double t_c, double f_tol, long max_steps, double* residua
         f2 += (d.tx[p] * d.tx[p] + d.ty[p] * d.ty[p] + d.tz[p] * d.tz[p]) / (a * a);
       }
     }
-    if (power > 0.0) {
-      const double scale = f2 > 0.0 ? alpha * std::sqrt(v2 / f2) : 0.0;
+    const Fire::Mix mix = fire.next(power, v2, f2);
+    if (mix.moving) {
       for (std::size_t p = 0; p < n; ++p) {
         if (!d.mobile[p]) continue;
-        d.vx[p] = (1.0 - alpha) * d.vx[p] + scale * d.fx[p];
-        d.vy[p] = (1.0 - alpha) * d.vy[p] + scale * d.fy[p];
-        d.vz[p] = (1.0 - alpha) * d.vz[p] + scale * d.fz[p];
-        if (rot) {  // a w' = (1 - alpha) a w + scale T/a
+        d.vx[p] = mix.keep * d.vx[p] + mix.scale * d.fx[p];
+        d.vy[p] = mix.keep * d.vy[p] + mix.scale * d.fy[p];
+        d.vz[p] = mix.keep * d.vz[p] + mix.scale * d.fz[p];
+        if (rot) {  // a w' = keep a w + scale T/a
           const double a2 = d.radius[p] * d.radius[p];
-          d.wx[p] = (1.0 - alpha) * d.wx[p] + scale * d.tx[p] / a2;
-          d.wy[p] = (1.0 - alpha) * d.wy[p] + scale * d.ty[p] / a2;
-          d.wz[p] = (1.0 - alpha) * d.wz[p] + scale * d.tz[p] / a2;
+          d.wx[p] = mix.keep * d.wx[p] + mix.scale * d.tx[p] / a2;
+          d.wy[p] = mix.keep * d.wy[p] + mix.scale * d.ty[p] / a2;
+          d.wz[p] = mix.keep * d.wz[p] + mix.scale * d.tz[p] / a2;
         }
-      }
-      if (++since_reset > n_min) {
-        dt = std::min(dt * f_inc, dt_max);
-        alpha *= f_alpha;
       }
     } else {
       stop();
-      dt *= f_dec;
-      alpha = alpha_0;
-      since_reset = 0;
     }
-    d.set_dt(dt);
+    d.set_dt(fire.dt);
     d.step();
   }
   throw RunError("probe: FIRE did not bring every free particle's force below " + std::to_string(f_tol) + " N within " +

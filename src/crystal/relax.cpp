@@ -8,18 +8,17 @@
 
 #include "core/error.hpp"
 #include "crystal/dynamics.hpp"
+#include "crystal/fire.hpp"
 
 namespace granwave::crystal {
 
 RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> model, double t_c, double tolerance,
                        long max_steps) {
-  // FIRE parameters of Bitzek et al., PRL 97, 170201 (2006).
-  const double dt_max = 0.1 * t_c, f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
-  const int n_min = 5, n_quiet = 50;
-  double dt = 0.02 * t_c, alpha = alpha_0;
-  Dynamics dyn(packing, std::move(model), dt);
+  const int n_quiet = 50;
+  Fire fire(t_c);
+  Dynamics dyn(packing, std::move(model), fire.dt);
   const std::size_t n = dyn.size();
-  long since_reset = 0, quiet = 0;
+  long quiet = 0;
   RelaxResult res;
   // Without friction a packing below jamming has nothing to stand on: its contacts open and the
   // contact energy falls toward zero (E_kin/E_pot would never settle). Stopped here, named.
@@ -34,30 +33,23 @@ RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> mod
       v2 += dyn.vx[p] * dyn.vx[p] + dyn.vy[p] * dyn.vy[p] + dyn.vz[p] * dyn.vz[p];
       f2 += dyn.fx[p] * dyn.fx[p] + dyn.fy[p] * dyn.fy[p] + dyn.fz[p] * dyn.fz[p];
     }
-    if (power > 0.0) {
-      const double scale = f2 > 0.0 ? alpha * std::sqrt(v2 / f2) : 0.0;
+    const Fire::Mix mix = fire.next(power, v2, f2);
+    if (mix.moving) {
       for (std::size_t p = 0; p < n; ++p) {
         if (!dyn.mobile[p]) continue;
-        dyn.vx[p] = (1.0 - alpha) * dyn.vx[p] + scale * dyn.fx[p];
-        dyn.vy[p] = (1.0 - alpha) * dyn.vy[p] + scale * dyn.fy[p];
-        dyn.vz[p] = (1.0 - alpha) * dyn.vz[p] + scale * dyn.fz[p];
-      }
-      if (++since_reset > n_min) {
-        dt = std::min(dt * f_inc, dt_max);
-        alpha *= f_alpha;
+        dyn.vx[p] = mix.keep * dyn.vx[p] + mix.scale * dyn.fx[p];
+        dyn.vy[p] = mix.keep * dyn.vy[p] + mix.scale * dyn.fy[p];
+        dyn.vz[p] = mix.keep * dyn.vz[p] + mix.scale * dyn.fz[p];
       }
     } else {
       for (auto* v : {&dyn.vx, &dyn.vy, &dyn.vz}) std::fill(v->begin(), v->end(), 0.0);
-      dt *= f_dec;
-      alpha = alpha_0;
-      since_reset = 0;
     }
-    dyn.set_dt(dt);
+    dyn.set_dt(fire.dt);
     dyn.step();
     const double e_pot = dyn.potential_energy();
     if (e_pot < kNotStanding * e_pot_start) throw NotStanding(e_pot_start, e_pot, s + 1);
     const double ratio = dyn.kinetic_energy() / e_pot;
-    quiet = (ratio < tolerance && since_reset > 0) ? quiet + 1 : 0;
+    quiet = (ratio < tolerance && fire.since_reset > 0) ? quiet + 1 : 0;
     if (quiet >= n_quiet) {
       res.steps = s + 1;
       res.ratio = ratio;

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "crystal/derive.hpp"
+#include "crystal/fire.hpp"
 #include "crystal/packing.hpp"
 #include "packing/packing.hpp"
 
@@ -108,13 +109,10 @@ PeriodicBulk periodic_bulk(const config::Case& c, double tolerance, long max_ste
     return std::numbers::pi * std::sqrt(0.5 * m_min / k_max);
   };
   const double t_c = contact_time();
-  // FIRE (Bitzek et al., PRL 97, 170201 (2006)) with velocity Verlet, as crystal/relax.cpp.
+  // FIRE (crystal/fire.hpp) with velocity Verlet, as crystal/relax.cpp.
   const std::size_t n = s.x.size();
   std::vector<Eigen::Vector3d> v(n, Eigen::Vector3d::Zero()), f(n);
-  double dt_max = 0.1 * t_c;
-  const double f_inc = 1.1, f_dec = 0.5, alpha_0 = 0.1, f_alpha = 0.99;
-  double dt = 0.02 * t_c, alpha = alpha_0;
-  long since_reset = 0;
+  Fire fire(t_c);
   double mean = forces(c, s, f);
   PeriodicBulk out;
   for (long step = 0;; ++step) {
@@ -129,17 +127,15 @@ PeriodicBulk periodic_bulk(const config::Case& c, double tolerance, long max_ste
       throw RunError(c.path + ": the periodic bulk's relaxation did not reach a net force below " +
                      std::to_string(tolerance) + " of the mean contact force within " + std::to_string(max_steps) +
                      " steps (largest " + std::to_string(worst / mean) + ")");
-    if (step > 0 && step % 2000 == 0) dt_max = 0.1 * contact_time();
+    if (step > 0 && step % 2000 == 0) fire.dt_max = 0.1 * contact_time();
     double power = 0.0, v2 = 0.0, f2 = 0.0;
     for (std::size_t p = 0; p < n; ++p) power += f[p].dot(v[p]), v2 += v[p].squaredNorm(), f2 += f[p].squaredNorm();
-    if (power > 0.0) {
-      const double scale = f2 > 0.0 ? alpha * std::sqrt(v2 / f2) : 0.0;
-      for (std::size_t p = 0; p < n; ++p) v[p] = (1.0 - alpha) * v[p] + scale * f[p];
-      if (++since_reset > 5) dt = std::min(dt * f_inc, dt_max), alpha *= f_alpha;
-    } else {
+    const Fire::Mix mix = fire.next(power, v2, f2);
+    if (mix.moving)
+      for (std::size_t p = 0; p < n; ++p) v[p] = mix.keep * v[p] + mix.scale * f[p];
+    else
       for (auto& q : v) q.setZero();
-      dt *= f_dec, alpha = alpha_0, since_reset = 0;
-    }
+    const double dt = fire.dt;
     for (std::size_t p = 0; p < n; ++p) {
       v[p] += 0.5 * dt * f[p] / s.m[p];
       s.x[p] += dt * v[p];
