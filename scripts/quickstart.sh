@@ -9,3 +9,4 @@ echo "==> granwave run data/cases/oriented20.toml"
 
 echo "==> crosscheck: the default case set in granwave, YADE, LIGGGHTS and LAMMPS (a few minutes)"
 crosscheck/crosscheck run --suite default --granwave build/granwave --report out/crosscheck
+echo "==> done in $((SECONDS / 60)) min $((SECONDS % 60)) s"

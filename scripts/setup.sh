@@ -33,7 +33,9 @@ if ((${#missing[@]})); then
   $SUDO apt-get update -q
   # With recommends: YADE needs some of them at run time (installed this way where it was validated).
   $SUDO apt-get install -y -q "${missing[@]}"
+  echo "==> apt took $SECONDS s"
 fi
+build_start=$SECONDS
 
 echo "==> building granwave (Release) in build/$([[ $tests == ON ]] && echo ', with the tests' || echo ': the program and the Python module')"
 # With the tests: one -fPIC copy of the libraries for the program, the tests and the module (CMakeLists.txt,
@@ -41,6 +43,7 @@ echo "==> building granwave (Release) in build/$([[ $tests == ON ]] && echo ', w
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests -DGRANWAVE_ONE_COPY=$tests \
   > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 cmake --build build -j"$(nproc)"
+echo "==> configure and build took $((SECONDS - build_start)) s"
 
 # The program on PATH and the Python module where /usr/bin/python3 finds it (CMAKE_INSTALL_PREFIX,
 # /usr/local: bin/granwave, lib/python3.X/dist-packages/granwave, share/granwave).

@@ -7,10 +7,21 @@
 #      module granwave (tests/python, against the program); the example notebook, executed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each stage's wall time, printed at the end (also when a stage fails): what CI's total is made of.
+stage_name="set-up: apt and the Release build with the tests"; stage_start=$SECONDS; stage_times=()
+stage() {
+  stage_times+=("$(printf '%5d s  %s' $((SECONDS - stage_start)) "$stage_name")")
+  stage_name=$1; stage_start=$SECONDS; echo "==> $1"
+}
+stage_table() {
+  stage_times+=("$(printf '%5d s  %s' $((SECONDS - stage_start)) "$stage_name")")
+  echo "==> stage times (wall), $((SECONDS / 60)) min $((SECONDS % 60)) s in all:"; printf '    %s\n' "${stage_times[@]}"
+}
+trap stage_table EXIT
 bash scripts/setup.sh --tests
 jobs=$(nproc)
 
-echo "==> sanitizer build (ASan + UBSan) in build-sanitize/"
+stage "sanitizer build (ASan + UBSan) in build-sanitize/"
 # -O0: GCC compiles the instrumented sources 2-3x faster than at -O1 (the stage was most of CI's time); the
 # unit tests run slower but finish in minutes (docs/benchmarks.md, "README command 2, stage by stage").
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DGRANWAVE_BENCH=OFF -DGRANWAVE_PYTHON=OFF \
@@ -18,13 +29,13 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DG
 # Only what the unit label runs: the unit test executables and the binary the cli tests call.
 unit_targets=$(cmake --build build-sanitize --target help | sed -n 's/^\.\.\. \(test_unit_[a-z_]*\).*/\1/p')
 cmake --build build-sanitize -j"$jobs" --target granwave granwave_testlaw $unit_targets
-echo "==> unit tests under sanitizers"
+stage "unit tests under sanitizers"
 # allocator_may_return_null: an impossible size read from a damaged file makes the HDF5 library ask for
 # terabytes; glibc's malloc then returns null and the library reports it, as the reader must see it.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize -L unit --output-on-failure -j"$jobs"
 
-echo "==> libFuzzer over the TOML and HDF5 readers (clang, ASan + UBSan) in build-fuzz/, 60 s"
+stage "libFuzzer over the TOML and HDF5 readers (clang, ASan + UBSan) in build-fuzz/, 60 s"
 # Issue #25: seeds are the repository's cases and studies and fresh trace, system and study files
 # (tests/fuzz/seed_corpus.sh); the first byte of an input picks the reader.
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
@@ -37,15 +48,15 @@ bash tests/fuzz/seed_corpus.sh build/granwave build-fuzz/corpus
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:allocator_may_return_null=1:max_allocation_size_mb=2000 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   bash tests/fuzz/run_libfuzzer.sh build-fuzz/readers_fuzzer build-fuzz/corpus 60
 
-echo "==> pytest: the cross-code harness, including real YADE, LIGGGHTS and LAMMPS runs, one worker per core"
+stage "pytest: the cross-code harness, including real YADE, LIGGGHTS and LAMMPS runs, one worker per core"
 # Each test runs its codes in its own tmp_path, so the tests spread over the cores (pytest-xdist).
 PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q -n "$jobs" tests/crosscheck
 
-echo "==> pytest: the Python module granwave against the program"
+stage "pytest: the Python module granwave against the program"
 /usr/bin/python3 -m pytest -q tests/python
-echo "==> the example notebook, executed (examples/granwave.ipynb)"
+stage "the example notebook, executed (examples/granwave.ipynb)"
 PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m nbconvert --to notebook --execute examples/granwave.ipynb \
   --output-dir build/examples > /dev/null
 
-echo "==> ctest: every test of the Release build"
+stage "ctest: every test of the Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"

@@ -1,24 +1,28 @@
-// The registry's kernel half: the model of a case's law (its description's model(), through
-// crystal::model_of: the contact kernel's instantiations for every form of every law) and the
+// The registry's kernel half: the model of a case's law (its description's model() through
+// crystal::law_model: the contact kernel's instantiations for every form of the law) and the
 // polydisperse relaxation with the law's frictionless, undamped form. With config/contact_laws.cpp,
 // the only translation units that dispatch on config::ContactLaw.
 //
 // 256-bit vectors for the contact loop, as in crystal/dynamics.cpp (whose comment gives the
-// measurements): the kernel's passes are instantiated here.
+// measurements): the passes of a law without a unit of its own are instantiated here.
 #pragma GCC target("prefer-vector-width=256")
 #include <algorithm>
 #include <memory>
 
 #include "contact/case_laws.hpp"
 #include "crystal/dynamics.hpp"
-#include "crystal/kernel.hpp"
+#include "crystal/law_model.hpp"
 
 namespace granwave::crystal {
 
+// Compiled in law_model_linear.cpp and law_model_hertz_mindlin.cpp.
+extern template std::shared_ptr<const ContactModel> law_model<contact::LinearLudingCase>(
+    const contact::LinearLudingCase::Params& params, double density);
+extern template std::shared_ptr<const ContactModel> law_model<contact::HertzMindlinCase>(
+    const contact::HertzMindlinCase::Params& params, double density);
+
 std::shared_ptr<const ContactModel> case_model(const contact::LawParams& cp, double density) {
-  return contact::visit_law(cp.law(), [&]<class D>(D) -> std::shared_ptr<const ContactModel> {
-    return D::model(cp.get<typename D::Params>(), density, [](const auto& law) -> std::shared_ptr<const ContactModel> { return model_of(law); });
-  });
+  return contact::visit_law(cp.law(), [&]<class D>(D) { return law_model<D>(cp.get<typename D::Params>(), density); });
 }
 
 RelaxResult relax(Packing& packing, const contact::LawParams& contact, double density, double tolerance,
