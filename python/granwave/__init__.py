@@ -17,8 +17,9 @@ import tempfile as _tempfile
 
 from . import _granwave
 from ._config import DATA_DIR as _DATA_DIR
+from ._pulse import pulse_table
 
-__all__ = ["Case", "Result", "data_path", "run", "analyze", "theory", "build", "sweep"]
+__all__ = ["Case", "Result", "data_path", "run", "analyze", "theory", "build", "sweep", "pulse_table"]
 
 
 
@@ -246,7 +247,10 @@ def analyze(trace, **options):
 
 def theory(case, layers=None, nk=None):
     """`granwave theory CASE --json`: eq. (10)'s tensor, the lattice dynamics with rotations and
-    prestress (long-wave speeds, dispersion), V_p, V_s, omega_0; for impact cases Hertz and Coulomb."""
+    prestress (long-wave speeds, dispersion), V_p, V_s, omega_0; "relaxed" (the non-affine tensor of
+    the slab and the bulk: V_pz, V_sz, A_relaxed, rattlers, zero modes) and "effective_medium" (the
+    affine estimate; Walton's for Hertz-Mindlin); for impact cases Hertz and Coulomb. pulse_table
+    sets the relaxed speeds beside what a pulse measures (`analyze`)."""
     case = _case(case)
     with _tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
         return _json.loads(_granwave.theory([case._file(tmp), "--json", *_options({"layers": layers, "nk": nk})]))

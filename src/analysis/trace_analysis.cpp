@@ -211,11 +211,15 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
 
   // Default fit range (sec. 3.3): z/l0 = 10 .. min(150, last - 20). A packing's few bins: its free bins, those
   // the crosscheck judges (a packing without roles: from the first bin above the source to two short of the last).
+  // A tall packing (the crystal's range spans >= kTallPackingBins bins) takes the crystal's range: 20 bins
+  // below the top wall leave the longest smoothed pulse (T = 32 layer delays) room before its reflection.
   const int first_free = by_role ? static_cast<int>(std::lround(tr.layer_z[tr.first_free_bin] / tr.l0)) : 1;
-  a.requested_lo = opt.lo >= 0 ? opt.lo : tr.packing_bins ? first_free : 10;
+  const int tall_lo = std::max(10, first_free), tall_hi = std::min(150, a.last_free - 20);
+  const bool few_bins = tr.packing_bins && tall_hi - tall_lo < kTallPackingBins;
+  a.requested_lo = opt.lo >= 0 ? opt.lo : few_bins ? first_free : tall_lo;
   a.requested_hi = opt.hi >= 0 ? opt.hi
-                   : tr.packing_bins ? (by_role ? a.last_free : std::max(2, a.last_free - 2))
-                                     : std::min(150, a.last_free - 20);
+                   : few_bins ? (by_role ? a.last_free : std::max(2, a.last_free - 2))
+                              : tall_hi;
   if (a.requested_hi - a.requested_lo < 2)
     throw InputError("analyze: the fit range z/l0 = " + std::to_string(a.requested_lo) + ".." +
                      std::to_string(a.requested_hi) + " has fewer than 3 layers (last free layer: " +
@@ -304,6 +308,7 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
       const double t_back = v > 0.0 ? L.one_percent_time.value + 2.0 * (z_wall - L.z) / v : kNaN;
       const FrontCoda fc = front_and_coda(t, y, L.one_percent_time.value, L.duration.value, t_back);
       L.front_energy = fc.front, L.coda_energy = fc.coda;
+      L.coda_window = std::max(0.0, fc.coda_end - (L.one_percent_time.value + L.duration.value));
     }
   }
 

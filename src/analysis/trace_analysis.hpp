@@ -64,6 +64,7 @@ struct LayerMeasures {
   Measured k_from_speed;     // (2/l0) arccos(V/V(k->0)) (1/m), V = k_speed
   // sum y^2 dt of the measured signal over the coherent front and over the coda (analysis/coda.hpp)
   double front_energy = kNaN, coda_energy = kNaN;
+  double coda_window = kNaN;  // s the coda is summed over (0: the front's return closed it before the front ended)
 };
 
 struct SpeedFit {
@@ -82,6 +83,10 @@ struct PulseFront {
   SpeedFit first_peak, half_peak;
   std::string error;             // the analysis' refusal for this T (then the fits are empty)
 };
+
+// A packing's default fit range is the crystal's, z/l0 = max(10, first free) .. min(150, last free - 20),
+// when that spans at least this many bins; else its free bins (a packing a few bins tall).
+inline constexpr int kTallPackingBins = 40;
 
 struct CrystalAnalysisOptions {
   int lo = -1, hi = -1;       // z/l0 range of the fits (< 0: default 10 .. min(150, last - 20))

@@ -99,10 +99,11 @@ Json to_json(const TraceFile& f, const CrystalAnalysis& a) {
     fronts.push_back(j);
   }
   {
-    std::vector<double> zq, ef, ec, share;
+    std::vector<double> zq, ef, ec, share, window;
     for (const auto& L : a.layers) {
       if (!L.arrived || !std::isfinite(L.front_energy)) continue;
       zq.push_back(L.z_over_l0), ef.push_back(L.front_energy), ec.push_back(L.coda_energy);
+      window.push_back(L.coda_window);
       share.push_back(L.coda_energy / (L.front_energy + L.coda_energy));
     }
     o["front_and_coda"] = {{"label", "energies sum y^2 dt of the measured signal: the coherent front (1 % arrival, for the "
@@ -111,7 +112,8 @@ Json to_json(const TraceFile& f, const CrystalAnalysis& a) {
                            {"z_over_l0", zq},
                            {"front_energy", ef},
                            {"coda_energy", ec},
-                           {"coda_fraction", share}};
+                           {"coda_fraction", share},
+                           {"coda_window", {{"unit", "s"}, {"values", window}}}};
   }
   o["pulse_fronts"] = {{"label", "front speeds of the trace's source history smoothed by a Hann window of duration T "
                                  "(linear response: the trace a source pulse of that duration would give)"},

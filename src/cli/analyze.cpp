@@ -68,7 +68,9 @@ Chain traces (seed 001): per contact the same measures on the contact force minu
 `granwave run` prints the summary of this report (and, with --json, this JSON under "analysis")
 for the trace it writes: the same code, the same numbers.
 
-  --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain)
+  --layers LO:HI   z/l0 range of the fits (crystal), contact range (chain); default crystal
+                   10 .. min(150, last free - 20), a packing a few bins tall its free bins
+                   (when the crystal's range would span fewer than 40 bins)
   --field F        dispersion field: velocity (default) | displacement | stress (raw fields)
   --pulse-field P  field of the per-layer measures and speeds: stress (default; sigma_zz for P,
                    sigma_zx for S) | velocity (u_z' for P, u_x' for S; the default for a trace
@@ -106,8 +108,9 @@ for the trace it writes: the same code, the same numbers.
                      through the origin, k l0 <= 0.5), pulse_fronts {label, durations [{duration,
                      travel_layers, v_first_peak, v_half_peak}]} (the source history smoothed by a
                      Hann window of 4, 8, 16, 32 layer delays), front_and_coda {label, z_over_l0,
-                     front_energy, coda_energy, coda_fraction} (the leading pulse's energy and the
-                     rest's until the front could return from the top),
+                     front_energy, coda_energy, coda_fraction, coda_window} (the leading pulse's
+                     energy and the rest's until the front could return from the top; coda_window
+                     the time summed, 0 where that return comes before the front has passed),
                      dispersion_model ("sine" | "lattice_branch"), long_wave {model, reason,
                      value, error, unit: V(k->0) of that model; with the case's lattice also
                      branch, v_lattice, sine_deviation; lattice_branch also ridge {scale,

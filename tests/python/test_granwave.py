@@ -376,3 +376,30 @@ def test_a_bad_packing_key_names_it():
         c.replace({"packing.source_thickness": 1e-4})
     with pytest.raises(ValueError, match="crystal.cells"):
         c.replace({"crystal.cells": [2, 2, 10]})
+
+
+def test_pulse_table():
+    """pulse_table puts analyze's front speeds (raw, each smoothed pulse T, small-k slope, v_k0) beside
+    theory's relaxed speeds under the JSON's own labels, differences in per cent of the relaxed slab's
+    and bulk's; a pulse analyze refused keeps its reason and no speed."""
+    case = g.Case.load(g.data_path("cases/crystal_small.toml"))
+    r, th = g.run(case), g.theory(case)
+    t = g.pulse_table(r.analysis, th)
+    assert t["mode"] == "P" and t["speed"] == "V_pz"
+    assert t["theory"]["slab"] == th["relaxed"]["slab"]["V_pz"]["value"]
+    assert t["theory"]["bulk"] == th["relaxed"]["bulk"]["V_pz"]["value"]
+    assert t["theory"]["eq10"] == th["V_pz"]["value"]
+    labels = [row["label"] for row in t["measured"]]
+    fronts = r.analysis["pulse_fronts"]["durations"]
+    assert labels == (["v_first_peak"] + ["pulse_fronts[T = %g]" % f["travel_layers"] for f in fronts]
+                      + ["small_k_slope", "v_k0"])
+    raw = t["measured"][0]
+    assert raw["value"] == r.analysis["v_first_peak"]["value"]
+    assert raw["percent"]["slab"] == pytest.approx(100 * (raw["value"] / t["theory"]["slab"] - 1), rel=1e-12)
+    for row, f in zip(t["measured"][1:], fronts):
+        if "error" in f:
+            assert row["refused"] == f["error"] and row["value"] != row["value"]
+        else:
+            assert row["value"] == f["v_first_peak"]["value"]
+    assert t["measured"][-2]["value"] == r.analysis["small_k_slope"]["value"]
+    assert t["front_and_coda"] == r.analysis["front_and_coda"]

@@ -87,3 +87,31 @@ TEST_CASE("fixture yade_periodic: yade.export.text with the cell the script wrot
   // few pairs at the edge of contact may go either way.
   CHECK(measure(p).mean_coordination == Approx(6.231).margin(0.01));
 }
+
+TEST_CASE("fixture lammps_tall: the two columns' custom dumps", "[packing][fixture]") {
+  // 100 mean diameters tall, 5 and 7 wide (data/packings/README.md: its table's numbers, by the same rule).
+  const Packing w5 = read_lammps_dump(fixtures::path("lammps_tall/packing_w5.dump"), "si");
+  REQUIRE(w5.particles.size() == 3060);
+  CHECK(w5.box.periodic == std::array<bool, 3>{true, true, true});
+  CHECK(w5.box.hi[0] == 5.0007754817862904e-03);
+  CHECK(w5.box.hi[2] == 1.0001550963572600e-01);
+  const Particle& first = w5.particles[0];  // "1085 1 0.00112447752953 0.242876685174 ..."
+  CHECK(first.id == 1085);
+  CHECK(first.radius == 0.5 * 0.00112447752953);
+  CHECK(first.centre.x() == Approx(0.242876685174 * 5.0007754817862904e-03).epsilon(1e-14));
+  check_radii_and_jamming(w5, 0.64, 0.67);
+  const PackingStats s5 = measure(w5);
+  CHECK(s5.solid_fraction == Approx(0.6544).margin(5e-5));
+  CHECK(s5.mean_coordination == Approx(6.910).margin(5e-4));
+  CHECK(s5.rattlers == 13);
+
+  const Packing w7 = read_lammps_dump(fixtures::path("lammps_tall/packing_w7.dump"), "si");
+  REQUIRE(w7.particles.size() == 6000);
+  CHECK(w7.box.hi[1] == 7.0020194015957002e-03);
+  CHECK(w7.particles[0].id == 747);
+  check_radii_and_jamming(w7, 0.64, 0.67);
+  const PackingStats s7 = measure(w7);
+  CHECK(s7.solid_fraction == Approx(0.6541).margin(5e-5));
+  CHECK(s7.mean_coordination == Approx(6.907).margin(5e-4));
+  CHECK(s7.rattlers == 27);
+}
