@@ -9,32 +9,62 @@ cd "$(dirname "$0")/.."
 tests=OFF
 if [[ ${1:-} == --tests ]]; then tests=ON; elif [[ -n ${1:-} ]]; then echo "usage: $0 [--tests]" >&2; exit 2; fi
 
-# The program, the module, the default run and the cross-code check (YADE, LIGGGHTS, LAMMPS).
-packages=(
+# What the build needs: the compiler, the libraries, the module's headers (the tests' Catch2,
+# Google Benchmark, and clang for libFuzzer with --tests).
+build_packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libhdf5-dev hdf5-tools libtomlplusplus-dev nlohmann-json3-dev libfftw3-dev
-  python3-numpy python3-h5py python3-matplotlib python3-scipy
-  python3-dev python3-pybind11 pybind11-dev python3-tqdm
-  yade liggghts lammps libopenmpi-dev openmpi-bin
+  python3-dev python3-pybind11 pybind11-dev libopenmpi-dev openmpi-bin
 )
-# The tests only: Catch2, pytest (and xdist: the cross-code tests on every core), the notebook's runner,
-# clang for libFuzzer, ccache.
+# What runs after it: the analysis' Python, and YADE, LIGGGHTS and LAMMPS for the cross-code check
+# (with --tests: pytest with xdist, the notebook's runner, ccache). LIGGGHTS and LAMMPS without their
+# recommends: ParaView and LAMMPS' documentation and examples, over 100 MB that no test reads.
+run_packages=(python3-numpy python3-h5py python3-matplotlib python3-scipy python3-tqdm yade)
+bare_packages=(liggghts lammps)
 if [[ $tests == ON ]]; then
-  packages+=(catch2 libbenchmark-dev python3-pytest python3-pytest-xdist python3-nbconvert python3-ipykernel clang libclang-rt-14-dev ccache)
+  build_packages+=(catch2 libbenchmark-dev clang libclang-rt-14-dev)
+  run_packages+=(python3-pytest python3-pytest-xdist python3-nbconvert python3-ipykernel ccache)
 fi
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "==> installing: ${missing[*]}"
-  if [[ $(id -u) -ne 0 ]]; then SUDO=sudo; else SUDO=; fi
-  export DEBIAN_FRONTEND=noninteractive
+missing_of() {
+  local p
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
+  done
+}
+missing_build=($(missing_of "${build_packages[@]}"))
+missing_run=($(missing_of "${run_packages[@]}"))
+missing_bare=($(missing_of "${bare_packages[@]}"))
+if [[ $(id -u) -ne 0 ]]; then SUDO=sudo; else SUDO=; fi
+export DEBIAN_FRONTEND=noninteractive
+if ((${#missing_build[@]} + ${#missing_run[@]} + ${#missing_bare[@]})); then
   $SUDO apt-get update -q
-  # With recommends: YADE needs some of them at run time (installed this way where it was validated).
-  $SUDO apt-get install -y -q "${missing[@]}"
-  echo "==> apt took $SECONDS s"
 fi
+if ((${#missing_build[@]})); then
+  echo "==> installing what the build needs: ${missing_build[*]}"
+  $SUDO apt-get install -y -q "${missing_build[@]}"
+  echo "==> apt (the build's packages) took $SECONDS s"
+fi
+# The rest installs while the build compiles (YADE's packages are most of apt's time; the build
+# needs none of them): apt waits on downloads and unpacking, the compiler on the cores.
+apt_pid=
+if ((${#missing_run[@]} + ${#missing_bare[@]})); then
+  echo "==> installing, beside the build (log: apt-run.log): ${missing_run[*]} ${missing_bare[*]}"
+  # YADE with recommends: it needs some of them at run time (installed this way where it was validated).
+  ( set -e; apt_start=$SECONDS; : > apt-run.log
+    if ((${#missing_run[@]})); then $SUDO apt-get install -y -q "${missing_run[@]}" >> apt-run.log 2>&1; fi
+    if ((${#missing_bare[@]})); then
+      $SUDO apt-get install -y -q --no-install-recommends "${missing_bare[@]}" >> apt-run.log 2>&1
+    fi
+    echo "apt (the rest) took $((SECONDS - apt_start)) s" >> apt-run.log ) &
+  apt_pid=$!
+fi
+wait_for_apt() {
+  if [[ -n $apt_pid ]]; then
+    wait "$apt_pid" || { cat apt-run.log; echo "setup: apt-get install failed (apt-run.log above)" >&2; exit 1; }
+    echo "==> $(tail -1 apt-run.log)"; apt_pid=
+  fi
+}
+trap 'if [[ -n $apt_pid ]]; then wait "$apt_pid" || true; fi' EXIT
 build_start=$SECONDS
 
 echo "==> building granwave (Release) in build/$([[ $tests == ON ]] && echo ', with the tests' || echo ': the program and the Python module')"
@@ -53,6 +83,7 @@ else
   echo "==> not installing (run as root: cmake --install build)"
 fi
 
+wait_for_apt
 # The cross-code harness on PATH (an executable of the repository, run by /usr/bin/python3).
 if [[ -w /usr/local/bin ]]; then
   ln -sf "$PWD/crosscheck/crosscheck" /usr/local/bin/crosscheck

@@ -25,7 +25,7 @@ stage "sanitizer build (ASan + UBSan) in build-sanitize/"
 # -O0: GCC compiles the instrumented sources 2-3x faster than at -O1 (the stage was most of CI's time); the
 # unit tests run slower but finish in minutes (docs/benchmarks.md, "README command 2, stage by stage").
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DGRANWAVE_BENCH=OFF -DGRANWAVE_PYTHON=OFF \
-  -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g" > build-sanitize.configure.log 2>&1 || { cat build-sanitize.configure.log; exit 1; }
+  -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g1" > build-sanitize.configure.log 2>&1 || { cat build-sanitize.configure.log; exit 1; }
 # Only what the unit label runs: the unit test executables and the binary the cli tests call.
 unit_targets=$(cmake --build build-sanitize --target help | sed -n 's/^\.\.\. \(test_unit_[a-z_]*\).*/\1/p')
 cmake --build build-sanitize -j"$jobs" --target granwave granwave_testlaw $unit_targets
