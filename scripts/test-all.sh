@@ -50,7 +50,8 @@ ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:allocator_may_return_null=1:max_all
 
 stage "pytest: the cross-code harness, including real YADE, LIGGGHTS and LAMMPS runs, one worker per core"
 # Each test runs its codes in its own tmp_path, so the tests spread over the cores (pytest-xdist).
-PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q -n "$jobs" tests/crosscheck
+# Not the paper-size run (-m fullsize: crystal_p in four codes, about 10 min on one worker; README).
+PATH="$PWD/build:$PATH" /usr/bin/python3 -m pytest -q -n "$jobs" -m "not fullsize" tests/crosscheck
 
 stage "pytest: the Python module granwave against the program"
 /usr/bin/python3 -m pytest -q tests/python

@@ -12,6 +12,8 @@ sys.path.insert(0, os.path.join(REPO, "liggghts_inputs"))
 def pytest_configure(config):
     config.addinivalue_line("markers", "realcodes: runs real YADE/LIGGGHTS/granwave (a few minutes); "
                             "select with -m realcodes, skip with -m 'not realcodes'")
+    config.addinivalue_line("markers", "fullsize: a paper-size run in every code (about 10 minutes on one core); "
+                            "not in CI (scripts/test-all.sh deselects it), select with -m fullsize")
 
 
 @pytest.fixture

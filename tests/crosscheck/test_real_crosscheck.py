@@ -386,6 +386,7 @@ def check_second_wavelength_tables(tables):
         assert abs(tables["granwave"][z] - SEED_LAMBDA_K[z]) <= 0.15, (z, tables["granwave"][z])
 
 
+@pytest.mark.fullsize
 @needs_codes
 @needs_lammps
 def test_seed_second_wavelength_table_from_every_code_of_crystal_p(tmp_path):
