@@ -68,9 +68,9 @@ trap 'if [[ -n $apt_pid ]]; then wait "$apt_pid" || true; fi' EXIT
 build_start=$SECONDS
 
 echo "==> building granwave (Release) in build/$([[ $tests == ON ]] && echo ', with the tests' || echo ': the program and the Python module')"
-# With the tests: one -fPIC copy of the libraries for the program, the tests and the module (CMakeLists.txt,
-# GRANWAVE_ONE_COPY); without: the program's own copy, the one bench/ times.
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests -DGRANWAVE_ONE_COPY=$tests \
+# One -fPIC copy of the libraries for the program, the tests and the module (CMakeLists.txt, GRANWAVE_ONE_COPY):
+# half the compile of two copies. bench/side_by_side.py names the build it times (docs/benchmarks.md).
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests -DGRANWAVE_ONE_COPY=ON \
   > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 cmake --build build -j"$(nproc)"
 echo "==> configure and build took $((SECONDS - build_start)) s"

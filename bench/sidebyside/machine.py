@@ -64,6 +64,8 @@ def granwave_build_facts(exe: str) -> dict:
     ver = subprocess.run([exe, "version"], capture_output=True, text=True).stdout.strip()
     native = c.get("GRANWAVE_NATIVE", "ON").upper() not in ("OFF", "0", "FALSE")
     desc = "-O3%s%s" % (" -march=native" if native else "", (" " + flags) if flags else "")
+    if c.get("GRANWAVE_ONE_COPY", "OFF").upper() in ("ON", "1", "TRUE"):
+        desc += " -fPIC -fno-semantic-interposition (GRANWAVE_ONE_COPY: the module's copy of the libraries)"
     if not c:
         desc = "unknown (no CMakeCache.txt next to the binary)"
     return dict(path=exe, version=ver, cmake=c, flags=desc, no_avx512="-mno-avx512f" in flags, zmm_instructions=zmm)
