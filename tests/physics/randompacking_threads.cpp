@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "packing/random_packing.hpp"
-#include "test_support.hpp"
+#include "../test_support.hpp"
 
 using namespace granwave;
 
