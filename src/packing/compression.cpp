@@ -223,6 +223,15 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       grow = 1.0 + strain_rest;
       ++res.box_steps;
     }
+    // At a fixed box, a quench: when the forces work against the motion (P = sum F.v < 0) every
+    // velocity is set to zero (Bitzek et al.'s MD quench), so that the packing stops in the nearest
+    // minimum instead of rolling on over small barriers (at 4000 spheres the pressure fell by 14 %
+    // over 8 x 10^4 steps of merely damped motion, E_kin/E_pot rising).
+    if (!servo) {
+      double power = 0.0;
+      for (std::size_t q = 0; q < 3 * n; ++q) power += ft[q] * v[q];
+      if (power < 0.0) std::fill(v.begin(), v.end(), 0.0);
+    }
     // Leapfrog, then the box and every centre scaled affinely by `grow` (1 + rate dt under the servo).
     for (int d = 0; d < 3; ++d) L[d] *= grow;
     scale *= grow;
