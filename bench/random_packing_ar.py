@@ -32,7 +32,6 @@ radius = 5e-4
 count = {count}
 seed = {seed}
 pressure = {pressure}
-preload = {preload}
 [contact]
 law = "hertz_mindlin"
 youngs_modulus = 70e9
@@ -53,14 +52,13 @@ def main():
     ap.add_argument("--count", type=int, default=4000)
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--pressure", type=float, default=1e4)
-    ap.add_argument("--preload", type=float, default=1.0, help="random.preload: compress to preload x pressure first")
     a = ap.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for seed in a.seeds:
             case = os.path.join(tmp, "ar_%d.toml" % seed)
             with open(case, "w") as f:
-                f.write(CASE.format(seed=seed, count=a.count, pressure=a.pressure, preload=a.preload))
+                f.write(CASE.format(seed=seed, count=a.count, pressure=a.pressure))
             out = os.path.join(tmp, "ar_%d.h5" % seed)
             t0 = time.time()
             subprocess.run([a.granwave, "build", case, "-o", out], check=True, stdout=subprocess.DEVNULL)

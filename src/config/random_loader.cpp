@@ -81,7 +81,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
       r.fail(std::string("crystal.") + key, "is not used with lattice = \"random\": [random] gives the particles", crystal.get(key));
   const toml::table& t = *r.table(root, "", "random", true);
   r.allow_only(t, "random", {"distribution", "radius", "width", "radii", "fractions", "count", "shape", "seed", "pressure",
-                             "preparation_friction", "damping", "background_damping", "inertia_number", "servo_time", "preload", "initial_solid_fraction",
+                             "preparation_friction", "damping", "background_damping", "inertia_number", "servo_time", "initial_solid_fraction",
                              "pressure_tolerance", "kinetic_ratio", "unbalanced_force", "max_steps", "max_overlap",
                              "source_thickness", "fixed_thickness", "bin_width", "relax_tolerance"});
   packing::RandomSpec s;
@@ -108,7 +108,6 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   s.damping = in("damping", 0.0, 1.0, true, 0.98, " (fraction of the critical damping of a contact)");
   s.background_damping = in("background_damping", 0.0, 1e3, false, 1.0, " (drag rate in units of sqrt(d p / m))");
   s.inertia_number = in("inertia_number", 0.0, 0.1, true, 1e-2, "");
-  s.preload = in("preload", 1.0, 1e6, false, 1.0, " (the servo first aims at preload x pressure, then decompresses to it)");
   s.servo_time = in("servo_time", 0.0, 1e6, true, 0.02, " (units of sqrt(m/(d p)))");
   s.initial_solid_fraction = in("initial_solid_fraction", 0.0, 0.3, true, 0.3, "");
   s.pressure_tolerance = in("pressure_tolerance", 0.0, 0.1, true, 1e-3, " (of the target)");
@@ -156,10 +155,6 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
            "bound random.max_overlap = " + fmt("%g", max_overlap) + " of the smaller radius (the largest contact force, about 4 "
            "mean forces pi d^2 p / (6 x 0.64)); allowed: pressure <= " + fmt("%.4g", s.pressure * f_allowed / f_top) + " Pa",
            t.get("pressure"));
-  if (!(s.preload * f_top <= f_allowed))
-    r.fail("random.preload", "= " + fmt("%g", s.preload) + " would press the smallest spheres' contacts beyond the overlap bound "
-           "random.max_overlap = " + fmt("%g", max_overlap) + " at preload x pressure; allowed: preload <= " +
-           fmt("%.4g", f_allowed / f_top), t.get("preload"));
   if (c.integrator.dt) {  // the run's fixed time step against the stiffest contacts the pressure makes
     double lo = 0.0, hi = max_overlap * a_min;
     for (int it = 0; it < 100; ++it) (law(a_max, a_max, 0.5 * (lo + hi)).f < f_top ? lo : hi) = 0.5 * (lo + hi);

@@ -56,23 +56,21 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     a_sum += a[q], m_sum += m[q];
   }
   const double d_mean = 2.0 * a_sum / n, m_mean = m_sum / n, p_t = spec.pressure;
-  // With a preload the servo first aims at preload p_target, then at p_target (step 6 of the doc).
-  double target = p_t * spec.preload;
-  // The inertial time at the servo's target, sqrt(m/(d p)): the inertia number I = |strain rate| of it.
-  double t_inertial = std::sqrt(m_mean / (d_mean * target));
-  double rate_max = spec.inertia_number / t_inertial;
+  // The inertial time at the target pressure, sqrt(m/(d p)): the inertia number I = |strain rate| of it.
+  const double t_inertial = std::sqrt(m_mean / (d_mean * p_t));
+  const double rate_max = spec.inertia_number / t_inertial;
   // The time step: 1/25 of the contact time of the lightest pair at the stiffness of the largest
   // spheres pressed by 4 mean contact forces at the target (f = pi d^2 p / (z Phi), z 6, Phi 0.64).
-  const double f_mean = std::numbers::pi * d_mean * d_mean * target / (6.0 * 0.64);
+  const double f_mean = std::numbers::pi * d_mean * d_mean * p_t / (6.0 * 0.64);
   const double k_max = law(a_max, a_max, overlap_at_force(law, a_max, 4.0 * f_mean)).k;
   const double dt = std::numbers::pi * std::sqrt(0.5 * m_min / k_max) / 25.0;
-  double tau = std::max(spec.servo_time * t_inertial, 10.0 * dt);  // a step cannot overshoot
+  const double tau = std::max(spec.servo_time * t_inertial, 10.0 * dt);  // a step cannot overshoot
   const double skin = 0.2 * d_mean;
   const double zeta = spec.damping;
   // A background drag on every particle's velocity (relative to the box's affine motion), decay
   // time t_inertial / background_damping: a rattler's cage is wide and its collisions rare, and
   // the contacts' dashpots alone would leave it rattling long after the rest is static.
-  double drag = 1.0 / (1.0 + spec.background_damping * dt / t_inertial);
+  const double drag = 1.0 / (1.0 + spec.background_damping * dt / t_inertial);
 
   // Threads only for a large packing: a step of a small one is shorter than a team's barriers.
   const bool threaded = n >= spec.parallel_min_particles && omp_get_max_threads() > 1;
@@ -85,7 +83,7 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
   // target for `patience` without rest; then each rest out of tolerance is followed by an affine
   // step of the box towards the target (docs/random-packing.md, step 5).
   const double band = 10.0 * spec.pressure_tolerance;
-  long patience = static_cast<long>(std::ceil(50.0 * t_inertial / dt));
+  const long patience = static_cast<long>(std::ceil(50.0 * t_inertial / dt));
   long in_band_since = -1;  // the first step of the current stay within the band
   bool servo = true;
   double p_rest = 0.0, strain_rest = 0.0;  // the last rest's pressure and the affine step that followed it
@@ -183,7 +181,7 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     for (std::size_t q = 0; q < n; ++q)
       e_kin += 0.5 * m[q] * (v[3 * q] * v[3 * q] + v[3 * q + 1] * v[3 * q + 1] + v[3 * q + 2] * v[3 * q + 2]);
     ratio = e_pot > 0.0 ? e_kin / e_pot : INFINITY;
-    const bool in_tolerance = target == p_t && std::abs(p - p_t) <= spec.pressure_tolerance * p_t;
+    const bool in_tolerance = std::abs(p - p_t) <= spec.pressure_tolerance * p_t;
     bool at_rest = false;
     if (contacts && (in_tolerance || !servo) && ratio <= spec.kinetic_ratio) {
       double net = 0.0;
@@ -208,24 +206,12 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     const double S = stiff / (3.0 * volume);
     double grow = 1.0;
     if (servo) {
-      const double error = std::clamp((p - target) / target, -1.0, 1.0);
+      const double error = std::clamp((p - p_t) / p_t, -1.0, 1.0);
       rate = rate_max * error;
-      if (S > 0.0 && std::abs(rate) > std::abs(p - target) / (S * tau)) rate = (p - target) / (S * tau);
+      if (S > 0.0 && std::abs(rate) > std::abs(p - p_t) / (S * tau)) rate = (p - p_t) / (S * tau);
       grow = 1.0 + rate * dt;
-      in_band_since = std::abs(p - target) <= band * target ? (in_band_since < 0 ? s : in_band_since) : -1;
-      if (in_band_since >= 0 && s - in_band_since >= patience) {
-        if (target != p_t) {  // preloaded: now the servo aims at the target itself
-          target = p_t;
-          t_inertial = std::sqrt(m_mean / (d_mean * target));
-          rate_max = spec.inertia_number / t_inertial;
-          tau = std::max(spec.servo_time * t_inertial, 10.0 * dt);
-          drag = 1.0 / (1.0 + spec.background_damping * dt / t_inertial);
-          patience = static_cast<long>(std::ceil(50.0 * t_inertial / dt));
-          in_band_since = -1;
-        } else {
-          servo = false, rate = 0.0, res.servo_steps = s;
-        }
-      }
+      in_band_since = std::abs(p - p_t) <= band * p_t ? (in_band_since < 0 ? s : in_band_since) : -1;
+      if (in_band_since >= 0 && s - in_band_since >= patience) servo = false, rate = 0.0, res.servo_steps = s;
     } else if (at_rest) {
       // At rest out of tolerance: the affine step that would bring p to the target with the
       // stiffness the last step showed (the secant; the affine S, an upper bound, at first).

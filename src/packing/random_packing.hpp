@@ -32,7 +32,6 @@ struct RandomSpec {
   double damping = 0.98;                   // normal contact dashpot, fraction of critical
   double background_damping = 1.0;         // drag rate on every velocity, in units of sqrt(d p/m)
   double inertia_number = 1e-2;            // bound on |strain rate| sqrt(m/(d p))
-  double preload = 1.0;                    // the servo first aims at preload x pressure, then at pressure
   double servo_time = 0.02;                // Berendsen's tau_p in units of sqrt(m/(d p)) (at least 10 steps)
   double pressure_tolerance = 1e-3;        // |p - p_target| / p_target
   double kinetic_ratio = 1e-8;             // E_kin / E_pot
