@@ -187,8 +187,6 @@ void write_system(io::H5Writer& w, const Packing& p, const std::string& case_nam
     const packing::Preparation& q = p.preparation;
     w.attr(g, "random_seed", static_cast<std::int64_t>(p.seed));
     w.attr(g, "prepare_steps", std::int64_t{q.steps});
-    w.attr(g, "prepare_servo_steps", std::int64_t{q.servo_steps});
-    w.attr(g, "prepare_box_steps", std::int64_t{q.box_steps});
     w.attr(g, "prepare_time_step", q.time_step);
     w.attr(g, "prepare_pressure", q.pressure);
     w.attr(g, "prepare_kinetic_ratio", q.kinetic_ratio);
@@ -268,9 +266,6 @@ Packing read_system(const std::string& path) {
       packing::Preparation& q = p.preparation;
       p.seed = static_cast<std::uint64_t>(count("random_seed", 0, 9007199254740992.0));
       q.steps = static_cast<long>(count("prepare_steps", 0, 1e15));
-      // Files before the fixed-box relaxation: the servo ran to the end.
-      q.servo_steps = r.has_attr(g, "prepare_servo_steps") ? static_cast<long>(count("prepare_servo_steps", 0, 1e15)) : q.steps;
-      q.box_steps = r.has_attr(g, "prepare_box_steps") ? static_cast<long>(count("prepare_box_steps", 0, 1e15)) : 0;
       q.time_step = number("prepare_time_step", true);
       q.pressure = number("prepare_pressure", true);
       q.kinetic_ratio = number("prepare_kinetic_ratio", false);

@@ -79,20 +79,12 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
   double scale = 1.0;  // the box's linear scale since the start
   pl.build(x, a, L, a_max, skin, scale);
   double rate = -rate_max;
-  // The servo gives way to relaxation at a fixed box once the pressure has held within `band` of the
-  // target for `patience` without rest; then each rest out of tolerance is followed by an affine
-  // step of the box towards the target (docs/random-packing.md, step 5).
-  const double band = 10.0 * spec.pressure_tolerance;
-  const long patience = static_cast<long>(std::ceil(50.0 * t_inertial / dt));
-  long in_band_since = -1;  // the first step of the current stay within the band
-  bool servo = true;
-  double p_rest = 0.0, strain_rest = 0.0;  // the last rest's pressure and the affine step that followed it
   Preparation res;
   res.time_step = dt;
   auto clock_last = std::chrono::steady_clock::now();
   const auto state = [&](long s, double p, double ratio, double unb) {
     std::ostringstream o;
-    o << "step " << s << (servo ? " (servo)" : " (fixed box)") << ": p/p_target " << p / p_t << ", E_kin/E_pot " << ratio;
+    o << "step " << s << ": p/p_target " << p / p_t << ", E_kin/E_pot " << ratio;
     if (std::isfinite(unb)) o << ", unbalanced " << unb;  // measured once the other two hold
     o << ", solid fraction " << [&] {
            double vs = 0.0;
@@ -181,16 +173,12 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     for (std::size_t q = 0; q < n; ++q)
       e_kin += 0.5 * m[q] * (v[3 * q] * v[3 * q] + v[3 * q + 1] * v[3 * q + 1] + v[3 * q + 2] * v[3 * q + 2]);
     ratio = e_pot > 0.0 ? e_kin / e_pot : INFINITY;
-    const bool in_tolerance = std::abs(p - p_t) <= spec.pressure_tolerance * p_t;
-    bool at_rest = false;
-    if (contacts && (in_tolerance || !servo) && ratio <= spec.kinetic_ratio) {
+    if (contacts && std::abs(p - p_t) <= spec.pressure_tolerance * p_t && ratio <= spec.kinetic_ratio) {
       double net = 0.0;
       for (std::size_t q = 0; q < n; ++q) net = std::max(net, std::hypot(fe[3 * q], fe[3 * q + 1], fe[3 * q + 2]));
       unb = net / (f_sum / contacts);
-      at_rest = unb <= spec.unbalanced_force;
-      if (at_rest && in_tolerance) {
+      if (unb <= spec.unbalanced_force) {
         res.steps = s;
-        res.servo_steps = servo ? s : res.servo_steps;
         break;
       }
     }
@@ -204,35 +192,11 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     // with relaxation time tau, rate = (p - p_target) / (S tau), S = (1/3V) sum k |b|^2 the affine
     // stiffness (dp/dt = -S rate), so that p cannot overshoot within a step.
     const double S = stiff / (3.0 * volume);
-    double grow = 1.0;
-    if (servo) {
-      const double error = std::clamp((p - p_t) / p_t, -1.0, 1.0);
-      rate = rate_max * error;
-      if (S > 0.0 && std::abs(rate) > std::abs(p - p_t) / (S * tau)) rate = (p - p_t) / (S * tau);
-      grow = 1.0 + rate * dt;
-      in_band_since = std::abs(p - p_t) <= band * p_t ? (in_band_since < 0 ? s : in_band_since) : -1;
-      if (in_band_since >= 0 && s - in_band_since >= patience) servo = false, rate = 0.0, res.servo_steps = s;
-    } else if (at_rest) {
-      // At rest out of tolerance: the affine step that would bring p to the target with the
-      // stiffness the last step showed (the secant; the affine S, an upper bound, at first).
-      double stiffness = S;
-      if (strain_rest != 0.0 && (p_rest - p) / strain_rest > 0.0)
-        stiffness = std::clamp((p_rest - p) / strain_rest, 0.05 * S, S);
-      strain_rest = (p - p_t) / stiffness;
-      p_rest = p;
-      grow = 1.0 + strain_rest;
-      ++res.box_steps;
-    }
-    // At a fixed box, a quench: when the forces work against the motion (P = sum F.v < 0) every
-    // velocity is set to zero (Bitzek et al.'s MD quench), so that the packing stops in the nearest
-    // minimum instead of rolling on over small barriers (at 4000 spheres the pressure fell by 14 %
-    // over 8 x 10^4 steps of merely damped motion, E_kin/E_pot rising).
-    if (!servo) {
-      double power = 0.0;
-      for (std::size_t q = 0; q < 3 * n; ++q) power += ft[q] * v[q];
-      if (power < 0.0) std::fill(v.begin(), v.end(), 0.0);
-    }
-    // Leapfrog, then the box and every centre scaled affinely by `grow` (1 + rate dt under the servo).
+    const double error = std::clamp((p - p_t) / p_t, -1.0, 1.0);
+    rate = rate_max * error;
+    if (S > 0.0 && std::abs(rate) > std::abs(p - p_t) / (S * tau)) rate = (p - p_t) / (S * tau);
+    const double grow = 1.0 + rate * dt;
+    // Leapfrog, then the box and every centre scaled affinely by (1 + rate dt).
     for (int d = 0; d < 3; ++d) L[d] *= grow;
     scale *= grow;
 #pragma omp parallel for schedule(static) if (threaded)

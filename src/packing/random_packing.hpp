@@ -43,8 +43,6 @@ struct RandomSpec {
 // What the preparation reached (recorded in the system file).
 struct Preparation {
   long steps = 0;
-  long servo_steps = 0;             // steps under the servo (then relaxation at a fixed box)
-  long box_steps = 0;               // affine steps of the fixed box towards the target pressure
   double pressure = 0.0;            // Love-Weber pressure of the elastic contact forces (Pa)
   double kinetic_ratio = 0.0;       // E_kin / E_pot
   double unbalanced_force = 0.0;    // largest net force over the mean contact force
