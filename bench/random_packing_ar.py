@@ -66,13 +66,14 @@ def main():
                 at = h.attrs
                 rows.append((seed, float(at["prepare_solid_fraction"]), float(at["prepare_coordination_backbone"]),
                              int(at["prepare_rattlers"]), float(at["prepare_coordination"]), int(at["prepare_steps"]),
-                             float(at["prepare_pressure"]), float(at["prepare_unbalanced"]), time.time() - t0))
-            print("seed %d: Phi %.4f, z* %.3f, rattlers %d, Z %.3f, %d steps, p %.6g Pa, unbalanced %.2g, %.0f s" % rows[-1],
-                  file=sys.stderr, flush=True)
-    print("| seed | Phi | z* | rattlers | Z | steps | p (Pa) | unbalanced | s |")
-    print("|---|---|---|---|---|---|---|---|---|")
+                             float(at["prepare_pressure"]),
+                             float(at["prepare_kinetic_ratio"]), float(at["prepare_unbalanced"]), time.time() - t0))
+            print("seed %d: Phi %.4f, z* %.3f, rattlers %d, Z %.3f, %d steps, p %.6g Pa, "
+                  "E_kin/E_pot %.2g, unbalanced %.2g, %.0f s" % rows[-1], file=sys.stderr, flush=True)
+    print("| seed | Phi | z* | rattlers | Z | steps | p (Pa) | E_kin/E_pot | unbalanced | s |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print("| %d | %.4f | %.3f | %d | %.3f | %d | %.6g | %.2g | %.0f |" % r)
+        print("| %d | %.4f | %.3f | %d | %.3f | %d | %.6g | %.2g | %.2g | %.0f |" % r)
     n = len(rows)
     phi = sum(r[1] for r in rows) / n
     zs = sum(r[2] for r in rows) / n

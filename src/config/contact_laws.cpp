@@ -35,6 +35,7 @@ ContactLawInfo info_of() {
           [](const LawParams& p, double density, double a_i, double a_j, double delta) {
             return D::at(own<D>(p), density, a_i, a_j, delta);
           },
+          [](const LawParams& p, double density) { return D::normal_form(own<D>(p), density); },
           &D::guard_keys,
           [](const LawParams& p, const CrystalCase& k, double m) { return D::scale(own<D>(p), k.radius, k.overlap, m); },
           &D::stability_note,

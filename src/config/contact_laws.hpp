@@ -9,6 +9,7 @@
 #include "config/case.hpp"
 #include "contact/case_keys.hpp"
 #include "contact/case_law.hpp"
+#include "contact/normal_form.hpp"
 
 namespace granwave::config {
 
@@ -25,6 +26,8 @@ struct ContactLawInfo {
   const char* (*history_name)(const contact::LawParams&);  // the trace's tangential_history
   // Two spheres of radii a_i, a_j (particles of `density`) at overlap delta, linearised.
   contact::LinearisedContact (*at)(const contact::LawParams&, double density, double a_i, double a_j, double delta);
+  // Its static normal force as a closed form (the random packing's compression evaluates it inline).
+  contact::NormalForm (*normal_form)(const contact::LawParams&, double density);
   contact::GuardKeys (*guard_keys)();
   contact::ScaleCheck (*scale)(const contact::LawParams&, const CrystalCase&, double m);
   std::string (*stability_note)(double delta_max);

@@ -141,9 +141,9 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   const ContactLawInfo& info = law_of(c.contact);
   const contact::LawParams params = c.contact;
   const double density = k.density;
-  const packing::NormalLaw law = [params, density, &info](double ai, double aj, double delta) {
-    const contact::LinearisedContact lc = info.at(params, density, ai, aj, delta);
-    return packing::NormalContact{lc.f_n, lc.kn};
+  const contact::NormalForm form = info.normal_form(params, density);
+  const auto law = [&form](double ai, double aj, double delta) {
+    return contact::with_normal(form, [&](const auto& f) { return f(ai, aj, delta); });
   };
   // The largest contact force is about 4 mean ones (the exponential tail of the force distribution);
   // the mean f = pi d^2 p / (z Phi), z = 6, Phi = 0.64 (Love-Weber for a monodisperse packing).
@@ -175,7 +175,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   packing::Preparation prep;
   try {  // the generator's refusals name their key; here they get the case file's name
     pk = packing::random_gas(s);
-    prep = packing::compress(pk, s, law, [](const std::string& line) {
+    prep = packing::compress(pk, s, form, [](const std::string& line) {
       std::cerr << "granwave: preparing the random packing: " << line << "\n";
     });
     packing::wrap_into_box(pk);

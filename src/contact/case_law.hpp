@@ -23,6 +23,9 @@
 //   static LinearisedContact at(const Params&, double density, double a_i, double a_j, double delta);
 //                                                 the contact linearised at overlap delta: eq. (10), the
 //                                                 lattice dynamics, the stability guard, the studies
+//   static NormalForm normal_form(const Params&, double density);
+//                                                 its static normal force as a closed form
+//                                                 (contact/normal_form.hpp: the random packing's compression)
 //   static constexpr bool stiffness_of_overlap;   at() depends on delta (each contact of a network its own)
 //   static constexpr bool hertz_normal;           the normal force is Hertz's (theory's two-body impact)
 //   static Relaxation relaxation(const Params&, double density, double a_max, double m_min,

@@ -11,6 +11,7 @@
 #include "contact/case_law.hpp"
 #include "contact/hertz_mindlin.hpp"
 #include "contact/hertz_mindlin_params.hpp"
+#include "contact/normal_form.hpp"
 
 namespace granwave::contact {
 
@@ -71,6 +72,9 @@ struct HertzMindlinCase {
     const double m_j = density * 4.0 / 3.0 * std::numbers::pi * a_j * a_j * a_j;
     const HertzMindlinStiffness s = hertz_mindlin_at(params(cp, density), a_i * a_j / (a_i + a_j), m_i * m_j / (m_i + m_j), delta);
     return {s.f_n, s.k_n, cp.mindlin ? s.k_t : 0.0, s.gamma_n, 0.0};
+  }
+  static NormalForm normal_form(const Params& cp, double density) {
+    return {NormalForm::Kind::hertz, params(cp, density).e_star()};
   }
 
   // Frictionless and undamped; the time step from the stiffest contact the packing starts with,

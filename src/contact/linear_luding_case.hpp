@@ -11,6 +11,7 @@
 #include "contact/hooke.hpp"
 #include "contact/linear_luding.hpp"
 #include "contact/linear_luding_params.hpp"
+#include "contact/normal_form.hpp"
 #include "contact/rolling_torsion.hpp"
 
 namespace granwave::contact {
@@ -40,6 +41,7 @@ struct LinearLudingCase {
   static LinearisedContact at(const Params& p, double, double, double, double delta) {
     return {p.kn * delta, p.kn, p.kt, p.gamma_n, p.gamma_t};
   }
+  static NormalForm normal_form(const Params& p, double) { return {NormalForm::Kind::linear, p.kn}; }
 
   // The frictionless, undamped spring k; t_c of the lightest pair.
   static Relaxation relaxation(const Params& p, double, double, double m_min, double) {

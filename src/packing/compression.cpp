@@ -1,94 +1,34 @@
 // The compression of a random packing's gas to its target pressure (packing/random_packing.hpp):
 // a stress-controlled periodic cell, Berendsen's barostat on the box, normal contacts of the case's
 // law with a dashpot, leapfrog steps; stopped when the pressure is reached and the packing static.
-// docs/random-packing.md has the rule and its sources. Serial on purpose: the same bits for any
-// number of threads.
+// docs/random-packing.md has the rule and its sources. The law's closed form inline (a template per
+// form); the pairs evaluated in parallel, each particle's forces gathered in the pairs' order and the
+// sums over pairs taken serially in that order: the same bits for any number of threads.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
+#ifdef _OPENMP
+#include <omp.h>
+#else
+inline int omp_get_max_threads() { return 1; }
+#endif
+
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "packing/contacts.hpp"
 #include "packing/random_packing.hpp"
+#include "packing/verlet_pairs.hpp"
 
 namespace granwave::packing {
 
 namespace {
 
-// Pairs closer than a_i + a_j + skin (nearest image), from a cell list over the box.
-struct PairList {
-  std::vector<std::uint32_t> i, j;
-  std::vector<double> x0;  // centres when built
-  double scale0 = 1.0;     // the box's scale when built
-};
-
-void build_pairs(PairList& pl, const std::vector<double>& x, const std::vector<double>& a, const std::array<double, 3>& L,
-                 double a_max, double skin, double scale) {
-  const std::size_t n = a.size();
-  pl.i.clear();
-  pl.j.clear();
-  pl.x0 = x;
-  pl.scale0 = scale;
-  const auto near = [&](std::size_t p, std::size_t q) {
-    double r2 = 0.0;
-    for (int d = 0; d < 3; ++d) {
-      double b = x[3 * q + d] - x[3 * p + d];
-      b -= L[d] * std::nearbyint(b / L[d]);
-      r2 += b * b;
-    }
-    const double reach = a[p] + a[q] + skin;
-    return r2 < reach * reach;
-  };
-  std::array<int, 3> nc{};
-  for (int d = 0; d < 3; ++d) nc[d] = static_cast<int>(std::floor(L[d] / (2.0 * a_max + skin)));
-  if (std::min({nc[0], nc[1], nc[2]}) < 3) {  // a small box: every pair
-    for (std::size_t p = 0; p < n; ++p)
-      for (std::size_t q = p + 1; q < n; ++q)
-        if (near(p, q)) pl.i.push_back(static_cast<std::uint32_t>(p)), pl.j.push_back(static_cast<std::uint32_t>(q));
-    return;
-  }
-  const auto cell_of = [&](std::size_t p, int d) {
-    return std::clamp(static_cast<int>(std::floor(x[3 * p + d] / L[d] * nc[d])), 0, nc[d] - 1);
-  };
-  const std::size_t ncell = static_cast<std::size_t>(nc[0]) * nc[1] * nc[2];
-  std::vector<std::size_t> start(ncell + 1, 0), members(n), cell(n);
-  for (std::size_t p = 0; p < n; ++p) {
-    cell[p] = (static_cast<std::size_t>(cell_of(p, 2)) * nc[1] + cell_of(p, 1)) * nc[0] + cell_of(p, 0);
-    ++start[cell[p] + 1];
-  }
-  for (std::size_t c = 0; c < ncell; ++c) start[c + 1] += start[c];
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t p = 0; p < n; ++p) members[fill[cell[p]]++] = p;
-  for (std::size_t p = 0; p < n; ++p) {
-    const int cx = cell_of(p, 0), cy = cell_of(p, 1), cz = cell_of(p, 2);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int kx = (cx + dx + nc[0]) % nc[0], ky = (cy + dy + nc[1]) % nc[1], kz = (cz + dz + nc[2]) % nc[2];
-          const std::size_t c = (static_cast<std::size_t>(kz) * nc[1] + ky) * nc[0] + kx;
-          for (std::size_t s = start[c]; s < start[c + 1]; ++s) {
-            const std::size_t q = members[s];
-            if (q > p && near(p, q)) pl.i.push_back(static_cast<std::uint32_t>(p)), pl.j.push_back(static_cast<std::uint32_t>(q));
-          }
-        }
-  }
-  // The order the pairs are summed in fixes the bits: sort them.
-  std::vector<std::size_t> order(pl.i.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t u, std::size_t w) {
-    return pl.i[u] != pl.i[w] ? pl.i[u] < pl.i[w] : pl.j[u] < pl.j[w];
-  });
-  PairList sorted;
-  for (std::size_t k : order) sorted.i.push_back(pl.i[k]), sorted.j.push_back(pl.j[k]);
-  pl.i.swap(sorted.i);
-  pl.j.swap(sorted.j);
-}
-
 // The overlap at which the law's force between two spheres of radius a reaches f (bisection).
-double overlap_at_force(const NormalLaw& law, double a, double f) {
+template <class Law>
+double overlap_at_force(const Law& law, double a, double f) {
   double lo = 0.0, hi = a;
   for (int it = 0; it < 200 && law(a, a, hi).f < f; ++it) hi *= 2.0;
   for (int it = 0; it < 100; ++it) {
@@ -98,10 +38,9 @@ double overlap_at_force(const NormalLaw& law, double a, double f) {
   return hi;
 }
 
-}  // namespace
-
-Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
-                     const std::function<void(const std::string&)>& progress) {
+template <class Law>
+Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
+                          const std::function<void(const std::string&)>& progress) {
   const std::size_t n = gas.particles.size();
   std::vector<double> x(3 * n), v(3 * n, 0.0), a(n), m(n), fe(3 * n), ft(3 * n);
   std::array<double, 3> L{gas.box.length(0), gas.box.length(1), gas.box.length(2)};
@@ -133,9 +72,12 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
   // the contacts' dashpots alone would leave it rattling long after the rest is static.
   const double drag = 1.0 / (1.0 + spec.background_damping * dt / t_inertial);
 
-  PairList pl;
+  // Threads only for a large packing: a step of a small one is shorter than a team's barriers.
+  const bool threaded = n >= spec.parallel_min_particles && omp_get_max_threads() > 1;
+  VerletPairs pl;
+  std::vector<double> pf, pft, pu, pterm;  // per pair: elastic and total normal force (-1: apart), unit vector, terms
   double scale = 1.0;  // the box's linear scale since the start
-  build_pairs(pl, x, a, L, a_max, skin, scale);
+  pl.build(x, a, L, a_max, skin, scale);
   double rate = -rate_max;
   Preparation res;
   res.time_step = dt;
@@ -155,12 +97,13 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
   for (long s = 0; s <= spec.max_steps; ++s) {
     // Forces: the law's elastic normal force, and with it the dashpot (the relative normal velocity
     // includes the box's affine one, rate |b|); no tension.
-    std::fill(fe.begin(), fe.end(), 0.0);
-    std::fill(ft.begin(), ft.end(), 0.0);
-    double virial = 0.0, stiff = 0.0, e_pot = 0.0, f_sum = 0.0, worst = 0.0;
     const double inv[3] = {1.0 / L[0], 1.0 / L[1], 1.0 / L[2]};
-    std::size_t contacts = 0;
-    for (std::size_t c = 0; c < pl.i.size(); ++c) {
+    const std::size_t npairs = pl.i.size();
+    if (!threaded) std::fill(fe.begin(), fe.end(), 0.0), std::fill(ft.begin(), ft.end(), 0.0);
+    if (pf.size() < npairs) pf.resize(npairs), pft.resize(npairs), pu.resize(3 * npairs), pterm.resize(4 * npairs);
+    // Each pair on its own (any thread): touching or not, its forces, its unit vector, its terms of the sums.
+#pragma omp parallel for schedule(static) if (threaded)
+    for (std::size_t c = 0; c < npairs; ++c) {
       const std::size_t i = pl.i[c], j = pl.j[c];
       double b[3], r2 = 0.0;
       for (int d = 0; d < 3; ++d) {
@@ -169,23 +112,55 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
         r2 += b[d] * b[d];
       }
       const double reach = a[i] + a[j];
-      if (r2 >= reach * reach) continue;
+      if (r2 >= reach * reach) {
+        pf[c] = -1.0;  // not touching
+        continue;
+      }
       const double r = std::sqrt(r2), delta = reach - r;
-      worst = std::max(worst, delta / std::min(a[i], a[j]));
-      const NormalContact nc = law(a[i], a[j], delta);
+      const contact::NormalForce nc = law(a[i], a[j], delta);
       double vn = rate * r;
       for (int d = 0; d < 3; ++d) vn += (v[3 * j + d] - v[3 * i + d]) * b[d] / r;
       const double ms = m[i] * m[j] / (m[i] + m[j]);
-      const double f_tot = std::max(0.0, nc.f - 2.0 * zeta * std::sqrt(ms * nc.k) * vn);
-      for (int d = 0; d < 3; ++d) {
-        const double u = b[d] / r;
-        fe[3 * i + d] -= nc.f * u, fe[3 * j + d] += nc.f * u;
-        ft[3 * i + d] -= f_tot * u, ft[3 * j + d] += f_tot * u;
+      pf[c] = nc.f;
+      pft[c] = std::max(0.0, nc.f - 2.0 * zeta * std::sqrt(ms * nc.k) * vn);
+      for (int d = 0; d < 3; ++d) pu[3 * c + d] = b[d] / r;
+      if (!threaded)  // one thread: each pair's forces added as it comes (the order the gather keeps)
+        for (int d = 0; d < 3; ++d) {
+          const double u = pu[3 * c + d];
+          fe[3 * i + d] -= nc.f * u, fe[3 * j + d] += nc.f * u;
+          ft[3 * i + d] -= pft[c] * u, ft[3 * j + d] += pft[c] * u;
+        }
+      pterm[4 * c] = nc.f * r;                                            // virial
+      pterm[4 * c + 1] = nc.k * r2;                                       // affine stiffness
+      pterm[4 * c + 2] = nc.f * nc.f * delta / (nc.k * delta + nc.f);     // f delta / (n + 1) for f ~ delta^n
+      pterm[4 * c + 3] = delta / std::min(a[i], a[j]);                    // relative overlap
+    }
+    // Threads: each particle's forces gathered from its pairs, in the order of a serial sweep over the pairs.
+#pragma omp parallel for schedule(static) if (threaded)
+    for (std::size_t q = 0; q < (threaded ? n : 0); ++q) {
+      double e[3] = {0.0, 0.0, 0.0}, t[3] = {0.0, 0.0, 0.0};
+      const std::uint32_t mid = pl.start[q] + pl.as_j[q];
+      for (std::uint32_t k = pl.start[q]; k < pl.start[q + 1]; ++k) {
+        const std::uint32_t c = pl.by[k];
+        if (pf[c] < 0.0) continue;
+        const double* u = &pu[3 * c];
+        if (k < mid)
+          for (int d = 0; d < 3; ++d) e[d] += pf[c] * u[d], t[d] += pft[c] * u[d];
+        else
+          for (int d = 0; d < 3; ++d) e[d] -= pf[c] * u[d], t[d] -= pft[c] * u[d];
       }
-      virial += nc.f * r;
-      stiff += nc.k * r2;
-      e_pot += nc.f * nc.f * delta / (nc.k * delta + nc.f);  // f delta / (n + 1) for f ~ delta^n
-      f_sum += nc.f;
+      for (int d = 0; d < 3; ++d) fe[3 * q + d] = e[d], ft[3 * q + d] = t[d];
+    }
+    // The sums, serially in the pairs' order.
+    double virial = 0.0, stiff = 0.0, e_pot = 0.0, f_sum = 0.0, worst = 0.0;
+    std::size_t contacts = 0;
+    for (std::size_t c = 0; c < npairs; ++c) {
+      if (pf[c] < 0.0) continue;
+      virial += pterm[4 * c];
+      stiff += pterm[4 * c + 1];
+      e_pot += pterm[4 * c + 2];
+      f_sum += pf[c];
+      worst = std::max(worst, pterm[4 * c + 3]);
       ++contacts;
     }
     const double volume = L[0] * L[1] * L[2];
@@ -220,33 +195,19 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
     const double error = std::clamp((p - p_t) / p_t, -1.0, 1.0);
     rate = rate_max * error;
     if (S > 0.0 && std::abs(rate) > std::abs(p - p_t) / (S * tau)) rate = (p - p_t) / (S * tau);
-    // Leapfrog, then the box and every centre scaled affinely by (1 + rate dt).
     const double grow = 1.0 + rate * dt;
+    // Leapfrog, then the box and every centre scaled affinely by (1 + rate dt).
+    for (int d = 0; d < 3; ++d) L[d] *= grow;
+    scale *= grow;
+#pragma omp parallel for schedule(static) if (threaded)
     for (std::size_t q = 0; q < n; ++q)
       for (int d = 0; d < 3; ++d) {
         v[3 * q + d] = (v[3 * q + d] + dt * ft[3 * q + d] / m[q]) * drag;
         double& xq = x[3 * q + d];
         xq = (xq + dt * v[3 * q + d]) * grow;
+        xq -= L[d] * std::floor(xq / L[d]);
       }
-    for (int d = 0; d < 3; ++d) L[d] *= grow;
-    scale *= grow;
-    for (std::size_t q = 0; q < n; ++q)
-      for (int d = 0; d < 3; ++d) x[3 * q + d] -= L[d] * std::floor(x[3 * q + d] / L[d]);
-    // A new list when a pair outside it may touch: the largest non-affine displacement u and the
-    // box's shrinking since the build (a pair's distance falls by at most 2u + (1 - s) 2 a_max).
-    const double ratio_s = scale / pl.scale0;
-    double u2 = 0.0;
-    for (std::size_t q = 0; q < n; ++q) {
-      double w2 = 0.0;
-      for (int d = 0; d < 3; ++d) {
-        double u = x[3 * q + d] - pl.x0[3 * q + d] * ratio_s;
-        u -= L[d] * std::nearbyint(u / L[d]);
-        w2 += u * u;
-      }
-      u2 = std::max(u2, w2);
-    }
-    if (2.0 * std::sqrt(u2) + 2.0 * a_max * std::max(0.0, 1.0 - ratio_s) >= skin * std::min(1.0, ratio_s))
-      build_pairs(pl, x, a, L, a_max, skin, scale);
+    if (pl.stale(x, L, a_max, skin, scale, threaded)) pl.build(x, a, L, a_max, skin, scale);
     if (progress && s % 2000 == 0) {
       const auto now = std::chrono::steady_clock::now();
       if (now - clock_last > std::chrono::seconds(2)) {
@@ -267,6 +228,13 @@ Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
   res.coordination_backbone = st.mean_coordination_nonrattler;
   res.rattlers = static_cast<long>(st.rattlers);
   return res;
+}
+
+}  // namespace
+
+Preparation compress(Packing& gas, const RandomSpec& spec, const contact::NormalForm& law,
+                     const std::function<void(const std::string&)>& progress) {
+  return contact::with_normal(law, [&](const auto& form) { return compress_with(gas, spec, form, progress); });
 }
 
 }  // namespace granwave::packing

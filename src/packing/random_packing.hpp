@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/normal_form.hpp"
 #include "packing/packing.hpp"
 
 namespace granwave::packing {
@@ -19,13 +20,6 @@ struct RadiusLaw {
   double width = 0.0;   // uniform: half-width over the mean, a = r (1 + width (2u - 1)); lognormal: sigma of ln a
   std::vector<double> radii, fractions;  // mixture: radii (m) and number fractions (sum 1)
 };
-
-// The normal contact of two spheres under the case's law at overlap delta: its force (N) and its
-// tangent stiffness df/ddelta (N/m).
-struct NormalContact {
-  double f = 0.0, k = 0.0;
-};
-using NormalLaw = std::function<NormalContact(double a_i, double a_j, double delta)>;
 
 struct RandomSpec {
   RadiusLaw radii;
@@ -43,6 +37,7 @@ struct RandomSpec {
   double kinetic_ratio = 1e-8;             // E_kin / E_pot
   double unbalanced_force = 1e-3;          // largest net force over the mean contact force
   long max_steps = 2000000;
+  std::size_t parallel_min_particles = 20000;  // threads from this many particles on (not a key: the route test lowers it)
 };
 
 // What the preparation reached (recorded in the system file).
@@ -65,9 +60,10 @@ std::vector<double> draw_radii(const RadiusLaw& law, long count, std::uint64_t s
 // overlap nothing, in a box of `shape` at initial_solid_fraction. Throws InputError naming the key.
 Packing random_gas(const RandomSpec& spec);
 
-// Compresses the gas to spec.pressure and rest (docs/random-packing.md). `progress` (may be empty)
-// gets a line now and then. Throws InputError naming random.max_steps when the budget runs out.
-Preparation compress(Packing& gas, const RandomSpec& spec, const NormalLaw& law,
+// Compresses the gas to spec.pressure and rest (docs/random-packing.md) under the case's normal law
+// (its closed form, contact/normal_form.hpp). `progress` (may be empty) gets a line now and then.
+// Throws InputError naming random.max_steps when the budget runs out.
+Preparation compress(Packing& gas, const RandomSpec& spec, const contact::NormalForm& law,
                      const std::function<void(const std::string&)>& progress);
 
 }  // namespace granwave::packing

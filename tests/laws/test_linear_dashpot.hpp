@@ -95,6 +95,7 @@ struct TestLinearDashpotCase {
   static LinearisedContact at(const Params& p, double, double, double, double delta) {
     return {p.kn * delta, p.kn, 0.0, p.gamma_n, p.gamma_t};
   }
+  static NormalForm normal_form(const Params& p, double) { return {NormalForm::Kind::linear, p.kn}; }
   // The spring alone, as the linear law relaxes (its Hooke form), named as this law.
   static Relaxation relaxation(const Params& p, double, double, double m_min, double) {
     Params spring;
