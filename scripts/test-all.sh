@@ -9,12 +9,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each stage's wall time, printed at the end (also when a stage fails): what CI's total is made of.
 stage_name="set-up: apt and the Release build with the tests"; stage_start=$SECONDS; stage_times=()
-stage() {
-  stage_times+=("$(printf '%5d s  %s' $((SECONDS - stage_start)) "$stage_name")")
-  stage_name=$1; stage_start=$SECONDS; echo "==> $1"
-}
+close_stage() { stage_times+=("$(printf '%5d s  %s' $((SECONDS - stage_start)) "$stage_name")"); }
+stage() { close_stage; stage_name=$1; stage_start=$SECONDS; echo "==> $1"; }
 stage_table() {
-  stage_times+=("$(printf '%5d s  %s' $((SECONDS - stage_start)) "$stage_name")")
+  close_stage
   echo "==> stage times (wall), $((SECONDS / 60)) min $((SECONDS % 60)) s in all:"; printf '    %s\n' "${stage_times[@]}"
 }
 trap stage_table EXIT

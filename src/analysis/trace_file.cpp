@@ -73,18 +73,15 @@ std::pair<int, int> free_bins(const io::H5Reader& r, const std::string& path, st
   if (role.size() != layer.size())
     throw InputError(path + ": /system/role has " + std::to_string(role.size()) + " entries and /system/layer " +
                      std::to_string(layer.size()) + " (allowed: one each per particle)");
-  std::int64_t last_source = -1, first_top = static_cast<std::int64_t>(nlayers);
-  for (std::size_t q = 0; q < role.size(); ++q) {
+  for (std::size_t q = 0; q < role.size(); ++q)
     if (role[q] < 0 || role[q] > 2 || layer[q] < 0 || layer[q] >= static_cast<std::int64_t>(nlayers))
       throw InputError(path + ": /system/role or /system/layer of particle " + std::to_string(q) +
                        " is out of range (allowed: role 0, 1 or 2; layer 0 .. " + std::to_string(nlayers - 1) + ")");
-    if (role[q] == 1) last_source = std::max(last_source, layer[q]);
-    if (role[q] == 2) first_top = std::min(first_top, layer[q]);
-  }
-  if (first_top - last_source < 4)
+  const auto [first, last] = packing_free_bins(role, layer, nlayers);
+  if (last - first < 2)
     throw InputError(path + ": the packing's free bins (/system/role, /system/layer) are " +
-                     std::to_string(first_top - last_source - 1) + " between the source and the top slab (allowed: >= 3)");
-  return {static_cast<int>(last_source + 1), static_cast<int>(first_top - 1)};
+                     std::to_string(last - first + 1) + " between the source and the top slab (allowed: >= 3)");
+  return {first, last};
 }
 
 }  // namespace

@@ -4,11 +4,13 @@
 // Which /crystal datasets a trace may hold, and their shapes, is the crystal's table of observables
 // (crystal/observables.hpp), which the caller hands over: a new observable is read as it is written.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/measures.hpp"
@@ -23,6 +25,19 @@ struct Observable;
 namespace granwave::analysis {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A packing's free bins from its particles' roles (data/SCHEMA.md §2: 0 free, 1 source, 2 held at the
+// top) and bins: {after the last bin holding a source particle, before the first holding a top one}. The
+// trace reader (/system/role, /system/layer) and a run measured in memory (crystal::analysis_trace) both.
+template <class Roles, class Bins>
+std::pair<int, int> packing_free_bins(const Roles& role, const Bins& layer, std::size_t nlayers) {
+  long long last_source = -1, first_top = static_cast<long long>(nlayers);
+  for (std::size_t q = 0; q < role.size(); ++q) {
+    if (role[q] == 1) last_source = std::max<long long>(last_source, layer[q]);
+    if (role[q] == 2) first_top = std::min<long long>(first_top, layer[q]);
+  }
+  return {static_cast<int>(last_source + 1), static_cast<int>(first_top - 1)};
+}
 
 struct CrystalTrace {
   std::vector<double> time;      // [nt] s

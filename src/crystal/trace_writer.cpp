@@ -2,8 +2,8 @@
 // (take_series, analysis_trace).
 #include "crystal/trace_writer.hpp"
 
-#include <algorithm>
 #include <string>
+#include <tuple>
 #include <vector>
 #include <utility>
 
@@ -31,17 +31,11 @@ analysis::CrystalTrace analysis_trace(const config::Case& c, const Packing& pack
   t.velocity_z = tr["layer_velocity_z"];
   t.velocity_x = tr["layer_velocity_x"];
   t.coordination = tr["coordination"];
-  // A packing's free bins by role, as the trace file's reader finds them (/system/role, /system/layer),
-  // so that a run measured in memory gets the fit range `analyze` gives its file.
+  // A packing's free bins by role, by the trace file reader's rule (analysis::packing_free_bins), so that
+  // a run measured in memory gets the fit range `analyze` gives its file.
   if (packing.from_file()) {
     t.packing_bins = true;
-    int last_source = -1, first_top = static_cast<int>(t.nlayers);
-    for (std::size_t q = 0; q < packing.size(); ++q) {
-      if (packing.role[q] == role_source) last_source = std::max(last_source, packing.layer[q]);
-      if (packing.role[q] == role_fixed_top) first_top = std::min(first_top, packing.layer[q]);
-    }
-    t.first_free_bin = last_source + 1;
-    t.last_free_bin = first_top - 1;
+    std::tie(t.first_free_bin, t.last_free_bin) = analysis::packing_free_bins(packing.role, packing.layer, t.nlayers);
   }
   return t;
 }

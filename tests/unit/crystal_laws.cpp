@@ -29,6 +29,16 @@ TEST_CASE("contact-law registry: every case's law description agrees with the mo
     const double delta = 2.0 * c.crystal->radius * c.crystal->overlap;
     const contact::LinearisedContact k0 = crystal::contact_at(c, delta);
     CHECK(k0.f_n == crystal::static_normal_force(c, c.crystal->radius, c.crystal->radius, delta));
+    // The closed form the random packing's compression evaluates inline is the law's own, bit for bit
+    // (equal and unequal radii).
+    const contact::NormalForm form = law.normal_form(c.contact, c.crystal->density);
+    for (const double a_j : {c.crystal->radius, 0.8 * c.crystal->radius}) {
+      const contact::NormalForce nf =
+          contact::with_normal(form, [&](const auto& f) { return f(c.crystal->radius, a_j, delta); });
+      const contact::LinearisedContact lc = law.at(c.contact, c.crystal->density, c.crystal->radius, a_j, delta);
+      CHECK(nf.f == lc.f_n);
+      CHECK(nf.k == lc.kn);
+    }
     if (!law.stiffness_of_overlap) {
       CHECK(k0.kn == c.contact.get<contact::LinearLudingParams>().kn);
       CHECK(k0.kt == c.contact.get<contact::LinearLudingParams>().kt);
