@@ -22,20 +22,25 @@ CrystalTrace smoothed(const CrystalTrace& trace, double duration) {
   for (std::size_t j = 0; j < m; ++j) sum += w[j] = std::pow(std::sin(std::numbers::pi * (j + 0.5) / m), 2);
   for (double& x : w) x /= sum;
   const std::size_t nt = trace.nt, nl = trace.nlayers;
+  // Each (n, p) sums w[j] src[n - j] over j ascending; p innermost runs along a contiguous row.
+  std::vector<double> acc(nl);
   auto convolve = [&](std::vector<double>& v) {
     if (v.size() != nt * nl) return;
     const std::vector<double> src = v;
-    for (std::size_t n = 0; n < nt; ++n)
-      for (std::size_t p = 0; p < nl; ++p) {
-        double acc = 0.0;
-        for (std::size_t j = 0; j < m; ++j) acc += w[j] * src[(n >= j ? n - j : 0) * nl + p];
-        v[n * nl + p] = acc;
+    for (std::size_t n = 0; n < nt; ++n) {
+      std::fill(acc.begin(), acc.end(), 0.0);
+      for (std::size_t j = 0; j < m; ++j) {
+        const double wj = w[j];
+        const double* row = &src[(n >= j ? n - j : 0) * nl];
+        for (std::size_t p = 0; p < nl; ++p) acc[p] += wj * row[p];
       }
+      std::copy(acc.begin(), acc.end(), v.begin() + n * nl);
+    }
   };
-  for (auto* v : {&out.stress_zz, &out.stress_zx, &out.displacement_z, &out.displacement_x, &out.velocity_z,
-                  &out.velocity_x})
-    convolve(*v);
-  for (auto& [name, v] : out.other) convolve(v);
+  // The two series a front can be measured on (analyze's pulse field: the layer stress, or the velocity).
+  const bool S = trace.mode == 'S';
+  convolve(S ? out.stress_zx : out.stress_zz);
+  convolve(S ? out.velocity_x : out.velocity_z);
   return out;
 }
 
@@ -46,6 +51,7 @@ std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAna
   if (!(v > 0.0) || !(raw.l0 > 0.0)) return out;
   CrystalAnalysisOptions o = options;
   o.lattice.reset();  // the fronts only: no ridge against a branch
+  o.fronts_only = true;
   // The smoothed first peak comes about T/2 after the raw one: that must lie in the record at the
   // range's last layer; and the whole smoothed pulse must pass there before its reflection from the
   // top wall (one layer above the last free one) returns: T <= 2 (z_wall - z_hi) / V.

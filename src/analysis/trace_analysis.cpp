@@ -294,6 +294,7 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   a.v_half_peak = fit_speed("half_peak", th, zz, zl, a.requested_lo, hi);
   a.v_one_percent = fit_speed("one_percent", t1, zz, zl, a.requested_lo, hi);
   if (a.v_first_peak.speed.value > 0.0) a.delay_samples = tr.l0 / a.v_first_peak.speed.value / a.dt;
+  if (opt.fronts_only) return a;
 
   // The coherent front and the coda (analysis/coda.hpp), up to the front's earliest return from the
   // top wall (the first fixed layer above the free ones), at the 1 % arrival speed.

@@ -106,6 +106,9 @@ struct CrystalAnalysisOptions {
   // Unset: the sine fit, for the reason in `no_lattice`.
   std::optional<LatticeBranches> lattice;
   std::string no_lattice = "no lattice of the case given";
+  // Only the per-layer measures and the three front speeds, not the coda, dispersion, wavelengths:
+  // what pulse_fronts reads of each smoothed trace.
+  bool fronts_only = false;
 };
 
 struct CrystalAnalysis {
