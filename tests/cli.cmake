@@ -58,14 +58,14 @@ set_tests_properties("cli: ARCHITECTURE.md's include claims hold" PROPERTIES LAB
 include(${CMAKE_SOURCE_DIR}/tests/cli/observables.cmake)
 include(${CMAKE_SOURCE_DIR}/tests/cli/impact.cmake)
 # granwave theory: the lattice-dynamics part (issue 15). Bad grid refused; JSON keys present for a
-# Bravais packing, omitted with a note (exit 0) for a polydisperse one (4 x 4 x 40: a unit test, also run
-# under the sanitizers, where the relaxed moduli of the 4 x 4 x 200 crystal took minutes).
+# Bravais packing, omitted with a note (exit 0) for a polydisperse one. Both 4 x 4 x 40 (kt = kn): a unit
+# test, also run under the sanitizers, where the relaxed moduli of a 4 x 4 x 200 crystal take minutes.
 add_test(NAME "cli: theory --nk 4 exits 2 naming the option and its range"
   COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_kt10.toml --nk 4 2> ${CLI_TMP}/nk.err; rc=$?; \
 test $rc -eq 2 || { echo \"exit code $rc, expected 2\"; exit 1; }; \
 grep -q -- '--nk 4: must be an odd integer in \\[3, 10001\\]' ${CLI_TMP}/nk.err || { cat ${CLI_TMP}/nk.err; exit 1; }")
 add_test(NAME "cli: theory --json gives the lattice speeds and six branches; polydisperse: a note"
-  COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/data/cases/crystal_kt10.toml --json --nk 9 > ${CLI_TMP}/lat.json && \
+  COMMAND sh -c "${GW} theory ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/crystal_small_stickslip.toml --json --nk 9 > ${CLI_TMP}/lat.json && \
 ${GW} theory ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/crystal_small_poly2.toml --json > ${CLI_TMP}/lat_poly.json && \
 /usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/lat.json')); D = d['dispersion']; \
 assert len(D['branches']) == 6 and all(len(b['omega']['values']) == len(D['k']['values']) == 9 for b in D['branches']); \

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/measures.hpp"
+#include "core/numbers.hpp"
 
 namespace granwave::io {
 class H5Reader;
@@ -24,7 +25,6 @@ struct Observable;
 
 namespace granwave::analysis {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A packing's free bins from its particles' roles (data/SCHEMA.md §2: 0 free, 1 source, 2 held at the
 // top) and bins: {after the last bin holding a source particle, before the first holding a top one}. The

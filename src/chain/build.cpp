@@ -8,11 +8,11 @@
 #include "chain/chain.hpp"
 #include "core/error.hpp"
 #include "theory/hertz.hpp"
+#include "core/numbers.hpp"
 
 namespace granwave::chain {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 int material_index(const ChainSystem& sys, const std::string& name, const std::string& where) {
   auto it = std::find(sys.material_names.begin(), sys.material_names.end(), name);

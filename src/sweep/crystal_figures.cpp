@@ -24,10 +24,10 @@
 #include "io/h5.hpp"
 #include "sweep/crystal_study.hpp"
 #include "theory/lattice_dynamics.hpp"
+#include "core/numbers.hpp"
 
 namespace granwave::sweep {
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Captured {
   std::vector<double> time;

@@ -21,6 +21,7 @@
 #include "sweep/distributed.hpp"
 #include "theory/crystal_theory.hpp"
 #include "theory/lattice_dynamics.hpp"
+#include "core/numbers.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -28,7 +29,6 @@
 
 namespace granwave::sweep {
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 const char* to_string(CrystalVary v) {

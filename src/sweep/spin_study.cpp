@@ -16,10 +16,10 @@
 #include "core/rng.hpp"
 #include "io/h5.hpp"
 #include "sweep/distributed.hpp"
+#include "core/numbers.hpp"
 
 namespace granwave::sweep {
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double magnetisation_of(int n_up, int n_total) {  // eq. (15)
   return static_cast<double>(std::abs(2 * n_up - n_total)) / static_cast<double>(n_total);

@@ -8,11 +8,11 @@
 
 #include "analysis/measures.hpp"
 #include "core/rng.hpp"
+#include "core/numbers.hpp"
 
 namespace granwave::sweep {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }
 
 double quantile(std::vector<double> v, double q) {

@@ -8,19 +8,12 @@
 #include <numeric>
 
 #include "core/error.hpp"
+#include "core/numbers.hpp"
 
 namespace granwave::theory {
 namespace {
 
 using cd = std::complex<double>;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// [n]_x: the matrix of v -> n x v.
-Eigen::Matrix3d cross_matrix(const Vec3& n) {
-  Eigen::Matrix3d N;
-  N << 0.0, -n.z(), n.y(), n.z(), 0.0, -n.x(), -n.y(), n.x(), 0.0;
-  return N;
-}
 
 void check_cell(const LatticeCell& cell) {
   if (!(cell.mass > 0.0) || !(cell.inertia > 0.0))

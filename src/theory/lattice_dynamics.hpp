@@ -45,6 +45,13 @@
 
 namespace granwave::theory {
 
+// [n]_x: the matrix of v -> n x v (the rotations' couplings in the lattice and the relaxed moduli).
+inline Eigen::Matrix3d cross_matrix(const Vec3& n) {
+  Eigen::Matrix3d N;
+  N << 0.0, -n.z(), n.y(), n.z(), 0.0, -n.x(), -n.y(), n.x(), 0.0;
+  return N;
+}
+
 // One contact of the reference particle, linearised about the static state (any contact law:
 // kn = d f_n / d delta, kt = the tangential spring's stiffness at the static state).
 struct LatticeBond {

@@ -10,19 +10,13 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "core/numbers.hpp"
 
 namespace granwave::theory {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-Eigen::Matrix3d cross_matrix(const Vec3& n) {
-  Eigen::Matrix3d N;
-  N << 0.0, -n.z(), n.y(), n.z(), 0.0, -n.x(), -n.y(), n.x(), 0.0;
-  return N;
-}
 
 // Repulsive forces along these normals can balance (and hold the particle in every direction)
 // unless the normals lie in a closed hemisphere {v.n >= 0}; an extreme ray of that set of v is
