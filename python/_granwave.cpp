@@ -248,6 +248,7 @@ PYBIND11_MODULE(_granwave, m) {
   m.def("analyze", [](const std::vector<std::string>& a) { return verb(cli::cmd_analyze, a); }, "`granwave analyze ARGS`'s output");
   m.def("theory", [](const std::vector<std::string>& a) { return verb(cli::cmd_theory, a); }, "`granwave theory ARGS`'s output");
   m.def("build", [](const std::vector<std::string>& a) { return verb(cli::cmd_build, a); }, "`granwave build ARGS`'s output");
+  m.def("probe", [](const std::vector<std::string>& a) { return verb(cli::cmd_probe, a); }, "`granwave probe ARGS`'s output");
   m.def("observables", [](const std::vector<std::string>& a) { return verb(cli::cmd_observables, a); },
         "`granwave observables ARGS`'s output");
   m.def("sweep", &supervised_sweep, py::arg("args"), py::arg("callback") = py::none(), py::arg("check_seconds") = 0.005,

@@ -102,17 +102,19 @@ assert abs(v(rf['slab']['V_pz']) / v(rb['slab']['V_pz']) - math.sqrt(11 / 12)) <
 assert all(abs(v(f['effective_medium'][k]) / v(b['effective_medium'][k]) - 1) < 1e-9 for k in ('Z', 'phi', 'K', 'G'))\"")
 set_tests_properties("cli: theory --json of an FCC read from a file: the built crystal's bulk, the slab's volume convention" PROPERTIES LABELS "cli")
 # Issue 39: the static probe through the command line on the YADE packing (JSON keys, agreement with
-# the relaxed slab tensor, nothing slides); xy and a bad amplitude exit 2 naming what is allowed.
-add_test(NAME "cli: probe --json agrees with the relaxed slab tensor; --strain xy and a bad amplitude exit 2"
-  COMMAND sh -c "${GW} probe ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/packing_yade_p.toml --strain zx --json > ${CLI_TMP}/probe.json && \
-/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/probe.json')); s = d['strains'][0]; \
-assert s['strain'] == 'zx' and d['max_relative_error'] < 1e-4 and s['sliding'] == 0 and s['contacts_changed'] == 0, d; \
-assert 'first Piola-Kirchhoff' in d['stress'] and abs(s['dP']['value'] / s['A_relaxed']['value'] - 1) < 1e-4\" && \
+# the relaxed slab tensor, nothing slides, a list of strains); xy (not offered) and a bad amplitude exit 2 naming what is allowed.
+add_test(NAME "cli: probe --json agrees with the relaxed slab tensor (zx, yx); a bad strain and a bad amplitude exit 2"
+  COMMAND sh -c "${GW} probe ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/packing_yade_p.toml --strain zx,yx --json > ${CLI_TMP}/probe.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/probe.json')); \
+assert [s['strain'] for s in d['strains']] == ['zx', 'yx'] and d['max_relative_error'] < 1e-4, d; \
+assert all(s['sliding'] == 0 and s['contacts_changed'] == 0 for s in d['strains']), d; \
+assert d['strains'][1]['component'] == 'A[1][0][1][0]', d; \
+assert 'first Piola-Kirchhoff' in d['stress'] and all(abs(s['dP']['value'] / s['A_relaxed']['value'] - 1) < 1e-4 for s in d['strains'])\" && \
 ${GW} probe ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/packing_yade_p.toml --strain xy 2> ${CLI_TMP}/probe_xy.err; rc=$?; \
-test $rc -eq 2 && grep -q 'allowed: zz, zx, xx, yy' ${CLI_TMP}/probe_xy.err || { cat ${CLI_TMP}/probe_xy.err; exit 1; }; \
+test $rc -eq 2 && grep -q 'allowed: zz, zx, xx, yy, yx' ${CLI_TMP}/probe_xy.err || { cat ${CLI_TMP}/probe_xy.err; exit 1; }; \
 ${GW} probe ${CMAKE_SOURCE_DIR}/tests/crosscheck/cases/packing_yade_p.toml --amplitude 0.1 2> ${CLI_TMP}/probe_a.err; rc=$?; \
 test $rc -eq 2 && grep -q 'amplitude' ${CLI_TMP}/probe_a.err || { cat ${CLI_TMP}/probe_a.err; exit 1; }")
-set_tests_properties("cli: probe --json agrees with the relaxed slab tensor; --strain xy and a bad amplitude exit 2" PROPERTIES LABELS "cli")
+set_tests_properties("cli: probe --json agrees with the relaxed slab tensor (zx, yx); a bad strain and a bad amplitude exit 2" PROPERTIES LABELS "cli")
 # Crystal studies honour --limit (stop, keep the batches, resume) and --threads (the study file does
 # not depend on it): `granwave sweep` used to pass neither to crystal studies.
 add_test(NAME "cli: crystal sweep --limit stops and resumes, --threads changes nothing"

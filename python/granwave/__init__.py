@@ -19,7 +19,7 @@ from . import _granwave
 from ._config import DATA_DIR as _DATA_DIR
 from ._pulse import pulse_table
 
-__all__ = ["Case", "Result", "data_path", "run", "analyze", "theory", "build", "sweep", "pulse_table"]
+__all__ = ["Case", "Result", "data_path", "run", "analyze", "theory", "probe", "build", "sweep", "pulse_table"]
 
 
 
@@ -254,6 +254,39 @@ def theory(case, layers=None, nk=None):
     case = _case(case)
     with _tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
         return _json.loads(_granwave.theory([case._file(tmp), "--json", *_options({"layers": layers, "nk": nk})]))
+
+
+def probe(case, strains=None, amplitude=None, tolerance=None):
+    """`granwave probe CASE --json`: the static probe (issue 39) of a crystal case. The simulation
+    strains the packing by +-amplitude (default 1e-7), relaxes it with FIRE under the full law and
+    compares the nominal stress's change dP/de with the relaxed slab tensor's column.
+
+    strains    None (all: zz, zx, xx, yy, yx), one name ("yx") or a list of them
+    tolerance  FIRE's stop, a fraction of amplitude <k_n> <l> (default 1e-6)
+
+    The dict the program prints (data/SCHEMA.md), with every 3 x 3 matrix ("P0" and each strain's
+    "dP_de", "A_relaxed_column", "dsigma_de") as a numpy array under its "values", and "table": the
+    strains' rows as arrays keyed by column ("strain", "A_relaxed", "dP" in Pa, "relative_error",
+    "max_slip", "sliding", "contacts_changed")."""
+    import numpy as np
+    case = _case(case)
+    if strains is not None and not isinstance(strains, str):
+        strains = ",".join(strains)
+    opts = {"strain": strains, "amplitude": amplitude, "tolerance": tolerance}
+    with _tempfile.TemporaryDirectory(prefix="granwave-") as tmp:
+        out = _json.loads(_granwave.probe([case._file(tmp), "--json", *_options(opts)]))
+    matrices = [out["P0"]] + [r[k] for r in out["strains"] for k in ("dP_de", "A_relaxed_column", "dsigma_de")]
+    for m in matrices:
+        m["values"] = np.array(m["values"], dtype=float)
+    rows = out["strains"]
+    out["table"] = {"strain": np.array([r["strain"] for r in rows])}
+    for k in ("A_relaxed", "dP"):
+        out["table"][k] = np.array([r[k]["value"] for r in rows], dtype=float)
+    for k in ("relative_error", "max_slip"):
+        out["table"][k] = np.array([r[k] for r in rows], dtype=float)
+    for k in ("sliding", "contacts_changed"):
+        out["table"][k] = np.array([r[k] for r in rows], dtype=int)
+    return out
 
 
 def build(case, out=None):

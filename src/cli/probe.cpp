@@ -1,8 +1,7 @@
-// granwave probe CASE [--strain zz|zx|xx|yy|all] [--amplitude E] [--tolerance T] [--json]: the static
+// granwave probe CASE [--strain zz|zx|xx|yy|yx|all] [--amplitude E] [--tolerance T] [--json]: the static
 // probe of issue 39 (crystal/probe.hpp) against the relaxed slab tensor of `granwave theory`.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -21,7 +20,8 @@
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave probe CASE.toml [--strain zz|zx|xx|yy|all] [--amplitude E] [--tolerance T] [--json]
+constexpr const char* kHelp = R"(usage: granwave probe CASE.toml [--strain zz|zx|xx|yy|yx|all] [--amplitude E] [--tolerance T] [--json]
+  (--strain: one, a comma-separated list such as zz,yx, or all, the default)
 
 The static probe (issue 39): the simulation strains the crystal case's packing (as a run starts from
 it) by +-E, relaxes the free particles under the case's full contact law with FIRE (translations and
@@ -31,8 +31,10 @@ V and w_c the relaxed slab's of `granwave theory`): (P(+E) - P(-E)) / (2E), whic
 predicts as A_relaxed[a][b][g][f] of the slab (the tensor with the initial-stress term) for the strain
 eps_gf. The Cauchy stress's change is printed beside it.
   zz, zx   source and top slabs moved affinely relative to each other (zx: gradient z, displacement x)
-  xx, yy   the periodic box and every position scaled (laws without tangential springs only)
-  xy       not offered: the kernel's box is orthogonal
+  xx, yy   the periodic box and every position stretched
+  yx       the box sheared (the +y images shifted in x by E box_y), every position by E y
+  Every strain starts from the relaxed state, springs included; the affine step stretches each sticking
+  contact's tangential spring by its relative displacement, across the box's faces too.
   --amplitude E   strain amplitude, (0, 1e-3] (default 1e-7: at 1e-6 a contact of the LAMMPS packing with
                   friction, whose normal force is ~1e-4 of the mean, already slides)
   --tolerance T   FIRE stops when every free particle's force (torque/radius) is below T e <k_n> <l>
@@ -59,9 +61,11 @@ double option_number(const Args& args, const char* name, double fallback) {
 
 }  // namespace
 
-int cmd_probe(const Args& args) {
+int cmd_probe(const Args& args) { return cmd_probe(args, std::cout); }
+
+int cmd_probe(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    std::cout << kHelp;
+    out << kHelp;
     return 0;
   }
   const std::vector<std::string> valued = {"--strain", "--amplitude", "--tolerance"};
@@ -84,21 +88,26 @@ int cmd_probe(const Args& args) {
   if (!(opt.tolerance > 0.0 && opt.tolerance < 1.0)) throw InputError("--tolerance must be in (0, 1)");
   std::vector<crystal::ProbeStrain> strains;
   const std::string which = option_value(args, "", "--strain");
-  if (!which.empty() && which != "all") strains = {crystal::parse_probe_strain(which)};
+  if (!which.empty() && which != "all")  // one name or a comma-separated list
+    for (std::size_t at = 0; at <= which.size();) {
+      const std::size_t end = std::min(which.find(',', at), which.size());
+      const crystal::ProbeStrain one = crystal::parse_probe_strain(which.substr(at, end - at));
+      if (std::find(strains.begin(), strains.end(), one) == strains.end()) strains.push_back(one);
+      at = end + 1;
+    }
   const config::Case c = config::load_case(pos[0]);
   if (c.model != config::Model::crystal || !c.crystal) throw InputError(pos[0] + ": granwave probe covers crystal cases");
   const crystal::Packing pk = crystal::make_packing(c);
   const theory::ContactNetwork net = crystal::contact_network(c, pk);
   const theory::RelaxedModuli th = theory::relaxed_moduli(net, crystal::relaxed_slab_options(c, pk));
   const crystal::StaticProbe probe(c, pk, net, th.volume, opt);
-  if (strains.empty()) {
-    strains = {crystal::ProbeStrain::zz, crystal::ProbeStrain::zx};
-    if (!probe.tangential) strains.insert(strains.end(), {crystal::ProbeStrain::xx, crystal::ProbeStrain::yy});
-  }
+  if (strains.empty())
+    strains = {crystal::ProbeStrain::zz, crystal::ProbeStrain::zx, crystal::ProbeStrain::xx, crystal::ProbeStrain::yy,
+               crystal::ProbeStrain::yx};
 
   Json results = Json::array();
   if (!json)
-    std::printf("case %s: %zu particles, slab V = %.6g m^3, p = %.6g Pa; unstrained state relaxed under the full law in "
+    out << fmt("case %s: %zu particles, slab V = %.6g m^3, p = %.6g Pa; unstrained state relaxed under the full law in "
                 "%ld FIRE steps (residual %.2e of e<k_n><l> = %.3g N); theory: rattlers %d, mechanisms %d, unstable %d\n",
                 c.name.c_str(), pk.size(), th.volume, th.pressure, probe.base_steps, probe.base_residual,
                 probe.force_scale, th.rattlers, th.mechanisms, th.unstable_modes);
@@ -127,7 +136,7 @@ int cmd_probe(const Args& args) {
                          {"sliding", r.sliding},
                          {"contacts_changed", r.contacts_changed}});
     } else {
-      std::printf("strain %s: dP_%c%c/de = %.8g Pa, A_relaxed = %.8g Pa; max relative error over the column %.2e; "
+      out << fmt("strain %s: dP_%c%c/de = %.8g Pa, A_relaxed = %.8g Pa; max relative error over the column %.2e; "
                   "Cauchy d sigma = %.8g Pa; FIRE %ld + %ld steps, residual %.1e, max |f_t|/(mu f_n) %.2e (%d at "
                   "the limit), contacts changed %d\n",
                   crystal::probe_strain_name(s), "xyz"[g], "xyz"[f], meas, comp, err, r.dsigma(g, f), r.steps_plus,
@@ -151,9 +160,9 @@ int cmd_probe(const Args& args) {
                     {"unstable_modes", th.unstable_modes},
                     {"max_relative_error", worst},
                     {"strains", results}};
-    std::cout << json_text(o);
+    out << json_text(o);
   } else {
-    std::printf("largest relative error %.2e\n", worst);
+    out << fmt("largest relative error %.2e\n", worst);
   }
   return 0;
 }

@@ -34,6 +34,7 @@ int cmd_theory(const Args& args, std::ostream& out);
 int cmd_sweep(const Args& args, std::ostream& out);
 int cmd_observables(const Args& args, std::ostream& out);
 int cmd_laws(const Args& args, std::ostream& out);
+int cmd_probe(const Args& args, std::ostream& out);
 // The same with a caller's hold on the study (stop it from another thread, count its members).
 int cmd_sweep(const Args& args, std::ostream& out, sweep::StudyControl* control);
 // `granwave run` of a loaded case: the request's checks (system file, MPI) and the model's run.

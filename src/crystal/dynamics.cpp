@@ -119,6 +119,14 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   compute_forces(dt_, true);
 }
 
+void Dynamics::set_box(double box_x, double box_y, const ImageMotion& images) {
+  if (slab_) throw RunError("a sheared or moving periodic box is not offered with a slab plan (MPI ranks)");
+  if (!(box_x > 0.0 && box_y > 0.0)) throw RunError("the periodic box's lengths must be > 0");
+  packing_.box_x = box_x;
+  packing_.box_y = box_y;
+  images_ = images;
+}
+
 void Dynamics::set_mobile(std::size_t p, bool on) {
   if (mobile[p] == static_cast<std::uint8_t>(on)) return;
   mobile[p] = on;
@@ -188,7 +196,7 @@ void Dynamics::rebuild() {
   std::vector<std::uint8_t> skip(n);
   for (std::size_t p = 0; p < n; ++p) skip[p] = !mobile[p];
   PairList pairs = find_pairs(x.data(), y.data(), z.data(), radius.data(), n, packing_.box_x, packing_.box_y, skin_,
-                              skip.data());
+                              skip.data(), images_.shift_x);
   if (slab_) {
     // Pairs of two halo particles are left out: the neighbour owning them evaluates them.
     std::size_t k = 0;

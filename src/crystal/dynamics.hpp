@@ -65,6 +65,18 @@ struct ContactList {
 
 class Dynamics;
 
+// The periodic images' shear and motion beyond the packing's box, for the static probe's box
+// strains only (crystal/probe.hpp; all zero in a run): j's image (image_x, image_y) sits at
+// x_j + image_x box_x + image_y shift_x, y_j + image_y box_y and, while the box deforms, moves with
+// v_j + (image_x rate_x + image_y rate_shift, image_y rate_y, 0), the affine velocity of the image
+// offset, so that a tangential spring across the box's faces stretches as one inside it.
+struct ImageMotion {
+  double shift_x = 0.0;  // m: the x-offset of the +y images (the xy shear of the box)
+  double rate_x = 0.0, rate_y = 0.0, rate_shift = 0.0;  // d box_x/dt, d box_y/dt, d shift_x/dt (m/s)
+  bool moving() const { return rate_x != 0.0 || rate_y != 0.0 || rate_shift != 0.0; }
+  bool any() const { return shift_x != 0.0 || moving(); }
+};
+
 // ---- One time step's phases (Dynamics::advance) and what each hands to the next ----
 
 // The half kick and drift's report.
@@ -222,6 +234,12 @@ class Dynamics {
   double dt() const { return dt_; }
   void set_dt(double dt) { dt_ = dt; }
   const ContactModel& model() const { return *model_; }
+  // The periodic box (packing().box_x, box_y) and its images' shear and motion (ImageMotion): the
+  // static probe's box strains; images keep their indices. The image velocity enters the contact
+  // pass of a law with torques (the one with tangential springs); a law without reads positions
+  // only, its dashpot no image velocity. Refused under a slab plan.
+  void set_box(double box_x, double box_y, const ImageMotion& images);
+  const ImageMotion& images() const { return images_; }
   // The law has tangential forces: torques, rotation (angular velocities in the halo and the rows).
   bool torques() const { return torques_; }
   // Lever arm of f^t (contact/lever_arm.hpp): arm_i = a_i - arm_shift(lever_arm()) delta.
@@ -334,6 +352,7 @@ class Dynamics {
   bool torques_ = false;
   bool couples_ = false;  // the model's couples(): the particle pass sums them
   contact::LeverArm lever_arm_ = contact::LeverArm::radius;
+  ImageMotion images_;
   double dt_ = 0.0;
   double skin_ = 0.0;
   double far2_ = 0.0;  // a particle is more than skin/2 from its place at the build when d^2 > far2_

@@ -189,6 +189,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
   ContactList& C = d.contacts;
   const auto [nc, ci, cj, imx, imy, cdelta, cfx, cfy, cfz, cnx, cny, cnz, diss, hist] = ListColumns<NH>(C);
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
+  const double shift_x = d.images().shift_x;  // a sheared box (the static probe's xy strain), else 0
   const double* px = d.x.data();
   const double* py = d.y.data();
   const double* pz = d.z.data();
@@ -233,6 +234,8 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
       shx[c - c0] = imx[c] * box_x;
       shy[c - c0] = imy[c] * box_y;
     }
+    if (shift_x != 0.0)  // a branch per block: a run's loop stays as it is
+      for (std::int64_t c = c0; c < c1; ++c) shx[c - c0] += imy[c] * shift_x;
     sweep_contacts<contact::DefersContacts<Law>, kBlock>(
         c0, c1,
         [&](std::int64_t c, auto vector_sweep) __attribute__((always_inline)) {
@@ -258,8 +261,10 @@ constexpr int scatter_mode_of(contact::LeverArm arm) {
   return 2;  // not reached (-Werror=switch: every arm has its case)
 }
 
-// The contact pass of a law with torques, from gathered columns (above).
-template <class Law, bool Dissipative>
+// The contact pass of a law with torques, from gathered columns (above). MovedImages: a sheared or
+// deforming box (Dynamics::images(), the static probe's box strains), the chunk's columns corrected
+// after the gather; a run takes the other instantiation, the pass of before.
+template <class Law, bool Dissipative, bool MovedImages>
 ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
   static_assert(Law::torques, "the gathered columns hold w_i and w_j");
   const double inc = plan.increment_time;
@@ -271,6 +276,10 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   ContactList& C = d.contacts;
   using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
+  struct Unmoved {};  // the run's instantiation captures no ImageMotion
+  const std::conditional_t<MovedImages, ImageMotion, Unmoved> images = [&] {
+    if constexpr (MovedImages) return d.images(); else return Unmoved{};
+  }();
   // The particle rows the gather reads (x, y, z, a | v | w), refreshed from the SoA state.
   if (!plan.rows_fresh) {
     d.gather_rows.resize(12 * d.size());
@@ -366,6 +375,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
       const std::int64_t s1 = std::min(c1, s0 + kChunk);
       gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
+      if constexpr (MovedImages) move_images(g, s1 - s0, imx + s0, imy + s0, images);
       sweep(s0, s1, g, o);
 #ifdef GRANWAVE_GATHER_VECTORS
       if constexpr (Scatter) {
@@ -401,7 +411,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
 template <class Law, bool Dissipative>
 ContactSums contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
   if constexpr (Law::torques)
-    return gathered_contact_pass<Law, Dissipative>(d, law, plan);
+    return d.images().any() ? gathered_contact_pass<Law, Dissipative, true>(d, law, plan)
+                            : gathered_contact_pass<Law, Dissipative, false>(d, law, plan);
   else
     return direct_contact_pass<Law, Dissipative>(d, law, plan);
 }

@@ -167,6 +167,20 @@ inline void fill_rows(const Dynamics& d, double* rows) {
   }
 }
 
+// The columns of a chunk's m contacts (images imx, imy from its first) in a sheared or deforming box
+// (ImageMotion: the static probe's box strains): j's image shifted by image_y shift_x in x, and its
+// velocity, the box's rates times the image offset, taken from v_i - v_j.
+inline void move_images(Gathered& g, std::int64_t m, const std::int8_t* imx, const std::int8_t* imy,
+                        const ImageMotion& im) {
+  using G = Gathered;
+  for (std::int64_t u = 0; u < m; ++u) {
+    const double sx = imx[u], sy = imy[u];
+    g.col[G::bx][u] += sy * im.shift_x;
+    g.col[G::dvx][u] -= sx * im.rate_x + sy * im.rate_shift;
+    g.col[G::dvy][u] -= sy * im.rate_y;
+  }
+}
+
 // The layer stress's lever arms times u_z of the chunk's contact ends (Dynamics::end_arms), from
 // its columns and overlaps: u_z = b_z/r with r = (a_i + a_j) - delta, which is the contact pass's
 // root bit for bit while -reach/2 <= delta <= reach/4 (Sterbenz: the subtraction that made delta

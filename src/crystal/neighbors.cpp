@@ -13,17 +13,21 @@ namespace granwave::crystal {
 namespace {
 // Number of cells along a length so that each cell is at least `rc` wide.
 int cell_count(double length, double rc) { return std::max(1, static_cast<int>(std::floor(length / rc))); }
-}  // namespace
 
-PairList find_pairs(const double* x, const double* y, const double* z, const double* radius, std::size_t n,
-                    double box_x, double box_y, double skin, const std::uint8_t* skip) {
+// Sheared: the images' x depends on sy (a run takes the other instantiation, the search of before).
+template <bool Sheared>
+PairList search_pairs(const double* x, const double* y, const double* z, const double* radius, std::size_t n,
+                      double box_x, double box_y, double skin, const std::uint8_t* skip, double shift_x) {
   PairList out;
   if (n < 2) return out;
   const double a_max = *std::max_element(radius, radius + n);
   const double rc = 2.0 * a_max + skin;
   const auto [zmin_it, zmax_it] = std::minmax_element(z, z + n);
   const double zmin = *zmin_it, zrange = *zmax_it - *zmin_it;
-  const int ncx = cell_count(box_x, rc), ncy = cell_count(box_y, rc), ncz = cell_count(zrange, rc);
+  // A sheared box moves a +-y image by up to |shift| (modulo box_x) in x: x-cells that much wider
+  // keep every pair within one cell of each other.
+  const double slip = std::abs(shift_x - std::round(shift_x / box_x) * box_x);
+  const int ncx = cell_count(box_x, rc + slip), ncy = cell_count(box_y, rc), ncz = cell_count(zrange, rc);
   const double hx = box_x / ncx, hy = box_y / ncy, hz = zrange > 0.0 ? zrange / ncz : 1.0;
 
   // Counting sort of particles into cells.
@@ -73,19 +77,35 @@ PairList find_pairs(const double* x, const double* y, const double* z, const dou
                   const double reach = radius[i] + radius[j] + skin;
                   const double dz = z[j] - z[i];
                   if (std::abs(dz) >= reach) continue;
-                  const int bx = static_cast<int>(std::lround((x[i] - x[j]) / box_x));
-                  const int by = static_cast<int>(std::lround((y[i] - y[j]) / box_y));
-                  for (int sx = bx - 1; sx <= bx + 1; ++sx)
+                  // j's image (sx, sy) at x_j + sx box_x (+ sy shift_x), y_j + sy box_y
+                  auto add = [&](int sx, int sy) {
+                    if (std::abs(sx) > 127 || std::abs(sy) > 127)  // images are stored in a byte
+                      throw RunError("particles " + std::to_string(i) + " and " + std::to_string(j) +
+                                     " are more than 127 periodic boxes apart");
+                    found.push_back({i, j, static_cast<std::int8_t>(sx), static_cast<std::int8_t>(sy)});
+                  };
+                  const double reach2 = reach * reach;
+                  if constexpr (Sheared) {
+                    const int by = static_cast<int>(std::lround((y[i] - y[j]) / box_y));
                     for (int sy = by - 1; sy <= by + 1; ++sy) {
-                      const double dx = x[j] + sx * box_x - x[i];
-                      const double dy = y[j] + sy * box_y - y[i];
-                      if (dx * dx + dy * dy + dz * dz < reach * reach) {
-                        if (std::abs(sx) > 127 || std::abs(sy) > 127)  // images are stored in a byte
-                          throw RunError("particles " + std::to_string(i) + " and " + std::to_string(j) +
-                                         " are more than 127 periodic boxes apart");
-                        found.push_back({i, j, static_cast<std::int8_t>(sx), static_cast<std::int8_t>(sy)});
+                      const double sheared = sy * shift_x;
+                      const int bx = static_cast<int>(std::lround((x[i] - x[j] - sheared) / box_x));
+                      for (int sx = bx - 1; sx <= bx + 1; ++sx) {
+                        const double dx = x[j] + sx * box_x + sheared - x[i];
+                        const double dy = y[j] + sy * box_y - y[i];
+                        if (dx * dx + dy * dy + dz * dz < reach2) add(sx, sy);
                       }
                     }
+                  } else {
+                    const int bx = static_cast<int>(std::lround((x[i] - x[j]) / box_x));
+                    const int by = static_cast<int>(std::lround((y[i] - y[j]) / box_y));
+                    for (int sx = bx - 1; sx <= bx + 1; ++sx)
+                      for (int sy = by - 1; sy <= by + 1; ++sy) {
+                        const double dx = x[j] + sx * box_x - x[i];
+                        const double dy = y[j] + sy * box_y - y[i];
+                        if (dx * dx + dy * dy + dz * dz < reach2) add(sx, sy);
+                      }
+                  }
                 }
               }
             }
@@ -104,6 +124,14 @@ PairList find_pairs(const double* x, const double* y, const double* z, const dou
     out.image_y.push_back(f.iy);
   }
   return out;
+}
+
+}  // namespace
+
+PairList find_pairs(const double* x, const double* y, const double* z, const double* radius, std::size_t n,
+                    double box_x, double box_y, double skin, const std::uint8_t* skip, double shift_x) {
+  return shift_x != 0.0 ? search_pairs<true>(x, y, z, radius, n, box_x, box_y, skin, skip, shift_x)
+                        : search_pairs<false>(x, y, z, radius, n, box_x, box_y, skin, skip, 0.0);
 }
 
 }  // namespace granwave::crystal

@@ -15,8 +15,10 @@ struct PairList {
 };
 
 // Pairs with |x_j(image) - x_i| < a_i + a_j + skin. Pairs of two particles with skip[i] and
-// skip[j] set are left out (two fixed particles); skip may be null.
+// skip[j] set are left out (two fixed particles); skip may be null. shift_x: the x-offset of the
+// +y images (a sheared box, the static probe's xy strain): j's image (sx, sy) at
+// x_j + sx box_x + sy shift_x, y_j + sy box_y; 0 in a run (then the same pairs, the same bits).
 PairList find_pairs(const double* x, const double* y, const double* z, const double* radius, std::size_t n,
-                    double box_x, double box_y, double skin, const std::uint8_t* skip);
+                    double box_x, double box_y, double skin, const std::uint8_t* skip, double shift_x = 0.0);
 
 }  // namespace granwave::crystal

@@ -16,17 +16,19 @@ const char* probe_strain_name(ProbeStrain s) {
     case ProbeStrain::zx: return "zx";
     case ProbeStrain::xx: return "xx";
     case ProbeStrain::yy: return "yy";
+    case ProbeStrain::yx: return "yx";
   }
   return "?";
 }
 
 ProbeStrain parse_probe_strain(const std::string& s) {
-  for (ProbeStrain p : {ProbeStrain::zz, ProbeStrain::zx, ProbeStrain::xx, ProbeStrain::yy})
+  for (ProbeStrain p : {ProbeStrain::zz, ProbeStrain::zx, ProbeStrain::xx, ProbeStrain::yy, ProbeStrain::yx})
     if (s == probe_strain_name(p)) return p;
-  if (s == "xy" || s == "yx")
-    throw InputError("--strain " + s + ": not offered (the kernel's periodic box is orthogonal, no Lees-Edwards shift); "
-                     "allowed: zz, zx, xx, yy");
-  throw InputError("--strain " + s + ": allowed: zz, zx, xx, yy (gradient direction, then displacement direction)");
+  if (s == "xy" || s == "xz" || s == "yz")
+    throw InputError("--strain " + s + ": not offered (gradient " + s.substr(0, 1) + ", displacement " + s.substr(1) +
+                     " needs a shift of the +" + s.substr(0, 1) +
+                     " images; the sheared box shifts the +y images in x, which is yx); allowed: zz, zx, xx, yy, yx");
+  throw InputError("--strain " + s + ": allowed: zz, zx, xx, yy, yx (gradient direction, then displacement direction)");
 }
 
 std::pair<int, int> probe_strain_indices(ProbeStrain s) {
@@ -35,6 +37,7 @@ std::pair<int, int> probe_strain_indices(ProbeStrain s) {
     case ProbeStrain::zx: return {2, 0};
     case ProbeStrain::xx: return {0, 0};
     case ProbeStrain::yy: return {1, 1};
+    case ProbeStrain::yx: return {1, 0};
   }
   return {2, 2};
 }
@@ -107,11 +110,30 @@ long fire(Dynamics& d, double t_c, double f_tol, long max_steps, double* residua
                  std::to_string(max_steps) + " steps (largest " + std::to_string(largest_force(d)) + " N)");
 }
 
-// U = e eps^T x of the strain on every particle, made as velocities over one force evaluation so
-// that the tangential springs stretch by the relative displacement; then at rest.
+// U = e eps^T x of the strain on every particle and on the periodic images' offsets (the box: xx, yy
+// stretch it, yx shears it), made as velocities over one force evaluation so that the tangential
+// springs stretch by the affine relative displacement, across the box's faces too (the images move
+// with the box's rates, ImageMotion); then at rest.
 void apply_affine(Dynamics& d, ProbeStrain s, double e, double z_origin) {
   const auto [g, f] = probe_strain_indices(s);
   const double dt = d.dt();
+  // An image offset (sx box_x + sy shift_x, sy box_y, 0) moves by e times its g component along f.
+  const double box_x = d.packing().box_x, box_y = d.packing().box_y;
+  ImageMotion moving = d.images();
+  double new_x = box_x, new_y = box_y;
+  if (s == ProbeStrain::xx) {
+    new_x = box_x + e * box_x;
+    moving.rate_x = e * box_x / dt;
+    moving.rate_shift = e * moving.shift_x / dt;  // 0 from the unsheared reference
+    moving.shift_x += e * moving.shift_x;
+  } else if (s == ProbeStrain::yy) {
+    new_y = box_y + e * box_y;
+    moving.rate_y = e * box_y / dt;
+  } else if (s == ProbeStrain::yx) {
+    moving.shift_x += e * box_y;
+    moving.rate_shift = e * box_y / dt;
+  }
+  d.set_box(new_x, new_y, moving);
   std::vector<double>* pos[3] = {&d.x, &d.y, &d.z};
   std::vector<double>* vel[3] = {&d.vx, &d.vy, &d.vz};
   for (std::size_t p = 0; p < d.size(); ++p) {
@@ -122,6 +144,8 @@ void apply_affine(Dynamics& d, ProbeStrain s, double e, double z_origin) {
     d.wx[p] = d.wy[p] = d.wz[p] = 0.0;
   }
   d.compute_forces();  // springs advance by the relative tangential velocity times dt
+  moving.rate_x = moving.rate_y = moving.rate_shift = 0.0;
+  d.set_box(new_x, new_y, moving);
   for (auto* v : {&d.vx, &d.vy, &d.vz}) std::fill(v->begin(), v->end(), 0.0);
   d.compute_forces_of_state();
 }
@@ -133,12 +157,12 @@ struct StressSum {
 };
 
 // Over the touching contacts of d: all, or (pairs_only) those of two particles not mobile in `held`.
-// X, Y, Z: the unstrained positions (B); bx, by: the unstrained box.
+// X, Y, Z: the unstrained positions (B); bx, by: the unstrained box (not sheared); b from d's box.
 void add_stress(StressSum& out, const Dynamics& d, const std::vector<double>& X, const std::vector<double>& Y,
                 const std::vector<double>& Z, double bx, double by, const std::vector<std::uint8_t>* held,
                 const Packing& pk, double mu) {
   const ContactList& cl = d.contacts;
-  const double box_x = d.packing().box_x, box_y = d.packing().box_y;
+  const double box_x = d.packing().box_x, box_y = d.packing().box_y, shift_x = d.images().shift_x;
   for (std::size_t c = 0; c < cl.size(); ++c) {
     if (!(cl.delta[c] > 0.0)) continue;
     const int i = cl.i[c], j = cl.j[c];
@@ -146,7 +170,7 @@ void add_stress(StressSum& out, const Dynamics& d, const std::vector<double>& X,
     double w = 1.0;
     if (!pk.from_file() && pk.layer[i] == pk.layer[j] && (pk.layer[i] == 0 || pk.layer[i] == pk.layers - 1)) w = 0.5;
     const Eigen::Vector3d B(X[j] + cl.image_x[c] * bx - X[i], Y[j] + cl.image_y[c] * by - Y[i], Z[j] - Z[i]);
-    const Eigen::Vector3d b(d.x[j] + cl.image_x[c] * box_x - d.x[i], d.y[j] + cl.image_y[c] * box_y - d.y[i],
+    const Eigen::Vector3d b(d.x[j] + cl.image_x[c] * box_x + cl.image_y[c] * shift_x - d.x[i], d.y[j] + cl.image_y[c] * box_y - d.y[i],
                             d.z[j] - d.z[i]);
     const Eigen::Vector3d f_i(cl.f_x[c], cl.f_y[c], cl.f_z[c]);  // on i; on j: -f_i
     out.P += w * B * f_i.transpose();
@@ -204,39 +228,15 @@ StaticProbe::StaticProbe(const config::Case& c, const Packing& pk, const theory:
 }
 
 StaticProbe::Strained StaticProbe::strained(ProbeStrain s, double e) const {
+  // From the relaxed state with its springs: the free particles' dynamics and the list of every
+  // pair (the held slabs' own contacts), both strained affinely, the free particles then relaxed.
   Strained out;
-  const bool box = s == ProbeStrain::xx || s == ProbeStrain::yy;
-  if (!box) {
-    Dynamics d = *base_, q = *pairs_;
-    apply_affine(d, s, e, pk_.bin_origin);
-    apply_affine(q, s, e, pk_.bin_origin);
-    out.steps = fire(d, t_c_, opt_.tolerance * force_scale, opt_.max_steps, &out.residual);
-    add_stress(out.sum, d, base_->x, base_->y, base_->z, pk_.box_x, pk_.box_y, nullptr, pk_, mu_);
-    add_stress(out.sum, q, pairs_->x, pairs_->y, pairs_->z, pk_.box_x, pk_.box_y, &base_->mobile, pk_, mu_);
-  } else {
-    if (tangential)
-      throw InputError(std::string("probe --strain ") + probe_strain_name(s) +
-                       ": a box strain needs a law without tangential springs (the kernel's periodic images carry no "
-                       "box velocity to stretch them); use zz or zx");
-    // The relaxed state wrapped into the box (the reference), then box and positions scaled.
-    Packing p = pk_;
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      p.x[k] = base_->x[k] - std::floor(base_->x[k] / pk_.box_x) * pk_.box_x;
-      p.y[k] = base_->y[k] - std::floor(base_->y[k] / pk_.box_y) * pk_.box_y;
-      p.z[k] = base_->z[k];
-    }
-    const std::vector<double> X = p.x, Y = p.y, Z = p.z;
-    auto& v = s == ProbeStrain::xx ? p.x : p.y;
-    for (double& q : v) q *= 1.0 + e;
-    (s == ProbeStrain::xx ? p.box_x : p.box_y) *= 1.0 + e;
-    Dynamics d(p, model_, 0.02 * t_c_);
-    Packing all = p;
-    std::fill(all.fixed.begin(), all.fixed.end(), 0);
-    Dynamics q(all, model_, 0.02 * t_c_);
-    out.steps = fire(d, t_c_, opt_.tolerance * force_scale, opt_.max_steps, &out.residual);
-    add_stress(out.sum, d, X, Y, Z, pk_.box_x, pk_.box_y, nullptr, pk_, mu_);
-    add_stress(out.sum, q, X, Y, Z, pk_.box_x, pk_.box_y, &d.mobile, pk_, mu_);
-  }
+  Dynamics d = *base_, q = *pairs_;
+  apply_affine(d, s, e, pk_.bin_origin);
+  apply_affine(q, s, e, pk_.bin_origin);
+  out.steps = fire(d, t_c_, opt_.tolerance * force_scale, opt_.max_steps, &out.residual);
+  add_stress(out.sum, d, base_->x, base_->y, base_->z, pk_.box_x, pk_.box_y, nullptr, pk_, mu_);
+  add_stress(out.sum, q, pairs_->x, pairs_->y, pairs_->z, pk_.box_x, pk_.box_y, &base_->mobile, pk_, mu_);
   out.residual /= force_scale;
   return out;
 }
@@ -247,7 +247,7 @@ ProbeResult StaticProbe::run(ProbeStrain s) const {
   ProbeResult r;
   r.strain = s;
   r.dP = (plus.sum.P - minus.sum.P) / (2.0 * e * volume_);
-  // Cauchy: sigma = S / (V (1 + tr eps)); tr eps = +-e for zz, xx, yy, 0 for zx.
+  // Cauchy: sigma = S / (V (1 + tr eps)); tr eps = +-e for zz, xx, yy, 0 for zx, yx.
   const auto [g, f] = probe_strain_indices(s);
   const double tr = g == f ? e : 0.0;
   r.dsigma = (plus.sum.S / (1.0 + tr) - minus.sum.S / (1.0 - tr)) / (2.0 * e * volume_);

@@ -5,12 +5,15 @@
 //
 // Strains (eps_gf = dU_f/dx_g, U = eps^T x; "zx" is gradient z, displacement x):
 //   zz, zx   the source and top slabs moved affinely relative to each other (the free particles start
-//            from the affine field too); the motion is made by velocities over one force evaluation,
-//            so the tangential springs stretch by the affine relative displacement as they would in a run
-//   xx, yy   the periodic box and every position scaled along x (y); a fresh contact list, so only for
-//            laws without tangential springs (the kernel's periodic images carry no box velocity,
-//            which a spring's stretch across the box would need); refused otherwise
-//   xy       not offered: the kernel's box is orthogonal (no Lees-Edwards image shift)
+//            from the affine field too)
+//   xx, yy   the periodic box and every position stretched along x (y)
+//   yx       the box sheared: the +y images shifted by e box_y in x (Dynamics::ImageMotion), every
+//            position by e y
+// Every strain starts from the relaxed state with its springs and is made as velocities over one force
+// evaluation, the periodic images moving with the box's rates (ImageMotion), so every sticking
+// contact's tangential spring stretches by its affine relative displacement, across the box's faces
+// too, as it would in a run. Box strains compare with the slab tensor as zz and zx do: the source
+// and top slabs move with the box (affinely), the rest relaxes.
 // Measured: the nominal (first Piola-Kirchhoff) stress P_ab = (1/V) sum_c w_c B_a f_b, B the contact's
 // branch (i to j) in the unstrained state, f the force on j, V and w_c the theory slab's volume and
 // weights. dP/d eps_gf = A_abgf exactly (A the tensor with the initial-stress term), so the probe
@@ -29,9 +32,9 @@
 
 namespace granwave::crystal {
 
-enum class ProbeStrain { zz, zx, xx, yy };
+enum class ProbeStrain { zz, zx, xx, yy, yx };
 const char* probe_strain_name(ProbeStrain s);
-// "zz", "zx", "xx", "yy"; InputError naming what is allowed otherwise.
+// "zz", "zx", "xx", "yy", "yx"; InputError naming what is allowed otherwise.
 ProbeStrain parse_probe_strain(const std::string& s);
 // The (gradient, displacement) directions of the strain.
 std::pair<int, int> probe_strain_indices(ProbeStrain s);

@@ -403,3 +403,25 @@ def test_pulse_table():
             assert row["value"] == f["v_first_peak"]["value"]
     assert t["measured"][-2]["value"] == r.analysis["small_k_slope"]["value"]
     assert t["front_and_coda"] == r.analysis["front_and_coda"]
+
+
+def test_probe_is_the_programs_json_with_arrays(tmp_path):
+    """granwave.probe is `granwave probe CASE --json` (the same numbers, bit for bit) with its matrices as
+    numpy arrays and a table of the strains; the sheared box (yx) and a box strain with tangential springs
+    agree with the relaxed slab tensor within the probe's bound. A small FCC with kt = k (4 x 4 x 12)."""
+    case = g.Case.load(g.data_path("cases/crystal_kt10.toml")).replace({"crystal.cells": [4, 4, 12]})
+    p = g.probe(case, strains=["xx", "yx"])
+    path = case.save(tmp_path / "kt10.toml")
+    out = subprocess.run([PROGRAM, "probe", str(path), "--strain", "xx,yx", "--json"], capture_output=True, text=True,
+                         check=True)
+    d = json.loads(out.stdout)
+    assert list(p["table"]["strain"]) == ["xx", "yx"] == [s["strain"] for s in d["strains"]]
+    assert same_bits(p["P0"]["values"], np.array(d["P0"]["values"], dtype=float))
+    for row, s in zip(p["strains"], d["strains"]):
+        for k in ("dP_de", "A_relaxed_column", "dsigma_de"):
+            assert row[k]["values"].shape == (3, 3)
+            assert same_bits(row[k]["values"], np.array(s[k]["values"], dtype=float)), k
+    assert same_bits(p["table"]["dP"], np.array([s["dP"]["value"] for s in d["strains"]]))
+    assert same_bits(p["table"]["A_relaxed"], np.array([s["A_relaxed"]["value"] for s in d["strains"]]))
+    assert (p["table"]["relative_error"] < 1e-4).all() and (p["table"]["sliding"] == 0).all()
+    assert p["max_relative_error"] == d["max_relative_error"]
