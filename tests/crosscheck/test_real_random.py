@@ -59,6 +59,7 @@ def test_four_codes_run_a_random_packing(tmp_path):
         uz, vz = tr["/crystal/layer_displacement_z"], tr["/crystal/layer_velocity_z"]
         # the source slab jumped by amplitude x d and is held; the top slab never moves
         assert np.allclose(uz[-1, src_bins], 1e-4 * at["d"], rtol=1e-12), code
-        assert np.max(np.abs(uz[:, top_bins])) <= 1e-12 * 1e-4 * at["d"], code  # YADE's: 1e-18 m, round-off
+        # (YADE's: 1.4e-18 m, the round-off of centres ~1e-2 m)
+        assert np.max(np.abs(uz[:, top_bins])) <= 1e-8 * 1e-4 * at["d"], code
         # the wave crossed the packing: the last judged bin moved
         assert np.max(np.abs(vz[:, hi - 1])) > 0.0, code
