@@ -2,6 +2,7 @@
 """Agnolin & Roux's frictionless check of the random generator (issue 40 item 2), run by hand.
 
   bench/random_packing_ar.py [--granwave build/granwave] [--count 4000] [--seeds 1 2 3] [--pressure 1e4]
+                             [--random KEY=VALUE ...]
 
 Glass beads (E = 70 GPa, nu = 0.3, 2500 kg/m^3, d = 1 mm, Hertz, frictionless), monodisperse, fast
 isotropic compression to p (10 kPa: their reduced pressure kappa = (E / ((1 - nu^2) p))^(2/3) ~ 39000)
@@ -32,7 +33,7 @@ radius = 5e-4
 count = {count}
 seed = {seed}
 pressure = {pressure}
-[contact]
+{extra}[contact]
 law = "hertz_mindlin"
 youngs_modulus = 70e9
 poisson_ratio = 0.3
@@ -52,13 +53,14 @@ def main():
     ap.add_argument("--count", type=int, default=4000)
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--pressure", type=float, default=1e4)
+    ap.add_argument("--random", nargs="*", default=[], metavar="KEY=VALUE", help="more [random] keys (e.g. max_steps=4000000)")
     a = ap.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for seed in a.seeds:
             case = os.path.join(tmp, "ar_%d.toml" % seed)
             with open(case, "w") as f:
-                f.write(CASE.format(seed=seed, count=a.count, pressure=a.pressure))
+                f.write(CASE.format(seed=seed, count=a.count, pressure=a.pressure, extra="".join(kv + "\n" for kv in a.random)))
             out = os.path.join(tmp, "ar_%d.h5" % seed)
             t0 = time.time()
             subprocess.run([a.granwave, "build", case, "-o", out], check=True, stdout=subprocess.DEVNULL)
@@ -66,14 +68,14 @@ def main():
                 at = h.attrs
                 rows.append((seed, float(at["prepare_solid_fraction"]), float(at["prepare_coordination_backbone"]),
                              int(at["prepare_rattlers"]), float(at["prepare_coordination"]), int(at["prepare_steps"]),
-                             float(at["prepare_pressure"]),
+                             int(at.get("prepare_minimise_steps", 0)), float(at["prepare_pressure"]),
                              float(at["prepare_kinetic_ratio"]), float(at["prepare_unbalanced"]), time.time() - t0))
-            print("seed %d: Phi %.4f, z* %.3f, rattlers %d, Z %.3f, %d steps, p %.6g Pa, "
+            print("seed %d: Phi %.4f, z* %.3f, rattlers %d, Z %.3f, %d steps (%d FIRE), p %.6g Pa, "
                   "E_kin/E_pot %.2g, unbalanced %.2g, %.0f s" % rows[-1], file=sys.stderr, flush=True)
-    print("| seed | Phi | z* | rattlers | Z | steps | p (Pa) | E_kin/E_pot | unbalanced | s |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| seed | Phi | z* | rattlers | Z | steps | of them FIRE | p (Pa) | E_kin/E_pot | unbalanced | s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print("| %d | %.4f | %.3f | %d | %.3f | %d | %.6g | %.2g | %.2g | %.0f |" % r)
+        print("| %d | %.4f | %.3f | %d | %.3f | %d | %d | %.6g | %.2g | %.2g | %.0f |" % r)
     n = len(rows)
     phi = sum(r[1] for r in rows) / n
     zs = sum(r[2] for r in rows) / n

@@ -2,7 +2,8 @@
 
 Real crosschecks consume the system file of `granwave build`; this exists so that the drivers and
 the harness can be tested without granwave (chains with explicit spins; monodisperse FCC crystals; a
-packing file, `lattice = "file"`, LAMMPS data files only, cut into slabs and NOT relaxed).
+packing file, `lattice = "file"`, LAMMPS data files only, cut into slabs and NOT relaxed). A random
+packing (`lattice = "random"`) is refused: its preparation is granwave's alone.
 """
 from __future__ import annotations
 
@@ -222,5 +223,8 @@ def build(case: dict, path: str, case_dir: str = ".") -> None:
         build_chain(case, path)
     elif case.get("crystal", {}).get("lattice", "fcc") == "file":
         build_packing(case, path, case_dir)
+    elif case.get("crystal", {}).get("lattice", "fcc") == "random":
+        raise NotImplementedError("fixture builder: [crystal] lattice = \"random\" (the compression to its pressure is "
+                                  "granwave's: the system file comes from `granwave build`)")
     else:
         build_crystal(case, path)

@@ -82,7 +82,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   const toml::table& t = *r.table(root, "", "random", true);
   r.allow_only(t, "random", {"distribution", "radius", "width", "radii", "fractions", "count", "shape", "seed", "pressure",
                              "preparation_friction", "damping", "background_damping", "inertia_number", "servo_time", "initial_solid_fraction",
-                             "pressure_tolerance", "kinetic_ratio", "unbalanced_force", "max_steps", "max_overlap",
+                             "minimise_from", "preload_overlap", "pressure_tolerance", "kinetic_ratio", "unbalanced_force", "max_steps", "max_overlap",
                              "source_thickness", "fixed_thickness", "bin_width", "relax_tolerance"});
   packing::RandomSpec s;
   s.radii = read_radii(r, t);
@@ -110,6 +110,8 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   s.inertia_number = in("inertia_number", 0.0, 0.1, true, 1e-2, "");
   s.servo_time = in("servo_time", 0.0, 1e6, true, 0.02, " (units of sqrt(m/(d p)))");
   s.initial_solid_fraction = in("initial_solid_fraction", 0.0, 0.3, true, 0.3, "");
+  s.minimise_from = in("minimise_from", 0.0, 1.0, false, 0.05, " (|p/p_target - 1| from which FIRE minimises the enthalpy; 0: never)");
+  s.preload_overlap = in("preload_overlap", 0.0, 0.01, false, 1e-3, " (mean overlap / d of FIRE's first stage; 0: none)");
   s.pressure_tolerance = in("pressure_tolerance", 0.0, 0.1, true, 1e-3, " (of the target)");
   s.kinetic_ratio = in("kinetic_ratio", 0.0, 1.0, true, 1e-8, " (E_kin/E_pot)");
   s.unbalanced_force = in("unbalanced_force", 0.0, 1.0, true, 1e-3, " (largest net force / mean contact force)");

@@ -187,6 +187,7 @@ void write_system(io::H5Writer& w, const Packing& p, const std::string& case_nam
     const packing::Preparation& q = p.preparation;
     w.attr(g, "random_seed", static_cast<std::int64_t>(p.seed));
     w.attr(g, "prepare_steps", std::int64_t{q.steps});
+    w.attr(g, "prepare_minimise_steps", std::int64_t{q.minimise_steps});
     w.attr(g, "prepare_time_step", q.time_step);
     w.attr(g, "prepare_pressure", q.pressure);
     w.attr(g, "prepare_kinetic_ratio", q.kinetic_ratio);
@@ -266,6 +267,8 @@ Packing read_system(const std::string& path) {
       packing::Preparation& q = p.preparation;
       p.seed = static_cast<std::uint64_t>(count("random_seed", 0, 9007199254740992.0));
       q.steps = static_cast<long>(count("prepare_steps", 0, 1e15));
+      if (r.has_attr(g, "prepare_minimise_steps"))  // older files: the servo alone
+        q.minimise_steps = static_cast<long>(count("prepare_minimise_steps", 0, static_cast<double>(q.steps)));
       q.time_step = number("prepare_time_step", true);
       q.pressure = number("prepare_pressure", true);
       q.kinetic_ratio = number("prepare_kinetic_ratio", false);

@@ -1,6 +1,7 @@
 // The compression of a random packing's gas to its target pressure (packing/random_packing.hpp):
 // a stress-controlled periodic cell, Berendsen's barostat on the box, normal contacts of the case's
-// law with a dashpot, leapfrog steps; stopped when the pressure is reached and the packing static.
+// law with a dashpot, leapfrog steps; near the target, FIRE on the enthalpy over the centres and the
+// box's strain; stopped when the pressure is reached and the packing static.
 // docs/random-packing.md has the rule and its sources. The law's closed form inline (a template per
 // form); the pairs evaluated in parallel, each particle's forces gathered in the pairs' order and the
 // sums over pairs taken serially in that order: the same bits for any number of threads.
@@ -17,6 +18,7 @@ inline int omp_get_max_threads() { return 1; }
 #endif
 
 #include "core/error.hpp"
+#include "core/fire.hpp"
 #include "core/format.hpp"
 #include "packing/contacts.hpp"
 #include "packing/random_packing.hpp"
@@ -66,7 +68,7 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
   const double dt = std::numbers::pi * std::sqrt(0.5 * m_min / k_max) / 25.0;
   const double tau = std::max(spec.servo_time * t_inertial, 10.0 * dt);  // a step cannot overshoot
   const double skin = 0.2 * d_mean;
-  const double zeta = spec.damping;
+  double zeta = spec.damping;  // 0 once FIRE minimises the enthalpy
   // A background drag on every particle's velocity (relative to the box's affine motion), decay
   // time t_inertial / background_damping: a rattler's cage is wide and its collisions rare, and
   // the contacts' dashpots alone would leave it rattling long after the rest is static.
@@ -79,12 +81,31 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
   double scale = 1.0;  // the box's linear scale since the start
   pl.build(x, a, L, a_max, skin, scale);
   double rate = -rate_max;
+  // The finish (docs/random-packing.md step 5): FIRE on H = E_pot + p_target V over the centres and the
+  // box's isotropic strain, whose generalised force is -dH/dstrain = 3 V (p - p_target) and whose mass,
+  // n m d^2 / 2, gives its affine stiffness sum k |b|^2 a particle's frequency (z k / m); w its rate.
+  bool minimising = false;
+  long handover = -1;
+  // First at a preload: the pressure whose mean contact force presses two mean spheres by
+  // preload_overlap of their diameter (never below the target), where the jammed packing is found fast;
+  // then, from it, at the target (docs/random-packing.md step 5). Each stage's FIRE from its own
+  // contact time (1/25 of the time step's rule at 4 mean contact forces of the stage).
+  const double p_pre = std::max(p_t, law(0.5 * d_mean, 0.5 * d_mean, spec.preload_overlap * d_mean).f * 6.0 * 0.64 /
+                                         (std::numbers::pi * d_mean * d_mean));
+  const auto contact_time = [&](double pressure) {
+    const double f4 = 4.0 * std::numbers::pi * d_mean * d_mean * pressure / (6.0 * 0.64);
+    return std::numbers::pi * std::sqrt(0.5 * m_min / law(a_max, a_max, overlap_at_force(law, a_max, f4)).k);
+  };
+  double p_goal = p_pre;
+  Fire fire(contact_time(p_pre));
+  double w = 0.0;
+  const double box_mass = 0.5 * static_cast<double>(n) * m_mean * d_mean * d_mean;
   Preparation res;
   res.time_step = dt;
   auto clock_last = std::chrono::steady_clock::now();
   const auto state = [&](long s, double p, double ratio, double unb) {
     std::ostringstream o;
-    o << "step " << s << ": p/p_target " << p / p_t << ", E_kin/E_pot " << ratio;
+    o << "step " << s << (minimising ? " (FIRE)" : "") << ": p/p_target " << p / p_t << ", E_kin/E_pot " << ratio;
     if (std::isfinite(unb)) o << ", unbalanced " << unb;  // measured once the other two hold
     o << ", solid fraction " << [&] {
            double vs = 0.0;
@@ -92,6 +113,34 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
            return vs / (L[0] * L[1] * L[2]);
          }();
     return o.str();
+  };
+  // One FIRE step over the centres and the box's strain: the mixing from P = F.v, |v|^2 and |F|^2 in
+  // mass-weighted coordinates (summed serially, particle by particle), then a semi-implicit Euler step
+  // of FIRE's time step, the box and every centre scaled by (1 + w dt) as in the compression.
+  const auto fire_step = [&](double volume, double p_now) {
+    const double f_box = 3.0 * volume * (p_now - p_goal);
+    double power = f_box * w, v2 = box_mass * w * w, f2 = f_box * f_box / box_mass;
+    for (std::size_t q = 0; q < n; ++q)
+      for (int d = 0; d < 3; ++d) {
+        const double f = fe[3 * q + d], u = v[3 * q + d];
+        power += f * u, v2 += m[q] * u * u, f2 += f * f / m[q];
+      }
+    const Fire::Mix mix = fire.next(power, v2, f2);
+    const double h = fire.dt;
+    w = (mix.moving ? mix.keep * w + mix.scale * f_box / box_mass : 0.0) + h * f_box / box_mass;
+    const double grow = 1.0 + h * w;
+    for (int d = 0; d < 3; ++d) L[d] *= grow;
+    scale *= grow;
+#pragma omp parallel for schedule(static) if (threaded)
+    for (std::size_t q = 0; q < n; ++q)
+      for (int d = 0; d < 3; ++d) {
+        const double a_q = fe[3 * q + d] / m[q];
+        double& u = v[3 * q + d];
+        u = (mix.moving ? mix.keep * u + mix.scale * a_q : 0.0) + h * a_q;
+        double& xq = x[3 * q + d];
+        xq = (xq + h * u) * grow;
+        xq -= L[d] * std::floor(xq / L[d]);
+      }
   };
   double p = 0.0, ratio = INFINITY, unb = INFINITY;
   for (long s = 0; s <= spec.max_steps; ++s) {
@@ -182,31 +231,53 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
         break;
       }
     }
+    // Near the target the finish takes over, from rest (docs/random-packing.md step 5).
+    if (!minimising && spec.minimise_from > 0.0 && contacts && std::abs(p - p_t) <= spec.minimise_from * p_t) {
+      minimising = true;
+      handover = s;
+      zeta = 0.0;
+      rate = 0.0;
+      std::fill(v.begin(), v.end(), 0.0);
+    }
+    if (minimising && p_goal > p_t && std::abs(p - p_goal) <= spec.pressure_tolerance * p_goal) {
+      double net = 0.0;  // the preload reached when static by the same criteria: then the target, from rest
+      for (std::size_t q = 0; q < n; ++q) net = std::max(net, std::hypot(fe[3 * q], fe[3 * q + 1], fe[3 * q + 2]));
+      if (net <= spec.unbalanced_force * f_sum / contacts) {
+        p_goal = p_t;
+        fire = Fire(contact_time(p_t));
+        w = 0.0;
+        std::fill(v.begin(), v.end(), 0.0);
+      }
+    }
     if (s == spec.max_steps)
       throw InputError("random.max_steps = " + std::to_string(spec.max_steps) + ": the compression did not reach its target (" +
                        state(s, p, ratio, unb) + "; wanted |p/p_target - 1| <= " + fmt("%g", spec.pressure_tolerance) +
                        ", E_kin/E_pot <= " + fmt("%g", spec.kinetic_ratio) + ", unbalanced <= " +
                        fmt("%g", spec.unbalanced_force) + "); allowed: a larger max_steps or looser tolerances");
-    // The servo: proportional to the pressure's relative error, rate = rate_max (p - p_target) /
-    // p_target, the bound rate_max being the inertia number's; never faster than Berendsen's barostat
-    // with relaxation time tau, rate = (p - p_target) / (S tau), S = (1/3V) sum k |b|^2 the affine
-    // stiffness (dp/dt = -S rate), so that p cannot overshoot within a step.
-    const double S = stiff / (3.0 * volume);
-    const double error = std::clamp((p - p_t) / p_t, -1.0, 1.0);
-    rate = rate_max * error;
-    if (S > 0.0 && std::abs(rate) > std::abs(p - p_t) / (S * tau)) rate = (p - p_t) / (S * tau);
-    const double grow = 1.0 + rate * dt;
-    // Leapfrog, then the box and every centre scaled affinely by (1 + rate dt).
-    for (int d = 0; d < 3; ++d) L[d] *= grow;
-    scale *= grow;
+    if (minimising) {
+      fire_step(volume, p);
+    } else {
+      // The servo: proportional to the pressure's relative error, rate = rate_max (p - p_target) /
+      // p_target, the bound rate_max being the inertia number's; never faster than Berendsen's barostat
+      // with relaxation time tau, rate = (p - p_target) / (S tau), S = (1/3V) sum k |b|^2 the affine
+      // stiffness (dp/dt = -S rate), so that p cannot overshoot within a step.
+      const double S = stiff / (3.0 * volume);
+      const double error = std::clamp((p - p_t) / p_t, -1.0, 1.0);
+      rate = rate_max * error;
+      if (S > 0.0 && std::abs(rate) > std::abs(p - p_t) / (S * tau)) rate = (p - p_t) / (S * tau);
+      const double grow = 1.0 + rate * dt;
+      // Leapfrog, then the box and every centre scaled affinely by (1 + rate dt).
+      for (int d = 0; d < 3; ++d) L[d] *= grow;
+      scale *= grow;
 #pragma omp parallel for schedule(static) if (threaded)
-    for (std::size_t q = 0; q < n; ++q)
-      for (int d = 0; d < 3; ++d) {
-        v[3 * q + d] = (v[3 * q + d] + dt * ft[3 * q + d] / m[q]) * drag;
-        double& xq = x[3 * q + d];
-        xq = (xq + dt * v[3 * q + d]) * grow;
-        xq -= L[d] * std::floor(xq / L[d]);
-      }
+      for (std::size_t q = 0; q < n; ++q)
+        for (int d = 0; d < 3; ++d) {
+          v[3 * q + d] = (v[3 * q + d] + dt * ft[3 * q + d] / m[q]) * drag;
+          double& xq = x[3 * q + d];
+          xq = (xq + dt * v[3 * q + d]) * grow;
+          xq -= L[d] * std::floor(xq / L[d]);
+        }
+    }
     if (pl.stale(x, L, a_max, skin, scale, threaded)) pl.build(x, a, L, a_max, skin, scale);
     if (progress && s % 2000 == 0) {
       const auto now = std::chrono::steady_clock::now();
@@ -221,6 +292,7 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
   gas.box.hi = L;
   const PackingStats st = measure(gas);
   res.pressure = p;
+  res.minimise_steps = handover < 0 ? 0 : res.steps - handover;
   res.kinetic_ratio = ratio;
   res.unbalanced_force = unb;
   res.solid_fraction = st.solid_fraction;

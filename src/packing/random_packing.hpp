@@ -33,6 +33,8 @@ struct RandomSpec {
   double background_damping = 1.0;         // drag rate on every velocity, in units of sqrt(d p/m)
   double inertia_number = 1e-2;            // bound on |strain rate| sqrt(m/(d p))
   double servo_time = 0.02;                // Berendsen's tau_p in units of sqrt(m/(d p)) (at least 10 steps)
+  double minimise_from = 0.05;             // |p/p_target - 1| from which FIRE minimises the enthalpy (0: never)
+  double preload_overlap = 1e-3;           // FIRE first at the pressure of this mean overlap / d (if above the target)
   double pressure_tolerance = 1e-3;        // |p - p_target| / p_target
   double kinetic_ratio = 1e-8;             // E_kin / E_pot
   double unbalanced_force = 1e-3;          // largest net force over the mean contact force
@@ -43,6 +45,7 @@ struct RandomSpec {
 // What the preparation reached (recorded in the system file).
 struct Preparation {
   long steps = 0;
+  long minimise_steps = 0;          // of them, FIRE's on the enthalpy (0: the servo reached rest alone)
   double pressure = 0.0;            // Love-Weber pressure of the elastic contact forces (Pa)
   double kinetic_ratio = 0.0;       // E_kin / E_pot
   double unbalanced_force = 0.0;    // largest net force over the mean contact force

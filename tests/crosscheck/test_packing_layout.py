@@ -162,3 +162,12 @@ def test_judge_picks_bins_between_the_slabs(packing):
     zlo, zhi = J.fit_range(trace)
     assert (zlo, zhi) == (lay["layer_z"][lo] / lay["l0"], lay["layer_z"][hi - 1] / lay["l0"]) and zhi - zlo >= 2
     assert J.fit_range(dict(trace, system_attrs=dict(s["attrs"], generator="fcc"))) is None
+
+
+def test_fixture_builder_refuses_a_random_packing(tmp_path):
+    # a random packing's preparation (the compression to its pressure) is granwave's alone: the fixture
+    # builder says so instead of building an FCC crystal from the case
+    case, _ = T.load_case(os.path.join(HERE, "cases", "random_p.toml"))
+    with pytest.raises(NotImplementedError, match="granwave build"):
+        sysbuild.build(case, str(tmp_path / "system.h5"), HERE)
+    assert not (tmp_path / "system.h5").exists()

@@ -70,6 +70,11 @@ TEST_CASE("random: a frictional preparation is refused as not yet available", "[
   require_refused(random_case("preparation_friction = 0.3\n"), {"random.preparation_friction", "not yet", "allowed: 0"});
 }
 
+TEST_CASE("random: the finish's keys out of their ranges are refused", "[config][random]") {
+  require_refused(random_case("minimise_from = 1.5\n"), {"random.minimise_from", "[0, 1]"});
+  require_refused(random_case("preload_overlap = 0.02\n"), {"random.preload_overlap", "[0, 0.01]"});
+}
+
 TEST_CASE("random: the lattice's keys and [random] elsewhere are refused", "[config][random]") {
   require_refused(random_case("", "cells = [4, 4, 9]\n"), {"crystal.cells", "lattice = \"random\""});
   require_refused("[case]\nname = \"r\"\nmodel = \"crystal\"\n[crystal]\ncells = [4, 4, 9]\nradius = 5e-4\ndensity = 2500\n"
