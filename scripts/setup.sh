@@ -12,7 +12,7 @@ if [[ ${1:-} == --tests ]]; then tests=ON; elif [[ -n ${1:-} ]]; then echo "usag
 # What the build needs: the compiler, the libraries, the module's headers (the tests' Catch2,
 # Google Benchmark, and clang for libFuzzer with --tests).
 build_packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake ninja-build pkg-config git
   libeigen3-dev libhdf5-dev hdf5-tools libtomlplusplus-dev nlohmann-json3-dev libfftw3-dev
   python3-dev python3-pybind11 pybind11-dev libopenmpi-dev openmpi-bin
 )
@@ -70,8 +70,15 @@ build_start=$SECONDS
 echo "==> building granwave (Release) in build/$([[ $tests == ON ]] && echo ', with the tests' || echo ': the program and the Python module')"
 # One -fPIC copy of the libraries for the program, the tests and the module (CMakeLists.txt, GRANWAVE_ONE_COPY):
 # half the compile of two copies. bench/side_by_side.py names the build it times (docs/benchmarks.md).
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests -DGRANWAVE_ONE_COPY=ON \
-  > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
+# Ninja: a library's objects compile while the libraries before it are still compiling (Make waits for
+# each library to be linked, and a long unit then leaves a core idle). A unity build: the headers
+# (Eigen, toml++, JSON) parsed once per batch of files; the contact kernel's files stand alone
+# (CMakeLists.txt) and every dataset keeps its bits (docs/benchmarks.md, "the first command's build").
+# A build/ configured earlier keeps its generator.
+generator=(-G Ninja)
+if [[ -f build/CMakeCache.txt ]]; then generator=(); fi
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DGRANWAVE_TESTS=$tests -DGRANWAVE_BENCH=$tests \
+  -DGRANWAVE_ONE_COPY=ON -DCMAKE_UNITY_BUILD=ON > build.configure.log 2>&1 || { cat build.configure.log; exit 1; }
 cmake --build build -j"$(nproc)"
 echo "==> configure and build took $((SECONDS - build_start)) s"
 

@@ -23,10 +23,13 @@ stage "sanitizer build (ASan + UBSan) in build-sanitize/"
 # -O0: GCC compiles the instrumented sources 2-3x faster than at -O1 (the stage was most of CI's time); the
 # unit tests run slower but finish in minutes (docs/benchmarks.md, "README command 2, stage by stage").
 # A unity build: at -O0 parsing the headers (toml++, HDF5, Eigen, Catch2) is most of the time, once per batch.
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DGRANWAVE_BENCH=OFF -DGRANWAVE_PYTHON=OFF \
+# Ninja as in scripts/setup.sh (a tree configured earlier keeps its generator).
+generator_for() { if [[ -f $1/CMakeCache.txt ]]; then echo ""; else echo "-GNinja"; fi; }
+cmake -S . -B build-sanitize $(generator_for build-sanitize) -DCMAKE_BUILD_TYPE=Debug -DGRANWAVE_SANITIZE=ON -DGRANWAVE_BENCH=OFF -DGRANWAVE_PYTHON=OFF \
   -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g1" -DCMAKE_UNITY_BUILD=ON > build-sanitize.configure.log 2>&1 || { cat build-sanitize.configure.log; exit 1; }
 # Only what the unit label runs: the unit test executables and the binary the cli tests call.
-unit_targets=$(cmake --build build-sanitize --target help | sed -n 's/^\.\.\. \(test_unit_[a-z_]*\).*/\1/p')
+# (Make lists a target as "... name", Ninja as "name: phony".)
+unit_targets=$(cmake --build build-sanitize --target help | sed -n 's/^\(\.\.\. \)\{0,1\}\(test_unit_[a-z_]*\)\(: .*\)\{0,1\}$/\2/p')
 cmake --build build-sanitize -j"$jobs" --target granwave granwave_testlaw $unit_targets
 stage "unit tests under sanitizers"
 # allocator_may_return_null: an impossible size read from a damaged file makes the HDF5 library ask for
@@ -37,7 +40,7 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:allocator_may_return_null=1 UBSAN_O
 stage "libFuzzer over the TOML and HDF5 readers (clang, ASan + UBSan) in build-fuzz/, 60 s"
 # Issue #25: seeds are the repository's cases and studies and fresh trace, system and study files
 # (tests/fuzz/seed_corpus.sh); the first byte of an input picks the reader.
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+CC=clang CXX=clang++ cmake -S . -B build-fuzz $(generator_for build-fuzz) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
   -DGRANWAVE_SANITIZE=ON -DGRANWAVE_LIBFUZZER=ON -DGRANWAVE_OPENMP=OFF -DGRANWAVE_MPI=OFF -DGRANWAVE_BENCH=OFF -DGRANWAVE_PYTHON=OFF \
   -DGRANWAVE_NATIVE=OFF -DCMAKE_UNITY_BUILD=ON > build-fuzz.configure.log 2>&1 || { cat build-fuzz.configure.log; exit 1; }
 cmake --build build-fuzz -j"$jobs" --target readers_fuzzer
