@@ -1,0 +1,70 @@
+// `granwave figures packing` (see packing_figures.hpp): the study file's members and table as CSV,
+// summary.md, and the plotting script.
+#include "sweep/packing_figures.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/h5.hpp"
+#include "sweep/packing_study.hpp"
+
+namespace granwave::sweep {
+
+int packing_figures(const std::string& study_h5, const std::string& out_dir, std::ostream& log, bool draw) {
+  namespace fs = std::filesystem;
+  const io::H5Reader r(study_h5);
+  if (!r.has_attr("/", "kind") || r.attr_string("/", "kind") != "packing_study")
+    throw InputError(study_h5 + ": not a packing study file (root attribute kind = \"packing_study\" expected; "
+                     "granwave sweep of a [study] kind = \"packing\" writes one)");
+  const auto members = read_members(r, "/members");
+  require_members_in_order(members, packing_value_names().size(), study_h5);
+  PackingStudy s;  // what the table needs: the name and the pressures
+  s.name = r.attr_string("/", "study_name");
+  for (double p : r.read_double("/table/pressure_target"))
+    if (std::find(s.pressures.begin(), s.pressures.end(), p) == s.pressures.end()) s.pressures.push_back(p);
+  for (double w : r.read_double("/table/width"))
+    if (std::find(s.widths.begin(), s.widths.end(), w) == s.widths.end()) s.widths.push_back(w);
+  fs::create_directories(out_dir);
+  const auto& names = packing_value_names();
+  {
+    std::ofstream f(fs::path(out_dir) / "packing_members.csv");
+    for (std::size_t k = 0; k < names.size(); ++k) f << (k ? "," : "") << names[k];
+    f << "\n";
+    for (const auto& m : members) {
+      for (std::size_t k = 0; k < names.size(); ++k) f << (k ? "," : "") << fmt("%.10g", m.values[k]);
+      f << "\n";
+    }
+  }
+  {
+    std::ofstream f(fs::path(out_dir) / "packing_table.csv");
+    const auto rows = packing_rows(s, members);
+    f << "pressure_target,width,seeds";
+    for (std::size_t k = pv_count; k < names.size(); ++k) f << "," << names[k] << "," << names[k] << "_sd";
+    f << "\n";
+    for (const auto& row : rows) {
+      f << fmt("%.10g", row.pressure) << "," << fmt("%.10g", row.width) << "," << row.seeds;
+      for (std::size_t k = pv_count; k < names.size(); ++k) f << "," << fmt("%.10g", row.mean[k]) << "," << fmt("%.10g", row.sd[k]);
+      f << "\n";
+    }
+  }
+  {
+    std::ofstream f(fs::path(out_dir) / "summary.md");
+    f << "# Sound against pressure in random packings: study " << s.name << "\n\n"
+      << "From " << study_h5 << " (granwave " << r.attr_string("/", "git_describe") << ", " << members.size()
+      << " packings). Figures: moduli.png (K and G against p, log-log, with the p^(1/3) line), coordination.png "
+         "(Z and z* against p), speeds.png (V_p and V_s against p).\n\n"
+      << packing_markdown(s, members);
+  }
+  log << "figures packing: " << members.size() << " packings -> " << out_dir << "/summary.md\n";
+  if (!draw) return 0;
+  const fs::path script = fs::path(GRANWAVE_SOURCE_DIR) / "python" / "granwave" / "packing_figures.py";
+  const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + out_dir + "'";
+  if (std::system(cmd.c_str()) != 0) throw RunError("figures packing: " + cmd + " failed");
+  return 0;
+}
+
+}  // namespace granwave::sweep
