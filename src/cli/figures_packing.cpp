@@ -12,7 +12,8 @@ namespace {
 constexpr const char* kHelp = R"(usage: granwave figures packing STUDY.h5 [--out DIR] [--no-plot]
 
 From the study file that `granwave sweep` wrote for a [study] kind = "packing" (e.g.
-data/studies/random_pressure.toml; data/SCHEMA.md §6b):
+data/studies/random_pressure.toml; data/SCHEMA.md §6b), or from STUDY.h5.parts of a study still
+running (the packings committed so far; summary.md says so):
   moduli.png          K and G (affine, relaxed, Walton's effective medium) against p, log-log,
                       with the p^(1/3) line (Makse et al., PRE 70, 061302 (2004))
   coordination.png    Z and z* against p
