@@ -118,13 +118,14 @@ int figures_chain(const Args& args) {
 }  // namespace
 
 int cmd_figures(const Args& args) {
+  // `figures packing --help` is the packing figures' own help.
+  if (!args.empty() && args[0] == "packing") return figures_packing(Args(args.begin() + 1, args.end()));
   if (wants_help(args) || args.empty()) {
     std::cout << kHelp;
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "chain") return figures_chain(args);
   if (args[0] == "crystal") return figures_crystal(Args(args.begin() + 1, args.end()));
-  if (args[0] == "packing") return figures_packing(Args(args.begin() + 1, args.end()));
   throw InputError("figures: expected 'chain', 'crystal' or 'packing' (got '" + args[0] + "')");
 }
 
