@@ -72,7 +72,7 @@ enum PackingValue : std::size_t {
   pv_pressure, pv_prepare_steps, pv_prepare_minimise_steps, pv_prepare_unbalanced, pv_prepare_kinetic_ratio,
   pv_solid_fraction, pv_coordination, pv_coordination_backbone, pv_rattlers, pv_prepare_seconds,
   // The relaxed triply periodic bulk (rattlers removed recursively, relaxed_moduli.hpp)
-  pv_bulk_pressure, pv_bulk_coordination, pv_bulk_rattlers, pv_bulk_fire_steps, pv_bulk_unstable, pv_bulk_mechanisms, pv_rho,
+  pv_bulk_pressure, pv_bulk_unbalanced, pv_bulk_coordination, pv_bulk_rattlers, pv_bulk_fire_steps, pv_bulk_unstable, pv_bulk_mechanisms, pv_rho,
   pv_K_affine, pv_G_affine, pv_K_relaxed, pv_G_relaxed,  // isotropic parts of the elastic moduli (Pa)
   pv_K_walton, pv_G_walton, pv_G_walton_smooth,         // effective medium at the bulk's Z, phi, p (Pa)
   pv_V_pz_relaxed, pv_V_sz_relaxed, pv_V_pz_affine, pv_V_sz_affine,  // Christoffel along z (m/s)
