@@ -12,7 +12,7 @@
 namespace granwave::sweep {
 namespace {
 
-std::string text_of(const std::string& path, const std::string& what) {
+std::string packing_text_of(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read the " + what);
   std::ostringstream s;
@@ -51,7 +51,7 @@ PackingStudy parse_packing_study(const std::string& text, const std::string& ori
   if (cp.is_relative()) cp = std::filesystem::path(origin).parent_path() / cp;
   if (!std::filesystem::exists(cp)) r.fail("study.case", "no such case file: " + cp.string(), st->get("case"));
   s.case_path = cp.string();
-  s.case_text = text_of(s.case_path, "case file");
+  s.case_text = packing_text_of(s.case_path, "case file");
   {  // The base case is prepared member by member (each at its own pressure and seed); here only its shape.
     const toml::table base = config::parse_toml(s.case_text, s.case_path);
     const auto lattice = base["crystal"]["lattice"].value<std::string>();
@@ -111,6 +111,6 @@ PackingStudy parse_packing_study(const std::string& text, const std::string& ori
   return s;
 }
 
-PackingStudy load_packing_study(const std::string& path) { return parse_packing_study(text_of(path, "study file"), path); }
+PackingStudy load_packing_study(const std::string& path) { return parse_packing_study(packing_text_of(path, "study file"), path); }
 
 }  // namespace granwave::sweep
