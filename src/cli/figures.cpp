@@ -17,6 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kHelp = R"(usage: granwave figures chain|crystal [--out DIR] [--threads N] [--quiet]
+       granwave figures packing STUDY.h5 [--out DIR]   (granwave figures packing --help)
 
 chain: runs the studies data/studies/fig6.toml, fig7.toml and app3_n50.toml afresh (granwave
 sweep), the Fig. 5 sensor traces, and draws with /usr/bin/python3 (matplotlib):
@@ -117,13 +118,15 @@ int figures_chain(const Args& args) {
 }  // namespace
 
 int cmd_figures(const Args& args) {
+  // `figures packing --help` is the packing figures' own help.
+  if (!args.empty() && args[0] == "packing") return figures_packing(Args(args.begin() + 1, args.end()));
   if (wants_help(args) || args.empty()) {
     std::cout << kHelp;
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "chain") return figures_chain(args);
   if (args[0] == "crystal") return figures_crystal(Args(args.begin() + 1, args.end()));
-  throw InputError("figures: expected 'chain' or 'crystal' (got '" + args[0] + "')");
+  throw InputError("figures: expected 'chain', 'crystal' or 'packing' (got '" + args[0] + "')");
 }
 
 }  // namespace granwave::cli

@@ -11,6 +11,7 @@
 #include "core/resources.hpp"
 #include "sweep/crystal_study.hpp"
 #include "sweep/distributed.hpp"
+#include "sweep/packing_study.hpp"
 #include "sweep/spin_study.hpp"
 
 namespace granwave::cli {
@@ -20,7 +21,9 @@ constexpr const char* kHelp = R"(usage: granwave sweep STUDY.toml [-o study.h5] 
 
 Run a study (data/SCHEMA.md §4): for the spin chain of seed 001, every allowed M of each chain
 length with K random configurations, the seed's peak-force measure normalised by the M = 1 run,
-M_c from a hinge fit with a bootstrap interval, and the Appendix-3 decay laws.
+M_c from a hinge fit with a bootstrap interval, and the Appendix-3 decay laws. A study of
+`kind = "crystal"` runs seed 002's crystal studies (§6); `kind = "packing"` prepares random packings
+over pressures and seeds and measures their moduli and P and S pulses (§6b, issue 40).
 
   -o, --output FILE   the study file (default: the study file's name with .h5, here)
   --threads N         OpenMP threads (default: all cores); results do not depend on it
@@ -102,6 +105,17 @@ int cmd_sweep(const Args& args, std::ostream& out, sweep::StudyControl* control)
       co.limits = o.limits;
       co.control = control;
       const std::size_t left = sweep::run_crystal_study(pos[0], o.output, co, out);
+      if (left > 0 && sweep::is_root())
+        std::cerr << "sweep: stopped after --limit " << o.limit << " runs; " << left << " left, rerun to finish\n";
+      return 0;
+    }
+    if (sweep::is_packing_study(ss.str())) {  // [study] kind = "packing": sound against pressure (issue 40)
+      sweep::PackingRunOptions po;
+      po.quiet = !o.progress;
+      po.threads = o.threads;
+      po.limit = o.limit;
+      po.control = control;
+      const std::size_t left = sweep::run_packing_study(pos[0], o.output, po, out);
       if (left > 0 && sweep::is_root())
         std::cerr << "sweep: stopped after --limit " << o.limit << " runs; " << left << " left, rerun to finish\n";
       return 0;

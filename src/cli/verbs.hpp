@@ -41,6 +41,8 @@ int cmd_sweep(const Args& args, std::ostream& out, sweep::StudyControl* control)
 int run_case(const config::Case& c, const RunRequest& req, std::ostream& out);
 // The crystal half of `granwave figures` (seed 002's figures), called by cmd_figures.
 int figures_crystal(const Args& args);
+// `granwave figures packing STUDY.h5`: the sound-against-pressure figures (issue 40), called by cmd_figures.
+int figures_packing(const Args& args);
 
 // Small shared helpers for argument parsing (src/cli/args.cpp).
 bool wants_help(const Args& args);
