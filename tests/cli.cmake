@@ -31,6 +31,8 @@ granwave_cli_refuses(random_width random_width.toml "random.width")
 # A frictional preparation under a law without a tangential spring, and one asked for FIRE's finish.
 granwave_cli_refuses(random_friction_no_spring random_friction_no_spring.toml "random.preparation_friction")
 granwave_cli_refuses(random_friction_fire random_friction_fire.toml "random.minimise_from")
+# A step budget that runs out at FIRE's preload says so.
+granwave_cli_refuses(random_preload_steps random_preload_steps.toml "at the preload")
 # Issue #14: the Hertz-Mindlin law's keys.
 granwave_cli_refuses(hertz_negative_modulus hertz_negative_modulus.toml "contact.youngs_modulus")
 granwave_cli_refuses(hertz_poisson_half hertz_poisson_half.toml "contact.poisson_ratio")
