@@ -28,6 +28,11 @@ granwave_cli_refuses(off_grid_m off_grid_m.toml "magnetisation")
 granwave_cli_refuses(crystal_mu crystal_mu.toml "contact.mu_dynamic")
 # Issue 40: a random packing whose radius law makes radii negative (refused before any compression).
 granwave_cli_refuses(random_width random_width.toml "random.width")
+# A frictional preparation under a law without a tangential spring, and one asked for FIRE's finish.
+granwave_cli_refuses(random_friction_no_spring random_friction_no_spring.toml "random.preparation_friction")
+granwave_cli_refuses(random_friction_fire random_friction_fire.toml "random.minimise_from")
+# A step budget that runs out at FIRE's preload says so.
+granwave_cli_refuses(random_preload_steps random_preload_steps.toml "at the preload")
 # Issue #14: the Hertz-Mindlin law's keys.
 granwave_cli_refuses(hertz_negative_modulus hertz_negative_modulus.toml "contact.youngs_modulus")
 granwave_cli_refuses(hertz_poisson_half hertz_poisson_half.toml "contact.poisson_ratio")
@@ -209,3 +214,16 @@ OMP_NUM_THREADS=1 ${GW} build ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml -
 OMP_NUM_THREADS=2 ${GW} build ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml -o random2.h5 2>/dev/null && \
 for d in /position /radius /mass /layer /role; do h5diff random1.h5 random2.h5 $d || exit 1; done")
 set_tests_properties("cli: a random packing builds the same bits on 1 and 2 threads" PROPERTIES LABELS "cli")
+# Issue 40: a frictional random packing (tests/data/random/random_friction.toml): its springs are
+# written (spring_pairs, spring_xi); a system file whose springs are damaged is refused naming the
+# dataset, nothing written (1 and 2 threads: tests/physics/randompacking_threads.cpp).
+add_test(NAME "cli: a frictional random packing writes its springs, and run refuses a damaged spring dataset"
+  COMMAND sh -c "cd ${CLI_TMP} && rm -f fric.h5 fric_bad.h5 fric_run.h5* && \
+${GW} build ${CMAKE_SOURCE_DIR}/tests/data/random/random_friction.toml -o fric.h5 2>/dev/null && \
+h5dump -H -d /spring_xi fric.h5 > /dev/null && h5dump -H -d /spring_pairs fric.h5 > /dev/null && \
+/usr/bin/python3 -c \"import h5py,shutil; shutil.copy('fric.h5','fric_bad.h5'); f=h5py.File('fric_bad.h5','r+'); x=f['spring_xi'][()]; del f['spring_xi']; f['spring_xi']=x[:, :2]; f.close()\" && \
+${GW} run ${CMAKE_SOURCE_DIR}/tests/data/random/random_friction.toml --system fric_bad.h5 -o fric_run.h5 2> fric_bad.err; rc=\$?; \
+test \$rc -eq 2 || { cat fric_bad.err; echo \"exit code \$rc, expected 2\"; exit 1; }; \
+grep -q 'spring_xi' fric_bad.err || { cat fric_bad.err; exit 1; }; \
+! ls fric_run.h5* 2>/dev/null")
+set_tests_properties("cli: a frictional random packing writes its springs, and run refuses a damaged spring dataset" PROPERTIES LABELS "cli")

@@ -124,6 +124,15 @@ def read_system(path: str) -> dict:
                 if a.dtype.kind in "SO":
                     a = [x.decode() if isinstance(x, bytes) else str(x) for x in np.atleast_1d(a)]
                 out[k] = a
+    mu = float(out["attrs"].get("prepare_friction", 0.0))
+    if mu > 0.0:
+        # A frictional random packing stands on its tangential springs (spring_pairs, spring_xi): LAMMPS'
+        # and LIGGGHTS' data files have no shear history, and the YADE script does not set one, so the
+        # other codes would start it unsprung and let it move before the pulse: refused, not run wrong.
+        raise NotImplementedError(
+            "%s: a random packing prepared with friction (prepare_friction = %g) is held up by its tangential "
+            "springs, which the other codes' inputs cannot carry (LAMMPS and LIGGGHTS data files have no shear "
+            "history); crosscheck a frictionless-prepared packing (random.preparation_friction = 0)" % (path, mu))
     return out
 
 

@@ -66,6 +66,10 @@ RelaxedPart relaxed_part(const config::Case& c, const crystal::Packing& pk, cons
     // under the case's normal law (crystal/periodic_bulk.hpp), every particle free.
     if (c.crystal->imported->box.z_walls()) {
       R.bulk_note = "omitted: the file's packing lies between z walls (not periodic in z)";
+    } else if (pk.preparation_friction > 0.0) {
+      // The bulk's relaxation is frictionless: it would let a packing that stands on its springs collapse.
+      R.bulk_note = "omitted: the packing was prepared with friction and stands on its tangential springs; the "
+                    "periodic bulk's relaxation is frictionless";
     } else try {
       const crystal::PeriodicBulk pb = crystal::periodic_bulk(c, 1e-10, 200000);
       theory::RelaxedOptions bulk = slab;

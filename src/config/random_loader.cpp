@@ -101,16 +101,18 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
         .value_or(fallback);
   };
   s.pressure = *r.number_in(t, "random", "pressure", true, [](double v) { return v > 0; }, "> 0 (Pa, the target isotropic pressure)");
-  const double mu = in("preparation_friction", 0.0, 10.0, false, 0.0, "");
-  if (mu > 0.0)
-    r.fail("random.preparation_friction", "= " + fmt("%g", mu) + ": a frictional preparation is not yet available (its "
-           "tangential history cannot yet be carried into the system file); allowed: 0", t.get("preparation_friction"));
+  s.friction = in("preparation_friction", 0.0, 10.0, false, 0.0, " (Coulomb's mu during the compression)");
   s.damping = in("damping", 0.0, 1.0, true, 0.98, " (fraction of the critical damping of a contact)");
   s.background_damping = in("background_damping", 0.0, 1e3, false, 1.0, " (drag rate in units of sqrt(d p / m))");
   s.inertia_number = in("inertia_number", 0.0, 0.1, true, 1e-2, "");
   s.servo_time = in("servo_time", 0.0, 1e6, true, 0.02, " (units of sqrt(m/(d p)))");
   s.initial_solid_fraction = in("initial_solid_fraction", 0.0, 0.3, true, 0.3, "");
-  s.minimise_from = in("minimise_from", 0.0, 1.0, false, 0.05, " (|p/p_target - 1| from which FIRE minimises the enthalpy; 0: never)");
+  s.minimise_from = in("minimise_from", 0.0, 1.0, false, s.friction > 0.0 ? 0.0 : 0.05,
+                       " (|p/p_target - 1| from which FIRE minimises the enthalpy; 0: never)");
+  // A frictional packing is no enthalpy minimum: FIRE's finish is for frictionless compressions.
+  if (s.friction > 0.0 && s.minimise_from != 0.0)
+    r.fail("random.minimise_from", "= " + fmt("%g", s.minimise_from) + " with random.preparation_friction > 0: a frictional "
+           "packing is not a minimum of the enthalpy (the damped servo finishes it); allowed: 0 or no key", t.get("minimise_from"));
   s.preload_overlap = in("preload_overlap", 0.0, 0.01, false, 1e-3, " (mean overlap / d of FIRE's first stage; 0: none)");
   s.pressure_tolerance = in("pressure_tolerance", 0.0, 0.1, true, 1e-3, " (of the target)");
   s.kinetic_ratio = in("kinetic_ratio", 0.0, 1.0, true, 1e-8, " (E_kin/E_pot)");
@@ -144,6 +146,20 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   const contact::LawParams params = c.contact;
   const double density = k.density;
   const contact::NormalForm form = info.normal_form(params, density);
+  if (s.friction > 0.0) {  // the case's tangential spring, k_t at a contact of two mean spheres
+    const double a0 = a_sum / static_cast<double>(s.count);
+    const contact::LinearisedContact at0 = info.at(params, density, a0, a0, 1e-4 * a0);
+    if (!(at0.kt > 0.0))
+      r.fail("random.preparation_friction", "= " + fmt("%g", s.friction) + " needs the case's tangential spring, and contact.law = \"" +
+             std::string(info.name) + "\" has none here (k_t = 0); allowed: 0, or a law with k_t > 0 (linear: contact.kt; "
+             "hertz_mindlin: tangential = \"mindlin\")", t.get("preparation_friction"));
+    if (std::string(info.history_name(params)) != "displacement")
+      r.fail("random.preparation_friction", "= " + fmt("%g", s.friction) + ": the preparation's springs xi go into the run's "
+             "history as the spring itself, and contact.tangential_history = \"" + info.history_name(params) + "\" keeps " +
+             "another; allowed: 0, or tangential_history = \"displacement\"", t.get("preparation_friction"));
+    s.tangential = info.stiffness_of_overlap ? contact::TangentialForm{true, at0.kt / at0.kn}
+                                             : contact::TangentialForm{false, at0.kt};
+  }
   const auto law = [&form](double ai, double aj, double delta) {
     return contact::with_normal(form, [&](const auto& f) { return f(ai, aj, delta); });
   };

@@ -32,6 +32,15 @@ struct HertzNormal {
   }
 };
 
+// The tangential spring of the case's law beside its normal form (a frictional preparation,
+// packing/friction_pairs.hpp): k_t at the contact's normal state, constant (Luding's linear k_t) or
+// proportional to k_n (Mindlin's k_t = 8 G* a = (4 G*/E*) k_n, both from the contact radius a).
+struct TangentialForm {
+  bool proportional = false;  // k_t = value k_n (Mindlin); else k_t = value (N/m)
+  double value = 0.0;
+  double operator()(const NormalForce& n) const { return proportional ? value * n.k : value; }
+};
+
 // f(form) with the form's evaluator.
 template <class F>
 decltype(auto) with_normal(const NormalForm& form, F&& f) {

@@ -80,6 +80,10 @@ void describe_file_packing(const config::Case& c, const Packing& p, std::ostream
         << " Pa, E_kin/E_pot " << q.kinetic_ratio << ", unbalanced force " << q.unbalanced_force
         << " of the mean contact force; solid fraction " << q.solid_fraction << ", coordination " << q.coordination
         << " (" << q.coordination_backbone << " without the " << q.rattlers << " rattlers)\n";
+    if (c.crystal->random->friction > 0.0)
+      out << "  with friction mu = " << c.crystal->random->friction << ": unbalanced torque " << q.unbalanced_torque
+          << " of the mean contact force x mean radius, " << q.sliding << " contacts sliding, " << p.springs.size()
+          << " tangential springs (not relaxed: it stands on them)\n";
   } else {
     out << "crystal case " << c.name << ": " << p.size() << " particles from " << keys.file << " (" << keys.format
         << "), box " << p.box_x << " x " << p.box_y << " x " << c.crystal->imported->box.length(2) << " m, z cut open\n";

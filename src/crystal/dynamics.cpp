@@ -116,7 +116,27 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   while (std::sqrt(std::nextafter(far2_, up)) <= half_skin) far2_ = std::nextafter(far2_, up);
   dissipated_before_.assign(static_cast<std::size_t>(std::max(0, packing.layers)), 0.0);
   rebuild();
+  if (!packing.springs.empty()) seed_springs(packing.springs);
   compute_forces(dt_, true);
+}
+
+void Dynamics::seed_springs(const std::vector<packing::SpringHistory>& springs) {
+  if (slab_) throw RunError("a frictionally prepared packing (its tangential springs) under a slab plan is not offered: run without mpirun");
+  if (!torques_ || contacts.history_columns < 3)
+    throw InputError("the packing was prepared with friction (its tangential springs hold it up), and the case's law keeps no "
+                     "tangential spring; allowed: a law with a tangential spring (linear: contact.kt > 0; hertz_mindlin: "
+                     "tangential = \"mindlin\")");
+  const auto less = [](const packing::SpringHistory& s, std::pair<std::uint32_t, std::uint32_t> k) {
+    return s.i != k.first ? s.i < k.first : s.j < k.second;
+  };
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const auto gi = static_cast<std::uint32_t>(contacts.i[c] + offset_), gj = static_cast<std::uint32_t>(contacts.j[c] + offset_);
+    const bool swapped = gi > gj;  // the spring of (j, i) is the opposite one
+    const std::pair<std::uint32_t, std::uint32_t> key = swapped ? std::pair{gj, gi} : std::pair{gi, gj};
+    const auto it = std::lower_bound(springs.begin(), springs.end(), key, less);
+    if (it == springs.end() || it->i != key.first || it->j != key.second) continue;
+    for (int d = 0; d < 3; ++d) contacts.history_column(static_cast<std::size_t>(d))[c] = swapped ? -it->xi[d] : it->xi[d];
+  }
 }
 
 void Dynamics::set_box(double box_x, double box_y, const ImageMotion& images) {

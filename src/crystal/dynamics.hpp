@@ -257,6 +257,9 @@ class Dynamics {
   void displace(const std::vector<std::size_t>& which, double dx, double dy, double dz);
   // Recompute the contact list from scratch (keeps history of pairs that persist).
   void rebuild();
+  // A frictional prepared packing's springs (Packing::springs) into the history of the listed pairs:
+  // the first three columns, the spring xi of the laws whose history is the displacement.
+  void seed_springs(const std::vector<packing::SpringHistory>& springs);
   // Forces and torques at the current positions and velocities (advances springs by v_t dt).
   void compute_forces() { compute_forces(dt_, true); }
   // The same for a state set from outside (initial velocities): dashpots see the velocities,

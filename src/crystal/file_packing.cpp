@@ -33,6 +33,17 @@ void sort_into_bins(Packing& p) {
   };
   permute(p.x), permute(p.y), permute(p.z), permute(p.radius), permute(p.mass), permute(p.inertia);
   permute(p.layer), permute(p.fixed), permute(p.role);
+  // The springs follow their particles: (i, j) renamed, the pair's i < j again (the spring reversed), sorted.
+  std::vector<std::uint32_t> now(n);
+  for (std::size_t q = 0; q < n; ++q) now[order[q]] = static_cast<std::uint32_t>(q);
+  for (packing::SpringHistory& s : p.springs) {
+    s.i = now[s.i], s.j = now[s.j];
+    if (s.i > s.j) {
+      std::swap(s.i, s.j);
+      for (double& x : s.xi) x = -x;
+    }
+  }
+  std::sort(p.springs.begin(), p.springs.end(), [](const auto& a, const auto& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
 }
 
 // The largest net contact force on a free particle over the mean contact force, under the case's
@@ -75,7 +86,8 @@ Packing imported_packing(const config::Case& c) {
   Packing p;
   p.generator = k.lattice;  // "file" or "random"
   if (k.preparation) p.preparation = *k.preparation;
-  if (k.random) p.seed = k.random->seed;
+  if (k.random) p.seed = k.random->seed, p.preparation_friction = k.random->friction;
+  p.preparation.springs.clear();  // kept once, as the packing's springs below
   p.source_file = keys.file;
   p.source_format = keys.format;
   p.source_thickness = keys.source_thickness;
@@ -110,12 +122,20 @@ Packing imported_packing(const config::Case& c) {
   }
   p.d = p.d_prime = d_sum / static_cast<double>(p.size());
   p.delta = 0.0;
+  if (k.preparation) {  // the springs of the pairs that the cut in z leaves (the nearest image inside the box)
+    const double lz = z_hi - z_lo;
+    for (const packing::SpringHistory& s : k.preparation->springs)
+      if (std::abs(p.z[s.j] - p.z[s.i]) < 0.5 * lz) p.springs.push_back(s);
+  }
   sort_into_bins(p);
   return p;
 }
 
 Packing relaxed_imported_packing(const config::Case& c) {
   Packing p = imported_packing(c);
+  // A frictional preparation ended static, held by its springs: no frictionless relaxation (it would
+  // let the packing collapse); its residuals are the preparation's (prepare_unbalanced, _torque).
+  if (p.preparation_friction > 0.0) return p;
   RelaxResult r;
   try {
     r = relax(p, c.contact, c.crystal->density, c.crystal->packing_file->relax_tolerance);

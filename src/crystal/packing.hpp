@@ -47,6 +47,10 @@ struct Packing {
   std::string source_file, source_format;  // "file": where the packing came from ("random": "", "random")
   packing::Preparation preparation;         // "random": what the compression reached (its keys: the case's)
   std::uint64_t seed = 0;                   // "random": the generator's seed
+  double preparation_friction = 0.0;        // "random": Coulomb's mu of the compression (0: frictionless)
+  // "random" with friction: the touching pairs' tangential springs xi (particle indices of this packing,
+  // i < j, sorted; the force on i is -k_t xi), which hold the packing up (system file: spring_pairs, spring_xi).
+  std::vector<packing::SpringHistory> springs;
 
   bool relaxed = false;        // came out of a relaxation (polydisperse)
   long relax_steps = 0;        // steps the relaxation took

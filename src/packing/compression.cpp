@@ -21,6 +21,7 @@ inline int omp_get_max_threads() { return 1; }
 #include "core/fire.hpp"
 #include "core/format.hpp"
 #include "packing/contacts.hpp"
+#include "packing/friction_pairs.hpp"
 #include "packing/random_packing.hpp"
 #include "packing/verlet_pairs.hpp"
 
@@ -40,11 +41,15 @@ double overlap_at_force(const Law& law, double a, double f) {
   return hi;
 }
 
-template <class Law>
+// Fric: with Coulomb friction at spec.friction (the tangential springs of packing/friction_pairs.hpp,
+// the rotations integrated, no FIRE finish); without, not one operation of the frictionless path changes.
+template <bool Fric, class Law>
 Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
                           const std::function<void(const std::string&)>& progress) {
   const std::size_t n = gas.particles.size();
   std::vector<double> x(3 * n), v(3 * n, 0.0), a(n), m(n), fe(3 * n), ft(3 * n);
+  // With friction: angular velocities, elastic and total torques, moments of inertia (2/5 m a^2).
+  std::vector<double> w_rot(Fric ? 3 * n : 0, 0.0), te(Fric ? 3 * n : 0), tt(Fric ? 3 * n : 0), inertia(Fric ? n : 0);
   std::array<double, 3> L{gas.box.length(0), gas.box.length(1), gas.box.length(2)};
   double a_min = 1e300, a_max = 0.0, m_min = 1e300, a_sum = 0.0, m_sum = 0.0;
   for (std::size_t q = 0; q < n; ++q) {
@@ -56,6 +61,7 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     m[q] = p.mass;
     a_min = std::min(a_min, a[q]), a_max = std::max(a_max, a[q]), m_min = std::min(m_min, m[q]);
     a_sum += a[q], m_sum += m[q];
+    if constexpr (Fric) inertia[q] = 0.4 * m[q] * a[q] * a[q];
   }
   const double d_mean = 2.0 * a_sum / n, m_mean = m_sum / n, p_t = spec.pressure;
   // The inertial time at the target pressure, sqrt(m/(d p)): the inertia number I = |strain rate| of it.
@@ -80,6 +86,8 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
   std::vector<double> pf, pft, pu, pterm;  // per pair: elastic and total normal force (-1: apart), unit vector, terms
   double scale = 1.0;  // the box's linear scale since the start
   pl.build(x, a, L, a_max, skin, scale);
+  FrictionPairs fp;
+  if constexpr (Fric) fp.resize(pl.i.size());
   double rate = -rate_max;
   // The finish (docs/random-packing.md step 5): FIRE on H = E_pot + p_target V over the centres and the
   // box's isotropic strain, whose generalised force is -dH/dstrain = 3 V (p - p_target) and whose mass,
@@ -107,6 +115,11 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     std::ostringstream o;
     o << "step " << s << (minimising ? " (FIRE)" : "") << ": p/p_target " << p / p_t << ", E_kin/E_pot " << ratio;
     if (std::isfinite(unb)) o << ", unbalanced " << unb;  // measured once the other two hold
+    if constexpr (Fric) {
+      long sliding = 0;
+      for (std::size_t c = 0; c < pl.i.size(); ++c) sliding += pf[c] >= 0.0 && fp.sliding[c];
+      o << ", sliding contacts " << sliding;
+    }
     o << ", solid fraction " << [&] {
            double vs = 0.0;
            for (double r : a) vs += 4.0 / 3.0 * std::numbers::pi * r * r * r;
@@ -149,6 +162,8 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     const double inv[3] = {1.0 / L[0], 1.0 / L[1], 1.0 / L[2]};
     const std::size_t npairs = pl.i.size();
     if (!threaded) std::fill(fe.begin(), fe.end(), 0.0), std::fill(ft.begin(), ft.end(), 0.0);
+    if constexpr (Fric)
+      if (!threaded) std::fill(te.begin(), te.end(), 0.0), std::fill(tt.begin(), tt.end(), 0.0);
     if (pf.size() < npairs) pf.resize(npairs), pft.resize(npairs), pu.resize(3 * npairs), pterm.resize(4 * npairs);
     // Each pair on its own (any thread): touching or not, its forces, its unit vector, its terms of the sums.
 #pragma omp parallel for schedule(static) if (threaded)
@@ -163,6 +178,7 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       const double reach = a[i] + a[j];
       if (r2 >= reach * reach) {
         pf[c] = -1.0;  // not touching
+        if constexpr (Fric) fp.apart(c);
         continue;
       }
       const double r = std::sqrt(r2), delta = reach - r;
@@ -183,11 +199,33 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       pterm[4 * c + 1] = nc.k * r2;                                       // affine stiffness
       pterm[4 * c + 2] = nc.f * nc.f * delta / (nc.k * delta + nc.f);     // f delta / (n + 1) for f ~ delta^n
       pterm[4 * c + 3] = delta / std::min(a[i], a[j]);                    // relative overlap
+      if constexpr (Fric) {
+        // The tangential spring: v_ij of i's contact point against j's (the affine part is normal).
+        const contact::Vec3 nv{b[0] / r, b[1] / r, b[2] / r};
+        const contact::Vec3 vi{v[3 * i], v[3 * i + 1], v[3 * i + 2]}, vj{v[3 * j], v[3 * j + 1], v[3 * j + 2]};
+        const contact::Vec3 wi{w_rot[3 * i], w_rot[3 * i + 1], w_rot[3 * i + 2]};
+        const contact::Vec3 wj{w_rot[3 * j], w_rot[3 * j + 1], w_rot[3 * j + 2]};
+        const contact::Vec3 v_ij = vi - vj - nv * (rate * r) + (wi * a[i] + wj * a[j]).cross(nv);
+        const double kt = spec.tangential(nc);
+        // No tangential dashpot (Agnolin & Roux damp the normal motion only): a dashpot of the normal's
+        // fraction of critical on z contacts of a sphere's rotation (I = 2/5 m a^2) nears the explicit
+        // step's limit and kept 300 spheres ringing at E_kin/E_pot 2e-3; friction and the drag dissipate.
+        pterm[4 * c + 2] += fp.touch(c, nv, nc.f, kt, 0.0, spec.friction, v_ij, dt);
+        if (!threaded) {
+          const double* o = &fp.out[12 * c];
+          for (int d = 0; d < 3; ++d) {
+            fe[3 * i + d] += o[d], fe[3 * j + d] -= o[d];
+            ft[3 * i + d] += o[3 + d], ft[3 * j + d] -= o[3 + d];
+            te[3 * i + d] += a[i] * o[6 + d], te[3 * j + d] += a[j] * o[6 + d];
+            tt[3 * i + d] += a[i] * o[9 + d], tt[3 * j + d] += a[j] * o[9 + d];
+          }
+        }
+      }
     }
     // Threads: each particle's forces gathered from its pairs, in the order of a serial sweep over the pairs.
 #pragma omp parallel for schedule(static) if (threaded)
     for (std::size_t q = 0; q < (threaded ? n : 0); ++q) {
-      double e[3] = {0.0, 0.0, 0.0}, t[3] = {0.0, 0.0, 0.0};
+      double e[3] = {0.0, 0.0, 0.0}, t[3] = {0.0, 0.0, 0.0}, te_q[3] = {0.0, 0.0, 0.0}, tt_q[3] = {0.0, 0.0, 0.0};
       const std::uint32_t mid = pl.start[q] + pl.as_j[q];
       for (std::uint32_t k = pl.start[q]; k < pl.start[q + 1]; ++k) {
         const std::uint32_t c = pl.by[k];
@@ -197,8 +235,18 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
           for (int d = 0; d < 3; ++d) e[d] += pf[c] * u[d], t[d] += pft[c] * u[d];
         else
           for (int d = 0; d < 3; ++d) e[d] -= pf[c] * u[d], t[d] -= pft[c] * u[d];
+        if constexpr (Fric) {  // the pair's tangential force and torques right after its normal force, as serially
+          const double* o = &fp.out[12 * c];
+          if (k < mid)  // q is j: the force on i reversed
+            for (int d = 0; d < 3; ++d) e[d] -= o[d], t[d] -= o[3 + d];
+          else
+            for (int d = 0; d < 3; ++d) e[d] += o[d], t[d] += o[3 + d];
+          for (int d = 0; d < 3; ++d) te_q[d] += a[q] * o[6 + d], tt_q[d] += a[q] * o[9 + d];
+        }
       }
       for (int d = 0; d < 3; ++d) fe[3 * q + d] = e[d], ft[3 * q + d] = t[d];
+      if constexpr (Fric)
+        for (int d = 0; d < 3; ++d) te[3 * q + d] = te_q[d], tt[3 * q + d] = tt_q[d];
     }
     // The sums, serially in the pairs' order.
     double virial = 0.0, stiff = 0.0, e_pot = 0.0, f_sum = 0.0, worst = 0.0;
@@ -221,6 +269,10 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     double e_kin = 0.0;
     for (std::size_t q = 0; q < n; ++q)
       e_kin += 0.5 * m[q] * (v[3 * q] * v[3 * q] + v[3 * q + 1] * v[3 * q + 1] + v[3 * q + 2] * v[3 * q + 2]);
+    if constexpr (Fric)  // and the rotations'
+      for (std::size_t q = 0; q < n; ++q)
+        e_kin += 0.5 * inertia[q] *
+                 (w_rot[3 * q] * w_rot[3 * q] + w_rot[3 * q + 1] * w_rot[3 * q + 1] + w_rot[3 * q + 2] * w_rot[3 * q + 2]);
     ratio = e_pot > 0.0 ? e_kin / e_pot : INFINITY;
     // The largest net elastic force on a particle over the mean contact force (measured only when asked:
     // it is the one criterion that reads every particle).
@@ -229,15 +281,23 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       for (std::size_t q = 0; q < n; ++q) net = std::max(net, std::hypot(fe[3 * q], fe[3 * q + 1], fe[3 * q + 2]));
       return net / (f_sum / contacts);
     };
+    // With friction also the largest net elastic torque over (mean contact force x mean radius).
+    const auto unbalanced_torque = [&] {
+      double net = 0.0;
+      for (std::size_t q = 0; q < n; ++q) net = std::max(net, std::hypot(te[3 * q], te[3 * q + 1], te[3 * q + 2]));
+      return net / (f_sum / contacts * (a_sum / n));
+    };
     if (contacts && std::abs(p - p_t) <= spec.pressure_tolerance * p_t && ratio <= spec.kinetic_ratio) {
       unb = unbalanced();
-      if (unb <= spec.unbalanced_force) {
+      if constexpr (Fric) res.unbalanced_torque = unbalanced_torque();
+      if (unb <= spec.unbalanced_force && (!Fric || res.unbalanced_torque <= spec.unbalanced_force)) {
         res.steps = s;
         break;
       }
     }
-    // Near the target the finish takes over, from rest (docs/random-packing.md step 5).
-    if (!minimising && spec.minimise_from > 0.0 && contacts && std::abs(p - p_t) <= spec.minimise_from * p_t) {
+    // Near the target the finish takes over, from rest (docs/random-packing.md step 5); a frictional
+    // packing is no enthalpy minimum: the damped servo to the end.
+    if (!Fric && !minimising && spec.minimise_from > 0.0 && contacts && std::abs(p - p_t) <= spec.minimise_from * p_t) {
       minimising = true;
       handover = s;
       zeta = 0.0;
@@ -255,9 +315,13 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     }
     if (s == spec.max_steps)
       throw InputError("random.max_steps = " + std::to_string(spec.max_steps) + ": the compression did not reach its target (" +
-                       state(s, p, ratio, unb) + "; wanted |p/p_target - 1| <= " + fmt("%g", spec.pressure_tolerance) +
+                       (minimising && p_goal > p_t ? "stopped at the preload p* = " + fmt("%g", p_goal) + " Pa, " : std::string()) +
+                       state(s, p, ratio, unb) +
+                       (Fric ? ", unbalanced torque " + fmt("%g", res.unbalanced_torque) : std::string()) +
+                       "; wanted |p/p_target - 1| <= " + fmt("%g", spec.pressure_tolerance) +
                        ", E_kin/E_pot <= " + fmt("%g", spec.kinetic_ratio) + ", unbalanced <= " +
-                       fmt("%g", spec.unbalanced_force) + "); allowed: a larger max_steps or looser tolerances");
+                       fmt("%g", spec.unbalanced_force) + (Fric ? " (force and torque)" : "") +
+                       "); allowed: a larger max_steps or looser tolerances");
     if (minimising) {
       fire_step(volume, p);
     } else {
@@ -280,9 +344,18 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
           double& xq = x[3 * q + d];
           xq = (xq + dt * v[3 * q + d]) * grow;
           xq -= L[d] * std::floor(xq / L[d]);
+          if constexpr (Fric) w_rot[3 * q + d] = (w_rot[3 * q + d] + dt * tt[3 * q + d] / inertia[q]) * drag;
         }
     }
-    if (pl.stale(x, L, a_max, skin, scale, threaded)) pl.build(x, a, L, a_max, skin, scale);
+    if (pl.stale(x, L, a_max, skin, scale, threaded)) {
+      if constexpr (Fric) {  // the springs carried to the new list by their pairs
+        const std::vector<std::uint32_t> old_i = pl.i, old_j = pl.j;
+        pl.build(x, a, L, a_max, skin, scale);
+        fp.carry(old_i, old_j, pl);
+      } else {
+        pl.build(x, a, L, a_max, skin, scale);
+      }
+    }
     if (progress && s % 2000 == 0) {
       const auto now = std::chrono::steady_clock::now();
       if (now - clock_last > std::chrono::seconds(2)) {
@@ -294,7 +367,16 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
   for (std::size_t q = 0; q < n; ++q) gas.particles[q].centre = Vec3(x[3 * q], x[3 * q + 1], x[3 * q + 2]);
   gas.box.lo = {0.0, 0.0, 0.0};
   gas.box.hi = L;
-  const PackingStats st = measure(gas);
+  const PackingStats st = measure(gas, Fric ? 2 : 4);
+  if constexpr (Fric)  // the springs of the touching pairs, the history the system file keeps
+    for (std::size_t c = 0; c < pl.i.size(); ++c) {
+      if (pf[c] < 0.0) continue;
+      SpringHistory h;
+      h.i = pl.i[c], h.j = pl.j[c];
+      for (int d = 0; d < 3; ++d) h.xi[d] = fp.xi[3 * c + d];
+      res.springs.push_back(h);
+      res.sliding += fp.sliding[c];
+    }
   res.pressure = p;
   res.minimise_steps = handover < 0 ? 0 : res.steps - handover;
   res.kinetic_ratio = ratio;
@@ -310,7 +392,9 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
 
 Preparation compress(Packing& gas, const RandomSpec& spec, const contact::NormalForm& law,
                      const std::function<void(const std::string&)>& progress) {
-  return contact::with_normal(law, [&](const auto& form) { return compress_with(gas, spec, form, progress); });
+  return contact::with_normal(law, [&](const auto& form) {
+    return spec.friction > 0.0 ? compress_with<true>(gas, spec, form, progress) : compress_with<false>(gas, spec, form, progress);
+  });
 }
 
 }  // namespace granwave::packing

@@ -95,7 +95,7 @@ std::vector<Touch> touching_pairs(const Packing& packing) {
   return out;
 }
 
-PackingStats measure(const Packing& packing) {
+PackingStats measure(const Packing& packing, int min_contacts) {
   PackingStats s;
   const auto& ps = packing.particles;
   s.particles = ps.size();
@@ -122,7 +122,7 @@ PackingStats measure(const Packing& packing) {
   s.mean_coordination = 2.0 * static_cast<double>(touches.size()) / static_cast<double>(ps.size());
   std::size_t zsum = 0;
   for (int zi : z) {
-    if (zi < 4) ++s.rattlers;
+    if (zi < min_contacts) ++s.rattlers;
     else zsum += static_cast<std::size_t>(zi);
   }
   if (s.rattlers < ps.size())

@@ -21,12 +21,14 @@ struct PackingStats {
   std::size_t particles = 0, contacts = 0;
   double solid_fraction = 0.0;          // sphere volume over box volume
   double mean_coordination = 0.0;       // 2 contacts / particles
-  double mean_coordination_nonrattler = 0.0;  // over particles with at least 4 contacts
-  std::size_t rattlers = 0;             // particles with fewer than 4 contacts
+  double mean_coordination_nonrattler = 0.0;  // over particles with at least min_contacts contacts
+  std::size_t rattlers = 0;             // particles with fewer than min_contacts contacts
   double mean_overlap = 0.0, max_overlap = 0.0;  // over the smaller radius of each pair
   double r_min = 0.0, r_max = 0.0;
 };
 
-PackingStats measure(const Packing& packing);
+// Rattlers: fewer than min_contacts contacts (4 = d + 1 frictionless; 2 with friction, where a
+// particle with one contact cannot be in equilibrium but two opposite ones within the cone can).
+PackingStats measure(const Packing& packing, int min_contacts = 4);
 
 }  // namespace granwave::packing

@@ -29,7 +29,9 @@ struct RandomSpec {
   double density = 0.0;                    // kg/m^3
   double pressure = 0.0;                   // target isotropic pressure (Pa)
   double initial_solid_fraction = 0.3;     // of the gas
-  double damping = 0.98;                   // normal contact dashpot, fraction of critical
+  double friction = 0.0;                   // preparation_friction: Coulomb's mu of the compression (0: frictionless)
+  contact::TangentialForm tangential;      // the case's tangential spring (used when friction > 0)
+  double damping = 0.98;                   // normal (and tangential) contact dashpot, fraction of critical
   double background_damping = 1.0;         // drag rate on every velocity, in units of sqrt(d p/m)
   double inertia_number = 1e-2;            // bound on |strain rate| sqrt(m/(d p))
   double servo_time = 0.02;                // Berendsen's tau_p in units of sqrt(m/(d p)) (at least 10 steps)
@@ -43,17 +45,27 @@ struct RandomSpec {
 };
 
 // What the preparation reached (recorded in the system file).
+// A contact's tangential spring at the end of a frictional preparation (particles i < j, the spring
+// xi of contact/tangential_spring.hpp: the force on i is -k_t xi, j gets its opposite).
+struct SpringHistory {
+  std::uint32_t i = 0, j = 0;
+  double xi[3] = {0.0, 0.0, 0.0};
+};
+
 struct Preparation {
   long steps = 0;
   long minimise_steps = 0;          // of them, FIRE's on the enthalpy (0: the servo reached rest alone)
   double pressure = 0.0;            // Love-Weber pressure of the elastic contact forces (Pa)
   double kinetic_ratio = 0.0;       // E_kin / E_pot
   double unbalanced_force = 0.0;    // largest net force over the mean contact force
+  double unbalanced_torque = 0.0;   // with friction: largest net torque over (mean contact force x mean radius)
+  long sliding = 0;                 // with friction: contacts at the Coulomb limit at the end
   double solid_fraction = 0.0;
   double coordination = 0.0;        // 2 contacts / particles
-  double coordination_backbone = 0.0;  // z*: over the particles with at least 4 contacts
-  long rattlers = 0;                // particles with fewer than 4 contacts (frictionless)
+  double coordination_backbone = 0.0;  // z*: over the particles with at least 4 contacts (frictional: 2)
+  long rattlers = 0;                // particles with fewer than 4 contacts (frictionless), 2 (frictional)
   double time_step = 0.0;           // s
+  std::vector<SpringHistory> springs;  // with friction: every touching pair's spring (sorted by (i, j))
 };
 
 // Radii of `count` particles, particle q from the counter-based stream (seed, q).

@@ -171,3 +171,18 @@ def test_fixture_builder_refuses_a_random_packing(tmp_path):
     with pytest.raises(NotImplementedError, match="granwave build"):
         sysbuild.build(case, str(tmp_path / "system.h5"), HERE)
     assert not (tmp_path / "system.h5").exists()
+
+
+def test_reader_refuses_a_frictionally_prepared_packing(tmp_path):
+    # a friction-prepared random packing stands on its springs, which no other code's input carries:
+    # refused by name, never run unsprung
+    import h5py
+    path = tmp_path / "fric.h5"
+    with h5py.File(path, "w") as f:
+        f.attrs["model"] = "crystal"
+        f.attrs["generator"] = "random"
+        f.attrs["prepare_friction"] = 0.3
+        f["spring_pairs"] = np.zeros((0, 2), dtype=np.int64)
+        f["spring_xi"] = np.zeros((0, 3))
+    with pytest.raises(NotImplementedError, match="shear history"):
+        T.read_system(str(path))
