@@ -32,6 +32,10 @@ cmake -S . -B build-sanitize $(generator_for build-sanitize) -DCMAKE_BUILD_TYPE=
 # name up to its first '_'): a test executable left unbuilt would drop its tests from ctest silently.
 unit_targets=$(ls tests/unit/*.cpp | sed 's|.*/||; s|_.*||' | sort -u | sed 's/^/test_unit_/')
 cmake --build build-sanitize -j"$jobs" --target granwave granwave_testlaw $unit_targets
+# Catch2 registers an unbuilt executable as one unlabelled test named <target>_NOT_BUILT, which `-L unit` skips.
+if ctest --test-dir build-sanitize -N | grep -o 'test_unit_[a-z_]*_NOT_BUILT'; then
+  echo "test-all: a unit test executable above was not built: its tests would not run" >&2; exit 1
+fi
 stage "unit tests under sanitizers"
 # allocator_may_return_null: an impossible size read from a damaged file makes the HDF5 library ask for
 # terabytes; glibc's malloc then returns null and the library reports it, as the reader must see it.
