@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <initializer_list>
 #include <optional>
 #include <sstream>
@@ -21,6 +22,24 @@
 #include "core/error.hpp"
 
 namespace granwave::config {
+
+// The whole of a study's or case's file; `what` names it in the error ("study file").
+inline std::string read_file_text(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read the " + what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// [study] kind of a study file's text, or nothing (no such key, or not TOML): which loader takes it.
+inline std::optional<std::string> study_kind(const std::string& toml_text) {
+  try {
+    return toml::parse(toml_text)["study"]["kind"].value<std::string>();
+  } catch (const toml::parse_error&) {
+    return std::nullopt;
+  }
+}
 
 // Parses `text`; a syntax error becomes an InputError that names origin:line:col.
 inline toml::table parse_toml(const std::string& text, const std::string& origin) {

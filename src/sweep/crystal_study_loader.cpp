@@ -13,25 +13,11 @@
 namespace granwave::sweep {
 namespace {
 
-std::string text_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the study file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string text_of(const std::string& path) { return config::read_file_text(path, "study file"); }
 
 }  // namespace
 
-bool is_crystal_study(const std::string& toml_text) {
-  try {
-    const toml::table root = toml::parse(toml_text);
-    const auto kind = root["study"]["kind"].value<std::string>();
-    return kind && *kind == "crystal";
-  } catch (const toml::parse_error&) {
-    return false;
-  }
-}
+bool is_crystal_study(const std::string& toml_text) { return config::study_kind(toml_text) == "crystal"; }
 
 CrystalStudy parse_crystal_study(const std::string& text, const std::string& origin) {
   const config::TomlReader r(origin);

@@ -12,25 +12,11 @@
 namespace granwave::sweep {
 namespace {
 
-std::string packing_text_of(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the " + what);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string packing_text_of(const std::string& path, const std::string& what) { return config::read_file_text(path, what); }
 
 }  // namespace
 
-bool is_packing_study(const std::string& toml_text) {
-  try {
-    const toml::table root = toml::parse(toml_text);
-    const auto kind = root["study"]["kind"].value<std::string>();
-    return kind && *kind == "packing";
-  } catch (const toml::parse_error&) {
-    return false;
-  }
-}
+bool is_packing_study(const std::string& toml_text) { return config::study_kind(toml_text) == "packing"; }
 
 PackingStudy parse_packing_study(const std::string& text, const std::string& origin) {
   const config::TomlReader r(origin);

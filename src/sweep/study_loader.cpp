@@ -12,13 +12,7 @@
 namespace granwave::sweep {
 namespace {
 
-std::string read_text(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the " + what);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string read_text(const std::string& path, const std::string& what) { return config::read_file_text(path, what); }
 
 }  // namespace
 
