@@ -11,12 +11,6 @@
 #include "sweep/crystal_study.hpp"
 
 namespace granwave::sweep {
-namespace {
-
-std::string text_of(const std::string& path) { return config::read_file_text(path, "study file"); }
-
-}  // namespace
-
 bool is_crystal_study(const std::string& toml_text) { return config::study_kind(toml_text) == "crystal"; }
 
 CrystalStudy parse_crystal_study(const std::string& text, const std::string& origin) {
@@ -110,6 +104,6 @@ CrystalStudy parse_crystal_study(const std::string& text, const std::string& ori
   return s;
 }
 
-CrystalStudy load_crystal_study(const std::string& path) { return parse_crystal_study(text_of(path), path); }
+CrystalStudy load_crystal_study(const std::string& path) { return parse_crystal_study(config::read_file_text(path, "study file"), path); }
 
 }  // namespace granwave::sweep

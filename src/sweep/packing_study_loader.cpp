@@ -10,12 +10,6 @@
 #include "sweep/packing_study.hpp"
 
 namespace granwave::sweep {
-namespace {
-
-std::string packing_text_of(const std::string& path, const std::string& what) { return config::read_file_text(path, what); }
-
-}  // namespace
-
 bool is_packing_study(const std::string& toml_text) { return config::study_kind(toml_text) == "packing"; }
 
 PackingStudy parse_packing_study(const std::string& text, const std::string& origin) {
@@ -37,7 +31,7 @@ PackingStudy parse_packing_study(const std::string& text, const std::string& ori
   if (cp.is_relative()) cp = std::filesystem::path(origin).parent_path() / cp;
   if (!std::filesystem::exists(cp)) r.fail("study.case", "no such case file: " + cp.string(), st->get("case"));
   s.case_path = cp.string();
-  s.case_text = packing_text_of(s.case_path, "case file");
+  s.case_text = config::read_file_text(s.case_path, "case file");
   {  // The base case is prepared member by member (each at its own pressure and seed); here only its shape.
     const toml::table base = config::parse_toml(s.case_text, s.case_path);
     const auto lattice = base["crystal"]["lattice"].value<std::string>();
@@ -97,6 +91,6 @@ PackingStudy parse_packing_study(const std::string& text, const std::string& ori
   return s;
 }
 
-PackingStudy load_packing_study(const std::string& path) { return parse_packing_study(packing_text_of(path, "study file"), path); }
+PackingStudy load_packing_study(const std::string& path) { return parse_packing_study(config::read_file_text(path, "study file"), path); }
 
 }  // namespace granwave::sweep

@@ -10,12 +10,6 @@
 #include "sweep/spin_study.hpp"
 
 namespace granwave::sweep {
-namespace {
-
-std::string read_text(const std::string& path, const std::string& what) { return config::read_file_text(path, what); }
-
-}  // namespace
-
 SpinStudy parse_spin_study(const std::string& text, const std::string& origin) {
   const config::TomlReader r(origin);
   const toml::table root = config::parse_toml(text, origin);
@@ -90,7 +84,7 @@ SpinStudy parse_spin_study(const std::string& text, const std::string& origin) {
 }
 
 SpinStudy load_spin_study(const std::string& path) {
-  return parse_spin_study(read_text(path, "study file"), path);
+  return parse_spin_study(config::read_file_text(path, "study file"), path);
 }
 
 }  // namespace granwave::sweep
