@@ -15,7 +15,7 @@ def run(args) -> int:
     try:
         v = check(args.cases, args.codes, suite=args.suite, report=args.report, granwave=args.granwave,
                   tolerances=args.tolerances, timeout=args.timeout, resume=args.resume, suites=args.suites,
-                  no_studies=args.no_studies, fixture_system=args.fixture_system)
+                  no_studies=args.no_studies, fixture_system=args.fixture_system, jobs=args.jobs)
     except BadInput as e:
         print("crosscheck: %s" % e, file=sys.stderr)
         return 2
@@ -43,6 +43,7 @@ def main(argv=None) -> int:
     r.add_argument("--report", help="report directory (default crosscheck-report-DATE; never overwritten)")
     r.add_argument("--timeout", type=float, default=900, help="seconds per code run")
     r.add_argument("--granwave", help="granwave executable")
+    r.add_argument("--jobs", type=int, default=1, help="codes of a case run at once (default 1; each is one process)")
     r.add_argument("--tolerances", help="tolerance file (default crosscheck/tolerances.toml)")
     r.add_argument("--fixture-system", action="store_true",
                    help="TEST ONLY: build the system with the Python fixture builder instead of `granwave build`")

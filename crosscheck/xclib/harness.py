@@ -66,10 +66,11 @@ def _case_file(case, report_dir: str) -> str:
 
 
 def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=None, tolerances=None, timeout=900.0,
-          resume=False, suites=None, no_studies=False, fixture_system=False) -> Verdict:
+          resume=False, suites=None, no_studies=False, fixture_system=False, jobs=1) -> Verdict:
     """`crosscheck run` as a function: run each code on each case (paths, or objects with .name and
     .text such as granwave.Case) and on SUITE's cases and studies, compare, write the report in
     REPORT (default crosscheck-report-DATE, never overwritten unless RESUME) and return the Verdict.
+    JOBS: how many codes of a case run at once.
     CODES: a comma-separated string or a sequence of names. BadInput (a ValueError): an unknown code
     or suite, RESUME without REPORT, no case. Progress goes to stderr."""
     tol = load_tolerances(tolerances)
@@ -78,6 +79,8 @@ def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=No
         codes = RN.parse_codes(codes_text)
     except ValueError as e:
         raise BadInput(str(e)) from None
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise BadInput("--jobs: how many codes run at once, a whole number >= 1 (got %r)" % (jobs,))
     if resume and not report:
         raise BadInput("--resume needs --report DIR (the report directory of the run to finish)")
     cases = list(cases)
@@ -120,7 +123,7 @@ def check(cases=(), codes=RN.DEFAULT_CODES, suite=None, report=None, granwave=No
         def log(msg, name=res["case_name"]):
             print("crosscheck: %s: %s" % (name, msg), file=sys.stderr, flush=True)
 
-        res["runs"] = RN.run_codes(cp, res["system"], casedir, codes, timeout, granwave_exe, resume, log)
+        res["runs"] = RN.run_codes(cp, res["system"], casedir, codes, timeout, granwave_exe, resume, log, jobs)
         traces, measures, vmeasures = {}, {}, {}
         for code, r in res["runs"].items():
             if r["status"] != "ok":

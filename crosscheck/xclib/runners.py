@@ -255,19 +255,26 @@ def _trace_attrs(path: str) -> dict:
         return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
 
 
-def run_codes(case_path, system_path, casedir, codes, timeout, granwave, resume=False, log=None) -> dict:
+def run_codes(case_path, system_path, casedir, codes, timeout, granwave, resume=False, log=None, jobs=1) -> dict:
     """Each code in casedir/<code>/, then the convention twins of granwave (casedir/granwave~<code>/:
     the case with that code's conventions) for every code whose recorded conventions differ from
     granwave's where they matter. Returns {name: result}; a twin's result has `twin_of` (the codes
-    it is judged against) and `conventions`."""
-    results = {}
-    for code in codes:
+    it is judged against) and `conventions`. JOBS > 1: that many codes run at once (each in its own
+    directory and process; their wall times then include the sharing of the cores)."""
+    def one(code):
         if log:
             log("running %s ..." % code)
-        results[code] = run_code(code, case_path, system_path, os.path.join(casedir, code), timeout, granwave, resume)
+        r = run_code(code, case_path, system_path, os.path.join(casedir, code), timeout, granwave, resume)
         if log:
-            log("%s %s (%.1f s)%s" % (code, results[code]["status"], results[code].get("wall_s") or 0,
-                                      " (resumed)" if results[code].get("resumed") else ""))
+            log("%s %s (%.1f s)%s" % (code, r["status"], r.get("wall_s") or 0, " (resumed)" if r.get("resumed") else ""))
+        return r
+
+    if jobs > 1 and len(codes) > 1:
+        from concurrent.futures import ThreadPoolExecutor
+        with ThreadPoolExecutor(max_workers=jobs) as pool:
+            results = dict(zip(codes, pool.map(one, codes)))
+    else:
+        results = {code: one(code) for code in codes}
     if "granwave" not in codes:
         return results
     case, text = T.load_case(case_path)

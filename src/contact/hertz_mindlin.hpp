@@ -33,6 +33,7 @@
 // finishes sticking contacts and defers sliding ones (the slip's root and divisions) to the exact
 // evaluation, as contact/linear_luding.hpp does.
 #pragma once
+#include "core/inline.hpp"
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -142,22 +143,22 @@ struct HertzMindlinLaw {
   }
 
   // Any contact: sticking or sliding (eqs. (5), (7), (8)).
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const {
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h) const {
     double f_n;
     return respond<true>(c, h, f_n);
   }
   // The kernel's vector sweep: sticking contacts finished, sliding ones deferred to the exact
   // evaluation above (their root and divisions cost more than the rest of the law), bit for bit
   // the same results as evaluating every contact exactly.
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h, Deferrable) const
     requires(H != MindlinHistory::none)
   {
     double f_n;
     return respond<false>(c, h, f_n);
   }
   // The same, also giving f_n as the Coulomb limit read it (the limits of contact/rolling_torsion.hpp).
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, double& f_n) const { return respond<true>(c, h, f_n); }
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable, double& f_n) const
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h, double& f_n) const { return respond<true>(c, h, f_n); }
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h, Deferrable, double& f_n) const
     requires(H != MindlinHistory::none)
   {
     return respond<false>(c, h, f_n);
@@ -169,7 +170,7 @@ struct HertzMindlinLaw {
   struct Normal {
     double a, f_elastic, f_n;
   };
-  [[gnu::always_inline]] Normal normal_of(const Contact& c) const {
+  GRANWAVE_ALWAYS_INLINE Normal normal_of(const Contact& c) const {
     const double d = select(c.delta > 0.0, c.delta, 0.0);
     const double r_eff = c.a_i * c.a_j / (c.a_i + c.a_j);
     const double a = std::sqrt(r_eff * d);  // contact radius
@@ -183,7 +184,7 @@ struct HertzMindlinLaw {
   }
 
   template <bool Exact>
-  [[gnu::always_inline]] Response respond(const Contact& c, History& h, double& f_n_out) const {
+  GRANWAVE_ALWAYS_INLINE Response respond(const Contact& c, History& h, double& f_n_out) const {
     const auto [a, f_elastic, f_n] = normal_of(c);
     f_n_out = f_n;
     // The dashpot's work (or a clipped pull's).

@@ -9,6 +9,7 @@
 // law's: the vectorised evaluation finishes every sticking contact and defers the sliding ones
 // (case (2) needs a root and divisions) to the exact evaluation.
 #pragma once
+#include "core/inline.hpp"
 #include <string>
 #include <type_traits>
 
@@ -58,20 +59,20 @@ struct LinearLudingLaw {
   }
 
   // Sticking contacts, branch-free; a contact that slides is deferred.
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const {
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h, Deferrable) const {
     double f_n;
     return respond<false>(c, h, f_n);
   }
   // Any contact, eqs. (5), (7), (8).
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const {
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h) const {
     double f_n;
     return respond<true>(c, h, f_n);
   }
   // The same, also giving f_n as the Coulomb limit read it (the limits of contact/rolling_torsion.hpp).
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable, double& f_n) const {
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h, Deferrable, double& f_n) const {
     return respond<false>(c, h, f_n);
   }
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, double& f_n) const { return respond<true>(c, h, f_n); }
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h, double& f_n) const { return respond<true>(c, h, f_n); }
 
   // The spring's energy is lost when the contact opens.
   double opening_loss(const History& h) const { return 0.5 * tangential.kt * h.xi().squaredNorm(); }
@@ -86,13 +87,13 @@ struct LinearLudingLaw {
 
  private:
   // f_n of eq. (1), as the Coulomb limit reads it.
-  [[gnu::always_inline]] double normal_part(const Contact& c) const {
+  GRANWAVE_ALWAYS_INLINE double normal_part(const Contact& c) const {
     // Without a dashpot a touching contact never pulls, so clipping changes nothing.
     return Dashpots ? normal_force(normal, c.delta, c.delta_dot) : normal.kn * c.delta;
   }
 
   template <bool Exact>
-  [[gnu::always_inline]] Response respond(const Contact& c, History& h, double& f_n_out) const {
+  GRANWAVE_ALWAYS_INLINE Response respond(const Contact& c, History& h, double& f_n_out) const {
     const double f_n = normal_part(c);  // eq. (1) text
     f_n_out = f_n;
     // Dissipated normally: the work of (f_n - k delta) against the approach (dashpot, or a clipped pull).

@@ -20,6 +20,7 @@
 // dashpots' and the slips' losses. Small turns: angular springs k_r a'^2 and k_o a'^2 (N m/rad) on
 // the relative turn (theory/lattice_dynamics.hpp).
 #pragma once
+#include "core/inline.hpp"
 #include <cmath>
 #include <string>
 
@@ -82,10 +83,10 @@ struct WithRollingTorsion {
     twist = rt.torsion();
   }
 
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h, Deferrable) const {
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h, Deferrable) const {
     return respond<false>(c, h);
   }
-  [[gnu::always_inline]] Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
+  GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
 
   double opening_loss(const History& h) const { return base.opening_loss(h.base) + own_energy(h); }
   void add_stored_energy(double& e, double delta, const History& h, double a_i, double a_j) const {
@@ -106,7 +107,7 @@ struct WithRollingTorsion {
   double own_energy(const History& h) const { return 0.5 * roll.kt * h.xi_r().squaredNorm() + 0.5 * twist.kt * (h.o * h.o); }
 
   template <bool Exact>
-  [[gnu::always_inline]] Response respond(const Contact& c, History& h) const {
+  GRANWAVE_ALWAYS_INLINE Response respond(const Contact& c, History& h) const {
     Response r;
     double f_n;  // computed once, by the base's own evaluation
     if constexpr (Exact)

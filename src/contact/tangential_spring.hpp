@@ -13,6 +13,7 @@
 // error that acts as negative damping). In the sliding case the spring reset by (7) is then
 // advanced by the next step's displacement, as a sticking spring is.
 #pragma once
+#include "core/inline.hpp"
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -123,7 +124,7 @@ struct CoulombLimit {
   // The dynamic case (2) applies to a test force of squared magnitude magnitude2.
   bool slides(double magnitude2) const { return magnitude2 > limit * limit; }
 };
-[[gnu::always_inline]] inline CoulombLimit coulomb_limit(double mu_static, double mu_dynamic, bool on_magnitude,
+GRANWAVE_ALWAYS_INLINE inline CoulombLimit coulomb_limit(double mu_static, double mu_dynamic, bool on_magnitude,
                                                          double f_n, bool was_sliding) {
   const double f_pos = select(on_magnitude, std::abs(f_n), select(f_n < 0.0, 0.0, f_n));  // max(f_n, 0)
   const double f_static = mu_static * f_pos;    // f_C^s
@@ -177,7 +178,7 @@ inline TangentialResult sliding_force(const TangentialSpringParams& p, const Tan
 // power gamma |v|^2 dt plus the slip (sliding_force's slip_loss); without a spring (k = 0) all of
 // -f . v dt. Dashpot = false: the slip alone.
 template <bool Dashpot>
-[[gnu::always_inline]] inline double spring_dashpot_loss(const TangentialSpringParams& p, const Vec3& f, const Vec3& v,
+GRANWAVE_ALWAYS_INLINE inline double spring_dashpot_loss(const TangentialSpringParams& p, const Vec3& f, const Vec3& v,
                                                          double dt, double slip_loss) {
   if constexpr (Dashpot)
     return select(p.kt == 0.0, -f.dot(v) * dt, p.gamma_t * v.squaredNorm() * dt + slip_loss);

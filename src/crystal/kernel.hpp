@@ -16,6 +16,7 @@
 // A law from outside (a test, a new model) runs through the same kernel:
 //   crystal::Dynamics dyn(packing, crystal::model_of(MyLaw{...}), dt);
 #pragma once
+#include "core/inline.hpp"
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -63,7 +64,7 @@ class LayerSum {
 
 // f(0), ..., f(N - 1), unrolled (history columns).
 template <std::size_t N, class F>
-__attribute__((always_inline)) inline void for_columns(F&& f) {
+GRANWAVE_ALWAYS_INLINE inline void for_columns(F&& f) {
   [&]<std::size_t... Q>(std::index_sequence<Q...>) { (f(Q), ...); }(std::make_index_sequence<N>{});
 }
 
@@ -107,7 +108,7 @@ struct ListColumns {
 // contact that loses stored energy is deferred. Returns whether the contact was deferred; `res`
 // and `open` (no force) are the caller's (a returned struct is not vectorised).
 template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
-[[gnu::always_inline]] inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
+GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
                                                     double* cdelta, std::int64_t c, double bx, double by, double bz,
                                                     double reach, double a_i, double a_j, const contact::Vec3& dv,
                                                     const contact::Vec3& w_i, const contact::Vec3& w_j, double inc,
@@ -156,7 +157,7 @@ template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
 // one(c, vector_sweep) over the contacts [c0, c1) (at most N): with a law that defers contacts,
 // the vector sweep, then (after on_deferred()) the exact sweep over those it deferred.
 template <bool Defers, std::int64_t N, class One, class OnDeferred>
-[[gnu::always_inline]] inline void sweep_contacts(std::int64_t c0, std::int64_t c1, const One& one,
+GRANWAVE_ALWAYS_INLINE inline void sweep_contacts(std::int64_t c0, std::int64_t c1, const One& one,
                                                   const OnDeferred& on_deferred) {
   if constexpr (Defers) {
     std::int32_t deferred[N];
@@ -203,7 +204,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
   // share them by reference, which the vectoriser cannot see through).
   // shx[u], shy[u]: the image offsets of j (m) of contact c = c0 + u of the block.
   auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, auto vector_sweep)
-                 __attribute__((always_inline)) -> bool {
+                 GRANWAVE_ALWAYS_INLINE -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     const int i = ci[c], j = cj[c];
     const double bx = px[j] + shx[u] - px[i];  // image_x box_x, as the neighbour search takes it
@@ -228,7 +229,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
 #ifdef GRANWAVE_GATHER_VECTORS
   if (!d.threaded()) sum_rows = d.begin_contact_sums(rows = 1);
 #endif
-  auto range = [=](std::int64_t c0, std::int64_t c1) __attribute__((always_inline)) {
+  auto range = [=](std::int64_t c0, std::int64_t c1) GRANWAVE_ALWAYS_INLINE {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
     for (std::int64_t c = c0; c < c1; ++c) {
       shx[c - c0] = imx[c] * box_x;
@@ -238,7 +239,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
       for (std::int64_t c = c0; c < c1; ++c) shx[c - c0] += imy[c] * shift_x;
     sweep_contacts<contact::DefersContacts<Law>, kBlock>(
         c0, c1,
-        [&](std::int64_t c, auto vector_sweep) __attribute__((always_inline)) {
+        [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
           return one(c, c - c0, shx, shy, vector_sweep);
         },
         [] {});
@@ -323,7 +324,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   // by value (OpenMP would share them by reference, which the vectoriser cannot see through).
   using Out = Sums<Couples ? 9 : 6>;
   auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, auto vector_sweep, auto scatter_sweep)
-                 __attribute__((always_inline)) -> bool {
+                 GRANWAVE_ALWAYS_INLINE -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     constexpr bool Scatter = decltype(scatter_sweep)::value;
     // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j, the spins
@@ -358,12 +359,12 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
-  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) __attribute__((always_inline)) {
+  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) GRANWAVE_ALWAYS_INLINE {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
-    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o) __attribute__((always_inline)) {
+    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o) GRANWAVE_ALWAYS_INLINE {
       sweep_contacts<Defers, kChunk>(
           s0, s1,
-          [&](std::int64_t c, auto vector_sweep) __attribute__((always_inline)) {
+          [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
             return one(c, c - s0, g, o, vector_sweep, scatter_sweep);
           },
           [=] {

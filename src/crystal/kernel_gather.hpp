@@ -1,6 +1,7 @@
 // The contact kernel's data movement (crystal/kernel.hpp): the gather of particle data into
 // columns for a chunk of contacts, and the one-thread scatter of contact sums into per-particle rows.
 #pragma once
+#include "core/inline.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -49,10 +50,10 @@ struct Gathered {
 // pairs otherwise); +, - are lane-wise IEEE operations.
 typedef double V4 __attribute__((vector_size(32)));
 typedef double V4u __attribute__((vector_size(32), aligned(8), may_alias));  // for unaligned loads, stores
-[[gnu::always_inline]] inline V4 load4(const double* p) { return *reinterpret_cast<const V4u*>(p); }
-[[gnu::always_inline]] inline void store4(double* p, const V4& v) { *reinterpret_cast<V4u*>(p) = v; }
+GRANWAVE_ALWAYS_INLINE inline V4 load4(const double* p) { return *reinterpret_cast<const V4u*>(p); }
+GRANWAVE_ALWAYS_INLINE inline void store4(double* p, const V4& v) { *reinterpret_cast<V4u*>(p) = v; }
 // The 4 x 4 transpose: rows r0..r3 in, columns c0..c3 out (and back).
-[[gnu::always_inline]] inline void transpose4(const V4& r0, const V4& r1, const V4& r2, const V4& r3, V4& c0, V4& c1,
+GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const V4& r2, const V4& r3, V4& c0, V4& c1,
                                               V4& c2, V4& c3) {
   const V4 t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);  // r0x r1x r0z r1z
   const V4 t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);  // r0y r1y r0a r1a
@@ -67,7 +68,7 @@ typedef double V4u __attribute__((vector_size(32), aligned(8), may_alias));  // 
 
 // rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0. The rows of particles
 // [p0, p1), four at a time where it can (also the one-thread drift's, Dynamics::kick_drift).
-[[gnu::always_inline]] inline void fill_rows(const Dynamics& d, double* rows, std::int64_t p0, std::int64_t p1) {
+GRANWAVE_ALWAYS_INLINE inline void fill_rows(const Dynamics& d, double* rows, std::int64_t p0, std::int64_t p1) {
   const std::int64_t n = static_cast<std::int64_t>(d.size());
   double* __restrict pos = rows;
   double* __restrict vel = rows + 4 * n;
@@ -103,7 +104,7 @@ inline void fill_rows(const Dynamics& d, double* rows) {
 }
 
 // The columns of contacts [s0, s1) (at most kChunk) from the particle rows.
-[[gnu::always_inline]] inline void gather(Gathered& g, std::int64_t s0, std::int64_t s1,
+GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int64_t s1,
                                           const std::int32_t* ci, const std::int32_t* cj, const std::int8_t* imx,
                                           const std::int8_t* imy, double box_x, double box_y, const double* pos,
                                           const double* vel, const double* rot) {
@@ -186,7 +187,7 @@ inline void move_images(Gathered& g, std::int64_t m, const std::int8_t* imx, con
 // root bit for bit while -reach/2 <= delta <= reach/4 (Sterbenz: the subtraction that made delta
 // was exact, and so is this one); a chunk with a contact outside that margin takes the root.
 // The same operations as crystal/observers.cpp's exact_end_arms, so the same bits.
-[[gnu::always_inline]] inline void end_arms_of_chunk(const Gathered& g, std::int64_t m, const double* __restrict delta,
+GRANWAVE_ALWAYS_INLINE inline void end_arms_of_chunk(const Gathered& g, std::int64_t m, const double* __restrict delta,
                                                      double* __restrict arm_u) {
   using G = Gathered;
   std::int32_t outside = 0;
@@ -221,7 +222,7 @@ struct ScatterState {
 
 // K rows of f | n x f^t | delta n x f^t, then with Couples the couple's row (row K).
 template <int K, bool Couples>
-[[gnu::always_inline]] inline void scatter_one(ScatterState<K + Couples>& st, double* __restrict rows, std::int64_t n,
+GRANWAVE_ALWAYS_INLINE inline void scatter_one(ScatterState<K + Couples>& st, double* __restrict rows, std::int64_t n,
                                                std::int64_t i, std::int64_t j, const V4& f, const V4& nf,
                                                double delta, const V4& couple) {
   constexpr int R = K + Couples;
@@ -252,7 +253,7 @@ template <int K, bool Couples>
 // The m contacts (their i, j, forces, n x f^t, overlaps, couples: cc, Couples only; indexed
 // from 0) into the rows.
 template <int K, bool Couples = false>
-[[gnu::always_inline]] inline void scatter(double* rows, std::int64_t n, std::int64_t m, const std::int32_t* ci,
+GRANWAVE_ALWAYS_INLINE inline void scatter(double* rows, std::int64_t n, std::int64_t m, const std::int32_t* ci,
                                            const std::int32_t* cj, const double* cfx, const double* cfy,
                                            const double* cfz, const double* cnx, const double* cny,
                                            const double* cnz, const double* cdelta, const double* ccx = nullptr,

@@ -6,6 +6,7 @@
 // The sums of different layers are independent: walking G layers' terms side by side runs G
 // chains at once, each layer still adding its own terms in its own order (the same bits).
 #pragma once
+#include "core/inline.hpp"
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -53,7 +54,7 @@ struct LayerLists {
 namespace layer_sums {
 
 template <std::size_t N, class F>
-[[gnu::always_inline]] inline void unrolled(F&& f) {
+GRANWAVE_ALWAYS_INLINE inline void unrolled(F&& f) {
   [&]<std::size_t... K>(std::index_sequence<K...>) { (f(K), ...); }(std::make_index_sequence<N>{});
 }
 
@@ -61,7 +62,7 @@ template <std::size_t N, class F>
 // then each layer's rest.
 // Consecutive: entry t of a list is its first entry + t.
 template <std::size_t G, bool Consecutive, std::size_t Q, class Add>
-[[gnu::always_inline]] inline void group(const LayerLists& ll, std::size_t L0, const std::array<double*, Q>& s,
+GRANWAVE_ALWAYS_INLINE inline void group(const LayerLists& ll, std::size_t L0, const std::array<double*, Q>& s,
                                          const Add& add) {
   std::array<std::array<double, Q>, G> acc;
   std::array<const std::int32_t*, G> e;

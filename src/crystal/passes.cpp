@@ -22,6 +22,7 @@
 #include <type_traits>
 
 #include "core/error.hpp"
+#include "core/inline.hpp"
 #include "crystal/kernel.hpp"
 #include "crystal/neighbors.hpp"
 
@@ -38,12 +39,12 @@ typedef long long V4m __attribute__((vector_size(32)));  // lane masks
 typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
 
 // The `mobile` flags of particles p..p+3 as lane masks.
-[[gnu::always_inline]] inline V4m mobile4(const std::uint8_t* on, std::int64_t p) {
+GRANWAVE_ALWAYS_INLINE inline V4m mobile4(const std::uint8_t* on, std::int64_t p) {
   return V4m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
 }
 // Four rows of a per-particle sum (Dynamics::contact_sums) as x, y, z lanes; the rows are
 // zeroed for the next contact pass.
-[[gnu::always_inline]] inline void take_rows(double* r, V4& cx, V4& cy, V4& cz) {
+GRANWAVE_ALWAYS_INLINE inline void take_rows(double* r, V4& cx, V4& cy, V4& cz) {
   const V4 zero{0.0, 0.0, 0.0, 0.0};
   V4 unused;
   kernel::transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
@@ -53,7 +54,7 @@ typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
 // arm (Rows = 3) + 1/2 (sum delta n x f^t), then with Couples + (sum of the couples, rows rc);
 // zero without torques (Rows = 1).
 template <int Rows, bool Couples>
-[[gnu::always_inline]] inline void torques_of_rows(double* rn, double* rd, double* rc, const double* a, std::int64_t p,
+GRANWAVE_ALWAYS_INLINE inline void torques_of_rows(double* rn, double* rd, double* rc, const double* a, std::int64_t p,
                                                    V4& tx, V4& ty, V4& tz) {
   tx = ty = tz = V4{0.0, 0.0, 0.0, 0.0};
   if constexpr (Rows >= 2) {
@@ -77,7 +78,7 @@ template <int Rows, bool Couples>
 // `Kicks` half kicks of one velocity component of the mobile ones of particles p..p+3,
 // v += h f / m each (f / m: `inv` is 1/m or 1/I).
 template <int Kicks>
-[[gnu::always_inline]] inline V4 kicked4(const V4& v, const V4& f, const V4m& m, const V4& hv, const V4& inv) {
+GRANWAVE_ALWAYS_INLINE inline V4 kicked4(const V4& v, const V4& f, const V4m& m, const V4& hv, const V4& inv) {
   V4 out = v;
   for (int k = 0; k < Kicks; ++k) out = m ? out + hv * f * inv : out;
   return out;
@@ -85,7 +86,7 @@ template <int Kicks>
 // Kicks and drift of one coordinate of particles p..p+3 (x += dt v for the mobile ones); returns
 // the displacement since the list's build, (x - x0) - x_build.
 template <int Kicks>
-[[gnu::always_inline]] inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const float* rb,
+GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const float* rb,
                                              const V4m& m, const V4& hv, const V4& dtv, const V4& inv_m,
                                              std::int64_t p) {
   const V4 v1 = kicked4<Kicks>(load4(v + p), f, m, hv, inv_m);
@@ -112,7 +113,7 @@ struct ParticleOut {
         vx(d.vx.data()), vy(d.vy.data()), vz(d.vz.data()), wx(d.wx.data()), wy(d.wy.data()), wz(d.wz.data()),
         a(d.radius.data()), im(d.inv_mass.data()), ii(d.inv_inertia.data()), on(d.mobile.data()) {}
   template <bool Kick, bool StoreTorque, bool Spin>
-  [[gnu::always_inline]] void store(std::int64_t p, double h, double sx, double sy, double sz, double tqx, double tqy,
+  GRANWAVE_ALWAYS_INLINE void store(std::int64_t p, double h, double sx, double sy, double sz, double tqx, double tqy,
                                     double tqz) const {
     fx[p] = sx;
     fy[p] = sy;
@@ -164,12 +165,12 @@ void Dynamics::particle_pass(double h) {
   const double* __restrict ccz = C.couple_z.data();
   const double* __restrict a = radius.data();
   const ParticleOut out(*this);
-  auto one = [&](std::int64_t p) __attribute__((always_inline)) {
+  auto one = [&](std::int64_t p) GRANWAVE_ALWAYS_INLINE {
     double sx = 0.0, sy = 0.0, sz = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
     double dnx = 0.0, dny = 0.0, dnz = 0.0;  // sum(delta_c n x f^t), ContactPointArm only
     double mx = 0.0, my = 0.0, mz = 0.0;     // sum of the couples, Couples only
     // Both spheres feel -a n x f^t; j gets -f (s + (-f) is s - f).
-    auto add = [&](std::int32_t c, auto as_j) __attribute__((always_inline)) {
+    auto add = [&](std::int32_t c, auto as_j) GRANWAVE_ALWAYS_INLINE {
       if constexpr (decltype(as_j)::value) {
         sx -= cfx[c];
         sy -= cfy[c];
@@ -342,7 +343,7 @@ Drift Dynamics::kick_drift(std::int64_t from) {
   // [q0, q1); each particle's displacement since the build is compared as its square against
   // far2_ (the same decision as sqrt(max d^2) > skin/2; a NaN counts as not far, as std::max
   // ignored it). ivdep: the captured pointers lose __restrict, and each p touches only its own entries.
-  auto range = [=](std::int64_t q0, std::int64_t q1) __attribute__((always_inline)) -> std::int64_t {
+  auto range = [=](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
     std::int64_t far = 0;
 #pragma GCC ivdep
     for (std::int64_t p = q0; p < q1; ++p) {
