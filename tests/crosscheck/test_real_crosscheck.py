@@ -50,10 +50,12 @@ def test_yade_liggghts_lammps_agree_on_fixture_systems(tmp_path):
 @needs_codes
 @needs_lammps
 def test_four_codes(tmp_path):
+    """Two codes at a time (--jobs 2, as the README's first command runs the check): each run in its own
+    directory and process, so the verdict is that of one at a time."""
     gw = harness.find_granwave(None)
     if gw is None:
         pytest.skip("granwave not built")
-    p, report = _run(["--codes", "granwave,yade,liggghts,lammps", "--granwave", gw, *CASES], tmp_path)
+    p, report = _run(["--codes", "granwave,yade,liggghts,lammps", "--granwave", gw, "--jobs", "2", *CASES], tmp_path)
     for pair in ("granwave-yade", "yade-liggghts", "granwave-lammps", "yade-lammps", "liggghts-lammps"):
         assert "| %s | trace_max_rel |" % pair in report, (pair, p.stdout + p.stderr)
     assert p.returncode == 0, p.stdout

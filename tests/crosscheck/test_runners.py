@@ -103,6 +103,11 @@ def test_unknown_codes_are_refused_with_the_allowed_list():
     assert p.returncode == 2 and "abaqus" in p.stderr
 
 
+def test_jobs_below_one_are_refused():
+    p = subprocess.run([XC, "run", "--jobs", "0", CHAIN], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 2 and "--jobs" in p.stderr and ">= 1" in p.stderr
+
+
 def test_twins_run_the_conventions_a_code_recorded():
     """LAMMPS' gran/hooke/history records the radius arm and "allow"; granwave ran the case's
     contact point and "clip": one twin, with every convention that matters under "allow"."""
