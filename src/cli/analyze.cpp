@@ -18,7 +18,7 @@
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--pulse-field P] [--t-max T]
+constexpr const char* kAnalyzeHelp = R"(usage: granwave analyze TRACES.h5 [--json] [--layers LO:HI] [--field F] [--pulse-field P] [--t-max T]
                         [--period oscillation|pulse] [--wavenumber-speed displacement_peak|first_peak]
 
 Measures a trace file of any code (granwave, yade, liggghts; data/SCHEMA.md §3) with the one set
@@ -147,7 +147,7 @@ int cmd_analyze(const Args& args) { return cmd_analyze(args, std::cout); }
 
 int cmd_analyze(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    out << kHelp;
+    out << kAnalyzeHelp;
     return 0;
   }
   const auto pos = positionals(args, {"--layers", "--field", "--pulse-field", "--t-max", "--period", "--wavenumber-speed"});

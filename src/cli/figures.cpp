@@ -16,7 +16,7 @@ namespace granwave::cli {
 namespace {
 namespace fs = std::filesystem;
 
-constexpr const char* kHelp = R"(usage: granwave figures chain|crystal [--out DIR] [--threads N] [--quiet]
+constexpr const char* kFiguresHelp = R"(usage: granwave figures chain|crystal [--out DIR] [--threads N] [--quiet]
        granwave figures packing STUDY.h5 [--out DIR]   (granwave figures packing --help)
 
 chain: runs the studies data/studies/fig6.toml, fig7.toml and app3_n50.toml afresh (granwave
@@ -121,7 +121,7 @@ int cmd_figures(const Args& args) {
   // `figures packing --help` is the packing figures' own help.
   if (!args.empty() && args[0] == "packing") return figures_packing(Args(args.begin() + 1, args.end()));
   if (wants_help(args) || args.empty()) {
-    std::cout << kHelp;
+    std::cout << kFiguresHelp;
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "chain") return figures_chain(args);

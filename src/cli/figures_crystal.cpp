@@ -10,7 +10,7 @@
 
 namespace granwave::cli {
 namespace {
-constexpr const char* kHelp = R"(usage: granwave figures crystal [--out DIR] [--quick]
+constexpr const char* kFiguresCrystalHelp = R"(usage: granwave figures crystal [--out DIR] [--quick]
 
 Seed 002 (Mouraille, Mulder & Luding 2006) from fresh runs: the damping, friction and
 polydispersity studies of data/studies/crystal_*.toml on the 3200-particle crystal, then
@@ -37,7 +37,7 @@ The full set takes about 4 minutes on 2 cores (33 wave runs of the 3200-particle
 
 int figures_crystal(const Args& args) {
   if (wants_help(args)) {
-    std::cout << kHelp;
+    std::cout << kFiguresCrystalHelp;
     return 0;
   }
   for (const auto& p : positionals(args, {"--out", "--threads"}))

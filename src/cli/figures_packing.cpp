@@ -9,7 +9,7 @@
 
 namespace granwave::cli {
 namespace {
-constexpr const char* kHelp = R"(usage: granwave figures packing STUDY.h5 [--out DIR] [--no-plot]
+constexpr const char* kFiguresPackingHelp = R"(usage: granwave figures packing STUDY.h5 [--out DIR] [--no-plot]
 
 From the study file that `granwave sweep` wrote for a [study] kind = "packing" (e.g.
 data/studies/random_pressure.toml; data/SCHEMA.md §6b), or from STUDY.h5.parts of a study still
@@ -28,7 +28,7 @@ running (the packings committed so far; summary.md says so):
 
 int figures_packing(const Args& args) {
   if (wants_help(args)) {
-    std::cout << kHelp;
+    std::cout << kFiguresPackingHelp;
     return 0;
   }
   const std::vector<std::string> valued{"--out"};

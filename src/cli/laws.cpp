@@ -17,7 +17,7 @@
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave laws [--json]
+constexpr const char* kLawsHelp = R"(usage: granwave laws [--json]
 
 Every contact law this build runs ([contact] law = NAME; the first is the default), with each of
 its [contact] keys: unit, allowed range, default and meaning. Friction's keys (mu_static,
@@ -84,7 +84,7 @@ int cmd_laws(const Args& args) { return cmd_laws(args, std::cout); }
 
 int cmd_laws(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    out << kHelp;
+    out << kLawsHelp;
     return 0;
   }
   for (const std::string& a : args)

@@ -12,7 +12,7 @@
 namespace granwave::cli {
 
 namespace {
-constexpr const char* kHelp = R"(usage: granwave observables [--json]
+constexpr const char* kObservablesHelp = R"(usage: granwave observables [--json]
 
 The crystal trace's observables, one table (src/crystal/observables.cpp): for each dataset its path,
 the `[output] fields` name that selects it, its shape ([nt] or [nt, nlayers]), its unit and how it is
@@ -26,7 +26,7 @@ const char* shape_name(crystal::Shape s) { return s == crystal::Shape::per_layer
 
 int cmd_observables(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    out << kHelp;
+    out << kObservablesHelp;
     return 0;
   }
   const bool json = has_flag(args, "--json");

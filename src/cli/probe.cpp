@@ -20,7 +20,7 @@
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave probe CASE.toml [--strain zz|zx|xx|yy|yx|all] [--amplitude E] [--tolerance T] [--json]
+constexpr const char* kProbeHelp = R"(usage: granwave probe CASE.toml [--strain zz|zx|xx|yy|yx|all] [--amplitude E] [--tolerance T] [--json]
   (--strain: one, a comma-separated list such as zz,yx, or all, the default)
 
 The static probe (issue 39): the simulation strains the crystal case's packing (as a run starts from
@@ -65,7 +65,7 @@ int cmd_probe(const Args& args) { return cmd_probe(args, std::cout); }
 
 int cmd_probe(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    out << kHelp;
+    out << kProbeHelp;
     return 0;
   }
   const std::vector<std::string> valued = {"--strain", "--amplitude", "--tolerance"};

@@ -17,7 +17,7 @@
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave sweep STUDY.toml [-o study.h5] [--quiet] [--threads N] [--no-stop]
+constexpr const char* kSweepHelp = R"(usage: granwave sweep STUDY.toml [-o study.h5] [--quiet] [--threads N] [--no-stop]
 
 Run a study (data/SCHEMA.md §4): for the spin chain of seed 001, every allowed M of each chain
 length with K random configurations, the seed's peak-force measure normalised by the M = 1 run,
@@ -54,7 +54,7 @@ int cmd_sweep(const Args& args, std::ostream& out) { return cmd_sweep(args, out,
 
 int cmd_sweep(const Args& args, std::ostream& out, sweep::StudyControl* control) {
   if (wants_help(args)) {
-    out << kHelp;
+    out << kSweepHelp;
     return 0;
   }
   const std::vector<std::string> valued{"-o", "--output", "--threads", "--limit", "--max-steps", "--max-memory"};

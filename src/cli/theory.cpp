@@ -29,7 +29,7 @@
 namespace granwave::cli {
 namespace {
 
-constexpr const char* kHelp = R"(usage: granwave theory CASE.toml [--json] [--layers LO:HI] [--nk N]
+constexpr const char* kTheoryHelp = R"(usage: granwave theory CASE.toml [--json] [--layers LO:HI] [--nk N]
 
 Continuum and lattice predictions for a crystal case (seed 002 secs. 2.1, 3.3, 3.4), from the
 packing's actual contact network (polydisperse packings are relaxed first, as in `build`):
@@ -166,7 +166,7 @@ int cmd_theory(const Args& args) { return cmd_theory(args, std::cout); }
 
 int cmd_theory(const Args& args, std::ostream& out) {
   if (wants_help(args)) {
-    out << kHelp;
+    out << kTheoryHelp;
     return 0;
   }
   for (std::size_t i = 0; i < args.size(); ++i) {
