@@ -104,6 +104,9 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   };
   s.pressure = *r.number_in(t, "random", "pressure", true, [](double v) { return v > 0; }, "> 0 (Pa, the target isotropic pressure)");
   s.friction = in("preparation_friction", 0.0, 10.0, false, 0.0, " (Coulomb's mu during the compression)");
+  if (s.friction > 0.0 && t.contains("start"))  // before the friction's own refusals: the path is frictionless
+    r.fail("random.start", "with random.preparation_friction > 0: a compression path loads by FIRE on the enthalpy, which a "
+           "frictional packing does not minimise; allowed: no key, or preparation_friction = 0", t.get("start"));
   s.damping = in("damping", 0.0, 1.0, true, 0.98, " (fraction of the critical damping of a contact)");
   s.background_damping = in("background_damping", 0.0, 1e3, false, 1.0, " (drag rate in units of sqrt(d p / m))");
   s.inertia_number = in("inertia_number", 0.0, 0.1, true, 1e-2, "");
@@ -197,9 +200,6 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
     std::filesystem::path sp(*v);
     if (sp.is_relative()) sp = std::filesystem::path(c.path).parent_path() / sp;
     start = sp.string();
-    if (s.friction > 0.0)
-      r.fail("random.start", "with random.preparation_friction > 0: a compression path loads by FIRE on the enthalpy, which a "
-             "frictional packing does not minimise; allowed: no key, or preparation_friction = 0", t.get("start"));
     if (!std::filesystem::exists(start)) r.fail("random.start", "no such saved packing: " + start, t.get("start"));
     s.start_static = true;
   }
