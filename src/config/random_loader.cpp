@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <numbers>
 
@@ -12,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "packing/checks.hpp"
+#include "packing/prepared_state.hpp"
 
 namespace granwave::config {
 
@@ -83,7 +85,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   r.allow_only(t, "random", {"distribution", "radius", "width", "radii", "fractions", "count", "shape", "seed", "pressure",
                              "preparation_friction", "damping", "background_damping", "inertia_number", "servo_time", "initial_solid_fraction",
                              "minimise_from", "preload_overlap", "pressure_tolerance", "kinetic_ratio", "unbalanced_force", "max_steps", "max_overlap",
-                             "source_thickness", "fixed_thickness", "bin_width", "relax_tolerance"});
+                             "start", "source_thickness", "fixed_thickness", "bin_width", "relax_tolerance"});
   packing::RandomSpec s;
   s.radii = read_radii(r, t);
   s.density = k.density;
@@ -102,6 +104,9 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   };
   s.pressure = *r.number_in(t, "random", "pressure", true, [](double v) { return v > 0; }, "> 0 (Pa, the target isotropic pressure)");
   s.friction = in("preparation_friction", 0.0, 10.0, false, 0.0, " (Coulomb's mu during the compression)");
+  if (s.friction > 0.0 && t.contains("start"))  // before the friction's own refusals: the path is frictionless
+    r.fail("random.start", "with random.preparation_friction > 0: a compression path loads by FIRE on the enthalpy, which a "
+           "frictional packing does not minimise; allowed: no key, or preparation_friction = 0", t.get("start"));
   s.damping = in("damping", 0.0, 1.0, true, 0.98, " (fraction of the critical damping of a contact)");
   s.background_damping = in("background_damping", 0.0, 1e3, false, 1.0, " (drag rate in units of sqrt(d p / m))");
   s.inertia_number = in("inertia_number", 0.0, 0.1, true, 1e-2, "");
@@ -189,10 +194,27 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
              t.get("pressure"));
   }
 
+  // A compression path's stage (docs/random-packing.md): a saved static packing instead of the gas.
+  std::string start;
+  if (auto v = r.string(t, "random", "start", false)) {
+    std::filesystem::path sp(*v);
+    if (sp.is_relative()) sp = std::filesystem::path(c.path).parent_path() / sp;
+    start = sp.string();
+    if (!std::filesystem::exists(start)) r.fail("random.start", "no such saved packing: " + start, t.get("start"));
+    s.start_static = true;
+  }
+
   packing::Packing pk;
   packing::Preparation prep;
   try {  // the generator's refusals name their key; here they get the case file's name
-    pk = packing::random_gas(s);
+    if (start.empty()) {
+      pk = packing::random_gas(s);
+    } else {
+      pk = packing::load_prepared(start).packing;
+      if (static_cast<long>(pk.particles.size()) != s.count)
+        throw InputError("random.start = " + start + " holds " + std::to_string(pk.particles.size()) + " particles, random.count = " +
+                         std::to_string(s.count) + "; allowed: a saved packing of the same count");
+    }
     prep = packing::compress(pk, s, form, [](const std::string& line) {
       std::cerr << "granwave: preparing the random packing: " << line << "\n";
     });

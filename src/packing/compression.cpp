@@ -104,8 +104,8 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     const double f4 = 4.0 * std::numbers::pi * d_mean * d_mean * pressure / (6.0 * 0.64);
     return std::numbers::pi * std::sqrt(0.5 * m_min / law(a_max, a_max, overlap_at_force(law, a_max, f4)).k);
   };
-  double p_goal = p_pre;
-  Fire fire(contact_time(p_pre));
+  double p_goal = spec.start_static ? p_t : p_pre;
+  Fire fire(contact_time(p_goal));
   double w = 0.0;
   const double box_mass = 0.5 * static_cast<double>(n) * m_mean * d_mean * d_mean;
   Preparation res;
@@ -297,7 +297,8 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     }
     // Near the target the finish takes over, from rest (docs/random-packing.md step 5); a frictional
     // packing is no enthalpy minimum: the damped servo to the end.
-    if (!Fric && !minimising && spec.minimise_from > 0.0 && contacts && std::abs(p - p_t) <= spec.minimise_from * p_t) {
+    if (!Fric && !minimising &&
+        (spec.start_static || (spec.minimise_from > 0.0 && contacts && std::abs(p - p_t) <= spec.minimise_from * p_t))) {
       minimising = true;
       handover = s;
       zeta = 0.0;

@@ -41,6 +41,10 @@ struct RandomSpec {
   double kinetic_ratio = 1e-8;             // E_kin / E_pot
   double unbalanced_force = 1e-3;          // largest net force over the mean contact force
   long max_steps = 2000000;
+  // The packing handed to compress() is a static packing at another pressure (a compression path's
+  // previous stage), not a gas: FIRE on the enthalpy at `pressure` from the first step, no servo, no
+  // preload (docs/random-packing.md, "A compression path").
+  bool start_static = false;
   std::size_t parallel_min_particles = 20000;  // threads from this many particles on (not a key: the route test lowers it)
 };
 

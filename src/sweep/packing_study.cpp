@@ -24,6 +24,7 @@
 #include "io/h5.hpp"
 #include "packing/contacts.hpp"
 #include "sweep/distributed.hpp"
+#include "sweep/packing_path.hpp"
 #include "theory/effective_medium.hpp"
 #include "theory/relaxed_moduli.hpp"
 
@@ -51,7 +52,7 @@ std::vector<PackingMember> packing_members(const PackingStudy& s) {
   return m;
 }
 
-std::string member_case_text(const PackingStudy& s, const PackingMember& m, char mode) {
+std::string member_case_text(const PackingStudy& s, const PackingMember& m, char mode, const std::string& start) {
   toml::table root = config::parse_toml(s.case_text, s.case_path);
   toml::table& random = *root["random"].as_table();
   random.insert_or_assign("pressure", m.pressure);
@@ -61,6 +62,7 @@ std::string member_case_text(const PackingStudy& s, const PackingMember& m, char
     random.insert_or_assign("distribution", std::string("uniform"));
     random.insert_or_assign("width", *m.width);
   }
+  if (!start.empty()) random.insert_or_assign("start", start);
   if (!s.shape.empty()) random.insert_or_assign("shape", toml::array{s.shape[0], s.shape[1], s.shape[2]});
   if (!root["excitation"].as_table()) root.insert_or_assign("excitation", toml::table{});
   root["excitation"].as_table()->insert_or_assign("mode", std::string(1, mode));
@@ -179,11 +181,19 @@ MemberResult run_packing_member(const PackingStudy& s, std::size_t index, const 
   v[pv_seed] = static_cast<double>(m.seed);
   v[pv_width] = m.width.value_or(0.0);
   const double t0 = wall_seconds();
-  // Loading the case prepares the packing (config/random_loader.hpp), with its progress lines.
-  const config::Case c = config::parse_case(member_case_text(s, m, s.modes.front()), s.case_path);
-  v[pv_prepare_seconds] = wall_seconds() - t0;
+  // Loading the case prepares the packing (config/random_loader.hpp), with its progress lines; on a
+  // compression path from the member's saved stage (static at its pressure: no step is taken), and
+  // the preparation recorded is the stage's own (from the previous pressure, or the gas).
+  std::optional<packing::PreparedState> stage;
+  std::string start;
+  if (s.preparation_path == PackingStudy::Path::compression) {
+    start = ensure_path_stages(s, m, control);
+    stage = packing::load_prepared(start);
+  }
+  const config::Case c = config::parse_case(member_case_text(s, m, s.modes.front(), start), s.case_path);
+  v[pv_prepare_seconds] = stage ? stage->seconds : wall_seconds() - t0;
   const packing::Packing& periodic = *c.crystal->imported;
-  const packing::Preparation& prep = *c.crystal->preparation;
+  const packing::Preparation& prep = stage ? stage->preparation : *c.crystal->preparation;
   v[pv_count] = static_cast<double>(periodic.particles.size());
   v[pv_pressure] = prep.pressure;
   v[pv_prepare_steps] = static_cast<double>(prep.steps);
@@ -246,9 +256,16 @@ std::vector<MemberResult> run_packing_study(const PackingStudy& s, const std::st
   ro.control = opt.control;
   // Every pressure's first seed before any second one (an interrupted study has the whole curve
   // soonest), and within a seed the low pressures first (they prepare longest).
+  // On a compression path a seed's pressures come in order (each loads the previous one's packing):
+  // every seed's lowest pressure first, then every seed's next.
+  const bool path = s.preparation_path == PackingStudy::Path::compression;
+  PackingStudy sp = s;
+  if (path) sp.path_dir = std::filesystem::absolute(out_path + ".path").string();
   for (const auto& m : members) {
     const auto rank = std::find(s.seeds.begin(), s.seeds.end(), m.seed) - s.seeds.begin();
-    ro.cost.push_back(static_cast<double>(s.seeds.size() - rank) + 0.5 / (1.0 + std::log10(m.pressure)));
+    const auto p_rank = std::find(s.pressures.begin(), s.pressures.end(), m.pressure) - s.pressures.begin();
+    ro.cost.push_back(path ? static_cast<double>(s.pressures.size() - p_rank) + 0.5 / (1.0 + static_cast<double>(rank))
+                           : static_cast<double>(s.seeds.size() - rank) + 0.5 / (1.0 + std::log10(m.pressure)));
   }
   std::mutex log_mutex;
   RunStats st;
@@ -258,7 +275,7 @@ std::vector<MemberResult> run_packing_study(const PackingStudy& s, const std::st
   const auto results = !done.empty() ? done : run_members(
       members.size(),
       [&](std::size_t i) {
-        MemberResult r = run_packing_member(s, i, opt.control);
+        MemberResult r = run_packing_member(sp, i, opt.control);
         if (!opt.quiet) {
           const auto& v = r.values;
           std::lock_guard<std::mutex> lock(log_mutex);

@@ -47,6 +47,10 @@ struct PackingStudy {
   // The output interval: the relaxed speed's delay over one bin width, over this.
   double samples_per_bin = 8.0;
   std::size_t batch = 1;  // members per committed batch (a member prepares a packing)
+  // How a member's packing is prepared: direct (from a gas at its own pressure) or compression (each
+  // seed's packing loaded from the lowest pressure up, sweep/packing_path.hpp).
+  enum class Path { direct, compression } preparation_path = Path::direct;
+  std::string path_dir;  // the compression path's saved stages (set by the runner: OUT.path)
 };
 
 // True when the text is a TOML table with [study] kind = "packing".
@@ -62,8 +66,9 @@ struct PackingMember {
 // Members in order: pressures outer, then widths, seeds inner.
 std::vector<PackingMember> packing_members(const PackingStudy& s);
 // The TOML text of a member's case (the base case with random.pressure, seed, count, shape, the
-// uniform law of the member's width and the mode set).
-std::string member_case_text(const PackingStudy& s, const PackingMember& m, char mode);
+// uniform law of the member's width and the mode set; with `start`, random.start: a compression path's
+// saved packing to load from).
+std::string member_case_text(const PackingStudy& s, const PackingMember& m, char mode, const std::string& start = "");
 
 // MemberResult::values of a member, in this order (packing_value_names gives their names).
 enum PackingValue : std::size_t {

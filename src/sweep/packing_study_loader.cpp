@@ -1,5 +1,6 @@
 // The packing study file (data/SCHEMA.md §6b): TOML -> a validated PackingStudy. Reading and error
 // messages: config/toml_reader.hpp, shared with the case loader.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -21,7 +22,7 @@ PackingStudy parse_packing_study(const std::string& text, const std::string& ori
   r.allow_only(root, "", {"study"});
   const toml::table* st = r.table(root, "", "study", true);
   r.allow_only(*st, "study", {"name", "kind", "case", "pressures", "seeds", "widths", "count", "shape", "modes", "amplitude", "run_length",
-                              "samples_per_bin", "batch"});
+                              "samples_per_bin", "batch", "path"});
   s.name = *r.string(*st, "study", "name", true);
   if (s.name.empty()) r.fail("study.name", "must not be empty", st->get("name"));
   r.choice(*st, "study", "kind", {"packing"});
@@ -87,6 +88,13 @@ PackingStudy parse_packing_study(const std::string& text, const std::string& ori
   s.amplitude = in("amplitude", 0.0, 1.0, s.amplitude);
   s.run_length = in("run_length", 0.0, 20.0, s.run_length);
   s.samples_per_bin = in("samples_per_bin", 0.0, 1000.0, s.samples_per_bin);
+  if (r.choice(*st, "study", "path", {"direct", "compression"}, "direct") == "compression") {
+    s.preparation_path = PackingStudy::Path::compression;
+    if (!std::is_sorted(s.pressures.begin(), s.pressures.end()) ||
+        std::adjacent_find(s.pressures.begin(), s.pressures.end()) != s.pressures.end())
+      r.fail("study.pressures", "must rise strictly with path = \"compression\" (each seed's packing is loaded from the lowest "
+             "pressure to the next)", st->get("pressures"));
+  }
   if (auto b = r.number_in(*st, "study", "batch", false, whole(1), "an integer >= 1")) s.batch = static_cast<std::size_t>(*b);
   return s;
 }

@@ -2,10 +2,13 @@
 // key and what is allowed, before anything is compressed (or, for the step budget, when it runs out).
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <string>
+#include <unistd.h>
 
 #include "config/case.hpp"
 #include "core/error.hpp"
+#include "packing/prepared_state.hpp"
 #include "packing/random_packing.hpp"
 
 using namespace granwave;
@@ -104,4 +107,31 @@ TEST_CASE("random: radii are drawn per particle from the seed, in their law's ra
   mean = 0.0;
   for (double r : g) mean += r / g.size();
   CHECK(mean == Approx(1.0).margin(0.015));  // mean exp(mu + sigma^2/2) = radius; sd ~ 0.31/sqrt(4000)
+}
+
+TEST_CASE("random: a compression path's start is refused with friction, missing or of another count", "[config][random]") {
+  require_refused(random_case("start = \"no_such.packing\"\n"), {"random.start", "no such saved packing"});
+  // A saved packing of 300 particles (random_case's, prepared here), then loaded by a case of 400.
+  const config::Case c = parse_case(random_case(), kOrigin);
+  packing::PreparedState st;
+  st.packing = *c.crystal->imported;
+  st.preparation = *c.crystal->preparation;
+  st.pressure_target = 1000.0;
+  const std::string file = std::filesystem::temp_directory_path() / ("granwave_start_" + std::to_string(::getpid()) + ".packing");
+  packing::save_prepared(file, st);
+  // The round trip is exact (hexadecimal floats).
+  const packing::PreparedState back = packing::load_prepared(file);
+  REQUIRE(back.packing.particles.size() == st.packing.particles.size());
+  for (std::size_t q = 0; q < back.packing.particles.size(); ++q) {
+    CHECK(back.packing.particles[q].centre.x() == st.packing.particles[q].centre.x());
+    CHECK(back.packing.particles[q].radius == st.packing.particles[q].radius);
+  }
+  CHECK(back.preparation.solid_fraction == st.preparation.solid_fraction);
+  require_refused(random_case("start = \"" + file + "\"\ncount = 400\n", "", "dt_over_tc = 0.02\n", "[1, 1, 4]"),
+                  {"random.start", "400", "same count"});
+  require_refused(random_case("start = \"" + file + "\"\npreparation_friction = 0.3\n"), {"random.start", "preparation_friction"});
+  // Loaded at its own pressure the saved packing is static already: no step taken.
+  const config::Case again = parse_case(random_case("start = \"" + file + "\"\n"), kOrigin);
+  CHECK(again.crystal->preparation->steps == 0);
+  std::filesystem::remove(file);
 }
