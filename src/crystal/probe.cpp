@@ -42,6 +42,13 @@ std::pair<int, int> probe_strain_indices(ProbeStrain s) {
   return {2, 2};
 }
 
+// A named type (not in the anonymous namespace below): StaticProbe::Strained holds one.
+struct StressSum {
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero(), S = Eigen::Matrix3d::Zero();  // sum w B f_j, sum w b f_j
+  int touching = 0, sliding = 0;
+  double max_slip = 0.0;
+};
+
 namespace {
 
 // The largest force (and torque / radius) on a mobile particle.
@@ -149,12 +156,6 @@ void apply_affine(Dynamics& d, ProbeStrain s, double e, double z_origin) {
   for (auto* v : {&d.vx, &d.vy, &d.vz}) std::fill(v->begin(), v->end(), 0.0);
   d.compute_forces_of_state();
 }
-
-struct StressSum {
-  Eigen::Matrix3d P = Eigen::Matrix3d::Zero(), S = Eigen::Matrix3d::Zero();  // sum w B f_j, sum w b f_j
-  int touching = 0, sliding = 0;
-  double max_slip = 0.0;
-};
 
 // Over the touching contacts of d: all, or (pairs_only) those of two particles not mobile in `held`.
 // X, Y, Z: the unstrained positions (B); bx, by: the unstrained box (not sheared); b from d's box.
