@@ -70,9 +70,12 @@ O.engines = [
 ]
 O.dt = dt
 t0, c0 = _time.time(), _time.process_time()
-chunk = 20000
+chunk = 10000
 while not state["done"] and O.iter < max_steps:
     O.run(min(chunk, max_steps - O.iter), True)
+    s = triax.stress
+    print("yade: step %d stress %.6g %.6g %.6g unbalanced %.3g" % (O.iter, s[0], s[1], s[2], utils.unbalancedForce()),
+          file=sys.stderr, flush=True)
 wall, cpu = _time.time() - t0, _time.process_time() - c0
 
 L = O.cell.hSize
