@@ -2,7 +2,8 @@
 1 MPa by granwave (`granwave packing`), YADE (PeriTriaxController) and LAMMPS (the servo scripted on fix deform,
 crosscheck/xclib/preparation.py), 200 frictionless glass beads, Hertz; every packing measured by the one reader
 (`granwave packing` of a file case). The full comparison (10 kPa, Agnolin & Roux's conditions, 3 seeds) is
-bench/preparation_codes.py, its numbers in docs/validation.md.
+bench/preparation_codes.py, its numbers in docs/validation.md. Measured 2026-11-29: both tests 31 s of CPU
+(YADE's most of it), 124 s of wall time on the loaded 2-core machine (load 7-10).
 
     /usr/bin/python3 -m pytest tests/crosscheck/test_real_preparation.py
 """
