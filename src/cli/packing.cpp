@@ -20,7 +20,7 @@ namespace granwave::cli {
 
 namespace {
 
-struct Residuals {
+struct PackingResiduals {
   double pressure = 0.0;    // Love-Weber of the normal elastic forces (Pa)
   double kinetic_ratio = 0.0;  // E_kin (translations, the file's velocities) / E_pot
   double unbalanced = 0.0;  // largest net normal force on a particle / mean normal contact force
@@ -29,22 +29,22 @@ struct Residuals {
 };
 
 // Nearest-image branch vector from i to j along the periodic axes.
-contact::Vec3 branch(const packing::Box& box, const contact::Vec3& xi, const contact::Vec3& xj) {
+contact::Vec3 nearest_branch(const packing::Box& box, const contact::Vec3& xi, const contact::Vec3& xj) {
   double d[3] = {xj.vx - xi.vx, xj.vy - xi.vy, xj.vz - xi.vz};
   for (int a = 0; a < 3; ++a)
     if (box.periodic[a]) d[a] -= box.length(a) * std::round(d[a] / box.length(a));
   return {d[0], d[1], d[2]};
 }
 
-Residuals residuals(const packing::Packing& pk, const contact::NormalForm& form, double density) {
-  Residuals r;
+PackingResiduals packing_residuals(const packing::Packing& pk, const contact::NormalForm& form, double density) {
+  PackingResiduals r;
   const std::size_t n = pk.particles.size();
   std::vector<contact::Vec3> net(n, contact::Vec3{0.0, 0.0, 0.0});
   double virial = 0.0, e_pot = 0.0, f_sum = 0.0;
   const std::vector<packing::Touch> touches = packing::touching_pairs(pk);
   for (const packing::Touch& t : touches) {
     const packing::Particle &a = pk.particles[t.i], &b = pk.particles[t.j];
-    const contact::Vec3 d = branch(pk.box, a.centre, b.centre);
+    const contact::Vec3 d = nearest_branch(pk.box, a.centre, b.centre);
     const double len = std::sqrt(d.vx * d.vx + d.vy * d.vy + d.vz * d.vz);
     const contact::NormalForce nf =
         contact::with_normal(form, [&](const auto& law) { return law(a.radius, b.radius, t.overlap); });
@@ -74,7 +74,7 @@ Residuals residuals(const packing::Packing& pk, const contact::NormalForm& form,
   return r;
 }
 
-void write_dump(const packing::Packing& pk, double density, const std::string& path) {
+void write_packing_dump(const packing::Packing& pk, double density, const std::string& path) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp);
@@ -134,9 +134,9 @@ int cmd_packing(const Args& args) {
   const double density = c.crystal->density;
   const contact::NormalForm form = config::law_of(c.contact).normal_form(c.contact, density);
   const packing::PackingStats st = packing::measure(pk, min_contacts);
-  const Residuals r = residuals(pk, form, density);
+  const PackingResiduals r = packing_residuals(pk, form, density);
   const std::string out = option_value(args, "-o", "--output");
-  if (!out.empty()) write_dump(pk, density, out);
+  if (!out.empty()) write_packing_dump(pk, density, out);
   const double l[3] = {pk.box.length(0), pk.box.length(1), pk.box.length(2)};
   if (has_flag(args, "--json")) {
     std::cout << fmt("{\"schema\": \"granwave-packing/1\", \"particles\": %zu, \"contacts\": %zu, \"box\": [%.17g, %.17g, %.17g], ",
