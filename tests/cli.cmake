@@ -31,6 +31,8 @@ granwave_cli_refuses(random_width random_width.toml "random.width")
 # A frictional preparation under a law without a tangential spring, and one asked for FIRE's finish.
 granwave_cli_refuses(random_friction_no_spring random_friction_no_spring.toml "random.preparation_friction")
 granwave_cli_refuses(random_friction_fire random_friction_fire.toml "random.minimise_from")
+# Issue 40: the uncompressed gas is for `granwave packing CASE -o FILE` only.
+granwave_cli_refuses(random_stop_gas random_stop_gas.toml "random.stop_at")
 # A step budget that runs out at FIRE's preload says so.
 granwave_cli_refuses(random_preload_steps random_preload_steps.toml "at the preload")
 # Issue #14: the Hertz-Mindlin law's keys.
@@ -214,6 +216,13 @@ OMP_NUM_THREADS=1 ${GW} build ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml -
 OMP_NUM_THREADS=2 ${GW} build ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml -o random2.h5 2>/dev/null && \
 for d in /position /radius /mass /layer /role; do h5diff random1.h5 random2.h5 $d || exit 1; done")
 set_tests_properties("cli: a random packing builds the same bits on 1 and 2 threads" PROPERTIES LABELS "cli")
+# Issue 40: `granwave packing` writes the gas of random.stop_at = "gas" (docs/random-packing.md step 1): at the
+# initial solid fraction 0.3, no two spheres touching, every particle in the dump.
+add_test(NAME "cli: granwave packing writes the uncompressed gas"
+  COMMAND sh -c "cd ${CLI_TMP} && rm -f gas.dump gas.json && ${GW} packing ${BAD}/random_stop_gas.toml -o gas.dump --json > gas.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('gas.json')); assert d['particles'] == 300 and d['contacts'] == 0 and abs(d['solid_fraction'] - 0.3) < 1e-12, d; \
+t = open('gas.dump').read().split('ITEM: ATOMS')[1].split(chr(10)); assert len([r for r in t[1:] if r]) == 300, 'rows'\"")
+set_tests_properties("cli: granwave packing writes the uncompressed gas" PROPERTIES LABELS "cli")
 # Issue 40: a frictional random packing (tests/data/random/random_friction.toml): its springs are
 # written (spring_pairs, spring_xi); a system file whose springs are damaged is refused naming the
 # dataset, nothing written (1 and 2 threads: tests/physics/randompacking_threads.cpp).

@@ -21,6 +21,8 @@ Modules (each imports only those listed before it, so there is no import cycle):
   sweepmath   -- sweep maths and tables (derived cases, peaks at positions, pairwise differences)
   conventions -- the contact-law conventions traces record; differences; granwave's convention twins
   runners     -- running each code in a fresh directory with a timeout; results kept for resuming
+  preparation -- one gas (granwave's) prepared at a pressure by granwave, YADE's PeriTriaxController and a LAMMPS
+                 servo on fix deform; every packing measured by one reader (`granwave packing`)
   impact_judge -- an impact case's rows: each code against the closed forms, Mindlin's compliance and granwave
   impact_report -- the impact cases' report (impact.md: deviation tables, psi2 table, rows, verdict)
   impact_figures -- the impact cases' figures (Chung & Ooi's panels)

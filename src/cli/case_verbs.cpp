@@ -30,7 +30,11 @@ config::Case load_single_case(const Args& args, const std::vector<std::string>& 
   }
   auto pos = positionals(args, valued);
   if (pos.size() != 1) throw InputError(std::string("expected one case file\n") + usage);
-  return config::load_case(pos[0]);
+  config::Case c = config::load_case(pos[0]);
+  if (c.crystal && c.crystal->random_gas_only)
+    throw InputError(pos[0] + ": random.stop_at = \"gas\" leaves the gas uncompressed, for `granwave packing CASE -o FILE` "
+                     "only; allowed here: \"static\" (the default)");
+  return c;
 }
 
 std::string default_trace_path(const config::Case& c) { return c.name + ".traces.h5"; }

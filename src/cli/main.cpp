@@ -32,6 +32,9 @@ usage: granwave VERB [ARGS] (granwave VERB --help for each verb)
                                         ensembles and parameter studies, resumable
   figures chain|crystal [--out DIR]     the seeds' figures as PNG, from fresh runs
   observables [--json]                  the crystal trace's observables: name, shape, unit, sampling
+  packing CASE.toml [-o FILE.dump] [--min-contacts N] [--json]
+                                        a periodic packing (prepared, gas or another code's) measured:
+                                        Phi, z*, rattlers, pressure, residuals; written as a dump
   laws [--json]                         the contact laws: their [contact] keys, units, ranges, defaults
   version                               print the version
 
@@ -54,6 +57,7 @@ int main(int argc, char** argv) {
       {"theory", cli::cmd_theory}, {"sweep", cli::cmd_sweep},   {"figures", cli::cmd_figures},
       {"observables", cli::cmd_observables},
       {"laws", cli::cmd_laws},     {"probe", cli::cmd_probe},
+      {"packing", cli::cmd_packing},
   };
   if (verb == "version" || verb == "--version") {
     std::cout << "granwave " << version() << " (" << git_describe() << ")\n";

@@ -27,6 +27,7 @@ int cmd_figures(const Args& args);
 int cmd_observables(const Args& args);
 int cmd_laws(const Args& args);
 int cmd_probe(const Args& args);
+int cmd_packing(const Args& args);
 // The same verbs printing to `out` instead of std::cout (the Python module reads their --json).
 int cmd_build(const Args& args, std::ostream& out);
 int cmd_analyze(const Args& args, std::ostream& out);

@@ -106,6 +106,7 @@ struct CrystalCase {
   // so that it is cut open and run exactly as a periodic packing from a file.
   std::optional<packing::RandomSpec> random;
   std::shared_ptr<const packing::Preparation> preparation;
+  bool random_gas_only = false;  // random.stop_at = "gas": `imported` is the uncompressed gas
   // Not a lattice: a packing, from a file or from the random generator (the run treats both alike).
   bool from_file() const { return lattice == "file" || lattice == "random"; }
 };

@@ -85,7 +85,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   r.allow_only(t, "random", {"distribution", "radius", "width", "radii", "fractions", "count", "shape", "seed", "pressure",
                              "preparation_friction", "damping", "background_damping", "inertia_number", "servo_time", "initial_solid_fraction",
                              "minimise_from", "preload_overlap", "pressure_tolerance", "kinetic_ratio", "unbalanced_force", "max_steps", "max_overlap",
-                             "start", "source_thickness", "fixed_thickness", "bin_width", "relax_tolerance"});
+                             "start", "stop_at", "source_thickness", "fixed_thickness", "bin_width", "relax_tolerance"});
   packing::RandomSpec s;
   s.radii = read_radii(r, t);
   s.density = k.density;
@@ -124,6 +124,9 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
   s.unbalanced_force = in("unbalanced_force", 0.0, 1.0, true, 1e-3, " (largest net force / mean contact force)");
   s.max_steps = static_cast<long>(r.integer_in(t, "random", "max_steps", false, 1, std::int64_t{1} << 40).value_or(2000000));
   const double max_overlap = in("max_overlap", 0.0, 1.0, true, 0.05, " (of the smaller radius)");
+  // "gas": the packing is the gas of step 1, uncompressed, for `granwave packing -o` to hand the same
+  // initial state to the other codes' controllers (build and run refuse it).
+  k.random_gas_only = r.choice(t, "random", "stop_at", {"static", "gas"}, "static") == "gas";
   PackingKeys p;
   p.format = "random";
   p.max_overlap = max_overlap;
@@ -210,14 +213,17 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
     if (start.empty()) {
       pk = packing::random_gas(s);
     } else {
+      if (k.random_gas_only)
+        throw InputError("random.start and random.stop_at = \"gas\" together: a saved packing is no gas; allowed: one of them");
       pk = packing::load_prepared(start).packing;
       if (static_cast<long>(pk.particles.size()) != s.count)
         throw InputError("random.start = " + start + " holds " + std::to_string(pk.particles.size()) + " particles, random.count = " +
                          std::to_string(s.count) + "; allowed: a saved packing of the same count");
     }
-    prep = packing::compress(pk, s, form, [](const std::string& line) {
-      std::cerr << "granwave: preparing the random packing: " << line << "\n";
-    });
+    if (!k.random_gas_only)
+      prep = packing::compress(pk, s, form, [](const std::string& line) {
+        std::cerr << "granwave: preparing the random packing: " << line << "\n";
+      });
     packing::wrap_into_box(pk);
     packing::Limits limits;
     limits.max_overlap = max_overlap;
