@@ -2,12 +2,14 @@
 // (packing/prepared_state.hpp): a text file, numbers as C99 hexadecimal floats (exact round trip).
 #include "packing/prepared_state.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <vector>
 
 #include "core/error.hpp"
+#include "packing/text_lines.hpp"
 
 namespace granwave::packing {
 
@@ -49,64 +51,60 @@ void save_prepared(const std::string& path, const PreparedState& st) {
 }
 
 PreparedState load_prepared(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot be read (a compression path's saved packing)");
-  std::size_t line_no = 0;
-  std::string line;
-  const auto next = [&](const char* what) {
-    if (!std::getline(in, line)) throw InputError(path + ": ends before " + what + " (damaged; delete it to prepare it again)");
-    ++line_no;
-    return std::istringstream(line);
-  };
-  const auto bad = [&](const std::string& what) {
-    return InputError(path + ":" + std::to_string(line_no) + ": " + what + " (damaged; delete it to prepare it again)");
-  };
-  if (next("the header").str() != kMagic) throw bad(std::string("not a saved packing (wanted \"") + kMagic + "\")");
-  PreparedState st;
-  Preparation& p = st.preparation;
-  const auto number = [&](const char* key) {
-    auto s = next(key);
-    std::string k, v;
-    s >> k >> v;
-    if (k != key) throw bad(std::string("wanted ") + key);
-    return std::strtod(v.c_str(), nullptr);
-  };
-  st.pressure_target = number("pressure_target");
-  st.seconds = number("seconds");
-  p.steps = static_cast<long>(number("steps"));
-  p.minimise_steps = static_cast<long>(number("minimise_steps"));
-  p.pressure = number("pressure");
-  p.kinetic_ratio = number("kinetic_ratio");
-  p.unbalanced_force = number("unbalanced_force");
-  p.solid_fraction = number("solid_fraction");
-  p.coordination = number("coordination");
-  p.coordination_backbone = number("coordination_backbone");
-  p.rattlers = static_cast<long>(number("rattlers"));
-  p.time_step = number("time_step");
-  {
-    auto s = next("box");
-    std::string k, v[6];
-    s >> k >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5];
-    if (k != "box" || !s) throw bad("wanted box xlo xhi ylo yhi zlo zhi");
-    for (int d = 0; d < 3; ++d) st.packing.box.lo[d] = std::strtod(v[2 * d].c_str(), nullptr), st.packing.box.hi[d] = std::strtod(v[2 * d + 1].c_str(), nullptr);
+  try {
+    const TextFile file(path);  // the importers' reader: strict finite numbers, errors naming file and line
+    const std::vector<TextLine>& lines = file.lines();
+    std::size_t next_line = 0;
+    const auto next = [&](const char* what) -> const TextLine& {
+      if (next_line == lines.size()) throw InputError(path + ": ends before " + what);
+      return lines[next_line++];
+    };
+    const auto keyed = [&](const char* key, std::size_t words) -> const TextLine& {
+      const TextLine& l = next(key);
+      if (l.words.size() != words || l.words[0] != key)
+        throw InputError(file.at(l) + ": wanted " + key + " and " + std::to_string(words - 1) + " value(s), found \"" + l.text + "\"");
+      return l;
+    };
+    const auto number = [&](const char* key) { return file.number(keyed(key, 2), 1, key); };
+    const auto integer = [&](const char* key) { return file.integer(keyed(key, 2), 1, key); };
+    const TextLine& header = next("the header");
+    if (header.text != kMagic) throw InputError(file.at(header) + ": not a saved packing (wanted \"" + kMagic + "\")");
+    PreparedState st;
+    Preparation& p = st.preparation;
+    st.pressure_target = number("pressure_target");
+    st.seconds = number("seconds");
+    p.steps = static_cast<long>(integer("steps"));
+    p.minimise_steps = static_cast<long>(integer("minimise_steps"));
+    p.pressure = number("pressure");
+    p.kinetic_ratio = number("kinetic_ratio");
+    p.unbalanced_force = number("unbalanced_force");
+    p.solid_fraction = number("solid_fraction");
+    p.coordination = number("coordination");
+    p.coordination_backbone = number("coordination_backbone");
+    p.rattlers = static_cast<long>(integer("rattlers"));
+    p.time_step = number("time_step");
+    const TextLine& box = keyed("box", 7);
+    for (int d = 0; d < 3; ++d) {
+      st.packing.box.lo[d] = file.number(box, 1 + 2 * d, "box lo");
+      st.packing.box.hi[d] = file.number(box, 2 + 2 * d, "box hi");
+    }
+    const std::int64_t n = integer("particles");
+    if (n < 1) throw InputError(path + ": no particles");
+    st.packing.particles.resize(static_cast<std::size_t>(n));
+    for (Particle& q : st.packing.particles) {
+      const TextLine& l = next("every particle");
+      if (l.words.size() != 6) throw InputError(file.at(l) + ": wanted id x y z radius mass, found \"" + l.text + "\"");
+      q.id = file.integer(l, 0, "id");
+      q.centre = Vec3(file.number(l, 1, "x"), file.number(l, 2, "y"), file.number(l, 3, "z"));
+      q.radius = file.number(l, 4, "radius");
+      q.mass = file.number(l, 5, "mass");
+      if (!(q.radius > 0.0 && q.mass > 0.0)) throw InputError(file.at(l) + ": a radius or mass <= 0");
+    }
+    st.packing.source = path;
+    return st;
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + " (a compression path's saved packing: damaged; delete it to prepare it again)");
   }
-  const long n = static_cast<long>(number("particles"));
-  if (n < 1) throw bad("no particles");
-  st.packing.particles.resize(static_cast<std::size_t>(n));
-  for (Particle& q : st.packing.particles) {
-    auto s = next("every particle");
-    std::string v[5];
-    s >> q.id >> v[0] >> v[1] >> v[2] >> v[3] >> v[4];
-    if (!s) throw bad("wanted id x y z radius mass");
-    double x[5];
-    for (int k = 0; k < 5; ++k) x[k] = std::strtod(v[k].c_str(), nullptr);
-    q.centre = Vec3(x[0], x[1], x[2]);
-    q.radius = x[3];
-    q.mass = x[4];
-    if (!(q.radius > 0.0 && q.mass > 0.0)) throw bad("a radius or mass <= 0");
-  }
-  st.packing.source = path;
-  return st;
 }
 
 }  // namespace granwave::packing

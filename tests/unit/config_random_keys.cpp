@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -133,5 +135,24 @@ TEST_CASE("random: a compression path's start is refused with friction, missing 
   // Loaded at its own pressure the saved packing is static already: no step taken.
   const config::Case again = parse_case(random_case("start = \"" + file + "\"\n"), kOrigin);
   CHECK(again.crystal->preparation->steps == 0);
+  // A damaged value (the first particle's x, line 16) is refused naming the file, the line and the field.
+  std::stringstream text;
+  text << std::ifstream(file).rdbuf();
+  std::string t = text.str();
+  const auto first = t.find('\n', t.find("\nparticles ") + 1) + 1;
+  const auto x = t.find(' ', first) + 1;
+  t.replace(x, t.find(' ', x) - x, "nan");
+  const std::string damaged = file + ".damaged";
+  std::ofstream(damaged) << t;
+  try {
+    packing::load_prepared(damaged);
+    FAIL("a damaged saved packing was accepted");
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    CHECK(m.find(damaged + ":16") != std::string::npos);
+    CHECK(m.find("x \"nan\"") != std::string::npos);
+    CHECK(m.find("damaged; delete it") != std::string::npos);
+  }
+  std::filesystem::remove(damaged);
   std::filesystem::remove(file);
 }
