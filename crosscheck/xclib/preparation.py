@@ -275,9 +275,3 @@ def prepare_lammps(lmp: str, work: str, mat: dict, mu: float, dt: float, timeout
     return {"code": "lammps", "steps": int(line[2]), "reported_pressure": float(line[4]),
             "reported_kinetic_ratio": float(line[6]), "done": line[8] == "1", "wall_s": wall, "cpu_s": cpu,
             "load": [load0, load()]}
-
-
-def find_lammps():
-    """LAMMPS's binary, as the crosscheck finds it (runners.find_lammps: $XC_LMP, else lmp)."""
-    from xclib import runners
-    return runners.find_lammps()

@@ -28,14 +28,6 @@ struct PackingResiduals {
   double mean_force = 0.0;  // N
 };
 
-// Nearest-image branch vector from i to j along the periodic axes.
-contact::Vec3 nearest_branch(const packing::Box& box, const contact::Vec3& xi, const contact::Vec3& xj) {
-  double d[3] = {xj.vx - xi.vx, xj.vy - xi.vy, xj.vz - xi.vz};
-  for (int a = 0; a < 3; ++a)
-    if (box.periodic[a]) d[a] -= box.length(a) * std::round(d[a] / box.length(a));
-  return {d[0], d[1], d[2]};
-}
-
 PackingResiduals packing_residuals(const packing::Packing& pk, const contact::NormalForm& form, double density) {
   PackingResiduals r;
   const std::size_t n = pk.particles.size();
@@ -44,7 +36,7 @@ PackingResiduals packing_residuals(const packing::Packing& pk, const contact::No
   const std::vector<packing::Touch> touches = packing::touching_pairs(pk);
   for (const packing::Touch& t : touches) {
     const packing::Particle &a = pk.particles[t.i], &b = pk.particles[t.j];
-    const contact::Vec3 d = nearest_branch(pk.box, a.centre, b.centre);
+    const contact::Vec3& d = t.branch;
     const double len = std::sqrt(d.vx * d.vx + d.vy * d.vy + d.vz * d.vz);
     const contact::NormalForce nf =
         contact::with_normal(form, [&](const auto& law) { return law(a.radius, b.radius, t.overlap); });

@@ -88,7 +88,7 @@ std::vector<Touch> touching_pairs(const Packing& packing) {
                 if (box.periodic[a]) *dc[a] -= std::round(*dc[a] / len[a]) * len[a];
               const double reach = ps[i].radius + ps[j].radius;
               const double dist2 = d.squaredNorm();
-              if (dist2 < reach * reach) out.push_back({i, j, reach - std::sqrt(dist2)});
+              if (dist2 < reach * reach) out.push_back({i, j, reach - std::sqrt(dist2), d});
             }
       }
   std::sort(out.begin(), out.end(), [](const Touch& a, const Touch& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });

@@ -11,6 +11,7 @@ namespace granwave::packing {
 struct Touch {
   std::size_t i = 0, j = 0;  // particle indices, i < j
   double overlap = 0.0;      // a_i + a_j - |x_j - x_i| (nearest image), > 0
+  Vec3 branch;               // x_j - x_i, nearest image
 };
 
 // Every pair closer than the sum of its radii. Needs each periodic length at least twice the

@@ -45,7 +45,7 @@ def test_the_reader_reads_granwave_gas_and_packing_as_granwave_wrote_them(tmp_pa
     assert abs(m["pressure"] / MAT["pressure"] - 1.0) <= 1e-3 and m["unbalanced"] <= 1e-3, m
 
 
-@pytest.mark.skipif(not (shutil.which("yade") and X.find_lammps()), reason="yade and lmp not both installed")
+@pytest.mark.skipif(not (shutil.which("yade") and harness.RN.find_lammps()), reason="yade and lmp not both installed")
 def test_three_controllers_prepare_the_same_gas(tmp_path):
     """Each code's controller stops by its own criterion; the one reader then requires of every packing:
     at the pressure (|p/P - 1| <= 5e-3 from the elastic normal forces: each controller aims at 1e-3); jammed
@@ -63,7 +63,7 @@ def test_three_controllers_prepare_the_same_gas(tmp_path):
     X.make_gas(gw, work, MAT, COUNT, SEED, 0.0)
     runs = {"granwave": X.prepare_granwave(gw, work, MAT, COUNT, SEED, 0.0, 300),
             "yade": X.prepare_yade(work, MAT, 0.0, dt, 300, max_steps=400000),
-            "lammps": X.prepare_lammps(X.find_lammps(), work, MAT, 0.0, dt, 300, max_steps=400000)}
+            "lammps": X.prepare_lammps(harness.RN.find_lammps(), work, MAT, 0.0, dt, 300, max_steps=400000)}
     for code, r in runs.items():
         assert r["done"], (code, r)
         m = X.measure(gw, os.path.join(work, code + ".dump"), MAT, 0.0)

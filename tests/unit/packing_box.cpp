@@ -69,7 +69,7 @@ TEST_CASE("touching pairs: the cell list finds exactly the pairs every pair trie
         d.vy -= std::round(d.vy / 6.0) * 6.0;
         if (z_periodic) d.vz -= std::round(d.vz / 7.0) * 7.0;
         const double reach = p.particles[i].radius + p.particles[j].radius;
-        if (d.norm() < reach) brute.push_back({i, j, reach - d.norm()});
+        if (d.norm() < reach) brute.push_back({i, j, reach - d.norm(), d});
       }
     const auto cells = touching_pairs(p);
     REQUIRE(cells.size() == brute.size());
@@ -78,6 +78,9 @@ TEST_CASE("touching pairs: the cell list finds exactly the pairs every pair trie
       CHECK(cells[k].i == brute[k].i);
       CHECK(cells[k].j == brute[k].j);
       CHECK(cells[k].overlap == Approx(brute[k].overlap).epsilon(1e-12));
+      CHECK(cells[k].branch.vx == Approx(brute[k].branch.vx).margin(1e-12));  // the nearest image's branch
+      CHECK(cells[k].branch.vy == Approx(brute[k].branch.vy).margin(1e-12));
+      CHECK(cells[k].branch.vz == Approx(brute[k].branch.vz).margin(1e-12));
     }
   }
 }
