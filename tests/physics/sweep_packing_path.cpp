@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "sweep/packing_path.hpp"
 #include "sweep/packing_study.hpp"
+#include "packing_study_support.hpp"
 
 using namespace granwave;
 using namespace granwave::sweep;
@@ -91,18 +92,8 @@ TEST_CASE("packing study: the compression path loads one packing through the pre
 TEST_CASE("packing study: a compression path's bad keys are refused naming the key", "[physics][packing]") {
   const std::string root = std::string(GRANWAVE_SOURCE_DIR) + "/data/studies/";
   const std::string good = "[study]\nname = \"x\"\nkind = \"packing\"\ncase = \"cases/random_glass.toml\"\nseeds = [1]\n";
-  const auto refused = [&](const std::string& text, const std::string& key) {
-    try {
-      parse_packing_study(text, root + "bad.toml");
-    } catch (const InputError& e) {
-      INFO(e.what());
-      CHECK(std::string(e.what()).find(key) != std::string::npos);
-      return;
-    }
-    FAIL("accepted: " << text);
-  };
   CHECK(parse_packing_study(good + "pressures = [1e4, 1e5]\n", root + "ok.toml").preparation_path == PackingStudy::Path::direct);
-  refused(good + "pressures = [1e5, 1e4]\npath = \"compression\"\n", "study.pressures");
-  refused(good + "pressures = [1e4, 1e4]\npath = \"compression\"\n", "study.pressures");
-  refused(good + "pressures = [1e4]\npath = \"up\"\n", "study.path");
+  packing_study_test::check_refused(good + "pressures = [1e5, 1e4]\npath = \"compression\"\n", "study.pressures");
+  packing_study_test::check_refused(good + "pressures = [1e4, 1e4]\npath = \"compression\"\n", "study.pressures");
+  packing_study_test::check_refused(good + "pressures = [1e4]\npath = \"up\"\n", "study.path");
 }

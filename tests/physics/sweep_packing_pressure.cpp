@@ -20,6 +20,7 @@
 #include "core/error.hpp"
 #include "io/h5.hpp"
 #include "sweep/packing_study.hpp"
+#include "packing_study_support.hpp"
 
 using namespace granwave;
 using namespace granwave::sweep;
@@ -89,25 +90,15 @@ TEST_CASE("packing study: moduli and pulses of random packings against pressure 
 TEST_CASE("packing study: bad study files are refused naming the key", "[physics][packing]") {
   const std::string root = std::string(GRANWAVE_SOURCE_DIR) + "/data/studies/";
   const std::string good = "[study]\nname = \"x\"\nkind = \"packing\"\ncase = \"cases/random_glass.toml\"\n";
-  const auto refused = [&](const std::string& text, const std::string& key) {
-    try {
-      parse_packing_study(text, root + "bad.toml");
-    } catch (const InputError& e) {
-      INFO(e.what());
-      CHECK(std::string(e.what()).find(key) != std::string::npos);
-      return;
-    }
-    FAIL("accepted: " << text);
-  };
   CHECK(is_packing_study(good + "pressures = [1e4]\nseeds = [1]\n"));
   CHECK(!is_packing_study("[study]\nkind = \"crystal\"\n"));
   CHECK(parse_packing_study(good + "pressures = [1e4, 1e5]\nseeds = [1, 2]\nwidths = [0.01, 0.2]\n", root + "ok.toml")
             .widths.size() == 2);
-  refused("[study]\nname = \"x\"\nkind = \"packing\"\ncase = \"../cases/crystal_small.toml\"\npressures = [1e4]\nseeds = [1]\n",
+  packing_study_test::check_refused("[study]\nname = \"x\"\nkind = \"packing\"\ncase = \"../cases/crystal_small.toml\"\npressures = [1e4]\nseeds = [1]\n",
           "study.case");
-  refused(good + "pressures = [-1e4]\nseeds = [1]\n", "study.pressures");
-  refused(good + "pressures = [1e4]\nseeds = [1.5]\n", "study.seeds");
-  refused(good + "pressures = [1e4]\nseeds = [1]\nwidths = [1.5]\n", "study.widths");
-  refused(good + "pressures = [1e4]\nseeds = [1]\nshape = [1, 1]\n", "study.shape");
-  refused(good + "pressures = [1e4]\nseeds = [1]\nfoo = 1\n", "foo");
+  packing_study_test::check_refused(good + "pressures = [-1e4]\nseeds = [1]\n", "study.pressures");
+  packing_study_test::check_refused(good + "pressures = [1e4]\nseeds = [1.5]\n", "study.seeds");
+  packing_study_test::check_refused(good + "pressures = [1e4]\nseeds = [1]\nwidths = [1.5]\n", "study.widths");
+  packing_study_test::check_refused(good + "pressures = [1e4]\nseeds = [1]\nshape = [1, 1]\n", "study.shape");
+  packing_study_test::check_refused(good + "pressures = [1e4]\nseeds = [1]\nfoo = 1\n", "foo");
 }
