@@ -1,6 +1,7 @@
 // The granular gas a random packing starts from (packing/random_packing.hpp): radii from their law,
 // centres placed at random without overlaps in a triply periodic box.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -68,31 +69,52 @@ Packing random_gas(const RandomSpec& spec) {
   std::vector<std::size_t> order(a.size());
   for (std::size_t q = 0; q < order.size(); ++q) order[q] = q;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return a[i] > a[j]; });
+  // The placed centres in cells at least one largest diameter wide: an overlap can only be with a
+  // centre in the 27 cells around a candidate, so each try checks those alone; the verdict is the one
+  // of a check against every placed centre, and so the gas, to the bit. An axis too short for three
+  // cells is searched whole.
+  const double a_max = a.empty() ? 0.0 : *std::max_element(a.begin(), a.end());
+  std::array<int, 3> cells{};
+  for (int d = 0; d < 3; ++d)
+    cells[d] = a_max > 0.0 ? std::max(1, static_cast<int>(std::floor(len[d] / (2.0 * a_max * (1.0 + 1e-9))))) : 1;
+  const auto cell_of = [&](double v, int d) { return std::min(cells[d] - 1, static_cast<int>(v / len[d] * cells[d])); };
+  std::vector<std::vector<std::size_t>> cell_members(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2]);
+  const auto flat = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * cells[1] + j) * cells[0] + i; };
+  std::array<std::vector<int>, 3> around;  // per axis, the cells to search (each once)
   std::vector<Vec3> centre(a.size());
-  std::vector<std::size_t> placed;
-  placed.reserve(a.size());
+  const auto overlaps_placed = [&](const Vec3& c, std::size_t q) {
+    const std::array<int, 3> home{cell_of(c.x(), 0), cell_of(c.y(), 1), cell_of(c.z(), 2)};
+    for (int d = 0; d < 3; ++d) {
+      around[d].clear();
+      if (cells[d] < 3)
+        for (int i = 0; i < cells[d]; ++i) around[d].push_back(i);
+      else
+        for (int i = -1; i <= 1; ++i) around[d].push_back((home[d] + i + cells[d]) % cells[d]);
+    }
+    for (int k : around[2])
+      for (int j : around[1])
+        for (int i : around[0])
+          for (std::size_t o : cell_members[flat(i, j, k)]) {
+            const double dx = image(c.x() - centre[o].x(), 0), dy = image(c.y() - centre[o].y(), 1),
+                         dz = image(c.z() - centre[o].z(), 2), reach = a[q] + a[o];
+            if (dx * dx + dy * dy + dz * dz < reach * reach) return true;
+          }
+    return false;
+  };
   const long tries = 100000;
   for (std::size_t q : order) {
     CounterRng rng(spec.seed, static_cast<std::uint64_t>(spec.count) + q);
     bool ok = false;
     for (long t = 0; t < tries && !ok; ++t) {
       const Vec3 c(rng.uniform() * len[0], rng.uniform() * len[1], rng.uniform() * len[2]);
-      ok = true;
-      for (std::size_t o : placed) {
-        const double dx = image(c.x() - centre[o].x(), 0), dy = image(c.y() - centre[o].y(), 1),
-                     dz = image(c.z() - centre[o].z(), 2), reach = a[q] + a[o];
-        if (dx * dx + dy * dy + dz * dz < reach * reach) {
-          ok = false;
-          break;
-        }
-      }
+      ok = !overlaps_placed(c, q);
       if (ok) centre[q] = c;
     }
     if (!ok)
       throw InputError("random.initial_solid_fraction = " + fmt("%g", spec.initial_solid_fraction) +
                        ": no place found for particle " + std::to_string(q + 1) + " in " + std::to_string(tries) +
                        " tries (a gas needs a low solid fraction: use at most 0.3)");
-    placed.push_back(q);
+    cell_members[flat(cell_of(centre[q].x(), 0), cell_of(centre[q].y(), 1), cell_of(centre[q].z(), 2))].push_back(q);
   }
   for (std::size_t q = 0; q < a.size(); ++q) {
     Particle p;
