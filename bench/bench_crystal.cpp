@@ -132,12 +132,15 @@ double fastest(int calls, F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // bench_crystal [STEPS [REPEATS]]: whole numbers >= 1 (anything else, --help included: usage, exit 2)
+  // bench_crystal [--passes] [STEPS [REPEATS]]: whole numbers >= 1 (anything else, --help included: usage,
+  // exit 2); --passes: the passes alone only
   auto usage = [] {
-    std::fprintf(stderr, "usage: bench_crystal [STEPS [REPEATS]]  (steps per measurement, default 2000; best of "
-                         "REPEATS, default 3; whole numbers >= 1)\n");
+    std::fprintf(stderr, "usage: bench_crystal [--passes] [STEPS [REPEATS]]  (steps per measurement, default 2000; "
+                         "best of REPEATS, default 3; whole numbers >= 1; --passes: the passes alone only)\n");
     std::exit(2);
   };
+  const bool passes_only = argc > 1 && std::string(argv[1]) == "--passes";
+  if (passes_only) --argc, ++argv;
   auto count = [&](int k, long fallback) -> long {
     if (argc <= k) return fallback;
     char* end = nullptr;
@@ -161,13 +164,18 @@ int main(int argc, char** argv) {
     config::LeverArm arm;
     const char* name;
     bool hertz = false;
-    config::Case make() const { return hertz ? hertz_case() : seed_case(200, kt, arm); }
+    bool rolling = false;  // bench/cases/crystal_rolling.toml (passes alone only)
+    config::Case make() const {
+      if (rolling) return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/bench/cases/crystal_rolling.toml");
+      return hertz ? hertz_case() : seed_case(200, kt, arm);
+    }
   };
   const Row rows[] = {Row{0.0, config::LeverArm::radius, "4x4x200, frictionless"},
                       Row{1e5, config::LeverArm::radius, "4x4x200, kt = k (friction)"},
                       Row{1e5, config::LeverArm::contact_point, "4x4x200, kt = k, contact-point arm"},
                       Row{0.0, config::LeverArm::radius, "4x4x200, Hertz-Mindlin", true}};
   for (const Row& row : rows) {
+    if (passes_only) break;
     const config::Case c = row.make();
     for (int threads : {1, 2}) {
 #ifdef _OPENMP
@@ -187,17 +195,40 @@ int main(int argc, char** argv) {
   omp_set_num_threads(1);
 #endif
   // The passes alone, 1 thread: ns per contact for the contact pass, per particle for a step.
-  std::printf("\npasses alone (1 thread, fastest of %d calls)\n%-34s %9s %14s %16s %16s\n", 50 * repeats, "case",
-              "contacts", "ns/contact", "step ns/particle", "step-contact ns");
-  for (const Row& row : rows) {
+  // ns/contact: the pass of a sampled step (the gather rows refilled, the forces kept); "in a step":
+  // the pass of the other steps (rows fresh from the drift, no forces kept: bench/ceilings.cpp's
+  // comparison, docs/benchmarks.md issue #41).
+  std::printf("\npasses alone (1 thread, fastest of %d calls)\n%-34s %9s %14s %16s %16s %16s\n", 50 * repeats,
+              "case", "contacts", "ns/contact", "step ns/particle", "step-contact ns", "in a step ns/c");
+  std::vector<Row> pass_rows(std::begin(rows), std::end(rows));
+  pass_rows.push_back(Row{1e5, config::LeverArm::radius, "4x4x200, rolling and torsion", false, true});
+  for (const Row& row : pass_rows) {
     crystal::Dynamics dyn = excited(row.make());
     dyn.parallel_min_particles = dyn.size() + 1;
     for (int k = 0; k < 20; ++k) dyn.step();
     const int calls = 50 * repeats;
     const double pass = fastest(calls, [&] { dyn.model().contact_pass(dyn, {dyn.dt(), true, false, true}); });
     const double step = fastest(calls, [&] { dyn.step(); });
-    std::printf("%-34s %9zu %14.2f %16.2f %16.2f\n", row.name, dyn.contacts.size(), 1e9 * pass / dyn.contacts.size(),
-                1e9 * step / dyn.size(), 1e9 * (step - pass) / dyn.size());
+    // The state each measurement starts from: 20 steps after the excitation (the calls above moved
+    // the springs without moving the particles; a Hertz-Mindlin pass then took the exact sweep)
+    auto fresh = [&] {
+      crystal::Dynamics f = excited(row.make());
+      f.parallel_min_particles = f.size() + 1;
+      for (int k = 0; k < 20; ++k) f.step();
+      return f;
+    };
+    crystal::Dynamics d2 = fresh();
+    const double in_step = fastest(calls, [&] { d2.model().contact_pass(d2, {d2.dt(), true, true, false}); });
+    std::printf("%-34s %9zu %14.2f %16.2f %16.2f %16.2f\n", row.name, dyn.contacts.size(),
+                1e9 * pass / dyn.contacts.size(), 1e9 * step / dyn.size(), 1e9 * (step - pass) / dyn.size(),
+                1e9 * in_step / dyn.contacts.size());
+    if (passes_only) {  // a run's step (20 in one advance: the finish joined to the next drift), and its rest
+      crystal::Dynamics d3 = fresh();
+      const double run_step = fastest(calls, [&] { d3.advance(20, false); }) / 20;
+      std::printf("%-34s run step %.2f ns/particle, less the pass in a step: %.2f ns/particle\n", "",
+                  1e9 * run_step / dyn.size(), 1e9 * (run_step - in_step) / dyn.size());
+      continue;
+    }
     // The observers of one sample (crystal/simulation.cpp), us per call.
     std::vector<double> zz, zx;
     double sink = 0.0;
@@ -210,6 +241,7 @@ int main(int argc, char** argv) {
                 "kinetic + Verlet %.1f us%s\n",
                 "", 1e6 * t_stress, 1e6 * t_coord, 1e6 * t_pot, 1e6 * t_diss, 1e6 * t_kin, sink == 0.123 ? " " : "");
   }
+  if (passes_only) return 0;
   // Thread scaling where threads pay (OpenMP from 20000 particles on): 4x4x2000, 32000 particles.
 #ifdef _OPENMP
   std::printf("\nthread scaling, 4x4x2000 (32000 particles)\n%-34s %8s %12s %18s %18s %9s\n", "case", "threads",
