@@ -228,6 +228,42 @@ WidthRow measure_width(const char* name, int lanes, int reps) {
   return w;
 }
 
+// ---- L1 load and store throughput: 12 independent 256-bit loads (stores) per block, ns per instruction ----
+struct L1Rate {
+  double load_ns, store_ns;
+};
+
+L1Rate l1_rates(int reps) {
+  alignas(64) static double buf[512];  // 4 KiB: L1
+  for (double& v : buf) v = 1.0;
+  double* p = buf;
+  L1Rate r{};
+  r.load_ns = min_ns(reps, [&] {
+    for (int k = 0; k < kIter; ++k) {
+      __m256d d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11;
+      asm volatile(
+          "vmovapd 0(%[p]), %[d0]\n\tvmovapd 32(%[p]), %[d1]\n\tvmovapd 64(%[p]), %[d2]\n\tvmovapd 96(%[p]), %[d3]\n\t"
+          "vmovapd 128(%[p]), %[d4]\n\tvmovapd 160(%[p]), %[d5]\n\tvmovapd 192(%[p]), %[d6]\n\tvmovapd 224(%[p]), %[d7]\n\t"
+          "vmovapd 256(%[p]), %[d8]\n\tvmovapd 288(%[p]), %[d9]\n\tvmovapd 320(%[p]), %[d10]\n\t"
+          "vmovapd 352(%[p]), %[d11]\n\t"
+          : OUT12 : [p] "r"(p) : "memory");
+    }
+  }) / (12.0 * kIter);
+  const __m256d v = _mm256_set1_pd(1.0);
+  r.store_ns = min_ns(reps, [&] {
+    for (int k = 0; k < kIter; ++k)
+      asm volatile(
+          "vmovapd %[v], 0(%[p])\n\tvmovapd %[v], 32(%[p])\n\tvmovapd %[v], 64(%[p])\n\tvmovapd %[v], 96(%[p])\n\t"
+          "vmovapd %[v], 128(%[p])\n\tvmovapd %[v], 160(%[p])\n\tvmovapd %[v], 192(%[p])\n\tvmovapd %[v], 224(%[p])\n\t"
+          "vmovapd %[v], 256(%[p])\n\tvmovapd %[v], 288(%[p])\n\tvmovapd %[v], 320(%[p])\n\t"
+          "vmovapd %[v], 352(%[p])\n\t"
+          :
+          : [p] "r"(p), [v] "v"(v)
+          : "memory");
+  }) / (12.0 * kIter);
+  return r;
+}
+
 // ---- Gathers against scalar loads: ns per double loaded from `table` at random indices ----
 struct GatherRow {
   std::string where;
@@ -405,6 +441,9 @@ int main(int argc, char** argv) {
                 "separate: %.2f)\n", w.name, "mix", w.tput[4] / cyc_ns, w.tput[4], sum / cyc_ns, mx / cyc_ns);
   }
 
+  const L1Rate l1 = l1_rates(reps);
+  std::printf("\nL1, 256-bit: a load %.2f cycles [%.3f ns], a store %.2f cycles [%.3f ns] (12 independent per block)\n",
+              l1.load_ns / cyc_ns, l1.load_ns, l1.store_ns / cyc_ns, l1.store_ns);
   struct Level {
     const char* name;
     std::size_t bytes;
@@ -455,6 +494,8 @@ int main(int argc, char** argv) {
       arith.push_back(r);
     }
     j["arithmetic"] = arith;
+    j["l1_ymm"] = {{"load_ns", l1.load_ns}, {"load_cycles", l1.load_ns / cyc_ns}, {"store_ns", l1.store_ns},
+                   {"store_cycles", l1.store_ns / cyc_ns}};
     Json g = Json::array();
     for (const GatherRow& r : gathers)
       g.push_back({{"table", r.where}, {"bytes", r.bytes}, {"scalar_ns_per_double", r.scalar_ns},
