@@ -93,13 +93,14 @@ def bounds(ops, ceil, name, per):
         "chain": chain,
     }
     l1 = next(g for g in ceil["gathers"] if g["table"].startswith("L1"))
-    per_double = min(l1["scalar_ns_per_double"], l1["gather256_ns_per_double"],
-                     l1["gather512_ns_per_double"] or 1e9)
+    # the probe's random scalar read is two loads (the index, the value): a load at a random index costs
+    # half of it; the hardware gathers (vgatherdpd) cost more per double on this machine
+    per_load = l1["scalar_ns_per_double"] / 2
     # the triad's real traffic: 32 bytes per element (b and c in, a out and its write-allocate read in),
     # where STREAM counts 24; the passes' bytes count every line in and out the same way
     tri = {(t["where"], t["threads"]): t["gb_per_s"] * 32 / 24 for t in ceil["triad"]}
     if per == "contact":
-        b["gathers"] = RANDOM_LOADS.get(name, 6) * per_double
+        b["gathers"] = (RANDOM_LOADS.get(name, 6) + 2) * per_load  # and i, j
         byt = BYTES[name]
     else:  # the particle pass streams its arrays: the loop's own array bytes
         byt = sum((L["counts"]["load_bytes"] + L["counts"]["store_bytes"]) / L["per_iteration"] for L in ops["loops"])
@@ -174,7 +175,7 @@ def draw(rows, out, ceil):
     fig, axes = plt.subplots(1, 2, figsize=(13, 6.5), gridspec_kw={"width_ratios": [5, 4]})
     labels = ["achieved"] + CEILINGS
     colors = ["black", "tab:red", "tab:orange", "tab:olive", "tab:purple", "tab:blue", "tab:cyan", "tab:green",
-              "tab:gray"]
+              "tab:gray", "tab:brown"]
     for ax, (per, unit) in zip(axes, groups):
         rs = [r for r in rows if r["per"] == per]
         if per == "particle":  # one bar group per distinct particle pass
@@ -186,17 +187,20 @@ def draw(rows, out, ceil):
         h = 0.85 / len(labels)
         for k, (lab, col) in enumerate(zip(labels, colors)):
             vals = [r["achieved"] if lab == "achieved" else r["bounds"][lab] for r in rs]
-            ax.barh(y + (k - len(labels) / 2) * h, vals, height=h, color=col, label=lab)
+            floor = lab == "achieved" or lab in FLOORS  # hatched: not a floor (see FLOORS)
+            ax.barh(y + (k - len(labels) / 2) * h, vals, height=h, color=col, hatch=None if floor else "///",
+                    edgecolor="white" if not floor else None, label=lab if floor else f"{lab} (not a floor)")
         ax.set_yticks(y)
         ax.set_yticklabels([r["pass"].split(" [")[0].replace("particle pass, ", "") for r in rs])
         ax.invert_yaxis()
         ax.set_xlabel(unit)
         ax.set_title(f"{per} pass (one thread)")
         ax.grid(axis="x", alpha=0.3)
-    axes[0].legend(loc="lower right", fontsize=8)
+    handles, labs = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labs, loc="lower center", ncol=5, fontsize=8)
     fig.suptitle(f"granwave's passes against the ceilings of {ceil['cpu']['model']} "
                  f"({ceil['core_ghz']:.2f} GHz, {ceil['build']}): a bar is the time a ceiling alone allows")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.08, 1, 0.95))
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=110)
     print(f"\nwrote {out}")
