@@ -133,8 +133,11 @@ def main():
             mca = sum(c / n for _, c, n in cyc) / ceil["core_ghz"]
             largest = max(cyc, key=lambda r: r[1] / r[2])
             share = (largest[1] / largest[2]) / max(1e-12, sum(c / n for _, c, n in cyc))
+            note = next((L.get("mca") or {}).get("bottleneck", "") for L in o["loops"] if L["kind"] == largest[0])
+            dep = re.search(r"Register Dependencies \[\s*([\d.]+)%", note)
+            why = f", llvm-mca: register dependencies {float(dep.group(1)):.0f} % of its cycles" if dep else ""
             rows.append({"pass": what if per == "contact" else f"{what} [{name}]", "per": per, "achieved": t,
-                         "bounds": b, "bytes": byt, "mca": mca, "largest": f"{largest[0]} loop ({share:.0%} by llvm-mca)",
+                         "bounds": b, "bytes": byt, "mca": mca, "largest": f"{largest[0]} loop ({share:.0%} by llvm-mca{why})",
                          "counts": o["per_" + per]})
     # the Markdown table
     print("| pass | per | achieved ns | " + " | ".join(CEILINGS) + " (no overlap) | binding (fraction) | llvm-mca ns | largest cost |")
