@@ -140,7 +140,7 @@ def classify(body):
     c = {"instructions": len(body), "div": 0, "sqrt": 0, "div_lanes": 0, "sqrt_lanes": 0, "flops": 0,
          "add_sub": 0, "mul": 0, "minmax": 0, "compare_select": 0, "shuffles": 0, "loads": 0, "stores": 0,
          "load_bytes": 0, "store_bytes": 0, "stack_loads": 0, "stack_stores": 0, "gathers": 0, "scalar_arith": 0,
-         "branches": 0, "index_step": None}
+         "branches": 0}
     for _, mn, ops in body:
         parts = [p.strip() for p in re.split(r",(?![^(]*\))", ops)] if ops else []
         mem = [p for p in parts if "(" in p]
@@ -186,9 +186,6 @@ def classify(body):
                 c["loads"] += 1
                 c["load_bytes"] += w
                 c["stack_loads"] += stack
-        st = re.match(r"^\$0x(4|20),(%r\w+)$", ops)
-        if mn in ("add", "addq", "lea") and st:
-            c["index_step"] = "4 elements" if st.group(1) == "4" else "32 bytes (4 doubles)"
     return c
 
 
@@ -326,9 +323,6 @@ def critical_path(body, lat):
                 regs_in += re.findall(r"%\w+", p)
             else:
                 regs_in += re.findall(r"%\w+", p)
-        if mn.startswith(("vmovapd", "vmovupd", "vmovsd", "vmovq", "vmovdqa", "vmovdqu", "movsl", "movsb", "mov",
-                          "vbroadcast")) and not mem_load:
-            pass
         start = max([ready.get(r, 0.0) for r in regs_in] + [0.0])
         t = start + latency_of(mn, ops, lat) + (7 if mem_load else 0)
         if dest:
