@@ -129,6 +129,27 @@ double fastest(int calls, F&& f) {
   return best;
 }
 
+// A run's steps (`per_call` in one advance: the finish joined to the next drift), phase by phase, each
+// the fastest of `calls` advances: the contact pass per contact, the particle pass per particle.
+void run_phases(crystal::Dynamics& d, int calls, long per_call) {
+  crystal::PhaseTimes best;
+  best.seconds.fill(1e300);
+  double run_step = 1e300;
+  for (int k = 0; k < calls; ++k) {
+    crystal::PhaseTimes t;
+    crystal::PhaseClock clock(t, std::chrono::steady_clock::now());
+    d.advance(per_call, false, &clock);
+    for (std::size_t q = 0; q < t.seconds.size(); ++q) best.seconds[q] = std::min(best.seconds[q], t.seconds[q] / per_call);
+    run_step = std::min(run_step, t.total() / per_call);
+  }
+  using P = crystal::PhaseTimes;
+  std::printf("%-34s run step %.2f ns/particle: contact pass %.2f ns/contact, particle pass (kick, drift, "
+              "finish) %.2f ns/particle, list upkeep %.2f ns/particle\n", "", 1e9 * run_step / d.size(),
+              1e9 * best.seconds[P::contact_pass] / d.contacts.size(),
+              1e9 * (best.seconds[P::kick_drift] + best.seconds[P::finish]) / d.size(),
+              1e9 * best.seconds[P::list_upkeep] / d.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -222,24 +243,9 @@ int main(int argc, char** argv) {
     std::printf("%-34s %9zu %14.2f %16.2f %16.2f %16.2f\n", row.name, dyn.contacts.size(),
                 1e9 * pass / dyn.contacts.size(), 1e9 * step / dyn.size(), 1e9 * (step - pass) / dyn.size(),
                 1e9 * in_step / dyn.contacts.size());
-    if (passes_only) {  // a run's steps (20 in one advance: the finish joined to the next drift), by phase
+    if (passes_only) {  // a run's steps, by phase
       crystal::Dynamics d3 = fresh();
-      crystal::PhaseTimes best;
-      best.seconds.fill(1e300);
-      double run_step = 1e300;
-      for (int k = 0; k < calls; ++k) {
-        crystal::PhaseTimes t;
-        crystal::PhaseClock clock(t, std::chrono::steady_clock::now());
-        d3.advance(20, false, &clock);
-        for (std::size_t q = 0; q < t.seconds.size(); ++q) best.seconds[q] = std::min(best.seconds[q], t.seconds[q] / 20);
-        run_step = std::min(run_step, t.total() / 20);
-      }
-      using P = crystal::PhaseTimes;
-      std::printf("%-34s run step %.2f ns/particle: contact pass %.2f ns/contact, particle pass (kick, drift, "
-                  "finish) %.2f ns/particle, list upkeep %.2f ns/particle\n", "", 1e9 * run_step / d3.size(),
-                  1e9 * best.seconds[P::contact_pass] / d3.contacts.size(),
-                  1e9 * (best.seconds[P::kick_drift] + best.seconds[P::finish]) / d3.size(),
-                  1e9 * best.seconds[P::list_upkeep] / d3.size());
+      run_phases(d3, calls, 20);
       continue;
     }
     // The observers of one sample (crystal/simulation.cpp), us per call.
@@ -254,7 +260,18 @@ int main(int argc, char** argv) {
                 "kinetic + Verlet %.1f us%s\n",
                 "", 1e6 * t_stress, 1e6 * t_coord, 1e6 * t_pot, 1e6 * t_diss, 1e6 * t_kin, sink == 0.123 ? " " : "");
   }
-  if (passes_only) return 0;
+  if (passes_only) {  // and a crystal beyond the L3 (320000 particles, ~1.9 million contacts): memory's share
+    std::printf("\na crystal beyond the L3 (1 thread, fastest of %d advances of 5 steps)\n", 2 * repeats);
+    for (double kt : {0.0, 1e5}) {
+      crystal::Dynamics big = excited(seed_case(20000, kt));
+      big.parallel_min_particles = big.size() + 1;
+      for (int k = 0; k < 5; ++k) big.step();
+      std::printf("%-34s %9zu contacts\n", kt > 0 ? "4x4x20000, kt = k (friction)" : "4x4x20000, frictionless",
+                  big.contacts.size());
+      run_phases(big, 2 * repeats, 5);
+    }
+    return 0;
+  }
   // Thread scaling where threads pay (OpenMP from 20000 particles on): 4x4x2000, 32000 particles.
 #ifdef _OPENMP
   std::printf("\nthread scaling, 4x4x2000 (32000 particles)\n%-34s %8s %12s %18s %18s %9s\n", "case", "threads",
