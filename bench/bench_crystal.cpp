@@ -2,7 +2,8 @@
 // 3200-particle crystal of seed 002 with and without friction (and with Hertz-Mindlin contacts,
 // issue #14: data/cases/crystal_hertz.toml), on one and two threads; the
 // cost per step as the number of layers grows; memory per particle.
-// Usage: bench_crystal [steps=2000] [repeats=3]
+// Usage: bench_crystal [--passes] [steps=2000] [repeats=3]  (--passes: the passes alone and a run by phase,
+// bench/ceilings_figure.py's achieved times, issue #41)
 // Each figure is the best of `repeats` measurements, by wall clock and by CPU time (on a loaded
 // machine the wall clock also counts other processes' turns; CPU time does not). The passes of
 // one step are timed alone as well, each the fastest of many single calls (robust under load).
