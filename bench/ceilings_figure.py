@@ -64,6 +64,8 @@ def achieved(text):
             last = m.group(1)
             out[last] = [float(m.group(6)), None]
             continue
+        if line.startswith("4x4x"):  # another table's row (the crystal beyond the L3): not these passes
+            last = None
         m = re.search(r"contact pass ([\d.]+) ns/contact, particle pass \(kick, drift, finish\) ([\d.]+) ns/particle",
                       line)
         if m and last:
