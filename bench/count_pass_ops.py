@@ -6,14 +6,17 @@ How: `objdump -d` of the kernel's objects (build/CMakeFiles/granwave_crystal.dir
 law_model_*.cpp.o, passes.cpp.o), the function of each pass found by its demangled name, its loops
 found by their backward jumps, the hot loops picked by what they hold (the evaluation: the packed
 root; the gather: the row transposes; the scatter: the row sums), each instruction classified by
-mnemonic and operand (xmm/ymm/zmm lanes of doubles, a memory source or destination). A loop that
-walks 4 contacts (particles) per iteration (checked: its index advances by 4 or by 4 doubles) gives
-its counts / 4 per contact. Only the fall-through path is counted: a block placed out of line (the
-scatter's change of particle i, once per ~6 contacts) is not. With --mca, each loop is also handed to
-llvm-mca-14 -mcpu=znver3 (Zen 3: LLVM 14 has no Zen 4 model; AVX-512VL instructions on ymm are
-modelled as their Zen 3 VEX forms where it knows them) for its cycles per iteration and bottleneck.
+mnemonic and operand (xmm/ymm/zmm lanes of doubles, a memory source or destination, %rsp: the stack).
+A loop's counts are divided by the contacts (particles) an iteration walks (the table PASSES, read by
+hand and checked against the loop's induction where the script can read it). Only the fall-through
+path is counted: a block placed out of line (the scatter's change of particle i, once per ~6 contacts)
+is not. Each loop's critical path (one iteration's longest register dependency chain: the measured
+latencies of div, sqrt, add, mul with --ceilings, else Zen 4's published ones). With --mca, each loop
+is also handed to llvm-mca-14 -mcpu=znver3 (LLVM 14 has no Zen 4 model; it reads AVX-512VL
+instructions on ymm as their Zen 3 forms) for its cycles per iteration and the bottleneck it names.
 
-Usage: /usr/bin/python3 bench/count_pass_ops.py BUILD_DIR [--json FILE] [--mca] [--list FUNCTION_SUBSTRING]
+Usage: /usr/bin/python3 bench/count_pass_ops.py BUILD_DIR [--ceilings CEILINGS.json] [--mca] [--json FILE]
+       /usr/bin/python3 bench/count_pass_ops.py BUILD_DIR --list FUNCTION_SUBSTRING   (every loop of it)
 """
 import json
 import re
