@@ -118,9 +118,16 @@ def main():
     if len(args) < 3:
         print(__doc__, file=sys.stderr)
         sys.exit(2)
-    ceil = json.loads(Path(args[0]).read_text())
-    ops = {p["pass"]: p for p in json.loads(Path(args[1]).read_text())["passes"]}
-    got = achieved(Path(args[2]).read_text())
+    def read(path, what):
+        try:
+            text = Path(path).read_text()
+            return json.loads(text) if what != "text" else text
+        except (OSError, ValueError) as e:
+            print(f"ceilings_figure: {path}: cannot read it as {what} ({e})", file=sys.stderr)
+            sys.exit(2)
+    ceil = read(args[0], "JSON (build/ceilings --json)")
+    ops = {p["pass"]: p for p in read(args[1], "JSON (bench/count_pass_ops.py --json)")["passes"]}
+    got = achieved(read(args[2], "text"))
     out = Path(args[args.index("--out") + 1]) if "--out" in args else None
     rows = []
     for name, bench, particle in PASSES:
