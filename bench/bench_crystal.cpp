@@ -2,7 +2,8 @@
 // 3200-particle crystal of seed 002 with and without friction (and with Hertz-Mindlin contacts,
 // issue #14: data/cases/crystal_hertz.toml), on one and two threads; the
 // cost per step as the number of layers grows; memory per particle.
-// Usage: bench_crystal [steps=2000] [repeats=3]
+// Usage: bench_crystal [--passes] [steps=2000] [repeats=3]  (--passes: the passes alone and a run by phase,
+// bench/ceilings_figure.py's achieved times, issue #41)
 // Each figure is the best of `repeats` measurements, by wall clock and by CPU time (on a loaded
 // machine the wall clock also counts other processes' turns; CPU time does not). The passes of
 // one step are timed alone as well, each the fastest of many single calls (robust under load).
@@ -129,15 +130,39 @@ double fastest(int calls, F&& f) {
   return best;
 }
 
+// A run's steps (`per_call` in one advance: the finish joined to the next drift), phase by phase, each
+// the fastest of `calls` advances: the contact pass per contact, the particle pass per particle.
+void run_phases(crystal::Dynamics& d, int calls, long per_call) {
+  crystal::PhaseTimes best;
+  best.seconds.fill(1e300);
+  double run_step = 1e300;
+  for (int k = 0; k < calls; ++k) {
+    crystal::PhaseTimes t;
+    crystal::PhaseClock clock(t, std::chrono::steady_clock::now());
+    d.advance(per_call, false, &clock);
+    for (std::size_t q = 0; q < t.seconds.size(); ++q) best.seconds[q] = std::min(best.seconds[q], t.seconds[q] / per_call);
+    run_step = std::min(run_step, t.total() / per_call);
+  }
+  using P = crystal::PhaseTimes;
+  std::printf("%-34s run step %.2f ns/particle: contact pass %.2f ns/contact, particle pass (kick, drift, "
+              "finish) %.2f ns/particle, list upkeep %.2f ns/particle\n", "", 1e9 * run_step / d.size(),
+              1e9 * best.seconds[P::contact_pass] / d.contacts.size(),
+              1e9 * (best.seconds[P::kick_drift] + best.seconds[P::finish]) / d.size(),
+              1e9 * best.seconds[P::list_upkeep] / d.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  // bench_crystal [STEPS [REPEATS]]: whole numbers >= 1 (anything else, --help included: usage, exit 2)
+  // bench_crystal [--passes] [STEPS [REPEATS]]: whole numbers >= 1 (anything else, --help included: usage,
+  // exit 2); --passes: the passes alone only
   auto usage = [] {
-    std::fprintf(stderr, "usage: bench_crystal [STEPS [REPEATS]]  (steps per measurement, default 2000; best of "
-                         "REPEATS, default 3; whole numbers >= 1)\n");
+    std::fprintf(stderr, "usage: bench_crystal [--passes] [STEPS [REPEATS]]  (steps per measurement, default 2000; "
+                         "best of REPEATS, default 3; whole numbers >= 1; --passes: the passes alone only)\n");
     std::exit(2);
   };
+  const bool passes_only = argc > 1 && std::string(argv[1]) == "--passes";
+  if (passes_only) --argc, ++argv;
   auto count = [&](int k, long fallback) -> long {
     if (argc <= k) return fallback;
     char* end = nullptr;
@@ -161,13 +186,18 @@ int main(int argc, char** argv) {
     config::LeverArm arm;
     const char* name;
     bool hertz = false;
-    config::Case make() const { return hertz ? hertz_case() : seed_case(200, kt, arm); }
+    bool rolling = false;  // bench/cases/crystal_rolling.toml (passes alone only)
+    config::Case make() const {
+      if (rolling) return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/bench/cases/crystal_rolling.toml");
+      return hertz ? hertz_case() : seed_case(200, kt, arm);
+    }
   };
   const Row rows[] = {Row{0.0, config::LeverArm::radius, "4x4x200, frictionless"},
                       Row{1e5, config::LeverArm::radius, "4x4x200, kt = k (friction)"},
                       Row{1e5, config::LeverArm::contact_point, "4x4x200, kt = k, contact-point arm"},
                       Row{0.0, config::LeverArm::radius, "4x4x200, Hertz-Mindlin", true}};
   for (const Row& row : rows) {
+    if (passes_only) break;
     const config::Case c = row.make();
     for (int threads : {1, 2}) {
 #ifdef _OPENMP
@@ -187,17 +217,38 @@ int main(int argc, char** argv) {
   omp_set_num_threads(1);
 #endif
   // The passes alone, 1 thread: ns per contact for the contact pass, per particle for a step.
-  std::printf("\npasses alone (1 thread, fastest of %d calls)\n%-34s %9s %14s %16s %16s\n", 50 * repeats, "case",
-              "contacts", "ns/contact", "step ns/particle", "step-contact ns");
-  for (const Row& row : rows) {
+  // ns/contact: the pass of a sampled step (the gather rows refilled, the forces kept); "in a step":
+  // the pass of the other steps (rows fresh from the drift, no forces kept: bench/ceilings.cpp's
+  // comparison, docs/benchmarks.md issue #41).
+  std::printf("\npasses alone (1 thread, fastest of %d calls)\n%-34s %9s %14s %16s %16s %16s\n", 50 * repeats,
+              "case", "contacts", "ns/contact", "step ns/particle", "step-contact ns", "in a step ns/c");
+  std::vector<Row> pass_rows(std::begin(rows), std::end(rows));
+  pass_rows.push_back(Row{1e5, config::LeverArm::radius, "4x4x200, rolling and torsion", false, true});
+  for (const Row& row : pass_rows) {
     crystal::Dynamics dyn = excited(row.make());
     dyn.parallel_min_particles = dyn.size() + 1;
     for (int k = 0; k < 20; ++k) dyn.step();
     const int calls = 50 * repeats;
     const double pass = fastest(calls, [&] { dyn.model().contact_pass(dyn, {dyn.dt(), true, false, true}); });
     const double step = fastest(calls, [&] { dyn.step(); });
-    std::printf("%-34s %9zu %14.2f %16.2f %16.2f\n", row.name, dyn.contacts.size(), 1e9 * pass / dyn.contacts.size(),
-                1e9 * step / dyn.size(), 1e9 * (step - pass) / dyn.size());
+    // The state each measurement starts from: 20 steps after the excitation (the calls above moved
+    // the springs without moving the particles; a Hertz-Mindlin pass then took the exact sweep)
+    auto fresh = [&] {
+      crystal::Dynamics f = excited(row.make());
+      f.parallel_min_particles = f.size() + 1;
+      for (int k = 0; k < 20; ++k) f.step();
+      return f;
+    };
+    crystal::Dynamics d2 = fresh();
+    const double in_step = fastest(calls, [&] { d2.model().contact_pass(d2, {d2.dt(), true, true, false}); });
+    std::printf("%-34s %9zu %14.2f %16.2f %16.2f %16.2f\n", row.name, dyn.contacts.size(),
+                1e9 * pass / dyn.contacts.size(), 1e9 * step / dyn.size(), 1e9 * (step - pass) / dyn.size(),
+                1e9 * in_step / dyn.contacts.size());
+    if (passes_only) {  // a run's steps, by phase
+      crystal::Dynamics d3 = fresh();
+      run_phases(d3, calls, 20);
+      continue;
+    }
     // The observers of one sample (crystal/simulation.cpp), us per call.
     std::vector<double> zz, zx;
     double sink = 0.0;
@@ -209,6 +260,18 @@ int main(int argc, char** argv) {
     std::printf("%-34s sample: layer_stress %.1f us, coordination %.1f us, potential %.1f us, dissipated %.1f us, "
                 "kinetic + Verlet %.1f us%s\n",
                 "", 1e6 * t_stress, 1e6 * t_coord, 1e6 * t_pot, 1e6 * t_diss, 1e6 * t_kin, sink == 0.123 ? " " : "");
+  }
+  if (passes_only) {  // and a crystal beyond the L3 (320000 particles, ~1.9 million contacts): memory's share
+    std::printf("\na crystal beyond the L3 (1 thread, fastest of %d advances of 5 steps)\n", 2 * repeats);
+    for (double kt : {0.0, 1e5}) {
+      crystal::Dynamics big = excited(seed_case(20000, kt));
+      big.parallel_min_particles = big.size() + 1;
+      for (int k = 0; k < 5; ++k) big.step();
+      std::printf("%-34s %9zu contacts\n", kt > 0 ? "4x4x20000, kt = k (friction)" : "4x4x20000, frictionless",
+                  big.contacts.size());
+      run_phases(big, 2 * repeats, 5);
+    }
+    return 0;
   }
   // Thread scaling where threads pay (OpenMP from 20000 particles on): 4x4x2000, 32000 particles.
 #ifdef _OPENMP
