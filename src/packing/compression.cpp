@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <type_traits>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -165,9 +166,13 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     if constexpr (Fric)
       if (!threaded) std::fill(te.begin(), te.end(), 0.0), std::fill(tt.begin(), tt.end(), 0.0);
     if (pf.size() < npairs) pf.resize(npairs), pft.resize(npairs), pu.resize(3 * npairs), pterm.resize(4 * npairs);
-    // Each pair on its own (any thread): touching or not, its forces, its unit vector, its terms of the sums.
-#pragma omp parallel for schedule(static) if (threaded)
-    for (std::size_t c = 0; c < npairs; ++c) {
+    // Each pair on its own: touching or not, its forces, its unit vector, its terms of the sums. On one
+    // thread (Serial) the pairs come in order, so each pair's forces and terms are added as it comes:
+    // the order of the gather and of the sums below, the same bits without storing a pair's unit vector
+    // and terms and reading them back (the pass's memory traffic). With threads they are stored.
+    double virial = 0.0, stiff = 0.0, e_pot = 0.0, f_sum = 0.0, worst = 0.0;
+    std::size_t contacts = 0;
+    const auto pair_step = [&]<bool Serial>(std::size_t c, std::bool_constant<Serial>) {
       const std::size_t i = pl.i[c], j = pl.j[c];
       double b[3], r2 = 0.0;
       for (int d = 0; d < 3; ++d) {
@@ -179,7 +184,7 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       if (r2 >= reach * reach) {
         pf[c] = -1.0;  // not touching
         if constexpr (Fric) fp.apart(c);
-        continue;
+        return;
       }
       const double r = std::sqrt(r2), delta = reach - r;
       const contact::NormalForce nc = law(a[i], a[j], delta);
@@ -188,17 +193,18 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       const double ms = m[i] * m[j] / (m[i] + m[j]);
       pf[c] = nc.f;
       pft[c] = std::max(0.0, nc.f - 2.0 * zeta * std::sqrt(ms * nc.k) * vn);
-      for (int d = 0; d < 3; ++d) pu[3 * c + d] = b[d] / r;
-      if (!threaded)  // one thread: each pair's forces added as it comes (the order the gather keeps)
+      if constexpr (Serial)  // each pair's forces added as it comes (the order the gather keeps)
         for (int d = 0; d < 3; ++d) {
-          const double u = pu[3 * c + d];
+          const double u = b[d] / r;
           fe[3 * i + d] -= nc.f * u, fe[3 * j + d] += nc.f * u;
           ft[3 * i + d] -= pft[c] * u, ft[3 * j + d] += pft[c] * u;
         }
-      pterm[4 * c] = nc.f * r;                                            // virial
-      pterm[4 * c + 1] = nc.k * r2;                                       // affine stiffness
-      pterm[4 * c + 2] = nc.f * nc.f * delta / (nc.k * delta + nc.f);     // f delta / (n + 1) for f ~ delta^n
-      pterm[4 * c + 3] = delta / std::min(a[i], a[j]);                    // relative overlap
+      else
+        for (int d = 0; d < 3; ++d) pu[3 * c + d] = b[d] / r;
+      const double term_virial = nc.f * r;                                   // virial
+      const double term_stiffness = nc.k * r2;                               // affine stiffness
+      double term_energy = nc.f * nc.f * delta / (nc.k * delta + nc.f);      // f delta / (n + 1) for f ~ delta^n
+      const double term_overlap = delta / std::min(a[i], a[j]);             // relative overlap
       if constexpr (Fric) {
         // The tangential spring: v_ij of i's contact point against j's (the affine part is normal).
         const contact::Vec3 nv{b[0] / r, b[1] / r, b[2] / r};
@@ -210,8 +216,8 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
         // No tangential dashpot (Agnolin & Roux damp the normal motion only): a dashpot of the normal's
         // fraction of critical on z contacts of a sphere's rotation (I = 2/5 m a^2) nears the explicit
         // step's limit and kept 300 spheres ringing at E_kin/E_pot 2e-3; friction and the drag dissipate.
-        pterm[4 * c + 2] += fp.touch(c, nv, nc.f, kt, 0.0, spec.friction, v_ij, dt);
-        if (!threaded) {
+        term_energy += fp.touch(c, nv, nc.f, kt, 0.0, spec.friction, v_ij, dt);
+        if constexpr (Serial) {
           const double* o = &fp.out[12 * c];
           for (int d = 0; d < 3; ++d) {
             fe[3 * i + d] += o[d], fe[3 * j + d] -= o[d];
@@ -221,6 +227,95 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
           }
         }
       }
+      if constexpr (Serial) {
+        virial += term_virial;
+        stiff += term_stiffness;
+        e_pot += term_energy;
+        f_sum += nc.f;
+        worst = std::max(worst, term_overlap);
+        ++contacts;
+      } else {
+        pterm[4 * c] = term_virial, pterm[4 * c + 1] = term_stiffness, pterm[4 * c + 2] = term_energy, pterm[4 * c + 3] = term_overlap;
+      }
+    };
+    // Frictionless, a chunk of pairs at a time: the particle values each pair reads copied into columns
+    // (the image shift, r_j - r_i and v_j - v_i as pair_step computes them), the pair's arithmetic over
+    // the columns in a loop without branches, which the compiler vectorises (ten divisions and three
+    // roots a pair, a lane each: the same IEEE operations in the same order, so the same bits), then
+    // the pairs in order, each one's forces and terms added or stored as pair_step does.
+    constexpr std::size_t kChunk = 128;
+    const auto chunk_step = [&]<bool Serial>(std::size_t c0, std::bool_constant<Serial>) {
+      const std::size_t nb = std::min(kChunk, npairs - c0);
+      alignas(64) double cb[3][kChunk], cdv[3][kChunk], cai[kChunk], caj[kChunk], cmi[kChunk], cmj[kChunk];
+      for (std::size_t k = 0; k < nb; ++k) {
+        const std::size_t i = pl.i[c0 + k], j = pl.j[c0 + k];
+        for (int d = 0; d < 3; ++d) {
+          double b = x[3 * j + d] - x[3 * i + d];
+          b -= L[d] * std::nearbyint(b * inv[d]);
+          cb[d][k] = b;
+          cdv[d][k] = v[3 * j + d] - v[3 * i + d];
+        }
+        cai[k] = a[i], caj[k] = a[j], cmi[k] = m[i], cmj[k] = m[j];
+      }
+      alignas(64) double cf[kChunk], cft[kChunk], cu[3][kChunk], cterm[4][kChunk], ctouch[kChunk];
+      for (std::size_t k = 0; k < nb; ++k) {
+        double r2 = 0.0;
+        for (int d = 0; d < 3; ++d) r2 += cb[d][k] * cb[d][k];
+        const double reach = cai[k] + caj[k];
+        ctouch[k] = r2 >= reach * reach ? 0.0 : 1.0;
+        const double r = std::sqrt(r2), delta = reach - r;
+        const contact::NormalForce nc = law(cai[k], caj[k], delta);
+        double vn = rate * r;
+        for (int d = 0; d < 3; ++d) vn += cdv[d][k] * cb[d][k] / r;
+        const double ms = cmi[k] * cmj[k] / (cmi[k] + cmj[k]);
+        cf[k] = nc.f;
+        cft[k] = std::max(0.0, nc.f - 2.0 * zeta * std::sqrt(ms * nc.k) * vn);
+        for (int d = 0; d < 3; ++d) cu[d][k] = cb[d][k] / r;
+        cterm[0][k] = nc.f * r;
+        cterm[1][k] = nc.k * r2;
+        cterm[2][k] = nc.f * nc.f * delta / (nc.k * delta + nc.f);
+        cterm[3][k] = delta / std::min(cai[k], caj[k]);
+      }
+      for (std::size_t k = 0; k < nb; ++k) {
+        const std::size_t c = c0 + k;
+        if (ctouch[k] == 0.0) {
+          pf[c] = -1.0;  // not touching
+          continue;
+        }
+        pf[c] = cf[k];
+        pft[c] = cft[k];
+        if constexpr (Serial) {
+          const std::size_t i = pl.i[c], j = pl.j[c];
+          for (int d = 0; d < 3; ++d) {
+            const double u = cu[d][k];
+            fe[3 * i + d] -= cf[k] * u, fe[3 * j + d] += cf[k] * u;
+            ft[3 * i + d] -= cft[k] * u, ft[3 * j + d] += cft[k] * u;
+          }
+          virial += cterm[0][k];
+          stiff += cterm[1][k];
+          e_pot += cterm[2][k];
+          f_sum += cf[k];
+          worst = std::max(worst, cterm[3][k]);
+          ++contacts;
+        } else {
+          for (int d = 0; d < 3; ++d) pu[3 * c + d] = cu[d][k];
+          for (int q = 0; q < 4; ++q) pterm[4 * c + q] = cterm[q][k];
+        }
+      }
+    };
+    if constexpr (!Fric) {
+      const std::size_t chunks = (npairs + kChunk - 1) / kChunk;
+      if (threaded) {
+#pragma omp parallel for schedule(static)
+        for (std::size_t h = 0; h < chunks; ++h) chunk_step(h * kChunk, std::false_type{});
+      } else {
+        for (std::size_t h = 0; h < chunks; ++h) chunk_step(h * kChunk, std::true_type{});
+      }
+    } else if (threaded) {
+#pragma omp parallel for schedule(static)
+      for (std::size_t c = 0; c < npairs; ++c) pair_step(c, std::false_type{});
+    } else {
+      for (std::size_t c = 0; c < npairs; ++c) pair_step(c, std::true_type{});
     }
     // Threads: each particle's forces gathered from its pairs, in the order of a serial sweep over the pairs.
 #pragma omp parallel for schedule(static) if (threaded)
@@ -248,10 +343,8 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       if constexpr (Fric)
         for (int d = 0; d < 3; ++d) te[3 * q + d] = te_q[d], tt[3 * q + d] = tt_q[d];
     }
-    // The sums, serially in the pairs' order.
-    double virial = 0.0, stiff = 0.0, e_pot = 0.0, f_sum = 0.0, worst = 0.0;
-    std::size_t contacts = 0;
-    for (std::size_t c = 0; c < npairs; ++c) {
+    // With threads, the sums serially in the pairs' order.
+    for (std::size_t c = 0; c < (threaded ? npairs : 0); ++c) {
       if (pf[c] < 0.0) continue;
       virial += pterm[4 * c];
       stiff += pterm[4 * c + 1];
