@@ -1,5 +1,6 @@
 // The packing study's results (see packing_study.hpp): per-pressure means and spreads over the
 // seeds, the power laws in p, the markdown table and the study file (data/SCHEMA.md §6b).
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -91,6 +92,13 @@ std::string packing_markdown(const PackingStudy& s, const std::vector<MemberResu
       << mpa(pv_K_relaxed) << " | " << mpa(pv_K_walton) << " | " << mpa(pv_G_affine) << " | " << mpa(pv_G_relaxed)
       << " | " << mpa(pv_G_walton) << " | " << ms(r, pv_V_p_first_peak, "%.2f") << " | " << ms(r, pv_V_pz_relaxed, "%.2f")
       << " | " << ms(r, pv_V_s_first_peak, "%.2f") << " | " << ms(r, pv_V_sz_relaxed, "%.2f") << " |\n";
+  }
+  std::vector<double> pressures;
+  for (const auto& r : rows)
+    if (std::find(pressures.begin(), pressures.end(), r.pressure) == pressures.end()) pressures.push_back(r.pressure);
+  if (pressures.size() < 2) {  // a study over the width alone (random_poly.toml): no line through one pressure
+    o << "\nNo slopes against p: the study has one pressure.\n";
+    return o.str();
   }
   const PackingSlopes sl = packing_slopes(members);
   o << "\nSlopes d ln / d ln p over every packing (Makse et al. 2004: above 1/3 for K and G, since Z grows with p; "
