@@ -77,7 +77,7 @@ void VerletPairs::build(const std::vector<double>& x, const std::vector<double>&
 }
 
 bool VerletPairs::stale(const std::vector<double>& x, const std::array<double, 3>& L, double a_max, double skin,
-                        double scale, bool threaded) const {
+                        double scale, [[maybe_unused]] bool threaded) const {  // unused without OpenMP
   // A pair's distance falls by at most 2u + (1 - s) 2 a_max: u the largest non-affine displacement.
   const double ratio_s = scale / scale0;
   const std::size_t n = x.size() / 3;
