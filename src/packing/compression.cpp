@@ -30,6 +30,36 @@ namespace granwave::packing {
 
 namespace {
 
+// One touching pair's normal contact from its branch b = r_j - r_i (nearest image), v_j - v_i, r2 = |b|^2,
+// the radii and masses: the law's elastic force, the total with the dashpot on the relative normal
+// velocity (the box's affine part, rate |b|, included; no tension), the unit vector and the pair's terms
+// of the sums. The one formula of both the chunked (vectorised) and the pair-by-pair evaluation.
+struct NormalPair {
+  contact::NormalForce elastic;
+  double f_total, r, u[3];
+  double virial, stiffness, energy, overlap;  // f |b|, k |b|^2, f delta / (n + 1) for f ~ delta^n, delta / min(a)
+};
+
+template <class Law>
+inline NormalPair normal_pair(const Law& law, const double (&b)[3], const double (&dv)[3], double r2, double a_i, double a_j,
+                              double m_i, double m_j, double rate, double zeta) {
+  NormalPair p;
+  p.r = std::sqrt(r2);
+  const double delta = (a_i + a_j) - p.r;
+  const contact::NormalForce nc = law(a_i, a_j, delta);
+  double vn = rate * p.r;
+  for (int d = 0; d < 3; ++d) vn += dv[d] * b[d] / p.r;
+  const double ms = m_i * m_j / (m_i + m_j);
+  p.elastic = nc;
+  p.f_total = std::max(0.0, nc.f - 2.0 * zeta * std::sqrt(ms * nc.k) * vn);
+  for (int d = 0; d < 3; ++d) p.u[d] = b[d] / p.r;
+  p.virial = nc.f * p.r;
+  p.stiffness = nc.k * r2;
+  p.energy = nc.f * nc.f * delta / (nc.k * delta + nc.f);
+  p.overlap = delta / std::min(a_i, a_j);
+  return p;
+}
+
 // The overlap at which the law's force between two spheres of radius a reaches f (bisection).
 template <class Law>
 double overlap_at_force(const Law& law, double a, double f) {
@@ -166,85 +196,42 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
     if constexpr (Fric)
       if (!threaded) std::fill(te.begin(), te.end(), 0.0), std::fill(tt.begin(), tt.end(), 0.0);
     if (pf.size() < npairs) pf.resize(npairs), pft.resize(npairs), pu.resize(3 * npairs), pterm.resize(4 * npairs);
-    // Each pair on its own: touching or not, its forces, its unit vector, its terms of the sums. On one
-    // thread (Serial) the pairs come in order, so each pair's forces and terms are added as it comes:
-    // the order of the gather and of the sums below, the same bits without storing a pair's unit vector
-    // and terms and reading them back (the pass's memory traffic). With threads they are stored.
+    // Each touching pair's normal forces and terms (normal_pair) added as it comes on one thread (Serial:
+    // the pairs come in order, the order of the gather and of the sums below, the same bits without
+    // storing a pair's unit vector and terms and reading them back), stored for them with threads.
     double virial = 0.0, stiff = 0.0, e_pot = 0.0, f_sum = 0.0, worst = 0.0;
     std::size_t contacts = 0;
-    const auto pair_step = [&]<bool Serial>(std::size_t c, std::bool_constant<Serial>) {
-      const std::size_t i = pl.i[c], j = pl.j[c];
-      double b[3], r2 = 0.0;
-      for (int d = 0; d < 3; ++d) {
-        b[d] = x[3 * j + d] - x[3 * i + d];
-        b[d] -= L[d] * std::nearbyint(b[d] * inv[d]);
-        r2 += b[d] * b[d];
-      }
-      const double reach = a[i] + a[j];
-      if (r2 >= reach * reach) {
-        pf[c] = -1.0;  // not touching
-        if constexpr (Fric) fp.apart(c);
-        return;
-      }
-      const double r = std::sqrt(r2), delta = reach - r;
-      const contact::NormalForce nc = law(a[i], a[j], delta);
-      double vn = rate * r;
-      for (int d = 0; d < 3; ++d) vn += (v[3 * j + d] - v[3 * i + d]) * b[d] / r;
-      const double ms = m[i] * m[j] / (m[i] + m[j]);
-      pf[c] = nc.f;
-      pft[c] = std::max(0.0, nc.f - 2.0 * zeta * std::sqrt(ms * nc.k) * vn);
-      if constexpr (Serial)  // each pair's forces added as it comes (the order the gather keeps)
-        for (int d = 0; d < 3; ++d) {
-          const double u = b[d] / r;
-          fe[3 * i + d] -= nc.f * u, fe[3 * j + d] += nc.f * u;
-          ft[3 * i + d] -= pft[c] * u, ft[3 * j + d] += pft[c] * u;
-        }
-      else
-        for (int d = 0; d < 3; ++d) pu[3 * c + d] = b[d] / r;
-      const double term_virial = nc.f * r;                                   // virial
-      const double term_stiffness = nc.k * r2;                               // affine stiffness
-      double term_energy = nc.f * nc.f * delta / (nc.k * delta + nc.f);      // f delta / (n + 1) for f ~ delta^n
-      const double term_overlap = delta / std::min(a[i], a[j]);             // relative overlap
-      if constexpr (Fric) {
-        // The tangential spring: v_ij of i's contact point against j's (the affine part is normal).
-        const contact::Vec3 nv{b[0] / r, b[1] / r, b[2] / r};
-        const contact::Vec3 vi{v[3 * i], v[3 * i + 1], v[3 * i + 2]}, vj{v[3 * j], v[3 * j + 1], v[3 * j + 2]};
-        const contact::Vec3 wi{w_rot[3 * i], w_rot[3 * i + 1], w_rot[3 * i + 2]};
-        const contact::Vec3 wj{w_rot[3 * j], w_rot[3 * j + 1], w_rot[3 * j + 2]};
-        const contact::Vec3 v_ij = vi - vj - nv * (rate * r) + (wi * a[i] + wj * a[j]).cross(nv);
-        const double kt = spec.tangential(nc);
-        // No tangential dashpot (Agnolin & Roux damp the normal motion only): a dashpot of the normal's
-        // fraction of critical on z contacts of a sphere's rotation (I = 2/5 m a^2) nears the explicit
-        // step's limit and kept 300 spheres ringing at E_kin/E_pot 2e-3; friction and the drag dissipate.
-        term_energy += fp.touch(c, nv, nc.f, kt, 0.0, spec.friction, v_ij, dt);
-        if constexpr (Serial) {
-          const double* o = &fp.out[12 * c];
-          for (int d = 0; d < 3; ++d) {
-            fe[3 * i + d] += o[d], fe[3 * j + d] -= o[d];
-            ft[3 * i + d] += o[3 + d], ft[3 * j + d] -= o[3 + d];
-            te[3 * i + d] += a[i] * o[6 + d], te[3 * j + d] += a[j] * o[6 + d];
-            tt[3 * i + d] += a[i] * o[9 + d], tt[3 * j + d] += a[j] * o[9 + d];
-          }
-        }
-      }
+    const auto add_normal = [&]<bool Serial>(std::size_t c, const NormalPair& p, std::bool_constant<Serial>) {
+      pf[c] = p.elastic.f;
+      pft[c] = p.f_total;
       if constexpr (Serial) {
-        virial += term_virial;
-        stiff += term_stiffness;
-        e_pot += term_energy;
-        f_sum += nc.f;
-        worst = std::max(worst, term_overlap);
+        const std::size_t i = pl.i[c], j = pl.j[c];
+        for (int d = 0; d < 3; ++d) {
+          fe[3 * i + d] -= p.elastic.f * p.u[d], fe[3 * j + d] += p.elastic.f * p.u[d];
+          ft[3 * i + d] -= p.f_total * p.u[d], ft[3 * j + d] += p.f_total * p.u[d];
+        }
+      } else {
+        for (int d = 0; d < 3; ++d) pu[3 * c + d] = p.u[d];
+      }
+    };
+    const auto add_terms = [&]<bool Serial>(std::size_t c, const NormalPair& p, double energy, std::bool_constant<Serial>) {
+      if constexpr (Serial) {
+        virial += p.virial;
+        stiff += p.stiffness;
+        e_pot += energy;
+        f_sum += p.elastic.f;
+        worst = std::max(worst, p.overlap);
         ++contacts;
       } else {
-        pterm[4 * c] = term_virial, pterm[4 * c + 1] = term_stiffness, pterm[4 * c + 2] = term_energy, pterm[4 * c + 3] = term_overlap;
+        pterm[4 * c] = p.virial, pterm[4 * c + 1] = p.stiffness, pterm[4 * c + 2] = energy, pterm[4 * c + 3] = p.overlap;
       }
     };
     // Frictionless, a chunk of pairs at a time: the particle values each pair reads copied into columns
-    // (the image shift, r_j - r_i and v_j - v_i as pair_step computes them), the pair's arithmetic over
-    // the columns in a loop without branches, which the compiler vectorises (ten divisions and three
-    // roots a pair, a lane each: the same IEEE operations in the same order, so the same bits), then
-    // the pairs in order, each one's forces and terms added or stored as pair_step does.
+    // (the image shift, r_j - r_i and v_j - v_i), normal_pair over the columns in a loop without branches,
+    // which the compiler vectorises (ten divisions and three roots a pair, a lane each: the same IEEE
+    // operations in the same order, so the same bits), then the touching pairs in order.
     constexpr std::size_t kChunk = 128;
-    const auto chunk_step = [&]<bool Serial>(std::size_t c0, std::bool_constant<Serial>) {
+    const auto chunk_step = [&]<bool Serial>(std::size_t c0, std::bool_constant<Serial> serial) {
       const std::size_t nb = std::min(kChunk, npairs - c0);
       alignas(64) double cb[3][kChunk], cdv[3][kChunk], cai[kChunk], caj[kChunk], cmi[kChunk], cmj[kChunk];
       for (std::size_t k = 0; k < nb; ++k) {
@@ -257,51 +244,71 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
         }
         cai[k] = a[i], caj[k] = a[j], cmi[k] = m[i], cmj[k] = m[j];
       }
+      // The results as columns too (an array of NormalPair would stop the vectorisation: measured 2x slower).
       alignas(64) double cf[kChunk], cft[kChunk], cu[3][kChunk], cterm[4][kChunk], ctouch[kChunk];
       for (std::size_t k = 0; k < nb; ++k) {
+        const double b[3] = {cb[0][k], cb[1][k], cb[2][k]}, dv[3] = {cdv[0][k], cdv[1][k], cdv[2][k]};
         double r2 = 0.0;
-        for (int d = 0; d < 3; ++d) r2 += cb[d][k] * cb[d][k];
+        for (int d = 0; d < 3; ++d) r2 += b[d] * b[d];
         const double reach = cai[k] + caj[k];
         ctouch[k] = r2 >= reach * reach ? 0.0 : 1.0;
-        const double r = std::sqrt(r2), delta = reach - r;
-        const contact::NormalForce nc = law(cai[k], caj[k], delta);
-        double vn = rate * r;
-        for (int d = 0; d < 3; ++d) vn += cdv[d][k] * cb[d][k] / r;
-        const double ms = cmi[k] * cmj[k] / (cmi[k] + cmj[k]);
-        cf[k] = nc.f;
-        cft[k] = std::max(0.0, nc.f - 2.0 * zeta * std::sqrt(ms * nc.k) * vn);
-        for (int d = 0; d < 3; ++d) cu[d][k] = cb[d][k] / r;
-        cterm[0][k] = nc.f * r;
-        cterm[1][k] = nc.k * r2;
-        cterm[2][k] = nc.f * nc.f * delta / (nc.k * delta + nc.f);
-        cterm[3][k] = delta / std::min(cai[k], caj[k]);
+        const NormalPair p = normal_pair(law, b, dv, r2, cai[k], caj[k], cmi[k], cmj[k], rate, zeta);
+        cf[k] = p.elastic.f, cft[k] = p.f_total;
+        for (int d = 0; d < 3; ++d) cu[d][k] = p.u[d];
+        cterm[0][k] = p.virial, cterm[1][k] = p.stiffness, cterm[2][k] = p.energy, cterm[3][k] = p.overlap;
       }
       for (std::size_t k = 0; k < nb; ++k) {
-        const std::size_t c = c0 + k;
         if (ctouch[k] == 0.0) {
-          pf[c] = -1.0;  // not touching
+          pf[c0 + k] = -1.0;  // not touching
           continue;
         }
-        pf[c] = cf[k];
-        pft[c] = cft[k];
-        if constexpr (Serial) {
-          const std::size_t i = pl.i[c], j = pl.j[c];
-          for (int d = 0; d < 3; ++d) {
-            const double u = cu[d][k];
-            fe[3 * i + d] -= cf[k] * u, fe[3 * j + d] += cf[k] * u;
-            ft[3 * i + d] -= cft[k] * u, ft[3 * j + d] += cft[k] * u;
-          }
-          virial += cterm[0][k];
-          stiff += cterm[1][k];
-          e_pot += cterm[2][k];
-          f_sum += cf[k];
-          worst = std::max(worst, cterm[3][k]);
-          ++contacts;
-        } else {
-          for (int d = 0; d < 3; ++d) pu[3 * c + d] = cu[d][k];
-          for (int q = 0; q < 4; ++q) pterm[4 * c + q] = cterm[q][k];
+        NormalPair p;
+        p.elastic.f = cf[k], p.f_total = cft[k];
+        for (int d = 0; d < 3; ++d) p.u[d] = cu[d][k];
+        p.virial = cterm[0][k], p.stiffness = cterm[1][k], p.energy = cterm[2][k], p.overlap = cterm[3][k];
+        add_normal(c0 + k, p, serial);
+        add_terms(c0 + k, p, p.energy, serial);
+      }
+    };
+    // With friction, pair by pair: the normal part as above, then the tangential spring.
+    const auto friction_pair_step = [&]<bool Serial>(std::size_t c, std::bool_constant<Serial> serial) {
+      const std::size_t i = pl.i[c], j = pl.j[c];
+      double b[3], dv[3], r2 = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        b[d] = x[3 * j + d] - x[3 * i + d];
+        b[d] -= L[d] * std::nearbyint(b[d] * inv[d]);
+        r2 += b[d] * b[d];
+        dv[d] = v[3 * j + d] - v[3 * i + d];
+      }
+      const double reach = a[i] + a[j];
+      if (r2 >= reach * reach) {
+        pf[c] = -1.0;  // not touching
+        fp.apart(c);
+        return;
+      }
+      const NormalPair p = normal_pair(law, b, dv, r2, a[i], a[j], m[i], m[j], rate, zeta);
+      add_normal(c, p, serial);
+      // The tangential spring: v_ij of i's contact point against j's (the affine part is normal).
+      const contact::Vec3 nv{p.u[0], p.u[1], p.u[2]};
+      const contact::Vec3 vi{v[3 * i], v[3 * i + 1], v[3 * i + 2]}, vj{v[3 * j], v[3 * j + 1], v[3 * j + 2]};
+      const contact::Vec3 wi{w_rot[3 * i], w_rot[3 * i + 1], w_rot[3 * i + 2]};
+      const contact::Vec3 wj{w_rot[3 * j], w_rot[3 * j + 1], w_rot[3 * j + 2]};
+      const contact::Vec3 v_ij = vi - vj - nv * (rate * p.r) + (wi * a[i] + wj * a[j]).cross(nv);
+      const double kt = spec.tangential(p.elastic);
+      // No tangential dashpot (Agnolin & Roux damp the normal motion only): a dashpot of the normal's
+      // fraction of critical on z contacts of a sphere's rotation (I = 2/5 m a^2) nears the explicit
+      // step's limit and kept 300 spheres ringing at E_kin/E_pot 2e-3; friction and the drag dissipate.
+      const double energy = p.energy + fp.touch(c, nv, p.elastic.f, kt, 0.0, spec.friction, v_ij, dt);
+      if constexpr (Serial) {
+        const double* o = &fp.out[12 * c];
+        for (int d = 0; d < 3; ++d) {
+          fe[3 * i + d] += o[d], fe[3 * j + d] -= o[d];
+          ft[3 * i + d] += o[3 + d], ft[3 * j + d] -= o[3 + d];
+          te[3 * i + d] += a[i] * o[6 + d], te[3 * j + d] += a[j] * o[6 + d];
+          tt[3 * i + d] += a[i] * o[9 + d], tt[3 * j + d] += a[j] * o[9 + d];
         }
       }
+      add_terms(c, p, energy, serial);
     };
     if constexpr (!Fric) {
       const std::size_t chunks = (npairs + kChunk - 1) / kChunk;
@@ -313,9 +320,9 @@ Preparation compress_with(Packing& gas, const RandomSpec& spec, const Law& law,
       }
     } else if (threaded) {
 #pragma omp parallel for schedule(static)
-      for (std::size_t c = 0; c < npairs; ++c) pair_step(c, std::false_type{});
+      for (std::size_t c = 0; c < npairs; ++c) friction_pair_step(c, std::false_type{});
     } else {
-      for (std::size_t c = 0; c < npairs; ++c) pair_step(c, std::true_type{});
+      for (std::size_t c = 0; c < npairs; ++c) friction_pair_step(c, std::true_type{});
     }
     // Threads: each particle's forces gathered from its pairs, in the order of a serial sweep over the pairs.
 #pragma omp parallel for schedule(static) if (threaded)
