@@ -55,11 +55,14 @@ disordered    bench/cases/disordered.toml (issue #41 item 3): a disordered polyd
               bench/cases/disordered_packing.lmp (frictionless gran/hooke, fix deform to solid fraction 0.655,
               10 000 steps; made once, about 1 min of CPU, kept in --packing-cache); granwave imports it, cuts it
               open in z and relaxes it under the case's law (`granwave build`, not timed); Hertz-Mindlin of the
-              `hertz` case (E = 63 GPa, nu = 0.23, mu = 0.5, contact-point arm: LIGGGHTS'), a P step of 1e-4 d,
-              2940 steps of t_c/50, output every 29 steps (1 us). After the timed runs, one more run of each
-              code, not timed, writes positions at 11 instants: the contacts that open and close (below).
-disordered_small  the same on the committed 3060-particle column data/packings/lammps_tall/packing_w5.dump
-              (1764 steps): the smoke case of the packing decks
+              `hertz` case (E = 63 GPa, nu = 0.23, mu = 0.5), the radius arm, a P step of 1e-4 d, 3032 steps of
+              t_c/50, output every 30 steps (1 us); granwave and LAMMPS (`gran/hertz/history Kn Kt 0 0 mu 0`,
+              Kn = 4/3 E*, Kt = 8 G*: the crosscheck's map, the radius arm). After the timed runs, one more run
+              of each code, not timed, writes positions at 11 instants: the contacts that open and close (below).
+disordered_cp the same with the contact-point arm: granwave and LIGGGHTS (`model hertz tangential history`)
+disordered_small, disordered_small_cp
+              the two on the committed 3060-particle column data/packings/lammps_tall/packing_w5.dump
+              (1764 steps): the smoke cases of the packing decks
 small         data/cases/crystal40.toml (4 x 4 x 40, 1300 steps): a smoke case for the tests, not a benchmark
 
 Each code's set-up, and why it is the fastest fair equivalent
@@ -113,12 +116,18 @@ source's step, then every ~10 % of the run); at each the touching pairs |x_j - x
 in x, y; fixed pairs left out), counted by one Python function (sidebyside/packing.py) for every code:
 opened / closed = pairs that appear / disappear between consecutive snapshots, summed (a contact that opens
 and closes between two snapshots is missed).
-The arms: the case runs the contact point (LIGGGHTS' `tangential history`); LAMMPS' pair granular takes the
-radius in the tangential velocity and a - delta/2 in the torque (MIXED_ARM), which granwave does not run:
-its row times a law that differs by that arm (its v_z differs by about 2 % of the peak).
+The arms: LAMMPS' gran/hertz/history takes the radius (granwave's lever_arm = "radius"; its pair granular,
+the `hertz` row's style, takes the radius in the velocity and a - delta/2 in the torque, which granwave does
+not run: 2 % of the peak in v_z on the 3060-particle column), LIGGGHTS' the contact point: one row each.
+LIGGGHTS bins by the atoms' current z (no chunks in 3.8): an atom that crosses a bin boundary during the run
+would show in its v_z difference (none did on the 3060-particle column: 1.2e-6, its 6 printed digits).
 
 Physics check
 -------------
+The packing cases: the half-peak speed of the bins' v_z (granwave's own pulse field on a packing), and the
+largest difference of v_z and of sigma_zz's change from t = 0 (layers.packing_deviations says why not sigma_zz
+itself: stress/atom gives each atom half a pair's virial, granwave the branch to the contact point).
+The crystals:
 So that nobody benchmarks a wrong set-up, the last repetition's output of every code is measured
 by the one ruler, `granwave analyze --json` (LAMMPS' and LIGGGHTS' layer files are turned into
 trace files first): the half-peak speed (z/l0 = 10..150; 1..4 for `long`, whose 200 steps carry

@@ -40,7 +40,7 @@ CASES = {
                                                            "t_end": "1.7e-3", "mu_r": ("rolling_lever", '"radii"'),
                                                            "mu_o": ("rolling_history", '"fixed"')}, None),
     # issue #41 item 3: a disordered polydisperse column of 20 000 glass beads LAMMPS made (bench/cases/
-    # disordered_packing.lmp, cached: sidebyside/packing.py), Hertz-Mindlin mu = 0.5, a P step; 2940 steps
+    # disordered_packing.lmp, cached: sidebyside/packing.py), Hertz-Mindlin mu = 0.5, a P step; 3032 steps
     # (radius arm: LAMMPS' gran/hertz/history); disordered_cp: the contact point, LIGGGHTS' arm
     "disordered": ("bench/cases/disordered.toml", {}, None),
     "disordered_cp": ("bench/cases/disordered.toml", {"lever_arm": '"contact_point"'}, None),
