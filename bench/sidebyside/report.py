@@ -159,10 +159,12 @@ def write_report(a, argv: list, cpu: dict, load0: dict, load1: dict, t_start: fl
         for res in results:
             if "packing" in res:
                 b = res.get("build", {})
-                md.append("- %s: packing %s (%s%s); granwave build %.1f s wall, %.1f s CPU, %s relaxation steps" % (
+                built = ("the system of %s (the same but for name and lever_arm)" % b["reused"] if b.get("reused") else
+                         "granwave build %.1f s wall, %.1f s CPU" % (b.get("wall_s", 0), b.get("cpu_s", 0)))
+                md.append("- %s: packing %s (%s%s); %s, %s relaxation steps" % (
                     res["case"], res["packing"]["path"], res["packing"]["source"],
                     (", %.1f s of CPU" % res["packing"]["cpu_s"]) if res["packing"].get("cpu_s") else "",
-                    b.get("wall_s", 0), b.get("cpu_s", 0), b.get("relax_steps")))
+                    built, b.get("relax_steps")))
         md.append("")
     md.append("Peak resident memory of each process (VmHWM polled every 10 ms, the largest of its runs; kB = 1000 bytes):")
     md.append("")

@@ -160,8 +160,9 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
     # differing from one built before in this call only there takes its system (disordered_cp: 200 s of CPU)
     with open(case_path) as f:
         key = (root, re.sub(r'(?m)^(name|lever_arm) = .*$', "", f.read()))
-    if key in _BUILT:
-        shutil.copy(_BUILT[key], system_path)
+    reused = _BUILT.get(key)
+    if reused:
+        shutil.copy(reused, system_path)
         log("  system: %s's (the same but for name and lever_arm)" % _BUILT[key])
     else:
         p = subprocess.run([granwave, "build", case_path, "-o", system_path], capture_output=True, text=True, env=env)
@@ -177,7 +178,7 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
     res = dict(case=name, particles=n, steps=nsteps, output_every=every, dt=dt, runs={r.key: [] for r in runners},
                load=[], build=dict(wall_s=time.perf_counter() - t0, cpu_s=(c1.children_user - c0.children_user) +
                                    (c1.children_system - c0.children_system),
-                                   relax_steps=system["attrs"].get("relax_steps")))
+                                   relax_steps=system["attrs"].get("relax_steps"), reused=reused))
     if made:
         res["packing"] = made
     last_dir = {}
