@@ -12,7 +12,6 @@ import time
 
 import numpy as np
 
-from xclib import traces as T
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REPO = os.path.dirname(HERE)
