@@ -50,6 +50,19 @@ rolling_luding  the rolling case as LIGGGHTS' `model luding tangential tan_ludin
 rolling_s, rolling_luding_s
               the two rolling cases with seed 002's S step (1.7e-3 s, as data/cases/crystal_s.toml): the
               springs turn with the wave (physics check on the layer velocity v_x)
+disordered    bench/cases/disordered.toml (issue #41 item 3): a disordered polydisperse column of 20 000 glass
+              beads (radii 0.5 mm (1 +- 0.15), 10 x 10 x 161 mean diameters) that LAMMPS made with
+              bench/cases/disordered_packing.lmp (frictionless gran/hooke, fix deform to solid fraction 0.655,
+              10 000 steps; made once, about 1 min of CPU, kept in --packing-cache); granwave imports it, cuts it
+              open in z and relaxes it under the case's law (`granwave build`, not timed); Hertz-Mindlin of the
+              `hertz` case (E = 63 GPa, nu = 0.23, mu = 0.5), the radius arm, a P step of 1e-4 d, 3032 steps of
+              t_c/50, output every 30 steps (1 us); granwave and LAMMPS (`gran/hertz/history Kn Kt 0 0 mu 0`,
+              Kn = 4/3 E*, Kt = 8 G*: the crosscheck's map, the radius arm). After the timed runs, one more run
+              of each code, not timed, writes positions at 11 instants: the contacts that open and close (below).
+disordered_cp the same with the contact-point arm: granwave and LIGGGHTS (`model hertz tangential history`)
+disordered_small, disordered_small_cp
+              the two on the committed 3060-particle column data/packings/lammps_tall/packing_w5.dump
+              (1764 steps): the smoke cases of the packing decks
 small         data/cases/crystal40.toml (4 x 4 x 40, 1300 steps): a smoke case for the tests, not a benchmark
 
 Each code's set-up, and why it is the fastest fair equivalent
@@ -86,8 +99,35 @@ LIGGGHTS (liggghts_inputs/templates/crystal_layers.in.tmpl): `gran model hooke/s
   by `compute stress/atom pair` + `fix ave/spatial 5 1 5 z` (LIGGGHTS 3.8 has no chunk commands), no
   per-pair dumps (the crosscheck's dumps are 2.4 GB on this crystal, 138 s of a 250 s run).
 
+The disordered case: list rules and counts
+-----------------------------------------
+The same skin and rebuild rule in the three codes: granwave's Verlet list holds the pairs closer than
+a_i + a_j + skin, skin = 0.1 x the mean radius (src/crystal/dynamics.cpp, list_skin), and is rebuilt when a
+particle has moved more than skin/2 since the last build, tested every step; LAMMPS and LIGGGHTS run
+`neighbor SKIN bin` with that skin (their granular lists hold the pairs within r_i + r_j + skin) and
+`neigh_modify delay 0 every 1 check yes` (the same displacement test every step). What differs: granwave
+rebuilds once at construction and counts it (`run --json` contact_list_builds, so 1 = no rebuild in the run);
+LAMMPS' and LIGGGHTS' "Neighbor list builds" count only the builds of the run after its set-up; LAMMPS and
+LIGGGHTS bin atoms into cells of the skin-extended cut-off, granwave into its own cells (same pairs).
+Pairs of two fixed particles are left out everywhere. The contacts that open and close: each code's
+position snapshots (granwave: .vtp files of [output] vtk_every, positions = the system's + the written
+displacement; LAMMPS and LIGGGHTS: `dump custom id x y z` at 17 digits) at the same 11 steps (step 0 after the
+source's step, then every ~10 % of the run); at each the touching pairs |x_j - x_i| < a_i + a_j (minimum image
+in x, y; fixed pairs left out), counted by one Python function (sidebyside/packing.py) for every code:
+opened / closed = pairs that appear / disappear between consecutive snapshots, summed (a contact that opens
+and closes between two snapshots is missed).
+The arms: LAMMPS' gran/hertz/history takes the radius (granwave's lever_arm = "radius"; its pair granular,
+the `hertz` row's style, takes the radius in the velocity and a - delta/2 in the torque, which granwave does
+not run: 2 % of the peak in v_z on the 3060-particle column), LIGGGHTS' the contact point: one row each.
+LIGGGHTS bins by the atoms' current z (no chunks in 3.8): an atom that crosses a bin boundary during the run
+would show in its v_z difference (none did on the 3060-particle column: 1.2e-6, its 6 printed digits).
+
 Physics check
 -------------
+The packing cases: the half-peak speed of the bins' v_z (granwave's own pulse field on a packing), and the
+largest difference of v_z and of sigma_zz's change from t = 0 (layers.packing_deviations says why not sigma_zz
+itself: stress/atom gives each atom half a pair's virial, granwave the branch to the contact point).
+The crystals:
 So that nobody benchmarks a wrong set-up, the last repetition's output of every code is measured
 by the one ruler, `granwave analyze --json` (LAMMPS' and LIGGGHTS' layer files are turned into
 trace files first): the half-peak speed (z/l0 = 10..150; 1..4 for `long`, whose 200 steps carry
@@ -103,6 +143,7 @@ cases    the cases and their decks, taken from the drivers (`render(..., output=
          lammps_inputs/lammps_case.py and liggghts_inputs/liggghts_case.py)
 running  running and timing each code; a case's alternating repetitions and its physics check
 layers   LAMMPS' and LIGGGHTS' per-layer output -> trace files; the physics check's measures
+packing  the disordered case's packing (made and cached) and the contact counts
 stats    medians, paired ratios, the rotated order of the runs
 machine  CPU model and SIMD flags, load, the granwave build's flags, the codes' versions
 report   the Markdown tables and document, the JSON document
@@ -124,7 +165,7 @@ from xclib import traces as T  # noqa: E402,F401  (bench/mpi_crystal.py reads ca
 
 from sidebyside.cases import (CASE_CODES, CASES, CODE_TITLES, CODES, DEFAULT_CASES, BenchError,  # noqa: E402,F401
                               case_text, render_lammps, render_liggghts)
-from sidebyside.layers import layers_to_trace, read_layer_file  # noqa: E402,F401
+from sidebyside.layers import layers_to_trace, packing_layers_to_trace, read_layer_file  # noqa: E402,F401
 from sidebyside.machine import cmake_cache, code_version, cpu_facts, granwave_build_facts, load_facts  # noqa: E402,F401
 from sidebyside.report import memory_table, sanity_table, table, write_report  # noqa: E402,F401
 from sidebyside.running import Runner, bench_case  # noqa: E402,F401
@@ -145,6 +186,9 @@ def main(argv=None) -> int:
     ap.add_argument("--workdir", help="where the runs go (default: a temporary directory, removed at the end)")
     ap.add_argument("--keep", action="store_true", help="keep every run's directory")
     ap.add_argument("--timeout", type=float, default=3600, help="seconds per run")
+    ap.add_argument("--packing-cache", default=None,
+                    help="where the disordered case's LAMMPS packing is made once and kept (default: "
+                         "$XDG_CACHE_HOME/granwave-bench or ~/.cache/granwave-bench)")
     a = ap.parse_args(argv)
     try:
         cases = [c.strip() for c in a.cases.split(",") if c.strip()]
@@ -203,7 +247,8 @@ def main(argv=None) -> int:
     try:
         for name in cases:
             log("case %s" % name)
-            results.append(bench_case(name, runners, a.reps, root, runners[0].exe, a.timeout, env, a.keep, log))
+            results.append(bench_case(name, runners, a.reps, root, runners[0].exe, a.timeout, env, a.keep, log,
+                                      cache=a.packing_cache, lmp=a.lammps))
     except RuntimeError as e:
         print("side_by_side: %s" % e, file=sys.stderr)
         return 1

@@ -208,6 +208,27 @@ def render_layers(case: dict, system: dict, workdir: str) -> dict:
     return DRV.write_layer_deck(deck, case, system, workdir, "LAMMPS data file (benchmark)", v)
 
 
+def render_packing_layers(case: dict, system: dict, workdir: str, snapshots: int = 0) -> dict:
+    """The benchmark's deck on a packing file (bench/side_by_side.py, case `disordered`): granwave's
+    contact-list rule and z-bins (xclib.bench_packing), per-bin means by LAMMPS itself (chunks by the
+    molecule ID that carries each atom's bin); `snapshots` > 0: also positions every that many steps
+    (snap.txt, the contact count's run, not timed)."""
+    from xclib import bench_packing as BP
+    v = BP.deck_values(case, system)
+    # the crosscheck's pair style (crystal_style): undamped Hertz-Mindlin with a displacement history is
+    # gran/hertz/history, granwave's radius arm; its conventions must be the case's (else refused)
+    sty = crystal_style(v["contact"], np.asarray(system["mass"], float), np.asarray(system["radius"], float))
+    arm = sty["conventions"].get("lever_arm")
+    if v["friction"] and arm != v["contact"]["lever_arm"]:
+        raise Unsupported("case %s: lever_arm = \"%s\", LAMMPS %s runs \"%s\"" % (case["case"]["name"],
+                          v["contact"]["lever_arm"], sty["style"], arm))
+    v.update(pair_lines=sty["lines"], variant="(%s)" % sty["style"], format='" %.10g"')
+    if snapshots:
+        v["snapshot_lines"] = BP.snapshot_lines("lammps", snapshots)
+    deck = _template("packing_layers.in.tmpl").substitute(v)
+    return BP.write_deck(deck, case, system, workdir, "LAMMPS data file (benchmark, packing)", v, molecules=True)
+
+
 def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dict:
     """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...).
     output "dumps": the crosscheck's deck (per-atom and per-contact dumps for the trace file);

@@ -63,6 +63,23 @@ def render_layers(case: dict, system: dict, workdir: str) -> dict:
     return DRV.write_layer_deck(deck, case, system, workdir, "LIGGGHTS data file (benchmark)", v)
 
 
+def render_packing_layers(case: dict, system: dict, workdir: str, snapshots: int = 0) -> dict:
+    """The benchmark's deck on a packing file (bench/side_by_side.py, case `disordered`): granwave's
+    contact-list rule (xclib.bench_packing), per-bin means by `fix ave/spatial` over the atoms' current z
+    (no chunks in LIGGGHTS 3.8); `snapshots` > 0: also positions every that many steps (snap.txt)."""
+    from xclib import bench_packing as BP
+    v = BP.deck_values(case, system)
+    if v["friction"] and v["contact"]["lever_arm"] != "contact_point":
+        raise DRV.Unsupported("case %s: lever_arm = \"%s\", LIGGGHTS' tangential history runs \"contact_point\"" % (
+            case["case"]["name"], v["contact"]["lever_arm"]))
+    v.update(newton="off" if v["friction"] else "on")   # shear history needs newton off
+    v.update(v["law"].bench_liggghts(v))
+    if snapshots:
+        v["snapshot_lines"] = BP.snapshot_lines("liggghts", snapshots)
+    deck = _template("packing_layers.in.tmpl").substitute(v)
+    return BP.write_deck(deck, case, system, workdir, "LIGGGHTS data file (benchmark, packing)", v, molecules=False)
+
+
 def render(case: dict, system: dict, workdir: str, output: str = "dumps") -> dict:
     """Write in.case and data.system into workdir; returns the run facts (dt, steps, every, ...).
     output "dumps": the crosscheck's deck (per-atom and per-contact dumps for the trace file);

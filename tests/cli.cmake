@@ -173,6 +173,13 @@ add_test(NAME "cli: run --json of a Hertz-Mindlin crystal gives the lattice P sp
 /usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/hm_lattice.json')); \
 v, w = d['speed_theory'], d['speed_theory_lattice']; assert abs(w / v - 1) < 1e-3, (v, w)\"")
 set_tests_properties("cli: run --json of a Hertz-Mindlin crystal gives the lattice P speed of the linearised law" PROPERTIES LABELS "cli")
+# The contact-list builds (issue #41 item 3, the side-by-side's rebuild count): the construction's build is
+# counted, and a wave of 1e-7 d never moves a particle by half the skin (0.05 a): 1; the crystal keeps its contacts.
+add_test(NAME "cli: run --json counts the contact-list builds, the construction's included"
+  COMMAND sh -c "${GW} run ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_hertz_small.toml -o ${CLI_TMP}/builds.h5 --json > ${CLI_TMP}/builds.json && \
+/usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/builds.json')); \
+assert d['contact_list_builds'] == 1, d['contact_list_builds']; assert d['coordination_end'] == d['coordination'], d\"")
+set_tests_properties("cli: run --json counts the contact-list builds, the construction's included" PROPERTIES LABELS "cli")
 # The time loop's phases (crystal::RunResult::phases): every name, the sum the loop's wall time
 # within 2 %, and one line of the text summary; `run --help` says what --quiet does. Bookkeeping,
 # not physics.

@@ -39,6 +39,15 @@ CASES = {
     "rolling_luding_s": ("bench/cases/crystal_rolling.toml", {"lever_arm": '"contact_point"', "mode": '"S"',
                                                            "t_end": "1.7e-3", "mu_r": ("rolling_lever", '"radii"'),
                                                            "mu_o": ("rolling_history", '"fixed"')}, None),
+    # issue #41 item 3: a disordered polydisperse column of 20 000 glass beads LAMMPS made (bench/cases/
+    # disordered_packing.lmp, cached: sidebyside/packing.py), Hertz-Mindlin mu = 0.5, a P step; 3032 steps
+    # (radius arm: LAMMPS' gran/hertz/history); disordered_cp: the contact point, LIGGGHTS' arm
+    "disordered": ("bench/cases/disordered.toml", {}, None),
+    "disordered_cp": ("bench/cases/disordered.toml", {"lever_arm": '"contact_point"'}, None),
+    # their small twins on the committed 3060-particle column data/packings/lammps_tall/packing_w5.dump (101
+    # bins: 1764 steps, the front not yet at the top slab)
+    "disordered_small": ("bench/cases/disordered.toml", {"t_end": "6e-5"}, None),
+    "disordered_small_cp": ("bench/cases/disordered.toml", {"t_end": "6e-5", "lever_arm": '"contact_point"'}, None),
     # not a benchmark: the smoke case of tests/crosscheck/test_side_by_side.py (640 particles, 1300 steps)
     "small": ("data/cases/crystal40.toml", {}, None),
     # not a benchmark: its S twin with LIGGGHTS' luding springs (640 particles, 1300 steps; z/l0 5..25)
@@ -52,18 +61,29 @@ DEFAULT_CASES = ("frictionless", "friction", "friction_radius", "hertz", "long")
 # rolling_luding: LAMMPS' sds turns its rolling history with the pair and takes a mixed tangential arm.
 CASE_CODES = {"friction_radius": ("granwave", "lammps"), "rolling": ("granwave", "lammps"),
               "rolling_luding": ("granwave", "liggghts"), "rolling_s": ("granwave", "lammps"),
-              "rolling_luding_s": ("granwave", "liggghts"), "small_rolling_luding_s": ("granwave", "liggghts")}
+              "rolling_luding_s": ("granwave", "liggghts"), "small_rolling_luding_s": ("granwave", "liggghts"),
+              "disordered": ("granwave", "lammps"), "disordered_small": ("granwave", "lammps"),
+              "disordered_cp": ("granwave", "liggghts"), "disordered_small_cp": ("granwave", "liggghts")}
 
 
 class BenchError(Exception):
     """Bad input or a missing code: exit 2 with this message."""
 
 
-def case_text(name: str) -> str:
-    """The TOML text of a benchmark case: its base case file with the case's replacements."""
+# The cases on a packing file (their decks: render_packing_layers of both drivers; sidebyside/packing.py).
+PACKING_CASES = ("disordered", "disordered_cp", "disordered_small", "disordered_small_cp")
+
+
+def case_text(name: str, packing: str | None = None) -> str:
+    """The TOML text of a benchmark case: its base case file with the case's replacements (a packing
+    case: packing.file = `packing`)."""
     base, repl, _ = CASES[name]
     with open(os.path.join(REPO, base)) as f:
         text = f.read()
+    if name in PACKING_CASES:
+        if not packing:
+            raise BenchError("case %s needs its packing file" % name)
+        text = text.replace('file = "PACKING"', 'file = "%s"' % os.path.abspath(packing))
     text = re.sub(r'(?m)^name = ".*"$', 'name = "bench_%s"' % name, text, count=1)
     for key, val in repl.items():
         new_key, val = val if isinstance(val, tuple) else (key, val)  # (key, value): the line takes another key
@@ -80,11 +100,23 @@ def _render(driver, case: dict, system: dict, workdir: str) -> dict:
         raise BenchError("side_by_side: %s" % e) from None
 
 
-def render_lammps(case: dict, system: dict, workdir: str) -> dict:
-    """in.case and data.system of the LAMMPS run (lammps_case.render_layers); BenchError beyond its crystals."""
+def _render_packing(driver, case: dict, system: dict, workdir: str, snapshots: int) -> dict:
+    try:
+        return driver.render_packing_layers(case, system, workdir, snapshots=snapshots)
+    except Unsupported as e:
+        raise BenchError("side_by_side: %s" % e) from None
+
+
+def render_lammps(case: dict, system: dict, workdir: str, packing: bool = False, snapshots: int = 0) -> dict:
+    """in.case and data.system of the LAMMPS run (lammps_case.render_layers; a packing case:
+    render_packing_layers, with position snapshots every `snapshots` steps if > 0); BenchError beyond them."""
+    if packing:
+        return _render_packing(lammps_case, case, system, workdir, snapshots)
     return _render(lammps_case, case, system, workdir)
 
 
-def render_liggghts(case: dict, system: dict, workdir: str) -> dict:
-    """in.case and data.system of the LIGGGHTS run (liggghts_case.render_layers)."""
+def render_liggghts(case: dict, system: dict, workdir: str, packing: bool = False, snapshots: int = 0) -> dict:
+    """in.case and data.system of the LIGGGHTS run (liggghts_case.render_layers or render_packing_layers)."""
+    if packing:
+        return _render_packing(liggghts_case, case, system, workdir, snapshots)
     return _render(liggghts_case, case, system, workdir)

@@ -14,6 +14,12 @@ def read_layer_file(path: str):
     """(steps [nt], coord [nbins], count [nt, nbins], values [nt, nbins, nv]) of a LAMMPS `fix ave/chunk`
     or LIGGGHTS `fix ave/spatial` file: per block a header "step nrows [total]" then rows
     "index coord count v1 v2 ...". Raises ValueError on a truncated block."""
+    steps, a = read_blocks(path)
+    return steps, a[0, :, 1], a[:, :, 2], a[:, :, 3:]
+
+
+def read_blocks(path: str):
+    """(steps [nt], rows [nt, nrows, ncols]) of a `fix ave/chunk` or `fix ave/spatial` file, every column."""
     steps, blocks = [], []
     with open(path) as f:
         lines = [ln for ln in f if ln.strip() and not ln.startswith("#")]
@@ -29,8 +35,7 @@ def read_layer_file(path: str):
         i += 1 + nrows
     if not blocks:
         raise ValueError("%s: no output" % path)
-    a = np.array(blocks)
-    return np.array(steps), a[0, :, 1], a[:, :, 2], a[:, :, 3:]
+    return np.array(steps), np.array(blocks)
 
 
 def layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str, code: str, version: str) -> None:
@@ -61,6 +66,38 @@ def layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str,
     T.write_trace(out, code=code, code_version=version, case_text=text, case_name=case["case"]["name"],
                   system_path=system_path, time_convention="synchronous: per-layer output after a whole step",
                   time=steps * dt, datasets=data, extra_attrs={"note": "bench/side_by_side.py layer output"})
+
+
+def packing_layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str, code: str, version: str) -> None:
+    """A trace file from the per-bin output of the packing decks (xclib.bench_packing): LAMMPS' chunks by
+    molecule ID = the system's bin + 1 (rows "chunk count v..."), LIGGGHTS' z-bins of the system's origin
+    and width over the atoms' current z (rows "bin coord count v..."); bins a file leaves out (empty ones
+    above the top slab, LIGGGHTS' bins outside the system's) are empty: count 0, means 0, as granwave writes
+    them. Values as layers_to_trace's; the volume is the bin's, box_x box_y h."""
+    case, text = T.load_case(case_path)
+    system = T.read_system(system_path)
+    lay = T.crystal_layout(system)
+    nl = lay["nlayers"]
+    steps, a = read_blocks(layer_file)
+    if code == "lammps":
+        idx, lead = np.rint(a[0, :, 0]).astype(int) - 1, 1
+    else:
+        origin = float(system["attrs"].get("bin_origin", 0.0))
+        idx, lead = np.rint((a[0, :, 1] - origin) / lay["l0"] - 0.5).astype(int), 2
+    keep = (idx >= 0) & (idx < nl)
+    cnt = np.zeros((len(steps), nl))
+    v = np.zeros((len(steps), nl, a.shape[2] - lead - 1))
+    cnt[:, idx[keep]] = a[:, keep, lead]
+    v[:, idx[keep], :] = a[:, keep, lead + 1:]
+    dt = T.timestep(case, system)
+    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
+    data = {"/crystal/layer_z": lay["layer_z"],
+            "/crystal/layer_stress_zz": -cnt * v[:, :, 0] / vol,
+            "/crystal/layer_velocity_z": v[:, :, 2], "/crystal/layer_velocity_x": v[:, :, 3],
+            "/crystal/layer_displacement_z": v[:, :, 4], "/crystal/layer_displacement_x": v[:, :, 5]}
+    T.write_trace(out, code=code, code_version=version, case_text=text, case_name=case["case"]["name"],
+                  system_path=system_path, time_convention="synchronous: per-bin output after a whole step",
+                  time=steps * dt, datasets=data, extra_attrs={"note": "bench/side_by_side.py per-bin output"})
 
 
 # The checked field of a mode: (trace dataset, its column in the layer file, label). sigma_zz for a P wave; an S
@@ -103,6 +140,27 @@ def stress_resolution(ref_trace: str, layer_file: str, system_path: str, digits:
     peak = float(np.max(np.abs(s0 - s0[0])))
     scale = count / (lay["box_x"] * lay["box_y"] * lay["l0"]) if col == 0 else 1.0
     return None if peak <= 0 else float(np.max(0.5 * scale * ulp)) / peak
+
+
+def packing_deviations(ref_trace: str, trace: str) -> dict:
+    """A packing's physics check against granwave's trace, over all bins and samples, relative to granwave's
+    largest change: `vz_dev` of the bins' mean v_z (the same atoms in every code's bin: exact up to physics and
+    printed digits), `stress_dev` of sigma_zz's change from t = 0. sigma_zz itself is not compared: LAMMPS' and
+    LIGGGHTS' stress/atom give each atom half of a pair's virial, granwave the branch to the contact point,
+    (a_p - delta/2) / |x_j - x_i| of it, so with polydisperse radii a pair across two bins splits its static
+    force differently (3.3 times the wave's peak on the 3060-particle column); its change still carries the
+    split of the wave's forces (1.9e-2 of the peak there, frictionless, where v_z agrees to 1.7e-9)."""
+    import h5py
+    out = {}
+    with h5py.File(ref_trace, "r") as a, h5py.File(trace, "r") as b:
+        if a["/time"].shape != b["/time"].shape or not np.allclose(a["/time"][()], b["/time"][()], rtol=0, atol=1e-12):
+            return dict(vz_dev=None, stress_dev=None)
+        for key, path in (("vz_dev", "/crystal/layer_velocity_z"), ("stress_dev", "/crystal/layer_stress_zz")):
+            s0, s1 = a[path][()], b[path][()]
+            d0, d1 = s0 - s0[0], s1 - s1[0]
+            peak = float(np.max(np.abs(d0)))
+            out[key] = float(np.max(np.abs(d1 - d0))) / peak if peak > 0 else None
+    return out
 
 
 def stress_deviation(ref_trace: str, trace: str, mode: str = "P") -> float | None:

@@ -64,9 +64,36 @@ def sanity_table(results: list, runners: list) -> str:
         for r in runners:
             if r.code != "granwave":
                 sr = res["sanity"].get(r.key, {})
+                if "vz_dev" in sr:   # a packing: v_z, and sigma_zz's change from t = 0 (layers.packing_deviations)
+                    row.append("v_z %s; sigma_zz change %s" % (_s(sr.get("vz_dev"), "%.1e"), _s(sr.get("stress_dev"), "%.1e")))
+                    continue
                 row.append(_s(sr.get("stress_dev"), "%.1e") + (" (printed digits allow %.1e)" % sr["stress_resolution"]
                                                                if sr.get("stress_resolution") is not None else ""))
         lines.append("| " + " | ".join(row) + " |")
+    return "\n".join(lines)
+
+
+def contacts_table(results: list, runners: list) -> str:
+    """The packing cases' list builds (the timed runs') and contact counts (the count run's snapshots)."""
+    head = ["case", "code", "list builds in the timed runs", "contacts at start / end", "opened / closed between snapshots",
+            "opened / closed start to end", "snapshots"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for res in results:
+        if "contacts" not in res:
+            continue
+        for r in runners:
+            if r.key not in res["runs"]:
+                continue
+            key = "contact_list_builds" if r.code == "granwave" else "neighbor_builds"
+            builds = sorted(set(str(x.get(key)) for x in res["runs"][r.key]))
+            note = " (construction's included)" if r.code == "granwave" else " (after set-up)"
+            c = res["contacts"].get(r.key, {})
+            if "error" in c:
+                lines.append("| %s | %s | %s | error: %s | | | |" % (res["case"], r.title, ", ".join(builds) + note, c["error"][:80]))
+                continue
+            lines.append("| %s | %s | %s | %s / %s | %s / %s | %s / %s | %s |" % (
+                res["case"], r.title, ", ".join(builds) + note, c.get("contacts_start"), c.get("contacts_end"),
+                c.get("opened"), c.get("closed"), c.get("opened_net"), c.get("closed_net"), c.get("snapshots")))
     return "\n".join(lines)
 
 
@@ -123,6 +150,22 @@ def write_report(a, argv: list, cpu: dict, load0: dict, load1: dict, t_start: fl
     md.append("")
     md.append(sanity_table(results, runners))
     md.append("")
+    if any("contacts" in res for res in results):
+        md.append("The packing cases: contact-list builds and the contacts that open and close (bench/side_by_side.py "
+                  "says how each is counted); the packing and granwave's build (import and relaxation, not timed):")
+        md.append("")
+        md.append(contacts_table(results, runners))
+        md.append("")
+        for res in results:
+            if "packing" in res:
+                b = res.get("build", {})
+                built = ("the system of %s (the same but for name and lever_arm)" % b["reused"] if b.get("reused") else
+                         "granwave build %.1f s wall, %.1f s CPU" % (b.get("wall_s", 0), b.get("cpu_s", 0)))
+                md.append("- %s: packing %s (%s%s); %s, %s relaxation steps" % (
+                    res["case"], res["packing"]["path"], res["packing"]["source"],
+                    (", %.1f s of CPU" % res["packing"]["cpu_s"]) if res["packing"].get("cpu_s") else "",
+                    built, b.get("relax_steps")))
+        md.append("")
     md.append("Peak resident memory of each process (VmHWM polled every 10 ms, the largest of its runs; kB = 1000 bytes):")
     md.append("")
     md.append(memory_table(results, runners))

@@ -283,6 +283,8 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
               {"speed_theory", shear ? d.v_s : d.v_p},
               {"speed_theory_lattice", v_lattice},
               {"coordination", coordination0},
+              {"coordination_end", coordination_end},
+              {"contact_list_builds", rebuilds},  // the construction's build included
               {"work_in", work_in},
               {"dissipated", dissipated},
               {"energy_residual", residual},

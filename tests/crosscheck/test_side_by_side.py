@@ -354,3 +354,175 @@ def test_real_side_by_side_small_s_wave_is_checked_on_the_layer_velocity(tmp_pat
     assert v is not None and abs(san["liggghts"]["v_half"] - v) < 1e-6 * v, san
     assert 0 < san["liggghts"]["stress_resolution"] and \
         san["liggghts"]["stress_dev"] <= san["liggghts"]["stress_resolution"] + 1e-7, san
+
+
+# ---------------------------------------------------------------- the disordered packing case (issue #41 item 3)
+def _packing_case(tmp_path, name="disordered"):
+    """The case text of a packing case (its packing file need not exist to render decks) and its dict."""
+    p = tmp_path / ("%s.toml" % name)
+    p.write_text(S.case_text(name, str(tmp_path / "packing.dump")))
+    return str(p), T.load_case(str(p))[0]
+
+
+def _packing_system(tmp_path):
+    """A synthetic packing-file system (SCHEMA.md §2, generator "file"): 7 polydisperse particles in 5 bins of
+    1 mm, two in the source slab, one in the top slab, one across the periodic x boundary from another."""
+    import h5py
+    pos = np.array([[0.2e-3, 0.5e-3, 0.4e-3], [1.2e-3, 0.5e-3, 0.5e-3], [0.5e-3, 0.5e-3, 1.4e-3],
+                    [1.5e-3, 0.6e-3, 2.3e-3], [1.95e-3, 0.5e-3, 3.1e-3], [0.04e-3, 0.5e-3, 3.2e-3],
+                    [1.0e-3, 1.0e-3, 4.6e-3]])
+    r = np.array([0.45e-3, 0.5e-3, 0.55e-3, 0.5e-3, 0.48e-3, 0.52e-3, 0.5e-3])
+    role = np.array([T.SOURCE, T.SOURCE, T.FREE, T.FREE, T.FREE, T.FREE, T.TOP])
+    attrs = dict(generator="file", box_x=2e-3, box_y=2e-3, bin_origin=0.0, bin_width=1e-3, l0=1e-3, layers=5,
+                 source_thickness=1e-3, dt=3e-8, d=1e-3, fixed_layers=0)
+    data = dict(position=pos, radius=r, mass=2500 * 4 / 3 * np.pi * r ** 3, fixed=(role != T.FREE).astype(np.int8),
+                role=role.astype(np.int8), layer=np.floor(pos[:, 2] / 1e-3).astype(np.int32),
+                velocity=np.zeros((7, 3)))
+    sp = str(tmp_path / "system.h5")
+    with h5py.File(sp, "w") as f:
+        g = f.create_group("system")
+        for k, v in attrs.items():
+            g.attrs[k] = v
+        for k, v in data.items():
+            g.create_dataset(k, data=v)
+    return T.read_system(sp), sp
+
+
+def test_disordered_case_texts(tmp_path):
+    text = S.case_text("disordered", "/x/packing.dump")
+    assert 'file = "/x/packing.dump"' in text and 'lattice = "file"' in text and 'law = "hertz_mindlin"' in text
+    assert 'lever_arm = "radius"' in text and "mu_static = 0.5" in text and 'name = "bench_disordered"' in text
+    assert 'lever_arm = "contact_point"' in S.case_text("disordered_cp", "/x/p.dump")
+    assert "t_end = 6e-5" in S.case_text("disordered_small", "/x/p.dump")
+    with pytest.raises(S.BenchError, match="packing file"):
+        S.case_text("disordered")
+    # each arm's row runs only the code with that arm (LAMMPS gran/hertz/history: radius; LIGGGHTS: contact point)
+    assert S.CASE_CODES["disordered"] == ("granwave", "lammps") and S.CASE_CODES["disordered_cp"] == ("granwave", "liggghts")
+    from sidebyside import packing as P
+    assert "\nvtk_every = 3\n" in P.count_case_text(text, 3)
+    assert P.snapshot_every(3032, 30) == (10, 300)
+
+
+def test_disordered_lammps_deck_has_granwaves_list_rule_and_bins(tmp_path):
+    _, case = _packing_case(tmp_path)
+    system, _ = _packing_system(tmp_path)
+    wd = tmp_path / "l"
+    wd.mkdir()
+    f = S.render_lammps(case, system, str(wd), packing=True)
+    deck = (wd / f["deck"]).read_text()
+    skin = 0.1 * np.mean(system["radius"])                       # granwave's list_skin
+    assert "neighbor        %r bin" % skin in deck
+    assert "neigh_modify    delay 0 every 1 check yes exclude type 2 2 exclude type 2 3 exclude type 3 3" in deck
+    from xclib import hertz_mindlin as HM
+    kn, kt = 4.0 / 3.0 * HM.e_star(63e9, 0.23), 8.0 * HM.g_star(63e9, 0.23)
+    assert "pair_style      gran/hertz/history %r %r 0.0 0.0 0.5 0" % (kn, kt) in deck
+    assert "fix             bins all property/atom mol" in deck and "read_data       data.system fix bins NULL Molecules" in deck
+    assert "chunk/atom molecule nchunk once ids once compress no" in deck and "dump " not in deck
+    assert "displace_atoms  source move 0.0 0.0 %r units box" % (1e-4 * 1e-3) in deck and "nve/sphere" in deck
+    data = (wd / "data.system").read_text()
+    atoms = data.split("Atoms")[1].split("Molecules")[0].split("\n")
+    rows = [ln.split() for ln in atoms if ln.strip()]
+    assert [int(r[1]) for r in rows] == [3, 3, 1, 1, 1, 1, 2]      # source, free, top
+    mol = [ln.split() for ln in data.split("Molecules")[1].split("\n") if ln.strip()]
+    assert [int(m[1]) for m in mol] == [int(b) + 1 for b in system["layer"]]   # the system's bins, not current z
+    snap = tmp_path / "s"
+    snap.mkdir()
+    S.render_lammps(case, system, str(snap), packing=True, snapshots=30)
+    d2 = (snap / "in.case").read_text()
+    assert "dump            snap all custom 30 snap.txt id x y z" in d2 and '%.17g' in d2
+    # the contact point is not LAMMPS' gran/hertz/history arm: refused, not run as something else
+    _, cp = _packing_case(tmp_path, "disordered_cp")
+    with pytest.raises(S.BenchError, match="lever_arm"):
+        S.render_lammps(cp, system, str(tmp_path), packing=True)
+
+
+def test_disordered_liggghts_deck(tmp_path):
+    _, case = _packing_case(tmp_path, "disordered_cp")
+    system, _ = _packing_system(tmp_path)
+    f = S.render_liggghts(case, system, str(tmp_path), packing=True, snapshots=30)
+    deck = (tmp_path / f["deck"]).read_text()
+    assert "neighbor        %r bin" % (0.1 * np.mean(system["radius"])) in deck
+    assert "neigh_modify    delay 0 every 1 check yes" in deck and "newton          off" in deck
+    assert "gran model hertz tangential history" in deck and "hard_particles  yes" in deck
+    assert "fix             layers all ave/spatial 33 1 33 z 0.0 0.001 c_sa[3]" in deck   # the system's bins, current z
+    assert 'dump_modify     snap sort id format "%d %.17g %.17g %.17g"' in deck
+    assert "Molecules" not in (tmp_path / "data.system").read_text()
+    _, rad = _packing_case(tmp_path, "disordered")
+    with pytest.raises(S.BenchError, match="contact_point"):
+        S.render_liggghts(rad, system, str(tmp_path), packing=True)
+
+
+def test_packing_layer_files_to_trace(tmp_path):
+    """LAMMPS' chunks by molecule (rows "chunk count v...", the top bin missing) and LIGGGHTS' z-bins over the
+    box (rows "bin coord count v...", bins below and above the system's): both land on the system's bins."""
+    cp, _ = _packing_case(tmp_path)
+    system, sp = _packing_system(tmp_path)
+    vol = 2e-3 * 2e-3 * 1e-3
+    steps = [0, 10]
+    with open(tmp_path / "lmp.txt", "w") as f:
+        f.write("# a\n# Timestep Number-of-chunks Total-count\n# Chunk Ncount c_sa[3] ...\n")
+        for s in steps:
+            f.write("%d 4 6\n" % s)
+            for k in range(4):
+                f.write("  %d 2 %g 0 %g 0 0 0\n" % (k + 1, -(k + 1) * 1e-4 * (s + 1), 1e-3 * k))
+    out = tmp_path / "l.h5"
+    S.packing_layers_to_trace(str(tmp_path / "lmp.txt"), cp, sp, str(out), "lammps", "test")
+    tr = T.read_trace(str(out))
+    szz = tr["/crystal/layer_stress_zz"]
+    assert szz.shape == (2, 5) and np.allclose(szz[1, :4], [2 * (k + 1) * 1e-4 * 11 / vol for k in range(4)])
+    assert szz[1, 4] == 0 and np.allclose(tr["/crystal/layer_velocity_z"][0, :4], 1e-3 * np.arange(4))
+    with open(tmp_path / "lig.txt", "w") as f:
+        f.write("# a\n# Timestep Number-of-bins\n# Bin Coord Ncount ...\n")
+        for s in steps:
+            f.write("%d 7\n" % s)
+            for k in range(-1, 6):
+                f.write("  %d %g %d %g 0 %g 0 0 0\n" % (k + 2, (k + 0.5) * 1e-3, 1, -1e-4 * (k + 2), 2e-3 * k))
+    S.packing_layers_to_trace(str(tmp_path / "lig.txt"), cp, sp, str(out), "liggghts", "test")
+    tr = T.read_trace(str(out))
+    assert np.allclose(tr["/crystal/layer_stress_zz"][0], [1e-4 * (k + 2) / vol for k in range(5)])
+    assert np.allclose(tr["/crystal/layer_velocity_z"][1], 2e-3 * np.arange(5))
+
+
+def test_contact_counts_across_the_periodic_box(tmp_path):
+    from sidebyside import packing as P
+    system, _ = _packing_system(tmp_path)
+    pos = np.asarray(system["position"], float)
+    # 4-5 touch across x = 0 (1.95 mm and 0.04 mm: 0.09 mm apart through the boundary); 0-1 are both source
+    # (fixed pairs left out); 2-3 are 1.28 mm apart: apart, until 3 moves down by 0.3 mm
+    start = P.contact_set(pos, system["radius"], np.asarray(system["fixed"], bool), 2e-3, 2e-3)
+    assert (4, 5) in start and (0, 1) not in start and (2, 3) not in start
+    moved = pos.copy()
+    moved[3, 2] -= 0.3e-3
+    c = P.count_transitions([(0, pos), (5, moved), (10, pos)], system)
+    assert c["opened"] == c["closed"] >= 1 and c["opened_net"] == c["closed_net"] == 0
+    assert c["contacts_start"] == c["contacts_end"] == len(start) and c["steps"] == [0, 5, 10]
+    snap = tmp_path / "snap.txt"
+    with open(snap, "w") as f:
+        for s, p in ((0, pos), (5, moved)):
+            f.write("ITEM: TIMESTEP\n%d\nITEM: NUMBER OF ATOMS\n7\nITEM: BOX BOUNDS pp pp ff\n0 1\n0 1\n0 1\n"
+                    "ITEM: ATOMS id x y z\n" % s)
+            for k in (6, 5, 4, 3, 2, 1, 0):           # any order: rows by atom ID
+                f.write("%d %.17g %.17g %.17g\n" % (k + 1, p[k, 0], p[k, 1], p[k, 2]))
+    frames = P.read_snap(str(snap), 7)
+    assert [s for s, _ in frames] == [0, 5] and np.array_equal(frames[1][1], moved)
+
+
+@pytest.mark.realcodes
+def test_real_side_by_side_disordered_small(tmp_path):
+    """The packing decks on the committed 3060-particle column, one repetition (about 15 s of CPU): LAMMPS'
+    gran/hertz/history runs granwave's radius arm to round-off, LIGGGHTS the contact point to its 6 digits."""
+    gw = os.path.join(REPO, "build", "granwave")
+    if not os.path.exists(gw) or not shutil.which("lmp") or not shutil.which("liggghts"):
+        pytest.skip("needs build/granwave, lmp and liggghts")
+    js = tmp_path / "r.json"
+    assert S.main(["--granwave", gw, "--cases", "disordered_small,disordered_small_cp", "--reps", "1", "--json",
+                   str(js), "--workdir", str(tmp_path / "w")]) == 0
+    doc = json.loads(js.read_text())
+    for c, code, bound in zip(doc["cases"], ("lammps", "liggghts"), (1e-7, 1e-5)):
+        san = c["sanity"]
+        assert abs(san[code]["v_half"] - san["granwave"]["v_half"]) < 1e-4 * san["granwave"]["v_half"]
+        assert san[code]["vz_dev"] < bound, (code, san[code])
+        assert c["runs"][code][0]["neighbor_builds"] == 0 and c["runs"]["granwave"][0]["contact_list_builds"] == 1
+        n = c["contacts"]
+        assert n[code]["contacts_start"] == n["granwave"]["contacts_start"] > 9000
+        assert n[code]["opened"] == n["granwave"]["opened"] and n[code]["closed"] == n["granwave"]["closed"]
