@@ -11,6 +11,8 @@ Modules (each imports only those listed before it, so there is no import cycle):
   laws        -- the registry of those modules: law_of(contact) (drivers never branch on the law's name)
   driver      -- what the three drivers share: the command line of a deck driver (render, run, convert),
                  running the code, the LAMMPS-family data file and crystal lines, the trace datasets
+  bench_packing -- the side-by-side benchmark's decks on a packing file: per-bin numbers, granwave's contact-list
+                 rule, the data file with each atom's z-bin, the snapshots that count contacts opening and closing
   impact      -- impact cases (data/SCHEMA.md §7) for the drivers: the bodies, run length, dump reader, trace
   observables -- the crystal trace's observables as granwave lists them (`granwave observables --json`)
   hertz_mindlin_impact -- the Hertz-Mindlin law's impact decks (LAMMPS, LIGGGHTS, YADE)
