@@ -95,7 +95,7 @@ void compare(std::mt19937_64& g, Tally& tally) {
 }
 }  // namespace
 
-TEST_CASE("scalar spring: the same bits as the Vec3 spring on (x, 0, 0), with and without a dashpot", "[contact]") {
+TEST_CASE("tangential spring of one component (torsion): the bits of the Vec3 spring on (x, 0, 0)", "[contact]") {
   std::mt19937_64 g(20261130);
   Tally with, without;
   for (int k = 0; k < 200000; ++k) {
@@ -110,7 +110,7 @@ TEST_CASE("scalar spring: the same bits as the Vec3 spring on (x, 0, 0), with an
   }
 }
 
-TEST_CASE("scalar spring: a sliding spring is capped at f_C^d and reset by eq. (7)", "[contact]") {
+TEST_CASE("tangential spring of one component (torsion): capped at f_C^d, reset by eq. (7)", "[contact]") {
   const contact::TangentialSpringParams p{1e5, 0.5, 0.4, 0.3, false};
   const double xi = 2e-6, v = -0.01, f_n = 0.2;  // |f_o| = 0.195 > 0.4 f_n = 0.08
   const contact::ScalarResult r = contact::tangential_force<true>(p, xi, v, f_n, false);
