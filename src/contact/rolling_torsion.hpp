@@ -15,7 +15,8 @@
 //   couple   on i: a' (n x f_r + f_o n); on j its opposite (no force).
 // They are the tangential spring of contact/tangential_spring.hpp with (k, gamma, mu) = (k_r,
 // gamma_r, mu_r) and (k_o, gamma_o, mu_o), one limit (mu^s = mu^d), f_n and the Coulomb normal as
-// the tangential limit reads them. The couple's power is f_r . v_r + f_o v_o, so energy is booked
+// the tangential limit reads them (the torsion: its one-component form, the same bits as the Vec3 form
+// on (xi_o, 0, 0) it ran on before). The couple's power is f_r . v_r + f_o v_o, so energy is booked
 // as the tangential spring's: stored (1/2) k_r |xi_r|^2 + (1/2) k_o xi_o^2 (lost on opening), the
 // dashpots' and the slips' losses. Small turns: angular springs k_r a'^2 and k_o a'^2 (N m/rad) on
 // the relative turn (theory/lattice_dynamics.hpp).
@@ -122,9 +123,10 @@ struct WithRollingTorsion {
       v_r = lever * (turn - c.n.dot(turn) * c.n);
     else
       v_r = -lever * c.n.cross(turn);
-    const Vec3 v_o(lever * c.n.dot(turn), 0.0, 0.0);  // the torsion as the x of a vector
-    const Vec3 xo(select(twist.kt == 0.0, 0.0, h.o + v_o.x() * c.dt), 0.0, 0.0);
-    Vec3 f_r, f_o;
+    const double v_o = lever * c.n.dot(turn);  // of the torsion spring, a scalar
+    const double xo = select(twist.kt == 0.0, 0.0, h.o + v_o * c.dt);
+    Vec3 f_r;
+    double f_o;
     double slip = 0.0;
     if constexpr (Exact) {
       Vec3 xr;
@@ -133,10 +135,10 @@ struct WithRollingTorsion {
       else
         xr = advance_spring(roll, h.xi_r(), c.n, v_r, c.dt);
       const TangentialResult rolled = tangential_force<Dashpots>(roll, xr, v_r, f_n, false);
-      const TangentialResult twisted = tangential_force<Dashpots>(twist, xo, v_o, f_n, false);
+      const ScalarResult twisted = tangential_force<Dashpots>(twist, xo, v_o, f_n, false);
       f_r = rolled.force, f_o = twisted.force;
       h.r_x = rolled.spring.x(), h.r_y = rolled.spring.y(), h.r_z = rolled.spring.z();
-      h.o = twisted.spring.x();
+      h.o = twisted.spring;
       r.loss += spring_dashpot_loss<Dashpots>(roll, f_r, v_r, c.dt, rolled.slip_loss);
       slip = spring_dashpot_loss<Dashpots>(twist, f_o, v_o, c.dt, twisted.slip_loss);
     } else {  // sticking; a slip or a spring that needs the projection's root is deferred
@@ -146,19 +148,19 @@ struct WithRollingTorsion {
       else
         xr = advance_spring_series(roll, h.xi_r(), c.n, v_r, c.dt);
       const TangentialTest rolled = tangential_test<Dashpots>(roll, xr.xi, v_r, f_n, false);
-      const TangentialTest twisted = tangential_test<Dashpots>(twist, xo, v_o, f_n, false);
+      const ScalarTest twisted = tangential_test<Dashpots>(twist, xo, v_o, f_n, false);
       f_r = rolled.force, f_o = twisted.force;
       h.r_x = xr.xi.x(), h.r_y = xr.xi.y(), h.r_z = xr.xi.z();
-      h.o = xo.x();
+      h.o = xo;
       r.deferred = r.deferred | rolled.sliding | twisted.sliding | xr.needs_root;
       r.loss += spring_dashpot_loss<Dashpots>(roll, f_r, v_r, c.dt, 0.0);
       slip = spring_dashpot_loss<Dashpots>(twist, f_o, v_o, c.dt, 0.0);
     }
     r.loss += slip;
     if constexpr (FixedHistory)
-      r.couple = lever * (f_r + f_o.x() * c.n);
+      r.couple = lever * (f_r + f_o * c.n);
     else
-      r.couple = lever * (c.n.cross(f_r) + f_o.x() * c.n);
+      r.couple = lever * (c.n.cross(f_r) + f_o * c.n);
     return r;
   }
 };

@@ -195,4 +195,64 @@ inline TangentialResult tangential_force(const TangentialSpringParams& p, const 
   return sliding_force(p, test, vt);
 }
 
+// ---- The one-component spring (the torsion of contact/rolling_torsion.hpp) ----
+// The routines above on a scalar spring xi, velocity v and force f: the x components of their Vec3
+// forms on (xi, 0, 0), (v, 0, 0), the same operations in the same order, so the same bits. The y
+// and z components there are signed zeros that vanish exactly wherever they meet x: the test force's
+// are -k 0 - gamma 0 = -0 (k, gamma finite and >= 0), the sliding force's f_C^d (-0/|f|) = -0, so
+// |f|^2 = fl(f_x^2) + 0 + 0 (a square is never -0), v . f and v . t are fl(v_x f_x) + (-0) + (-0),
+// |v|^2 = fl(v_x^2) + 0 + 0 (x + -0 = x for every x). The root and the divisions are kept as they
+// are: f/sqrt(fl(f^2)) is +-1 only without underflow. tests/unit/contact_scalar_spring.cpp compares
+// the two forms bit for bit.
+struct ScalarTest {
+  double force;       // f_o^t
+  double magnitude2;  // f_o^t squared
+  double f_dynamic;   // f_C^d
+  bool sliding;       // the dynamic case (2) applies
+};
+struct ScalarResult {
+  double force;      // f^t
+  double spring;     // xi' to keep
+  bool sliding;      // the dynamic case (2)
+  double slip_loss;  // as TangentialResult's
+};
+
+template <bool Dashpot = true>
+GRANWAVE_ALWAYS_INLINE inline ScalarTest tangential_test(const TangentialSpringParams& p, double xi, double vt,
+                                                         double f_n, bool was_sliding) {
+  double f_test = -p.kt * xi;  // eq. (5)
+  if constexpr (Dashpot) f_test = f_test - p.gamma_t * vt;
+  const CoulombLimit coulomb = coulomb_limit(p.mu_static, p.mu_dynamic, p.coulomb_on_magnitude, f_n, was_sliding);
+  const double magnitude2 = f_test * f_test;
+  return {f_test, magnitude2, coulomb.f_dynamic, coulomb.slides(magnitude2)};
+}
+
+inline ScalarResult sliding_force(const TangentialSpringParams& p, const ScalarTest& test, double vt) {
+  const double magnitude = std::sqrt(test.magnitude2);
+  const double t = test.force / magnitude;
+  const double force = test.f_dynamic * t;  // eq. (8)
+  if (p.kt == 0.0) return {force, 0.0, true, 0.0};
+  const double spring = -(force + p.gamma_t * vt) / p.kt;  // eq. (7)
+  const double slip = (magnitude - test.f_dynamic) / p.kt;
+  const double slip_loss = test.f_dynamic * (magnitude - test.f_dynamic) / p.kt + p.gamma_t * slip * (vt * t);
+  return {force, spring, true, slip_loss};
+}
+
+template <bool Dashpot>
+GRANWAVE_ALWAYS_INLINE inline double spring_dashpot_loss(const TangentialSpringParams& p, double f, double v, double dt,
+                                                         double slip_loss) {
+  if constexpr (Dashpot)
+    return select(p.kt == 0.0, -(f * v) * dt, p.gamma_t * (v * v) * dt + slip_loss);
+  else
+    return slip_loss;
+}
+
+template <bool Dashpot = true>
+inline ScalarResult tangential_force(const TangentialSpringParams& p, double xi, double vt, double f_n,
+                                     bool was_sliding) {
+  const ScalarTest test = tangential_test<Dashpot>(p, xi, vt, f_n, was_sliding);
+  if (!test.sliding) return {test.force, xi, false, 0.0};
+  return sliding_force(p, test, vt);
+}
+
 }  // namespace granwave::contact
