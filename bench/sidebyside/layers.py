@@ -58,14 +58,20 @@ def layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str,
     order = np.argsort(idx[keep])
     cnt = count[:, keep][:, order]
     v = vals[:, keep, :][:, order, :]
+    write_layer_trace(out, code, version, text, case, system_path, lay, steps * dt, cnt, v, "layer")
+
+
+def write_layer_trace(out, code, version, text, case, system_path, lay, time, cnt, v, what) -> None:
+    """The trace of per-layer (or per-bin) counts cnt [t, layer] and means v [t, layer, 6] (the layer file's
+    columns: stress/atom zz, -, v_z, v_x, u_z, u_x): sigma_zz = -count <stress/atom zz> / the layer's volume."""
     vol = lay["box_x"] * lay["box_y"] * lay["l0"]
     data = {"/crystal/layer_z": lay["layer_z"],
             "/crystal/layer_stress_zz": -cnt * v[:, :, 0] / vol,
             "/crystal/layer_velocity_z": v[:, :, 2], "/crystal/layer_velocity_x": v[:, :, 3],
             "/crystal/layer_displacement_z": v[:, :, 4], "/crystal/layer_displacement_x": v[:, :, 5]}
     T.write_trace(out, code=code, code_version=version, case_text=text, case_name=case["case"]["name"],
-                  system_path=system_path, time_convention="synchronous: per-layer output after a whole step",
-                  time=steps * dt, datasets=data, extra_attrs={"note": "bench/side_by_side.py layer output"})
+                  system_path=system_path, time_convention="synchronous: per-%s output after a whole step" % what,
+                  time=time, datasets=data, extra_attrs={"note": "bench/side_by_side.py %s output" % what})
 
 
 def packing_layers_to_trace(layer_file: str, case_path: str, system_path: str, out: str, code: str, version: str) -> None:
@@ -89,15 +95,7 @@ def packing_layers_to_trace(layer_file: str, case_path: str, system_path: str, o
     v = np.zeros((len(steps), nl, a.shape[2] - lead - 1))
     cnt[:, idx[keep]] = a[:, keep, lead]
     v[:, idx[keep], :] = a[:, keep, lead + 1:]
-    dt = T.timestep(case, system)
-    vol = lay["box_x"] * lay["box_y"] * lay["l0"]
-    data = {"/crystal/layer_z": lay["layer_z"],
-            "/crystal/layer_stress_zz": -cnt * v[:, :, 0] / vol,
-            "/crystal/layer_velocity_z": v[:, :, 2], "/crystal/layer_velocity_x": v[:, :, 3],
-            "/crystal/layer_displacement_z": v[:, :, 4], "/crystal/layer_displacement_x": v[:, :, 5]}
-    T.write_trace(out, code=code, code_version=version, case_text=text, case_name=case["case"]["name"],
-                  system_path=system_path, time_convention="synchronous: per-bin output after a whole step",
-                  time=steps * dt, datasets=data, extra_attrs={"note": "bench/side_by_side.py per-bin output"})
+    write_layer_trace(out, code, version, text, case, system_path, lay, steps * T.timestep(case, system), cnt, v, "bin")
 
 
 # The checked field of a mode: (trace dataset, its column in the layer file, label). sigma_zz for a P wave; an S

@@ -8,7 +8,6 @@ import os
 import numpy as np
 
 from . import driver as DRV
-from . import laws as L
 from . import traces as T
 from .codefacts import Unsupported
 
@@ -22,18 +21,9 @@ SKIN_OVER_MEAN_RADIUS = 0.1
 def deck_values(case: dict, system: dict) -> dict:
     """What both codes' per-bin decks need; Unsupported for anything but a packing file's P or S step
     under a law whose bench decks exist (refused, not approximated)."""
-    c = T.contact_params(case)
-    ex = T.excitation(case)
-    law = L.law_of(c)
-    bad = list(law.bench_refusals(c))
+    c, ex, law, bad = DRV.bench_refusals(case)
     if case["case"]["model"] != "crystal" or str(system["attrs"].get("generator", "fcc")) != "file":
         bad.append("a packing file's system only (crystal.lattice = \"file\")")
-    if c["mu_static"] != c["mu_dynamic"]:
-        bad.append("mu_static != mu_dynamic (one mu in LAMMPS and LIGGGHTS)")
-    if c["normal_tension"] != "allow":
-        bad.append("normal_tension must be \"allow\"")
-    if ex["drive"] != "displacement":
-        bad.append("excitation must be a displacement step (P or S)")
     if bad:
         raise Unsupported("case %s cannot be rendered: %s" % (case["case"]["name"], "; ".join(bad)))
     lay = T.crystal_layout(system)

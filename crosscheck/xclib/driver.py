@@ -132,21 +132,28 @@ SKIN_OVER_RADIUS = 0.2       # < 0.83 a: only the touching shell is in the neigh
 NEIGH_EVERY = 10             # displacement check every 10 steps (no rebuild happens at all)
 
 
-def layer_deck_values(case: dict, system: dict) -> dict:
-    """The numbers both codes' per-layer decks need; Unsupported for a case they cannot render (they
-    render the benchmark's crystals; anything else is refused, not approximated)."""
+def bench_refusals(case: dict) -> tuple:
+    """(contact, excitation, law, what the benchmark's decks cannot render of this case): the law's own
+    refusals (xclib.laws) and the ones every bench deck shares (one mu, no tension, a displacement step)."""
     c = T.contact_params(case)
     ex = T.excitation(case)
     law = L.law_of(c)
-    bad = list(law.bench_refusals(c))   # what the law's decks cannot render (xclib.laws)
-    if case["case"]["model"] != "crystal":
-        bad.append("model = %r (crystal only)" % case["case"]["model"])
+    bad = list(law.bench_refusals(c))
     if c["mu_static"] != c["mu_dynamic"]:
         bad.append("mu_static != mu_dynamic (one mu in LAMMPS and LIGGGHTS)")
     if c["normal_tension"] != "allow":
         bad.append("normal_tension must be \"allow\"")
     if ex["drive"] != "displacement":
         bad.append("excitation must be a displacement step (P or S)")
+    return c, ex, law, bad
+
+
+def layer_deck_values(case: dict, system: dict) -> dict:
+    """The numbers both codes' per-layer decks need; Unsupported for a case they cannot render (they
+    render the benchmark's crystals; anything else is refused, not approximated)."""
+    c, ex, law, bad = bench_refusals(case)
+    if case["case"]["model"] != "crystal":
+        bad.append("model = %r (crystal only)" % case["case"]["model"])
     if np.max(system["radius"]) != np.min(system["radius"]):
         bad.append("polydisperse radii (the decks take one skin and mass from density)")
     if str(system["attrs"].get("generator", "fcc")) != "fcc":
