@@ -117,7 +117,7 @@ class Runner:
                     s = json.loads(f.read().strip().splitlines()[-1])
                 r["own_wall_s"] = s.get("wall_seconds")
                 r["particle_steps_per_second"] = s.get("particle_steps_per_second")
-                # builds of the contact list, the construction's included (absent before issue #41 item 3)
+                # builds of the contact list, the construction's included (absent from older builds' JSON)
                 r["contact_list_builds"] = s.get("contact_list_builds")
             except (ValueError, IndexError, OSError):
                 pass
@@ -128,14 +128,13 @@ class Runner:
             r.update(lf)
         return r
 
-    def trace(self, workdir: str, case_path: str, system_path: str) -> str:
-        """The run's output as a trace file (granwave: its own)."""
+    def trace(self, workdir: str, case_path: str, system_path: str, packing: bool = False) -> str:
+        """The run's output as a trace file (granwave: its own; a packing case's per-bin file, else per-layer)."""
         if self.code == "granwave":
             return os.path.join(workdir, "traces.h5")
         out = os.path.join(workdir, "layers.h5")
         if not os.path.exists(out):
             ver = log_facts(os.path.join(workdir, "log.txt")).get("version", self.title)
-            packing = str(T.read_system(system_path)["attrs"].get("generator", "fcc")) == "file"
             (packing_layers_to_trace if packing else layers_to_trace)(os.path.join(workdir, "layers.txt"), case_path,
                                                                       system_path, out, self.code, ver)
         return out
@@ -152,14 +151,14 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
     case_path = os.path.join(cdir, "case.toml")
     packing = name in PACKING_CASES
     made = P.ensure_packing(name, cache or P.default_cache(), lmp, env, log) if packing else None
+    text = case_text(name, made["path"] if made else None)
     with open(case_path, "w") as f:
-        f.write(case_text(name, made["path"] if made else None))
+        f.write(text)
     system_path = os.path.join(cdir, "system.h5")
     t0, c0 = time.perf_counter(), os.times()
     # The system does not depend on the case's name or tangential arm (a packing is relaxed frictionless): a case
     # differing from one built before in this call only there takes its system (disordered_cp: 200 s of CPU)
-    with open(case_path) as f:
-        key = (root, re.sub(r'(?m)^(name|lever_arm) = .*$', "", f.read()))
+    key = (root, re.sub(r'(?m)^(name|lever_arm) = .*$', "", text))
     reused = _BUILT.get(key)
     if reused:
         shutil.copy(reused, system_path)
@@ -204,7 +203,7 @@ def bench_case(name: str, runners: list, reps: int, root: str, granwave: str, ti
     ref_trace = os.path.join(ref, "traces.h5") if ref else None
     for r in runners:
         try:
-            tr = r.trace(last_dir[r.key], case_path, system_path)
+            tr = r.trace(last_dir[r.key], case_path, system_path, packing)
             # a packing: the speed of the bins' v_z (granwave's own pulse field on a packing), whose bins every code
             # averages alike; sigma_zz differs in its static part by definition (packing_deviations)
             s = analyze_speed(granwave, tr, layers, "S" if packing else mode)

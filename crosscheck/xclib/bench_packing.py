@@ -48,14 +48,12 @@ def snapshot_lines(code: str, every_steps: int) -> str:
 
 
 def write_deck(deck: str, case: dict, system: dict, workdir: str, title: str, v: dict, molecules: bool) -> dict:
-    """in.case and data.system (DRV.crystal_atoms' types and box); with `molecules` a Molecules section
-    holding each atom's z-bin + 1 (LAMMPS' `fix property/atom mol`, its chunks)."""
-    DRV.crystal_atoms(DRV.crystal(case, system), workdir, title, "Atoms")
+    """in.case and data.system as the per-layer decks write them (DRV.write_layer_deck); with `molecules` a
+    Molecules section holding each atom's z-bin + 1 (LAMMPS' `fix property/atom mol`, its chunks)."""
+    facts = DRV.write_layer_deck(deck, case, system, workdir, title, v)
     if molecules:
         layer = np.asarray(system["layer"], int)
         with open(os.path.join(workdir, "data.system"), "a") as f:
             f.write("\nMolecules\n\n")
             f.write("".join("%d %d\n" % (k + 1, layer[k] + 1) for k in range(len(layer))))
-    with open(os.path.join(workdir, "in.case"), "w") as f:
-        f.write(deck)
-    return dict(deck="in.case", nsteps=v["nsteps"], every=v["every"], n=v["n"])
+    return facts
