@@ -10,37 +10,33 @@
 
 namespace granwave::analysis {
 
-CrystalTrace smoothed(const CrystalTrace& trace, double duration) {
-  CrystalTrace out = trace;
-  if (trace.nt < 2) return out;
-  const double dt = trace.time[1] - trace.time[0];
-  const std::size_t m = static_cast<std::size_t>(std::lround(duration / dt));
-  if (m < 2) return out;
+CrystalTrace smoothed(const CrystalTrace& trace, double duration, const CrystalAnalysisOptions& options) {
+  const PulseSeries ps = pulse_series(trace, options);
+  const std::vector<double>& v = trace.*ps.member;
+  CrystalTrace out;
+  static_cast<CrystalTraceHeader&>(out) = trace;  // only the measured series is carried
+  std::vector<double>& y = out.*ps.member;
+  const std::size_t nt = trace.nt, nl = trace.nlayers;
+  const std::size_t m = nt < 2 ? 0 : static_cast<std::size_t>(std::lround(duration / (trace.time[1] - trace.time[0])));
+  if (m < 2 || v.size() != nt * nl) {
+    y = v;
+    return out;
+  }
   // Hann window over m samples, sin^2(pi (j + 1/2) / m), normalised to unit sum.
   std::vector<double> w(m);
   double sum = 0.0;
   for (std::size_t j = 0; j < m; ++j) sum += w[j] = std::pow(std::sin(std::numbers::pi * (j + 0.5) / m), 2);
   for (double& x : w) x /= sum;
-  const std::size_t nt = trace.nt, nl = trace.nlayers;
-  // Each (n, p) sums w[j] src[n - j] over j ascending; p innermost runs along a contiguous row.
-  std::vector<double> acc(nl);
-  auto convolve = [&](std::vector<double>& v) {
-    if (v.size() != nt * nl) return;
-    const std::vector<double> src = v;
-    for (std::size_t n = 0; n < nt; ++n) {
-      std::fill(acc.begin(), acc.end(), 0.0);
-      for (std::size_t j = 0; j < m; ++j) {
-        const double wj = w[j];
-        const double* row = &src[(n >= j ? n - j : 0) * nl];
-        for (std::size_t p = 0; p < nl; ++p) acc[p] += wj * row[p];
-      }
-      std::copy(acc.begin(), acc.end(), v.begin() + n * nl);
+  // Each (n, p) sums w[j] v[n - j] over j ascending; p innermost runs along a contiguous row.
+  y.assign(nt * nl, 0.0);
+  for (std::size_t n = 0; n < nt; ++n) {
+    double* acc = y.data() + n * nl;
+    for (std::size_t j = 0; j < m; ++j) {
+      const double wj = w[j];
+      const double* row = &v[(n >= j ? n - j : 0) * nl];
+      for (std::size_t p = 0; p < nl; ++p) acc[p] += wj * row[p];
     }
-  };
-  // The two series a front can be measured on (analyze's pulse field: the layer stress, or the velocity).
-  const bool S = trace.mode == 'S';
-  convolve(S ? out.stress_zx : out.stress_zz);
-  convolve(S ? out.velocity_x : out.velocity_z);
+  }
   return out;
 }
 
@@ -75,7 +71,7 @@ std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAna
       continue;
     }
     try {
-      const CrystalAnalysis a = analyze_crystal(smoothed(trace, f.duration), o);
+      const CrystalAnalysis a = analyze_crystal(smoothed(trace, f.duration, o), o);
       f.first_peak = a.v_first_peak;
       f.half_peak = a.v_half_peak;
     } catch (const InputError& e) {

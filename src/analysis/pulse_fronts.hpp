@@ -20,9 +20,10 @@ std::vector<PulseFront> pulse_fronts(const CrystalTrace& trace, const CrystalAna
 // a.pulse_fronts = pulse_fronts(trace, options, a) (what `analyze` and `run` report).
 void add_pulse_fronts(const CrystalTrace& trace, const CrystalAnalysisOptions& options, CrystalAnalysis& a);
 
-// The trace with the series its fronts are measured on (the layer stress and velocity of its mode:
-// sigma_zz and v_z for P, sigma_zx and v_x for S) convolved in time with the Hann window of duration T
-// (unit sum; the values before t = 0 taken as the first sample's); every other series as it was.
-CrystalTrace smoothed(const CrystalTrace& trace, double duration);
+// The trace's description (CrystalTraceHeader) with the one series its fronts are measured on
+// (pulse_series: by default the layer stress of its mode, or on a packing's bins the layer velocity)
+// convolved in time with the Hann window of duration T (unit sum; the values before t = 0 taken as the
+// first sample's); no other series.
+CrystalTrace smoothed(const CrystalTrace& trace, double duration, const CrystalAnalysisOptions& options = {});
 
 }  // namespace granwave::analysis

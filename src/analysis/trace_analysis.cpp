@@ -169,6 +169,22 @@ std::vector<Measured> local_speeds(const std::vector<double>& t, double dz) {
   return v;
 }
 
+PulseSeries pulse_series(const CrystalTrace& tr, const CrystalAnalysisOptions& opt) {
+  // Measures on sigma - sigma(0) (docs/design.md §2.4): sigma_zz for P, sigma_zx for S.
+  const bool S = tr.mode == 'S';
+  if (opt.pulse_field != "auto" && opt.pulse_field != "stress" && opt.pulse_field != "velocity")
+    throw InputError("analyze: --pulse-field must be auto, stress or velocity (got '" + opt.pulse_field + "')");
+  PulseSeries ps{S ? &CrystalTrace::stress_zx : &CrystalTrace::stress_zz, S ? "layer_stress_zx" : "layer_stress_zz"};
+  const bool no_stress = (tr.*ps.member).empty();
+  if (opt.pulse_field == "stress" && no_stress) throw InputError("analyze: --pulse-field stress: the trace has no " + ps.name);
+  // a trace without stresses (auto), or on request: the layer velocity is the next best pulse. A
+  // disordered packing smooths a step's stress front into a ramp without a first peak; the bins' mean
+  // velocity keeps the pulse the step drives (auto takes it there).
+  if (opt.pulse_field == "velocity" || no_stress || (opt.pulse_field == "auto" && tr.packing_bins))
+    ps = {S ? &CrystalTrace::velocity_x : &CrystalTrace::velocity_z, S ? "layer_velocity_x" : "layer_velocity_z"};
+  return ps;
+}
+
 CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOptions& opt) {
   CrystalAnalysis a;
   a.mode = tr.mode;
@@ -183,21 +199,10 @@ CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOpt
   const std::span<const double> t(tr.time.data(), nt);
   a.dt = (t[nt - 1] - t[0]) / (nt - 1);
 
-  // Measures on sigma - sigma(0) (docs/design.md §2.4): sigma_zz for P, sigma_zx for S.
   const bool S = tr.mode == 'S';
-  if (opt.pulse_field != "auto" && opt.pulse_field != "stress" && opt.pulse_field != "velocity")
-    throw InputError("analyze: --pulse-field must be auto, stress or velocity (got '" + opt.pulse_field + "')");
-  const std::vector<double>* mf = S ? &tr.stress_zx : &tr.stress_zz;
-  a.measure_field = S ? "layer_stress_zx" : "layer_stress_zz";
-  if (opt.pulse_field == "stress" && mf->empty())
-    throw InputError("analyze: --pulse-field stress: the trace has no " + a.measure_field);
-  // a trace without stresses (auto), or on request: the layer velocity is the next best pulse. A
-  // disordered packing smooths a step's stress front into a ramp without a first peak; the bins' mean
-  // velocity keeps the pulse the step drives (auto takes it there).
-  if (opt.pulse_field == "velocity" || mf->empty() || (opt.pulse_field == "auto" && tr.packing_bins)) {
-    mf = S ? &tr.velocity_x : &tr.velocity_z;
-    a.measure_field = S ? "layer_velocity_x" : "layer_velocity_z";
-  }
+  const PulseSeries ps = pulse_series(tr, opt);
+  const std::vector<double>* mf = &(tr.*ps.member);
+  a.measure_field = ps.name;
   if (mf->empty()) throw InputError("analyze: the trace has no " + a.measure_field);
 
   const bool by_role = tr.packing_bins && tr.last_free_bin >= 0;

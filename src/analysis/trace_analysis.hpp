@@ -141,6 +141,16 @@ struct CrystalAnalysis {
 
 CrystalAnalysis analyze_crystal(const CrystalTrace& trace, const CrystalAnalysisOptions& options = {});
 
+// The series the per-layer measures are made on (options.pulse_field; "auto": the layer stress of the
+// trace's mode, sigma_zz for P and sigma_zx for S, else, without it or on a packing's bins, the layer
+// velocity) and its dataset name. Throws InputError for an unknown pulse_field or a stress asked for
+// and absent; the member may name an empty series (analyze_crystal refuses that).
+struct PulseSeries {
+  std::vector<double> CrystalTrace::*member;
+  std::string name;
+};
+PulseSeries pulse_series(const CrystalTrace& trace, const CrystalAnalysisOptions& options);
+
 // Five-layer local speed (header comment) from first-peak times t[i] at equal spacing dz;
 // entries without a full window (or with a missing time, NaN) are NaN.
 std::vector<Measured> local_speeds(const std::vector<double>& peak_times, double dz);

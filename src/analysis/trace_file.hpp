@@ -39,7 +39,9 @@ std::pair<int, int> packing_free_bins(const Roles& role, const Bins& layer, std:
   return {static_cast<int>(last_source + 1), static_cast<int>(first_top - 1)};
 }
 
-struct CrystalTrace {
+// A crystal trace's description: everything but its series (what a derived trace, e.g. a smoothed
+// one, copies from the trace it is made of).
+struct CrystalTraceHeader {
   std::vector<double> time;      // [nt] s
   std::vector<double> layer_z;   // [nlayers] m, from the innermost driven layer
   std::size_t nt = 0, nlayers = 0;
@@ -51,6 +53,13 @@ struct CrystalTrace {
   int first_free_bin = -1, last_free_bin = -1;
   char mode = 'P';               // 'P' or 'S' (from case_toml, else from the field amplitudes)
   std::string mode_source;       // "case_toml" | "inferred"
+  // The case's `[analysis] period` (data/SCHEMA.md §1), when its text is in the trace and sets it.
+  std::optional<PeriodReading> period;
+  // The case's `[analysis] wavenumber_speed`, likewise.
+  std::optional<WavenumberSpeed> wavenumber_speed;
+};
+
+struct CrystalTrace : CrystalTraceHeader {
   // Row-major [nt, nlayers]; empty when the trace lacks the dataset.
   std::vector<double> stress_zz, stress_zx, displacement_z, displacement_x, velocity_z, velocity_x;
   std::vector<double> coordination;
@@ -58,10 +67,6 @@ struct CrystalTrace {
   std::map<std::string, std::vector<double>> other;
   // Where the series of /crystal dataset `name` is held: the member above of that name, else other[name].
   std::vector<double>& series(const std::string& name);
-  // The case's `[analysis] period` (data/SCHEMA.md §1), when its text is in the trace and sets it.
-  std::optional<PeriodReading> period;
-  // The case's `[analysis] wavenumber_speed`, likewise.
-  std::optional<WavenumberSpeed> wavenumber_speed;
 };
 
 struct ChainTrace {
