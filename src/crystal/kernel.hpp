@@ -199,12 +199,18 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
   const double* pvz = d.vz.data();
   const double* pa = d.radius.data();
   if constexpr (Dissipative) C.losses_booked = true;  // both sweeps add to diss
-  d.end_arms_stored = false;
+  // With the forces, the layer stress's end arms (Dynamics::end_arms): u_z = b_z / r from the root
+  // the law's geometry takes, the bits observers.cpp's walk would make (its (a_i + a_j) - delta is
+  // that r where Sterbenz holds, else the same root); not in a sheared box, whose walk leaves the
+  // shift out of its root.
+  d.end_arms_stored = plan.store_forces && shift_x == 0.0;
+  if (d.end_arms_stored) d.end_arms.resize(2 * C.size());
+  double* end_arms = d.end_arms.data();
   // One contact (evaluate_contact). Pointers and the law are captured by value (OpenMP would
   // share them by reference, which the vectoriser cannot see through).
   // shx[u], shy[u]: the image offsets of j (m) of contact c = c0 + u of the block.
-  auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, auto vector_sweep)
-                 GRANWAVE_ALWAYS_INLINE -> bool {
+  auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, auto vector_sweep,
+                 auto with_arms) GRANWAVE_ALWAYS_INLINE -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     const int i = ci[c], j = cj[c];
     const double bx = px[j] + shx[u] - px[i];  // image_x box_x, as the neighbour search takes it
@@ -220,6 +226,11 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     cfx[c] = select(open, 0.0, res.force.x());
     cfy[c] = select(open, 0.0, res.force.y());
     cfz[c] = select(open, 0.0, res.force.z());
+    if constexpr (decltype(with_arms)::value) {
+      const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);  // evaluate_contact's root
+      end_arms[2 * c] = Dynamics::end_arm(pa[i], cdelta[c], u_z);
+      end_arms[2 * c + 1] = Dynamics::end_arm(pa[j], cdelta[c], u_z);
+    }
     return deferred;
   };
   // One thread: the forces go straight into the particles' rows (scatter, above).
@@ -229,7 +240,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
 #ifdef GRANWAVE_GATHER_VECTORS
   if (!d.threaded()) sum_rows = d.begin_contact_sums(rows = 1);
 #endif
-  auto range = [=](std::int64_t c0, std::int64_t c1) GRANWAVE_ALWAYS_INLINE {
+  auto range = [=](std::int64_t c0, std::int64_t c1, auto with_arms) GRANWAVE_ALWAYS_INLINE {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
     for (std::int64_t c = c0; c < c1; ++c) {
       shx[c - c0] = imx[c] * box_x;
@@ -240,7 +251,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     sweep_contacts<contact::DefersContacts<Law>, kBlock>(
         c0, c1,
         [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
-          return one(c, c - c0, shx, shy, vector_sweep);
+          return one(c, c - c0, shx, shy, vector_sweep, with_arms);
         },
         [] {});
 #ifdef GRANWAVE_GATHER_VECTORS
@@ -249,7 +260,10 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
                  nullptr);
 #endif
   };
-  in_blocks(nc, d.threaded(), range);
+  if (d.end_arms_stored)
+    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::true_type{}); });
+  else
+    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
   return {rows};
 }
 
