@@ -44,12 +44,6 @@
 //                                     -arm_i n x f^t (j gets minus it); the kernel then sums it
 //                                     (a law without the member never has one: its instantiations
 //                                     are those of a kernel without couples)
-// and optionally, for such a law that decorates a base law (BaseLaw, History's first columns):
-//   Response base_part(const Contact&, BaseLaw::History&, double& f_n) const;
-//   void couple_part(const Contact&, History&, double f_n, Response&) const;
-//                                     the Deferrable evaluation in two halves (the base law, giving
-//                                     f_n, then the couples added to its response); the kernel runs
-//                                     each half as its own sweep over a chunk of contacts
 // Every contact writes only its own entries, so results do not depend on the sweep, the block
 // or the thread that evaluates it.
 #pragma once
@@ -99,15 +93,6 @@ concept DefersContacts = requires(const Law& law, const Contact& c, typename Law
 
 template <class Law>
 concept HasCouples = requires { requires Law::couples; };
-
-template <class Law>
-concept SplitsSweep =
-    HasCouples<Law> && DefersContacts<Law> &&
-    requires(const Law& law, const Contact& c, typename Law::History& h, typename Law::BaseLaw::History& hb,
-             double& f_n, Response& r) {
-      { law.base_part(c, hb, f_n) } -> std::same_as<Response>;
-      law.couple_part(c, h, f_n, r);
-    };
 
 template <class Law>
 concept LosslessSweep = DefersContacts<Law> && requires { requires Law::lossless_sweep; };

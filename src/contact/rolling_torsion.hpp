@@ -61,7 +61,6 @@ struct RollingTorsionParams {
 template <class Base, bool Dashpots, bool FixedHistory = false>
 struct WithRollingTorsion {
   static_assert(Base::torques && DefersContacts<Base>, "rolling and torsion resistance need a frictional law");
-  using BaseLaw = Base;
   Base base;
   RollingTorsionParams rt;
   TangentialSpringParams roll, twist;  // rt.rolling(), rt.torsion()
@@ -90,16 +89,6 @@ struct WithRollingTorsion {
   }
   GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
 
-  // The Deferrable evaluation in two halves, for a kernel that runs each as its own sweep over a chunk
-  // (crystal/kernel.hpp): the base law, then the couples from c.n, c.delta, the radii, the spins, c.dt
-  // and f_n, added to the base's response r. The same operations as evaluate(c, h, Deferrable).
-  GRANWAVE_ALWAYS_INLINE Response base_part(const Contact& c, typename Base::History& h, double& f_n) const {
-    return base.evaluate(c, h, Deferrable{}, f_n);
-  }
-  GRANWAVE_ALWAYS_INLINE void couple_part(const Contact& c, History& h, double f_n, Response& r) const {
-    add_couples<false>(c, h, f_n, r);
-  }
-
   double opening_loss(const History& h) const { return base.opening_loss(h.base) + own_energy(h); }
   void add_stored_energy(double& e, double delta, const History& h, double a_i, double a_j) const {
     if constexpr (StoredEnergyOfRadii<Base>)
@@ -126,13 +115,6 @@ struct WithRollingTorsion {
       r = base.evaluate(c, h.base, f_n);
     else
       r = base.evaluate(c, h.base, Deferrable{}, f_n);
-    add_couples<Exact>(c, h, f_n, r);
-    return r;
-  }
-
-  // The rolling and torsion springs on the base's response r: its loss, deferral and the couple.
-  template <bool Exact>
-  GRANWAVE_ALWAYS_INLINE void add_couples(const Contact& c, History& h, double f_n, Response& r) const {
     const double arm_i = c.a_i - shift * c.delta, arm_j = c.a_j - shift * c.delta;
     const double lever = arm_i * arm_j / (arm_i + arm_j);  // a'
     const Vec3 turn = c.w_i - c.w_j;
@@ -179,6 +161,7 @@ struct WithRollingTorsion {
       r.couple = lever * (f_r + f_o * c.n);
     else
       r.couple = lever * (c.n.cross(f_r) + f_o * c.n);
+    return r;
   }
 };
 

@@ -21,7 +21,6 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <type_traits>
@@ -29,7 +28,6 @@
 
 #include "contact/law.hpp"
 #include "crystal/dynamics.hpp"
-#include "crystal/kernel_contact.hpp"
 #include "crystal/kernel_gather.hpp"
 
 namespace granwave::crystal {
@@ -64,6 +62,12 @@ class LayerSum {
   double sum_ = 0.0;
 };
 
+// f(0), ..., f(N - 1), unrolled (history columns).
+template <std::size_t N, class F>
+GRANWAVE_ALWAYS_INLINE inline void for_columns(F&& f) {
+  [&]<std::size_t... Q>(std::index_sequence<Q...>) { (f(Q), ...); }(std::make_index_sequence<N>{});
+}
+
 // body(c0, c1) over [0, n) in blocks, on OpenMP threads when `threaded`.
 template <class Body>
 void in_blocks(std::int64_t n, bool threaded, const Body& body) {
@@ -96,19 +100,68 @@ struct ListColumns {
   std::array<double*, NH> hist{};
 };
 
+// One contact c: its geometry from r_j - r_i = b (j at its image), the radii, v_i - v_j and (a law
+// with torques) the spins; the law's response (Vector: the Deferrable evaluation of a law that
+// defers, contact::DefersContacts); its history written back (kept for a deferred contact, which
+// the exact sweep evaluates again from it; lost on opening), its loss added, its overlap stored.
+// Quiet (a contact::LosslessSweep law's vector sweep): the losses are left alone and an opening
+// contact that loses stored energy is deferred. Returns whether the contact was deferred; `res`
+// and `open` (no force) are the caller's (a returned struct is not vectorised).
+template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
+GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
+                                                    double* cdelta, std::int64_t c, double bx, double by, double bz,
+                                                    double reach, double a_i, double a_j, const contact::Vec3& dv,
+                                                    const contact::Vec3& w_i, const contact::Vec3& w_j, double inc,
+                                                    contact::Response& res, bool& open) {
+  using History = typename Law::History;
+  static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
+  constexpr bool Defers = contact::DefersContacts<Law>;
+  const double r2 = bx * bx + by * by + bz * bz;
+  const double r = std::sqrt(r2);
+  const double delta = reach - r;
+  open = r >= reach;  // no force; the history is lost
+  const double inv_r = 1.0 / r;
+  contact::Contact k;
+  k.n = contact::Vec3(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
+  k.delta = delta;
+  k.dv = dv;
+  k.delta_dot = -(k.n.x() * k.dv.x() + k.n.y() * k.dv.y() + k.n.z() * k.dv.z());
+  if constexpr (Law::torques) {
+    k.w_i = w_i;
+    k.w_j = w_j;
+  }
+  k.a_i = a_i;
+  k.a_j = a_j;
+  k.dt = inc;
+  std::array<double, NH> h0;
+  for_columns<NH>([&](std::size_t q) { h0[q] = hist[q][c]; });
+  History h = contact::history_from<History>(h0);
+  if constexpr (Vector && Defers)
+    res = law.evaluate(k, h, contact::Deferrable{});
+  else
+    res = law.evaluate(k, h);
+  using contact::select;
+  bool deferred = Vector && Defers && res.deferred;
+  if constexpr (Quiet)  // bitwise: no branch in the vector loop
+    deferred = deferred | (open & (law.opening_loss(contact::history_from<History>(h0)) != 0.0));
+  const std::array<double, NH> h1 = contact::history_to(h);
+  for_columns<NH>([&](std::size_t q) { hist[q][c] = select(deferred, h0[q], select(open, 0.0, h1[q])); });
+  if constexpr (Dissipative && !Quiet) {
+    const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
+    diss[c] = select(deferred, diss[c], diss[c] + lost);
+  }
+  cdelta[c] = delta;
+  return deferred;
+}
+
 // one(c, vector_sweep) over the contacts [c0, c1) (at most N): with a law that defers contacts,
-// the vector sweep, then (after on_deferred()) the exact sweep over those it deferred. A split
-// law's vector sweep: first_half(c) over the contacts first (no first_half: nullptr).
-template <bool Defers, std::int64_t N, class One, class OnDeferred, class FirstHalf = std::nullptr_t>
+// the vector sweep, then (after on_deferred()) the exact sweep over those it deferred.
+template <bool Defers, std::int64_t N, class One, class OnDeferred>
 GRANWAVE_ALWAYS_INLINE inline void sweep_contacts(std::int64_t c0, std::int64_t c1, const One& one,
-                                                  const OnDeferred& on_deferred, const FirstHalf& first_half = nullptr) {
+                                                  const OnDeferred& on_deferred) {
   if constexpr (Defers) {
     std::int32_t deferred[N];
     std::int32_t any = 0;
-    if constexpr (!std::is_null_pointer_v<FirstHalf>) {
-#pragma GCC ivdep
-      for (std::int64_t c = c0; c < c1; ++c) first_half(c);
-    }
 #pragma GCC ivdep
     for (std::int64_t c = c0; c < c1; ++c) {
       deferred[c - c0] = one(c, std::true_type{});
@@ -267,97 +320,64 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   constexpr bool QuietSweep = Defers && Dissipative && contact::LosslessSweep<Law>;
   if constexpr (Dissipative && !QuietSweep) C.losses_booked = true;
   bool* losses_booked = &C.losses_booked;
-  // One contact (evaluate_contact; a split law's vector sweep: the halves): g's entry u is contact
-  // c. Pointers and the law are captured by value (OpenMP would share them by reference, which the
-  // vectoriser cannot see through).
-  constexpr bool Split = contact::SplitsSweep<Law>;
+  // One contact (evaluate_contact): g's entry u is contact c. Pointers and the law are captured
+  // by value (OpenMP would share them by reference, which the vectoriser cannot see through).
   using Out = Sums<Couples ? 9 : 6>;
-  using Half = typename BaseHalfOf<Law>::type;
-  auto put_forces = [=](std::int64_t c, std::int64_t u, Out& o, const contact::Response& res, bool open,
-                        auto scatter_sweep) GRANWAVE_ALWAYS_INLINE {
+  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, auto vector_sweep, auto scatter_sweep)
+                 GRANWAVE_ALWAYS_INLINE -> bool {
+    constexpr bool Vector = decltype(vector_sweep)::value;
+    constexpr bool Scatter = decltype(scatter_sweep)::value;
+    // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j, the spins
+    const contact::Vec3 dv(g.col[G::dvx][u], g.col[G::dvy][u], g.col[G::dvz][u]);
+    const contact::Vec3 w_i(g.col[G::wix][u], g.col[G::wiy][u], g.col[G::wiz][u]);
+    const contact::Vec3 w_j(g.col[G::wjx][u], g.col[G::wjy][u], g.col[G::wjz][u]);
+    constexpr bool Quiet = Vector && QuietSweep;
+    contact::Response res;
+    bool open;
+    const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
+        law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::reach][u],
+        g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
     using contact::select;
     const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
                           select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
                           select(open, 0.0, res.nf.y()), select(open, 0.0, res.nf.z())};
-    if constexpr (decltype(scatter_sweep)::value) {
+    if constexpr (Couples) {
+      const double co[3] = {select(open, 0.0, res.couple.x()), select(open, 0.0, res.couple.y()),
+                            select(open, 0.0, res.couple.z())};
+      if constexpr (Scatter)
+        for (int q = 0; q < 3; ++q) o.col[6 + q][u] = co[q];
+      else
+        ccx[c] = co[0], ccy[c] = co[1], ccz[c] = co[2];
+    }
+    if constexpr (Scatter) {
       for (int q = 0; q < 6; ++q) o.col[q][u] = fo[q];
     } else {
       cfx[c] = fo[0], cfy[c] = fo[1], cfz[c] = fo[2];
       cnx[c] = fo[3], cny[c] = fo[4], cnz[c] = fo[5];
     }
-  };
-  auto put_couple = [=](std::int64_t c, std::int64_t u, Out& o, const contact::Response& res, bool open,
-                        auto scatter_sweep) GRANWAVE_ALWAYS_INLINE {
-    using contact::select;
-    const double co[3] = {select(open, 0.0, res.couple.x()), select(open, 0.0, res.couple.y()),
-                          select(open, 0.0, res.couple.z())};
-    if constexpr (decltype(scatter_sweep)::value)
-      for (int q = 0; q < 3; ++q) o.col[6 + q][u] = co[q];
-    else
-      ccx[c] = co[0], ccy[c] = co[1], ccz[c] = co[2];
-  };
-  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, const Half& b, auto vector_sweep,
-                 auto scatter_sweep) GRANWAVE_ALWAYS_INLINE -> bool {
-    constexpr bool Vector = decltype(vector_sweep)::value;
-    // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j, the spins
-    const contact::Vec3 w_i(g.col[G::wix][u], g.col[G::wiy][u], g.col[G::wiz][u]);
-    const contact::Vec3 w_j(g.col[G::wjx][u], g.col[G::wjy][u], g.col[G::wjz][u]);
-    constexpr bool Quiet = Vector && QuietSweep;
-    contact::Response res;
-    bool open, deferred;
-    if constexpr (Vector && Split) {  // the couple half; the base half (first_half below) put the forces
-      deferred = evaluate_couple_half<Law, Dissipative, Quiet>(law, hist, diss, cdelta, c, u, b, g.col[G::a_i][u],
-                                                               g.col[G::a_j][u], w_i, w_j, inc, res, open);
-    } else {
-      const contact::Vec3 dv(g.col[G::dvx][u], g.col[G::dvy][u], g.col[G::dvz][u]);
-      deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
-          law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::reach][u],
-          g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
-      put_forces(c, u, o, res, open, scatter_sweep);
-    }
-    if constexpr (Couples) put_couple(c, u, o, res, open, scatter_sweep);
     return deferred;
-  };
-  // A split law's base half of contact c (its vector sweep's first loop).
-  auto base_half = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, Half& b, auto scatter_sweep)
-                       GRANWAVE_ALWAYS_INLINE {
-    if constexpr (Split) {
-      const contact::Vec3 dv(g.col[G::dvx][u], g.col[G::dvy][u], g.col[G::dvz][u]);
-      const contact::Vec3 w_i(g.col[G::wix][u], g.col[G::wiy][u], g.col[G::wiz][u]);
-      const contact::Vec3 w_j(g.col[G::wjx][u], g.col[G::wjy][u], g.col[G::wjz][u]);
-      contact::Response res;
-      bool open;
-      evaluate_base_half(law, hist, cdelta, c, u, b, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u],
-                         g.col[G::reach][u], g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
-      put_forces(c, u, o, res, open, scatter_sweep);
-    }
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
   auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) GRANWAVE_ALWAYS_INLINE {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
-    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o, Half& b) GRANWAVE_ALWAYS_INLINE {
-      auto on_deferred = [=] {
-        if constexpr (QuietSweep) std::atomic_ref<bool>(*losses_booked).store(true, std::memory_order_relaxed);
-      };
-      auto whole = [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
-        return one(c, c - s0, g, o, b, vector_sweep, scatter_sweep);
-      };
-      if constexpr (Split)
-        sweep_contacts<Defers, kChunk>(s0, s1, whole, on_deferred, [&](std::int64_t c) GRANWAVE_ALWAYS_INLINE {
-          base_half(c, c - s0, g, o, b, scatter_sweep);
-        });
-      else
-        sweep_contacts<Defers, kChunk>(s0, s1, whole, on_deferred);
+    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o) GRANWAVE_ALWAYS_INLINE {
+      sweep_contacts<Defers, kChunk>(
+          s0, s1,
+          [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
+            return one(c, c - s0, g, o, vector_sweep, scatter_sweep);
+          },
+          [=] {
+            if constexpr (QuietSweep) std::atomic_ref<bool>(*losses_booked).store(true, std::memory_order_relaxed);
+          });
     };
     G g;
     Out o;
-    Half b;
     for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
       const std::int64_t s1 = std::min(c1, s0 + kChunk);
       gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
       if constexpr (MovedImages) move_images(g, s1 - s0, imx + s0, imy + s0, images);
-      sweep(s0, s1, g, o, b);
+      sweep(s0, s1, g, o);
 #ifdef GRANWAVE_GATHER_VECTORS
       if constexpr (Scatter) {
         const double* cc[3] = {nullptr, nullptr, nullptr};
