@@ -469,6 +469,7 @@ class LawModel final : public ContactModel {
   // terms in the same order, the same bits.
   void add_stored_energy(double* per_layer, const ContactList& C, const LayerLists& by_layer,
                          const double* radius) const override {
+    if constexpr (!records_terms) return add_stored_energy_terms<0>(per_layer, C, by_layer, radius);
     switch (energy_terms()) {
       case 1: return add_stored_energy_terms<1>(per_layer, C, by_layer, radius);
       case 2: return add_stored_energy_terms<2>(per_layer, C, by_layer, radius);
@@ -496,11 +497,20 @@ class LawModel final : public ContactModel {
     else
       law_.add_stored_energy(e, delta, h);
   }
-  // How many terms the law adds (the same for every contact, contact/law.hpp).
+  // A law whose add_stored_energy takes any accumulator (contact/law.hpp; one from outside may take
+  // a double only: its additions stay in the chains).
+  static constexpr bool records_terms =
+      requires(const Law& law, EnergyTerms<1>& e, const typename Law::History& h) { law.add_stored_energy(e, 0.0, h, 0.0, 0.0); } ||
+      requires(const Law& law, EnergyTerms<1>& e, const typename Law::History& h) { law.add_stored_energy(e, 0.0, h); };
+  // How many terms the law adds (the same for every contact, contact/law.hpp); 0: not recorded.
   std::size_t energy_terms() const {
-    EnergyTerms<1> r;
-    stored_energy(r, 1.0, typename Law::History{}, 1.0, 1.0);
-    return r.n;
+    if constexpr (records_terms) {
+      EnergyTerms<1> r;
+      stored_energy(r, 1.0, typename Law::History{}, 1.0, 1.0);
+      return r.n;
+    } else {
+      return 0;
+    }
   }
   // NT terms made per contact first; NT = 0: the law's additions in the chains (more than three terms).
   template <std::size_t NT>
@@ -514,7 +524,7 @@ class LawModel final : public ContactModel {
     const std::int32_t *pi = C.i.data(), *pj = C.j.data();
     const std::size_t nc = C.size();
     static thread_local std::vector<double> terms;  // [term][contact]; no allocation per sample
-    if constexpr (NT > 0) {
+    if constexpr (NT > 0 && records_terms) {
       if (terms.size() < NT * nc) terms.resize(NT * nc);
       double* __restrict t = terms.data();
       const double* __restrict dl = delta;
@@ -531,7 +541,7 @@ class LawModel final : public ContactModel {
     const double* t = terms.data();
     layer_chains<2>(by_layer, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
       double e = acc[0];
-      if constexpr (NT > 0) {
+      if constexpr (NT > 0 && records_terms) {
         for (std::size_t k = 0; k < NT; ++k) e += t[k * nc + static_cast<std::size_t>(c)];
       } else {
         std::array<double, NH> h;
