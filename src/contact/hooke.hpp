@@ -32,7 +32,8 @@ struct HookeLaw {
     }
   }
   double opening_loss(const History&) const { return 0.0; }
-  void add_stored_energy(double& e, double delta, const History&) const { e += normal_energy(normal, delta); }
+  template <class Energy>
+  void add_stored_energy(Energy& e, double delta, const History&) const { e += normal_energy(normal, delta); }
   LeverArm lever_arm() const { return LeverArm::radius; }  // no tangential force: never used
   bool dissipates() const { return Dashpot && (normal.gamma_n > 0.0 || normal.clip_tension); }
   HookeLaw<false> without_rates() const { return HookeLaw<false>(normal); }

@@ -13,8 +13,10 @@
 //                                     no calls) so that the kernel's loop over contacts vectorises
 //   double opening_loss(const History&) const;
 //                                     energy lost when the contact opens with this history
-//   void add_stored_energy(double& e, double delta, const History&) const;
-//                                     adds the contact's elastic energy to e, term by term
+//   template <class Energy> void add_stored_energy(Energy& e, double delta, const History&) const;
+//                                     adds the contact's elastic energy to e, term by term, each
+//                                     with e += t and as many for every contact (e: a double, or
+//                                     the kernel's recorder of the terms, crystal/kernel.hpp)
 //   LeverArm lever_arm() const;       lever arm of f^t: a_p - arm_shift(lever_arm()) delta
 //                                     (contact/lever_arm.hpp: radius or contact_point)
 //   bool dissipates() const;          false when loss is always zero (the kernel then skips it)
@@ -22,7 +24,7 @@
 //
 // and optionally, for a law whose stored energy depends on the radii (Hertz: R*), instead of the
 // form above:
-//   void add_stored_energy(double& e, double delta, const History&, double a_i, double a_j) const;
+//   template <class Energy> void add_stored_energy(Energy& e, double delta, const History&, double a_i, double a_j) const;
 //
 // and optionally, for a law whose exact evaluation is expensive for a few contacts only (the
 // roots and divisions of sliding):

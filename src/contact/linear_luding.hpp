@@ -76,7 +76,8 @@ struct LinearLudingLaw {
 
   // The spring's energy is lost when the contact opens.
   double opening_loss(const History& h) const { return 0.5 * tangential.kt * h.xi().squaredNorm(); }
-  void add_stored_energy(double& e, double delta, const History& h) const {
+  template <class Energy>
+  void add_stored_energy(Energy& e, double delta, const History& h) const {
     e += normal_energy(normal, delta);
     e += 0.5 * tangential.kt * (h.xi_x * h.xi_x + h.xi_y * h.xi_y + h.xi_z * h.xi_z);
   }

@@ -90,7 +90,8 @@ struct WithRollingTorsion {
   GRANWAVE_ALWAYS_INLINE Response evaluate(const Contact& c, History& h) const { return respond<true>(c, h); }
 
   double opening_loss(const History& h) const { return base.opening_loss(h.base) + own_energy(h); }
-  void add_stored_energy(double& e, double delta, const History& h, double a_i, double a_j) const {
+  template <class Energy>
+  void add_stored_energy(Energy& e, double delta, const History& h, double a_i, double a_j) const {
     if constexpr (StoredEnergyOfRadii<Base>)
       base.add_stored_energy(e, delta, h.base, a_i, a_j);
     else

@@ -22,6 +22,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -462,23 +463,91 @@ class LawModel final : public ContactModel {
     }
   }
   // Two layers' sums side by side (layer_chains: more streams cost more than they gain here,
-  // docs/design.md §2.8); an open contact adds nothing (a select).
+  // docs/design.md §2.8); an open contact adds nothing (a select). The law's terms (its e += t, in
+  // its order) are made first for every contact in a loop that vectorises (Hertz-Mindlin's root
+  // four contacts at a time, not one by one in the chains), then the chains add them: the same
+  // terms in the same order, the same bits.
   void add_stored_energy(double* per_layer, const ContactList& C, const LayerLists& by_layer,
                          const double* radius) const override {
+    if constexpr (!records_terms) return add_stored_energy_terms<0>(per_layer, C, by_layer, radius);
+    switch (energy_terms()) {
+      case 1: return add_stored_energy_terms<1>(per_layer, C, by_layer, radius);
+      case 2: return add_stored_energy_terms<2>(per_layer, C, by_layer, radius);
+      case 3: return add_stored_energy_terms<3>(per_layer, C, by_layer, radius);
+      default: return add_stored_energy_terms<0>(per_layer, C, by_layer, radius);
+    }
+  }
+ private:
+  // The additions e += t of a law's add_stored_energy, recorded in order (the first K; n counts all).
+  template <std::size_t K>
+  struct EnergyTerms {
+    std::array<double, K> t{};
+    std::size_t n = 0;
+    EnergyTerms& operator+=(double v) {
+      if (n < K) t[n] = v;
+      ++n;
+      return *this;
+    }
+  };
+  template <class Energy>
+  GRANWAVE_ALWAYS_INLINE void stored_energy(Energy& e, double delta, const typename Law::History& h, double a_i,
+                                            double a_j) const {
+    if constexpr (contact::StoredEnergyOfRadii<Law>)
+      law_.add_stored_energy(e, delta, h, a_i, a_j);
+    else
+      law_.add_stored_energy(e, delta, h);
+  }
+  // A law whose add_stored_energy takes any accumulator (contact/law.hpp; one from outside may take
+  // a double only: its additions stay in the chains).
+  static constexpr bool records_terms =
+      requires(const Law& law, EnergyTerms<1>& e, const typename Law::History& h) { law.add_stored_energy(e, 0.0, h, 0.0, 0.0); } ||
+      requires(const Law& law, EnergyTerms<1>& e, const typename Law::History& h) { law.add_stored_energy(e, 0.0, h); };
+  // How many terms the law adds (the same for every contact, contact/law.hpp); 0: not recorded.
+  std::size_t energy_terms() const {
+    if constexpr (records_terms) {
+      EnergyTerms<1> r;
+      stored_energy(r, 1.0, typename Law::History{}, 1.0, 1.0);
+      return r.n;
+    } else {
+      return 0;
+    }
+  }
+  // NT terms made per contact first; NT = 0: the law's additions in the chains (more than three terms).
+  template <std::size_t NT>
+  void add_stored_energy_terms(double* per_layer, const ContactList& C, const LayerLists& by_layer,
+                               const double* radius) const {
     using History = typename Law::History;
     constexpr std::size_t NH = contact::history_columns<History>;
     std::array<const double*, NH> column;
     for_columns<NH>([&](std::size_t q) { column[q] = C.history_column(q); });
     const double* delta = C.delta.data();
     const std::int32_t *pi = C.i.data(), *pj = C.j.data();
+    const std::size_t nc = C.size();
+    static thread_local std::vector<double> terms;  // [term][contact]; no allocation per sample
+    if constexpr (NT > 0 && records_terms) {
+      if (terms.size() < NT * nc) terms.resize(NT * nc);
+      double* __restrict t = terms.data();
+      const double* __restrict dl = delta;
+      const double* __restrict rad = radius;
+#pragma GCC ivdep
+      for (std::size_t c = 0; c < nc; ++c) {
+        std::array<double, NH> h;
+        for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
+        EnergyTerms<NT> r;
+        stored_energy(r, dl[c], contact::history_from<History>(h), rad[pi[c]], rad[pj[c]]);
+        for (std::size_t k = 0; k < NT; ++k) t[k * nc + c] = r.t[k];
+      }
+    }
+    const double* t = terms.data();
     layer_chains<2>(by_layer, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
-      std::array<double, NH> h;
-      for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
       double e = acc[0];
-      if constexpr (contact::StoredEnergyOfRadii<Law>)
-        law_.add_stored_energy(e, delta[c], contact::history_from<History>(h), radius[pi[c]], radius[pj[c]]);
-      else
-        law_.add_stored_energy(e, delta[c], contact::history_from<History>(h));
+      if constexpr (NT > 0 && records_terms) {
+        for (std::size_t k = 0; k < NT; ++k) e += t[k * nc + static_cast<std::size_t>(c)];
+      } else {
+        std::array<double, NH> h;
+        for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
+        stored_energy(e, delta[c], contact::history_from<History>(h), radius[pi[c]], radius[pj[c]]);
+      }
       acc[0] = delta[c] <= 0.0 ? acc[0] : e;  // as `if (delta <= 0) continue` (NaN adds)
     });
   }
