@@ -455,11 +455,7 @@ class LawModel final : public ContactModel {
     for (std::size_t c = first; c < C.size(); ++c) {
       if (C.delta[c] <= 0.0) continue;
       for_columns<NH>([&](std::size_t q) { h[q] = C.history_column(q)[c]; });
-      if constexpr (contact::StoredEnergyOfRadii<Law>)
-        law_.add_stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h), radius[C.i[c]],
-                               radius[C.j[c]]);
-      else
-        law_.add_stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h));
+      stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h), radius[C.i[c]], radius[C.j[c]]);
     }
   }
   // Two layers' sums side by side (layer_chains: more streams cost more than they gain here,
@@ -469,13 +465,15 @@ class LawModel final : public ContactModel {
   // terms in the same order, the same bits.
   void add_stored_energy(double* per_layer, const ContactList& C, const LayerLists& by_layer,
                          const double* radius) const override {
-    if constexpr (!records_terms) return add_stored_energy_terms<0>(per_layer, C, by_layer, radius);
-    switch (energy_terms()) {
-      case 1: return add_stored_energy_terms<1>(per_layer, C, by_layer, radius);
-      case 2: return add_stored_energy_terms<2>(per_layer, C, by_layer, radius);
-      case 3: return add_stored_energy_terms<3>(per_layer, C, by_layer, radius);
-      default: return add_stored_energy_terms<0>(per_layer, C, by_layer, radius);
+    if constexpr (records_terms) {
+      switch (energy_terms()) {
+        case 1: return add_stored_energy_terms<1>(per_layer, C, by_layer, radius);
+        case 2: return add_stored_energy_terms<2>(per_layer, C, by_layer, radius);
+        case 3: return add_stored_energy_terms<3>(per_layer, C, by_layer, radius);
+        default: break;
+      }
     }
+    add_stored_energy_terms<0>(per_layer, C, by_layer, radius);
   }
  private:
   // The additions e += t of a law's add_stored_energy, recorded in order (the first K; n counts all).
@@ -502,17 +500,14 @@ class LawModel final : public ContactModel {
   static constexpr bool records_terms =
       requires(const Law& law, EnergyTerms<1>& e, const typename Law::History& h) { law.add_stored_energy(e, 0.0, h, 0.0, 0.0); } ||
       requires(const Law& law, EnergyTerms<1>& e, const typename Law::History& h) { law.add_stored_energy(e, 0.0, h); };
-  // How many terms the law adds (the same for every contact, contact/law.hpp); 0: not recorded.
+  // How many terms the law adds (the same for every contact, contact/law.hpp); a law that records_terms.
   std::size_t energy_terms() const {
-    if constexpr (records_terms) {
-      EnergyTerms<1> r;
-      stored_energy(r, 1.0, typename Law::History{}, 1.0, 1.0);
-      return r.n;
-    } else {
-      return 0;
-    }
+    EnergyTerms<1> r;
+    stored_energy(r, 1.0, typename Law::History{}, 1.0, 1.0);
+    return r.n;
   }
-  // NT terms made per contact first; NT = 0: the law's additions in the chains (more than three terms).
+  // NT terms made per contact first (a law that records_terms); NT = 0: the law's additions in the
+  // chains (more than three terms, or a law on a double only).
   template <std::size_t NT>
   void add_stored_energy_terms(double* per_layer, const ContactList& C, const LayerLists& by_layer,
                                const double* radius) const {
@@ -523,10 +518,11 @@ class LawModel final : public ContactModel {
     const double* delta = C.delta.data();
     const std::int32_t *pi = C.i.data(), *pj = C.j.data();
     const std::size_t nc = C.size();
-    static thread_local std::vector<double> terms;  // [term][contact]; no allocation per sample
-    if constexpr (NT > 0 && records_terms) {
+    const double* t = nullptr;  // [term][contact]
+    if constexpr (NT > 0) {
+      static thread_local std::vector<double> terms;  // no allocation per sample
       if (terms.size() < NT * nc) terms.resize(NT * nc);
-      double* __restrict t = terms.data();
+      double* __restrict out = terms.data();
       const double* __restrict dl = delta;
       const double* __restrict rad = radius;
 #pragma GCC ivdep
@@ -535,13 +531,13 @@ class LawModel final : public ContactModel {
         for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
         EnergyTerms<NT> r;
         stored_energy(r, dl[c], contact::history_from<History>(h), rad[pi[c]], rad[pj[c]]);
-        for (std::size_t k = 0; k < NT; ++k) t[k * nc + c] = r.t[k];
+        for (std::size_t k = 0; k < NT; ++k) out[k * nc + c] = r.t[k];
       }
+      t = out;
     }
-    const double* t = terms.data();
     layer_chains<2>(by_layer, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
       double e = acc[0];
-      if constexpr (NT > 0 && records_terms) {
+      if constexpr (NT > 0) {
         for (std::size_t k = 0; k < NT; ++k) e += t[k * nc + static_cast<std::size_t>(c)];
       } else {
         std::array<double, NH> h;
