@@ -292,6 +292,28 @@ void ContactList::j_lists(std::size_t n) const {
   for (std::size_t c = 0; c < nc; ++c) j_contacts[fill[j[c]]++] = static_cast<std::int32_t>(c);
 }
 
+const ContactList::ThreadParts& ContactList::thread_parts(std::size_t n, int parts, std::int64_t block) const {
+  ThreadParts& t = thread_split;
+  if (t.parts == parts && t.block == block && t.shared_ends.size() == n) return t;
+  t.parts = parts;
+  t.block = block;
+  t.shared_ends.assign(n, 0);
+  t.shared_particles.clear();
+  const auto nc = static_cast<std::int64_t>(size());
+  std::vector<std::int32_t> part_of(n, -1);  // the part that first touched p
+  auto touch = [&](std::int32_t p, std::int32_t q) {
+    if (part_of[p] < 0)
+      part_of[p] = q;
+    else if (part_of[p] != q)
+      t.shared_ends[p] = 1;
+  };
+  for (int q = 0; q < parts; ++q)
+    for (std::int64_t c = t.begin(nc, q); c < t.begin(nc, q + 1); ++c) touch(i[c], q), touch(j[c], q);
+  for (std::size_t p = 0; p < n; ++p)
+    if (t.shared_ends[p]) t.shared_particles.push_back(static_cast<std::int32_t>(p));
+  return t;
+}
+
 void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double dy, double dz) {
   const double before = potential_energy() + dissipated_energy();
   // Static update with every particle at rest: the step is a jump of position, not a motion, so

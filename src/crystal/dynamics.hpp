@@ -12,6 +12,7 @@
 // On one thread pass 1 makes the sums of pass 2 itself, in the same order (kernel.hpp's scatter:
 // the same bits), and pass 2 only finishes torques and kicks (finish_pass).
 #pragma once
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -56,6 +57,23 @@ struct ContactList {
   std::vector<std::int32_t> i_first;
   mutable std::vector<std::int32_t> j_first, j_contacts;
   void j_lists(std::size_t particles) const;
+  // Threads: the list cut into `parts` runs of whole blocks of `block` contacts, part q from
+  // contact part_begin(q), each run scattered into the particles' sums by one thread. A particle
+  // that contacts of two parts touch is shared (shared_ends[p] = 1, listed in shared_particles):
+  // no part adds to its sums; they are made after the parts join, in contact order. Built by
+  // thread_parts at its first use after a list build (and for another number of parts).
+  struct ThreadParts {
+    int parts = 0;
+    std::int64_t block = 0;
+    std::vector<std::uint8_t> shared_ends;
+    std::vector<std::int32_t> shared_particles;
+    std::int64_t begin(std::int64_t contacts, int q) const {
+      const std::int64_t blocks = (contacts + block - 1) / block;
+      return std::min(contacts, blocks * q / parts * block);
+    }
+  };
+  mutable ThreadParts thread_split;
+  const ThreadParts& thread_parts(std::size_t particles, int parts, std::int64_t block) const;
   // Slab decomposition: the contacts [own_first, size()) have their particle i owned by this
   // rank (the list is sorted by i; before own_first, i is a halo particle below). Sums over
   // contacts take these only, so a contact between two ranks counts once. Serial: 0.
@@ -185,10 +203,12 @@ class Dynamics {
   // (crystal/kernel.hpp's gather), refreshed at every pass (or by the one-thread drift, then
   // Drift::rows_fresh): 96 bytes per particle with a law with torques, empty otherwise.
   std::vector<double> gather_rows;
-  // Per-particle sums of a one-thread contact pass (crystal/kernel.hpp's scatter), rows of four
+  // Per-particle sums of a contact pass that scatters (crystal/kernel.hpp: on one thread, and a
+  // law without torques on threads too), rows of four
   // doubles: f, and with a law with torques n x f^t, and with the contact-point arm
   // delta n x f^t, and with a law with couples their sum (each kind a block of 4 size() doubles);
-  // read and zeroed by the particle pass. 32 to 128 bytes per particle; empty when threaded.
+  // read and zeroed by the particle pass. 32 to 128 bytes per particle; empty when a law with
+  // torques runs threaded.
   std::vector<double> contact_sums;
   // The lever arms times u_z of every contact's ends, (a_i - delta/2) u_z at 2c and (a_j - delta/2)
   // u_z at 2c + 1, +0.0 for an open contact (the layer stress's terms, crystal/simulation.cpp):
@@ -270,8 +290,9 @@ class Dynamics {
   // k steps, the same as k calls of step(), bit for bit; the last one stores the contact forces
   // when `store_forces`. Each step's phases, in order, each booked to `clock` (if any):
   // half_kick_drift, exchange_halo (slab), upkeep_list, the model's contact_pass, finish_step.
-  // On one thread without a slab, the finish and second half kick of each step but the last and
-  // the first half kick and drift of the next are one pass over the particles (finish_kick_drift):
+  // Without a slab, when the contact pass made the sums (one thread; a law without torques on
+  // threads too), the finish and second half kick of each step but the last and the first half
+  // kick and drift of the next are one pass over the particles (finish_kick_drift):
   // forces and torques fx..tz are current only when advance returns.
   void advance(long k, bool store_forces = true, PhaseClock* clock = nullptr);
 
@@ -328,7 +349,7 @@ class Dynamics {
   // plan, when it did on any rank).
   void upkeep_list(const Drift& drift);
   // The step's finish and second half kick from the contact pass's `sums`; returns them instead,
-  // left for the next step's half_kick_drift, when it can take them (one thread, no slab, not
+  // left for the next step's half_kick_drift, when it can take them (sums made, no slab, not
   // the `last` step), else an empty ContactSums.
   ContactSums finish_step(const ContactSums& sums, bool last);
   // The first half kick and drift of the owned particles from `from` on (-1: all)

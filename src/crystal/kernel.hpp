@@ -80,6 +80,18 @@ void in_blocks(std::int64_t n, bool threaded, const Body& body) {
   }
 }
 
+// body(c0, c1) over [0, n) in blocks, cut into `parts` runs of whole blocks
+// (ContactList::ThreadParts::begin), each run on one OpenMP thread in block order.
+template <class Body>
+void in_parts(std::int64_t n, int parts, const Body& body) {
+  const ContactList::ThreadParts cut{parts, kBlock, {}, {}};
+#pragma omp parallel for schedule(static, 1) if (parts > 1)
+  for (int q = 0; q < parts; ++q) {
+    const Body local = body;  // as in_blocks
+    for (std::int64_t c0 = cut.begin(n, q); c0 < cut.begin(n, q + 1); c0 += kBlock)
+      local(c0, std::min(n, c0 + kBlock));
+  }
+}
 
 // ---- Shared by both contact passes ----
 
@@ -234,12 +246,21 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     }
     return deferred;
   };
-  // One thread: the forces go straight into the particles' rows (scatter, above).
+  // The forces go straight into the particles' rows (scatter, above); on threads, each part of the
+  // list into the particles it alone touches, the shared ones' after the parts join.
   double* sum_rows = nullptr;
   int rows = 0;
   const std::int64_t np = static_cast<std::int64_t>(d.size());
+  const int parts = d.threaded() ? Dynamics::threads_available() : 1;
+  [[maybe_unused]] const ContactList::ThreadParts* split = nullptr;
+  [[maybe_unused]] const std::uint8_t* shared = nullptr;
 #ifdef GRANWAVE_GATHER_VECTORS
-  if (!d.threaded()) sum_rows = d.begin_contact_sums(rows = 1);
+  sum_rows = d.begin_contact_sums(rows = 1);
+  if (parts > 1) {
+    split = &C.thread_parts(d.size(), parts, kBlock);
+    shared = split->shared_ends.data();
+    C.j_lists(d.size());
+  }
 #endif
   auto range = [=](std::int64_t c0, std::int64_t c1, auto with_arms) GRANWAVE_ALWAYS_INLINE {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
@@ -256,15 +277,21 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
         },
         [] {});
 #ifdef GRANWAVE_GATHER_VECTORS
-    if (sum_rows)
+    if (shared)
+      scatter<1, false, true>(sum_rows, np, c1 - c0, ci + c0, cj + c0, cfx + c0, cfy + c0, cfz + c0, nullptr, nullptr,
+                              nullptr, nullptr, nullptr, nullptr, nullptr, shared);
+    else
       scatter<1>(sum_rows, np, c1 - c0, ci + c0, cj + c0, cfx + c0, cfy + c0, cfz + c0, nullptr, nullptr, nullptr,
                  nullptr);
 #endif
   };
   if (d.end_arms_stored)
-    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::true_type{}); });
+    in_parts(nc, parts, [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::true_type{}); });
   else
-    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
+    in_parts(nc, parts, [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
+#ifdef GRANWAVE_GATHER_VECTORS
+  if (split) sum_shared_forces(C, *split, sum_rows);
+#endif
   return {rows};
 }
 

@@ -201,7 +201,7 @@ GRANWAVE_ALWAYS_INLINE inline void end_arms_of_chunk(const Gathered& g, std::int
   }
 }
 
-// ---- The scatter: contact sums straight into per-particle rows (one thread) ----
+// ---- The scatter: contact sums straight into per-particle rows ----
 // On one thread the contact pass adds each contact's f (laws with torques: and n x f^t, and
 // delta n x f^t for the contact-point arm) to per-particle rows of four doubles (K rows per
 // particle: f | n x f^t | delta n x f^t, each row kind a block of 4 n doubles; a law with couples
@@ -213,6 +213,9 @@ GRANWAVE_ALWAYS_INLINE inline void end_arms_of_chunk(const Gathered& g, std::int
 // particle first meets the contacts where it is j, then its own range as i; each sum starts from
 // 0.0 and adds (j: subtracts the force) in that order, lane-wise IEEE: the same bits. The sums
 // of the current i stay in registers over the list's run of equal i; j's are read and written.
+// A law without torques scatters on threads too (kernel::in_parts): each thread its run of the
+// list, into the particles no other run touches (Masked); the few that two runs share are summed
+// after the runs join, from the stored forces in the same order (sum_shared_forces).
 #ifdef GRANWAVE_GATHER_VECTORS
 template <int K>
 struct ScatterState {
@@ -220,44 +223,42 @@ struct ScatterState {
   V4 sum[K]{};
 };
 
-// K rows of f | n x f^t | delta n x f^t, then with Couples the couple's row (row K).
-template <int K, bool Couples>
+// K rows of f | n x f^t | delta n x f^t, then with Couples the couple's row (row K). Masked
+// (threads): an end with shared[p] set is left out; its sums are made after the parts join.
+template <int K, bool Couples, bool Masked = false>
 GRANWAVE_ALWAYS_INLINE inline void scatter_one(ScatterState<K + Couples>& st, double* __restrict rows, std::int64_t n,
                                                std::int64_t i, std::int64_t j, const V4& f, const V4& nf,
-                                               double delta, const V4& couple) {
+                                               double delta, const V4& couple, const std::uint8_t* shared) {
   constexpr int R = K + Couples;
-  if (i != st.cur) {
-    if (st.cur >= 0)
-      for (int k = 0; k < R; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
-    st.cur = i;
-    for (int k = 0; k < R; ++k) st.sum[k] = load4(rows + 4 * (k * n + i));
+  const V4 d{delta, delta, delta, delta};
+  if (!Masked || !shared[i]) {
+    if (i != st.cur) {
+      if (st.cur >= 0)
+        for (int k = 0; k < R; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+      st.cur = i;
+      for (int k = 0; k < R; ++k) st.sum[k] = load4(rows + 4 * (k * n + i));
+    }
+    st.sum[0] = st.sum[0] + f;
+    if constexpr (K >= 2) st.sum[1] = st.sum[1] + nf;
+    if constexpr (K >= 3) st.sum[2] = st.sum[2] + d * nf;
+    if constexpr (Couples) st.sum[K] = st.sum[K] + couple;
   }
-  st.sum[0] = st.sum[0] + f;
+  if (Masked && shared[j]) return;
   store4(rows + 4 * j, load4(rows + 4 * j) - f);
-  if constexpr (K >= 2) {
-    st.sum[1] = st.sum[1] + nf;
-    store4(rows + 4 * (n + j), load4(rows + 4 * (n + j)) + nf);
-  }
-  if constexpr (K >= 3) {
-    const V4 d{delta, delta, delta, delta};
-    const V4 dn = d * nf;
-    st.sum[2] = st.sum[2] + dn;
-    store4(rows + 4 * (2 * n + j), load4(rows + 4 * (2 * n + j)) + dn);
-  }
-  if constexpr (Couples) {  // j gets the opposite couple
-    st.sum[K] = st.sum[K] + couple;
-    store4(rows + 4 * (K * n + j), load4(rows + 4 * (K * n + j)) - couple);
-  }
+  if constexpr (K >= 2) store4(rows + 4 * (n + j), load4(rows + 4 * (n + j)) + nf);
+  if constexpr (K >= 3) store4(rows + 4 * (2 * n + j), load4(rows + 4 * (2 * n + j)) + d * nf);
+  if constexpr (Couples) store4(rows + 4 * (K * n + j), load4(rows + 4 * (K * n + j)) - couple);  // j: the opposite
 }
 
 // The m contacts (their i, j, forces, n x f^t, overlaps, couples: cc, Couples only; indexed
-// from 0) into the rows.
-template <int K, bool Couples = false>
+// from 0) into the rows; Masked: not into a particle with shared[p] set.
+template <int K, bool Couples = false, bool Masked = false>
 GRANWAVE_ALWAYS_INLINE inline void scatter(double* rows, std::int64_t n, std::int64_t m, const std::int32_t* ci,
                                            const std::int32_t* cj, const double* cfx, const double* cfy,
                                            const double* cfz, const double* cnx, const double* cny,
                                            const double* cnz, const double* cdelta, const double* ccx = nullptr,
-                                           const double* ccy = nullptr, const double* ccz = nullptr) {
+                                           const double* ccy = nullptr, const double* ccz = nullptr,
+                                           const std::uint8_t* shared = nullptr) {
   ScatterState<K + Couples> st;
   const V4 zero{0.0, 0.0, 0.0, 0.0};
   V4 f[4], nf[4], cp[4];
@@ -267,16 +268,31 @@ GRANWAVE_ALWAYS_INLINE inline void scatter(double* rows, std::int64_t n, std::in
     if constexpr (K >= 2) transpose4(load4(cnx + c), load4(cny + c), load4(cnz + c), zero, nf[0], nf[1], nf[2], nf[3]);
     if constexpr (Couples) transpose4(load4(ccx + c), load4(ccy + c), load4(ccz + c), zero, cp[0], cp[1], cp[2], cp[3]);
     for (int q = 0; q < 4; ++q)
-      scatter_one<K, Couples>(st, rows, n, ci[c + q], cj[c + q], f[q], nf[q], K >= 3 ? cdelta[c + q] : 0.0, cp[q]);
+      scatter_one<K, Couples, Masked>(st, rows, n, ci[c + q], cj[c + q], f[q], nf[q], K >= 3 ? cdelta[c + q] : 0.0,
+                                      cp[q], shared);
   }
   for (; c < m; ++c) {
     const V4 fc{cfx[c], cfy[c], cfz[c], 0.0};
     const V4 nc = K >= 2 ? V4{cnx[c], cny[c], cnz[c], 0.0} : zero;
     const V4 cc = Couples ? V4{ccx[c], ccy[c], ccz[c], 0.0} : zero;
-    scatter_one<K, Couples>(st, rows, n, ci[c], cj[c], fc, nc, K >= 3 ? cdelta[c] : 0.0, cc);
+    scatter_one<K, Couples, Masked>(st, rows, n, ci[c], cj[c], fc, nc, K >= 3 ? cdelta[c] : 0.0, cc, shared);
   }
   if (st.cur >= 0)
     for (int k = 0; k < K + Couples; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+}
+
+// The force rows of the particles the parts share, from the stored forces in the scatter's order:
+// the contacts where p is j (their force subtracted), then its own (the particle pass's sums).
+inline void sum_shared_forces(const ContactList& C, const ContactList::ThreadParts& parts, double* rows) {
+  for (const std::int32_t p : parts.shared_particles) {
+    double s[3] = {0.0, 0.0, 0.0};
+    for (std::int32_t k = C.j_first[p]; k < C.j_first[p + 1]; ++k) {
+      const std::int32_t c = C.j_contacts[k];
+      s[0] -= C.f_x[c], s[1] -= C.f_y[c], s[2] -= C.f_z[c];
+    }
+    for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) s[0] += C.f_x[c], s[1] += C.f_y[c], s[2] += C.f_z[c];
+    rows[4 * p] = s[0], rows[4 * p + 1] = s[1], rows[4 * p + 2] = s[2], rows[4 * p + 3] = 0.0;
+  }
 }
 #endif
 

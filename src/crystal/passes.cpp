@@ -428,26 +428,40 @@ Drift Dynamics::finish_kick_drift() {
   double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t | couples
   double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
   const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
-  V4m far4{0, 0, 0, 0};
-  std::int64_t p = 0;
-  for (; p + 4 <= n; p += 4) {
-    V4 sx, sy, sz, tqx, tqy, tqz;
-    take_rows(sums + 4 * p, sx, sy, sz);
-    torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, radius.data(), p, tqx, tqy, tqz);
-    const V4m m = mobile4(mobile.data(), p);
-    const V4 inv_m = load4(inv_mass.data() + p);
-    const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
-    const V4 dy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), y_build_.data(), m, hv, dtv, inv_m, p);
-    const V4 dz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), z_build_.data(), m, hv, dtv, inv_m, p);
-    if constexpr (Torques) {
-      const V4 inv_i = load4(inv_inertia.data() + p);
-      for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
-        store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
+  // Particles [q0, q1) (a multiple of four); whether one of them left half the skin.
+  auto fours = [=, this](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
+    V4m far4{0, 0, 0, 0};
+    for (std::int64_t p = q0; p < q1; p += 4) {
+      V4 sx, sy, sz, tqx, tqy, tqz;
+      take_rows(sums + 4 * p, sx, sy, sz);
+      torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, radius.data(), p, tqx, tqy,
+                                     tqz);
+      const V4m m = mobile4(mobile.data(), p);
+      const V4 inv_m = load4(inv_mass.data() + p);
+      const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
+      const V4 dy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), y_build_.data(), m, hv, dtv, inv_m, p);
+      const V4 dz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), z_build_.data(), m, hv, dtv, inv_m, p);
+      if constexpr (Torques) {
+        const V4 inv_i = load4(inv_inertia.data() + p);
+        for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
+          store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
+      }
+      far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+      if (rows) kernel::fill_rows(*this, rows, p, p + 4);
     }
-    far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
-    if (rows) kernel::fill_rows(*this, rows, p, p + 4);
+    return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+  };
+  const std::int64_t p = n / 4 * 4;
+  std::int64_t far = 0;
+  if (threaded()) {  // the threaded contact pass's rows (kernel::in_parts)
+    constexpr std::int64_t kBlock = 1024;
+    const std::int64_t nb = (p + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(static) reduction(| : far)
+    for (std::int64_t b = 0; b < nb; ++b) far |= fours(b * kBlock, std::min(p, (b + 1) * kBlock));
+  } else {
+    far = fours(0, p);
   }
-  Drift drift{(far4[0] | far4[1] | far4[2] | far4[3]) != 0, rows != nullptr};
+  Drift drift{far != 0, rows != nullptr};
   if (p < n) {
     finish_pass<true, Rows, Couples>(h, p);
     const Drift tail = kick_drift<Torques, false>(p);
@@ -479,7 +493,7 @@ void Dynamics::upkeep_list(const Drift& drift) {
 }
 
 ContactSums Dynamics::finish_step(const ContactSums& sums, bool last) {
-  if (!last && !slab_ && sums.rows != 0) return sums;  // one thread: joined to the next drift
+  if (!last && !slab_ && sums.rows != 0) return sums;  // joined to the next drift
   finish_forces(sums, true);
   return {};
 }

@@ -209,6 +209,49 @@ TEST_CASE("results do not depend on the number of threads", "[crystal][static][r
   }
 }
 
+TEST_CASE("threaded contact sums of a law without torques equal one thread's bit for bit", "[crystal][static][route]") {
+  // A law without torques scatters its forces into the particles' sums on threads too: each part
+  // of the list into the particles it alone touches, the particles two parts share summed from the
+  // stored forces after the parts join (ContactList::ThreadParts), and the finish joined to the
+  // next drift runs on the threads. The order of every sum stays the one-thread order: positions,
+  // velocities and forces agree to the last bit, for the linear law and frictionless Hertz.
+  test_support::require_openmp_threads(2, "the threaded scatter");
+  config::Case c = load("crystal_small");
+  c.crystal->cells = {4, 4, 40};  // 640 particles, about 3 500 contacts: more than two blocks of the pass
+  c.contact.get<contact::LinearLudingParams>().gamma_n = 0.1;
+  contact::HertzMindlinCaseParams hertz;
+  hertz.youngs_modulus = 63e9;
+  hertz.poisson_ratio = 0.23;
+  hertz.damping_ratio = 0.1;
+  hertz.mindlin = false;
+  const Disturbed base = disturb(crystal::make_packing(c));
+  for (const contact::LawParams& cp : {c.contact, contact::LawParams(hertz)}) {
+    const auto model = crystal::case_model(cp, c.crystal->density);
+    crystal::Dynamics one(base.p, model, 2e-7), two(base.p, model, 2e-7);
+    one.parallel_min_particles = ~std::size_t{0};  // one thread
+    two.parallel_min_particles = 0;                // as many threads as OpenMP gives
+    for (auto* d : {&one, &two}) {
+      for (std::size_t q = 0; q < base.p.size(); ++q)
+        d->vx[q] = base.v[3 * q], d->vy[q] = base.v[3 * q + 1], d->vz[q] = base.v[3 * q + 2];
+      d->advance(150);  // the finish fused with the next drift
+      d->advance(1);    // and not
+    }
+    CHECK(!one.threaded());
+    CHECK(two.threaded());
+    // The list is cut into parts that share some particles (else the test shows nothing).
+    const auto& split = two.contacts.thread_parts(two.size(), crystal::Dynamics::threads_available(), 1024);
+    CHECK(split.parts >= 2);
+    CHECK(!split.shared_particles.empty());
+    CHECK(one.rebuilds == two.rebuilds);
+    for (auto f : {&crystal::Dynamics::fx, &crystal::Dynamics::fy, &crystal::Dynamics::fz, &crystal::Dynamics::x,
+                   &crystal::Dynamics::y, &crystal::Dynamics::z, &crystal::Dynamics::vx, &crystal::Dynamics::vz})
+      CHECK(one.*f == two.*f);
+    CHECK(one.contacts.f_z == two.contacts.f_z);
+    CHECK(one.dissipated_energy() == two.dissipated_energy());
+    CHECK(one.dissipated_energy() > 0.0);
+  }
+}
+
 TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit", "[crystal][static][route]") {
   // On one thread a law with torques adds each contact's force and n x f^t straight into
   // per-particle rows (crystal/kernel.hpp's scatter); threaded, the particle pass sums the stored
