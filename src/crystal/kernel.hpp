@@ -221,9 +221,10 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
   double* end_arms = d.end_arms.data();
   // One contact (evaluate_contact). Pointers and the law are captured by value (OpenMP would
   // share them by reference, which the vectoriser cannot see through).
-  // shx[u], shy[u]: the image offsets of j (m) of contact c = c0 + u of the block.
-  auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, auto vector_sweep,
-                 auto with_arms) GRANWAVE_ALWAYS_INLINE -> bool {
+  // shx[u], shy[u]: the image offsets of j (m) of contact c = c0 + u of the block; its force goes
+  // to fo[0..2][u].
+  auto one = [=](std::int64_t c, std::int64_t u, const double* shx, const double* shy, double* const* fo,
+                 auto vector_sweep, auto with_arms) GRANWAVE_ALWAYS_INLINE -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     const int i = ci[c], j = cj[c];
     const double bx = px[j] + shx[u] - px[i];  // image_x box_x, as the neighbour search takes it
@@ -236,9 +237,9 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
         law, hist, diss, cdelta, c, bx, by, bz, pa[i] + pa[j], pa[i], pa[j], dv, contact::Vec3::Zero(),
         contact::Vec3::Zero(), inc, res, open);
     using contact::select;
-    cfx[c] = select(open, 0.0, res.force.x());
-    cfy[c] = select(open, 0.0, res.force.y());
-    cfz[c] = select(open, 0.0, res.force.z());
+    fo[0][u] = select(open, 0.0, res.force.x());
+    fo[1][u] = select(open, 0.0, res.force.y());
+    fo[2][u] = select(open, 0.0, res.force.z());
     if constexpr (decltype(with_arms)::value) {
       const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);  // evaluate_contact's root
       end_arms[2 * c] = Dynamics::end_arm(pa[i], cdelta[c], u_z);
@@ -262,8 +263,14 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     C.j_lists(d.size());
   }
 #endif
+  // The forces are stored per contact when a sample reads them, when the threads' shared particles
+  // are summed from them, or without the scatter; else the block's stay on the stack.
+  const bool keep_forces = plan.store_forces || shared || !sum_rows;
   auto range = [=](std::int64_t c0, std::int64_t c1, auto with_arms) GRANWAVE_ALWAYS_INLINE {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
+    double block_fx[kBlock], block_fy[kBlock], block_fz[kBlock];
+    double* const fo[3] = {keep_forces ? cfx + c0 : block_fx, keep_forces ? cfy + c0 : block_fy,
+                           keep_forces ? cfz + c0 : block_fz};
     for (std::int64_t c = c0; c < c1; ++c) {
       shx[c - c0] = imx[c] * box_x;
       shy[c - c0] = imy[c] * box_y;
@@ -273,16 +280,15 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     sweep_contacts<contact::DefersContacts<Law>, kBlock>(
         c0, c1,
         [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
-          return one(c, c - c0, shx, shy, vector_sweep, with_arms);
+          return one(c, c - c0, shx, shy, fo, vector_sweep, with_arms);
         },
         [] {});
 #ifdef GRANWAVE_GATHER_VECTORS
     if (shared)
-      scatter<1, false, true>(sum_rows, np, c1 - c0, ci + c0, cj + c0, cfx + c0, cfy + c0, cfz + c0, nullptr, nullptr,
-                              nullptr, nullptr, nullptr, nullptr, nullptr, shared);
+      scatter<1, false, true>(sum_rows, np, c1 - c0, ci + c0, cj + c0, fo[0], fo[1], fo[2], nullptr, nullptr, nullptr,
+                              nullptr, nullptr, nullptr, nullptr, shared);
     else
-      scatter<1>(sum_rows, np, c1 - c0, ci + c0, cj + c0, cfx + c0, cfy + c0, cfz + c0, nullptr, nullptr, nullptr,
-                 nullptr);
+      scatter<1>(sum_rows, np, c1 - c0, ci + c0, cj + c0, fo[0], fo[1], fo[2], nullptr, nullptr, nullptr, nullptr);
 #endif
   };
   if (d.end_arms_stored)
