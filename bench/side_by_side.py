@@ -33,6 +33,8 @@ friction_radius
               the same with lever_arm = "radius" (seed 002 eq. (4)): LAMMPS' gran/hooke/history physics,
               the fair row against LAMMPS; LIGGGHTS is not run in it (its arm is the contact point)
 long          crystal_p with 4 x 4 x 20000 cells (320 000 particles), 200 steps
+long_friction_radius, long_hertz, long_rolling
+              friction_radius, hertz and rolling on the same 320 000 particles, 200 steps each
 hertz         data/cases/crystal_hertz.toml: the same crystal of glass beads with Hertz normal and Mindlin
               tangential forces (issue #14), 6000 steps of 1.7e-7 s; LAMMPS `pair_style granular` with
               `hertz/material E 0 nu tangential mindlin NULL 0 mu`, LIGGGHTS `model hertz tangential history`
@@ -130,7 +132,7 @@ itself: stress/atom gives each atom half a pair's virial, granwave the branch to
 The crystals:
 So that nobody benchmarks a wrong set-up, the last repetition's output of every code is measured
 by the one ruler, `granwave analyze --json` (LAMMPS' and LIGGGHTS' layer files are turned into
-trace files first): the half-peak speed (z/l0 = 10..150; 1..4 for `long`, whose 200 steps carry
+trace files first): the half-peak speed (z/l0 = 10..150; 1..4 for the `long` rows, whose 200 steps carry
 the front about 6 layers), and the largest difference of sigma_zz (S cases: of the layer velocity v_x;
 the layer files' stress/atom xz is delx fz, the transpose of sigma_zx) from granwave's trace over all
 layers and samples, relative to granwave's largest change (the wave's peak), beside what the

@@ -24,6 +24,12 @@ CASES = {
     "friction": ("data/cases/crystal_kt10.toml", {}, None),
     "friction_radius": ("data/cases/crystal_kt10.toml", {"lever_arm": '"radius"'}, None),
     "long": ("data/cases/crystal_p.toml", {"cells": "[4, 4, 20000]", "t_end": "4e-5"}, "1:4"),
+    # issue #41: the 320 000-particle crystal with the other laws of the table, 200 steps each
+    "long_friction_radius": ("data/cases/crystal_kt10.toml",
+                             {"lever_arm": '"radius"', "cells": "[4, 4, 20000]", "t_end": "4e-5"}, "1:4"),
+    "long_hertz": ("data/cases/crystal_hertz.toml", {"cells": "[4, 4, 20000]", "dt_over_tc": ("dt", "1.7e-7"),
+                                                     "t_end": "3.4e-5", "interval": "8.5e-7"}, "1:4"),
+    "long_rolling": ("bench/cases/crystal_rolling.toml", {"cells": "[4, 4, 20000]", "t_end": "4e-5"}, "1:4"),
     # issue #14: Hertz normal + Mindlin tangential, the same 4 x 4 x 200 crystal (glass beads at
     # delta_0 = 1e-4 d), 6000 steps of dt = 1.7e-7 s (t_c/52), output every 5 steps as above
     "hertz": ("data/cases/crystal_hertz.toml",
@@ -60,6 +66,7 @@ DEFAULT_CASES = ("frictionless", "friction", "friction_radius", "hertz", "long")
 # rolling: LIGGGHTS' rolling_friction luding has no separate torsion and limits (its driver refuses them);
 # rolling_luding: LAMMPS' sds turns its rolling history with the pair and takes a mixed tangential arm.
 CASE_CODES = {"friction_radius": ("granwave", "lammps"), "rolling": ("granwave", "lammps"),
+              "long_friction_radius": ("granwave", "lammps"), "long_rolling": ("granwave", "lammps"),
               "rolling_luding": ("granwave", "liggghts"), "rolling_s": ("granwave", "lammps"),
               "rolling_luding_s": ("granwave", "liggghts"), "small_rolling_luding_s": ("granwave", "liggghts"),
               "disordered": ("granwave", "lammps"), "disordered_small": ("granwave", "lammps"),
