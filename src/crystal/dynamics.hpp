@@ -44,6 +44,9 @@ struct ContactList {
   // false: every entry of `dissipated` is still the +0.0 of the list's build, so sums of them may be
   // skipped (x + 0.0 = x). Set by a contact pass that may write one (kernel.hpp).
   bool losses_booked = false;
+  // Whether the one-thread contact pass leaves out the pairs apart (crystal/kernel_apart.hpp): at
+  // least 1/16 of the list was apart in its first pass (apart_seen) after the build.
+  bool apart_seen = false, apart_lanes = false;
   // The law's history (contact/law.hpp), column by column: history[k * size() + c].
   std::vector<double> history;
   std::size_t history_columns = 0;

@@ -29,6 +29,7 @@
 
 #include "contact/law.hpp"
 #include "crystal/dynamics.hpp"
+#include "crystal/kernel_apart.hpp"
 #include "crystal/kernel_gather.hpp"
 
 namespace granwave::crystal {
@@ -36,32 +37,6 @@ namespace granwave::crystal {
 namespace kernel {
 
 inline constexpr std::int64_t kBlock = 1024;  // contacts per block of the contact pass
-
-// s[layer] += ... in call order, the current layer's running sum held in a register (terms come
-// layer by layer, particles and contacts being stored so: the layer rarely changes). The same
-// additions in the same order as s[layer] += v.
-class LayerSum {
- public:
-  explicit LayerSum(double* s) : s_(s) {}
-  LayerSum(const LayerSum&) = delete;
-  LayerSum& operator=(const LayerSum&) = delete;
-  ~LayerSum() {
-    if (layer_ >= 0) s_[layer_] = sum_;
-  }
-  double& at(int layer) {
-    if (layer != layer_) {
-      if (layer_ >= 0) s_[layer_] = sum_;
-      layer_ = layer;
-      sum_ = s_[layer];
-    }
-    return sum_;
-  }
-
- private:
-  double* s_;
-  int layer_ = -1;
-  double sum_ = 0.0;
-};
 
 // f(0), ..., f(N - 1), unrolled (history columns).
 template <std::size_t N, class F>
@@ -368,11 +343,16 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   constexpr bool QuietSweep = Defers && Dissipative && contact::LosslessSweep<Law>;
   if constexpr (Dissipative && !QuietSweep) C.losses_booked = true;
   bool* losses_booked = &C.losses_booked;
-  // One contact (evaluate_contact): g's entry u is contact c. Pointers and the law are captured
-  // by value (OpenMP would share them by reference, which the vectoriser cannot see through).
+  const EvalColumns<NH> list_columns{hist, diss, cdelta};
+  // One thread: the chunks of a list with pairs apart leave them out (kernel_apart.hpp); whether it
+  // has them is seen in the first pass after its build.
+  const bool look_apart = scatter_mode != 0 && (C.apart_lanes || !C.apart_seen);
+  std::int64_t lanes_apart = 0;
+  // One contact (evaluate_contact): g's entry u is contact c of the columns `cols`. Pointers and the
+  // law are captured by value (OpenMP would share them by reference, which the vectoriser cannot see through).
   using Out = Sums<Couples ? 9 : 6>;
-  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, auto vector_sweep, auto scatter_sweep)
-                 GRANWAVE_ALWAYS_INLINE -> bool {
+  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, const EvalColumns<NH>& cols, auto vector_sweep,
+                 auto scatter_sweep) GRANWAVE_ALWAYS_INLINE -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     constexpr bool Scatter = decltype(scatter_sweep)::value;
     // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j, the spins
@@ -383,7 +363,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     contact::Response res;
     bool open;
     const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
-        law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::reach][u],
+        law, cols.hist, cols.diss, cols.delta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::reach][u],
         g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
     using contact::select;
     const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
@@ -407,13 +387,15 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
-  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) GRANWAVE_ALWAYS_INLINE {
+  auto range = [=, &lanes_apart](std::int64_t c0, std::int64_t c1, auto scatter_sweep) GRANWAVE_ALWAYS_INLINE {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
-    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o) GRANWAVE_ALWAYS_INLINE {
+    // Contacts [s0, s1) of `cols`, the first at entry 0 of g.
+    auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o, const EvalColumns<NH>& cols)
+                     GRANWAVE_ALWAYS_INLINE {
       sweep_contacts<Defers, kChunk>(
           s0, s1,
           [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
-            return one(c, c - s0, g, o, vector_sweep, scatter_sweep);
+            return one(c, c - s0, g, o, cols, vector_sweep, scatter_sweep);
           },
           [=] {
             if constexpr (QuietSweep) std::atomic_ref<bool>(*losses_booked).store(true, std::memory_order_relaxed);
@@ -421,37 +403,50 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     };
     G g;
     Out o;
+    [[maybe_unused]] LiveChunk<NH> l;
     for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
-      const std::int64_t s1 = std::min(c1, s0 + kChunk);
+      const std::int64_t s1 = std::min(c1, s0 + kChunk), m = s1 - s0;
       gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
-      if constexpr (MovedImages) move_images(g, s1 - s0, imx + s0, imy + s0, images);
-      sweep(s0, s1, g, o);
+      if constexpr (MovedImages) move_images(g, m, imx + s0, imy + s0, images);
+      std::int32_t live[kChunk];
+      const std::int64_t k = Scatter && look_apart ? live_lanes(g, m, list_columns, s0, live) : m;
+      if (k < m) {  // the live lanes as a chunk of their own
+        lanes_apart += m - k;
+        apart_overlaps(g, m, cdelta + s0);
+        l.take(g, live, k, s0, ci, cj, list_columns);
+        const EvalColumns<NH> local = l.columns();
+        sweep(0, k, l.g, o, local);
+        l.put_back(live, s0, list_columns);
+      } else {
+        sweep(s0, s1, g, o, list_columns);
+      }
 #ifdef GRANWAVE_GATHER_VECTORS
       if constexpr (Scatter) {
+        const bool whole = k == m;
+        const std::int32_t *i = whole ? ci + s0 : l.i, *j = whole ? cj + s0 : l.j;
+        const double* delta = whole ? cdelta + s0 : l.delta;
         const double* cc[3] = {nullptr, nullptr, nullptr};
         if constexpr (Couples) cc[0] = o.col[6], cc[1] = o.col[7], cc[2] = o.col[8];
         if (scatter_mode == 1)
-          scatter<2, Couples>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3],
-                              o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2]);
+          scatter<2, Couples>(sum_rows, np, k, i, j, o.col[0], o.col[1], o.col[2], o.col[3], o.col[4], o.col[5],
+                              delta, cc[0], cc[1], cc[2]);
         else
-          scatter<3, Couples>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3],
-                              o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2]);
+          scatter<3, Couples>(sum_rows, np, k, i, j, o.col[0], o.col[1], o.col[2], o.col[3], o.col[4], o.col[5],
+                              delta, cc[0], cc[1], cc[2]);
         if (keep_forces) {
-          for (std::int64_t u = 0; u < s1 - s0; ++u) {
-            cfx[s0 + u] = o.col[0][u];
-            cfy[s0 + u] = o.col[1][u];
-            cfz[s0 + u] = o.col[2][u];
-          }
-          end_arms_of_chunk(g, s1 - s0, cdelta + s0, end_arms + 2 * s0);
+          store_chunk_forces(o, m, k, live, cfx + s0, cfy + s0, cfz + s0);
+          end_arms_of_chunk(g, m, cdelta + s0, end_arms + 2 * s0);
         }
       }
 #endif
     }
   };
-  if (scatter_mode != 0)
+  if (scatter_mode != 0) {
     range(0, nc, std::true_type{});
-  else
+    if (!C.apart_seen) C.apart_seen = true, C.apart_lanes = 16 * lanes_apart >= nc;  // at least 1/16 apart
+  } else {
     in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
+  }
   return {scatter_mode == 0 ? 0 : scatter_mode + 1, Couples && scatter_mode != 0};
 }
 
