@@ -37,32 +37,6 @@ namespace kernel {
 
 inline constexpr std::int64_t kBlock = 1024;  // contacts per block of the contact pass
 
-// s[layer] += ... in call order, the current layer's running sum held in a register (terms come
-// layer by layer, particles and contacts being stored so: the layer rarely changes). The same
-// additions in the same order as s[layer] += v.
-class LayerSum {
- public:
-  explicit LayerSum(double* s) : s_(s) {}
-  LayerSum(const LayerSum&) = delete;
-  LayerSum& operator=(const LayerSum&) = delete;
-  ~LayerSum() {
-    if (layer_ >= 0) s_[layer_] = sum_;
-  }
-  double& at(int layer) {
-    if (layer != layer_) {
-      if (layer_ >= 0) s_[layer_] = sum_;
-      layer_ = layer;
-      sum_ = s_[layer];
-    }
-    return sum_;
-  }
-
- private:
-  double* s_;
-  int layer_ = -1;
-  double sum_ = 0.0;
-};
-
 // f(0), ..., f(N - 1), unrolled (history columns).
 template <std::size_t N, class F>
 GRANWAVE_ALWAYS_INLINE inline void for_columns(F&& f) {

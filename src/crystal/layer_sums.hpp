@@ -1,5 +1,5 @@
 // Per-layer sums of the observers (docs/design.md §2.8: each layer's terms in index or list
-// order, then the layers in layer order), several layers at a time.
+// order, then the layers in layer order), several layers at a time, or one running sum (kernel::LayerSum).
 //
 // A per-layer sum is a chain of dependent additions: each waits for the previous one (~4
 // cycles), whatever else the loop does, so one walk over ~20000 contacts costs ~80000 cycles.
@@ -114,5 +114,35 @@ void layer_chains(const LayerLists& ll, const std::array<double*, Q>& s, const A
   else
     layer_sums::chains<G, false>(ll, s, add);
 }
+
+namespace kernel {
+
+// s[layer] += ... in call order, the current layer's running sum held in a register (terms come
+// layer by layer, particles and contacts being stored so: the layer rarely changes). The same
+// additions in the same order as s[layer] += v.
+class LayerSum {
+ public:
+  explicit LayerSum(double* s) : s_(s) {}
+  LayerSum(const LayerSum&) = delete;
+  LayerSum& operator=(const LayerSum&) = delete;
+  ~LayerSum() {
+    if (layer_ >= 0) s_[layer_] = sum_;
+  }
+  double& at(int layer) {
+    if (layer != layer_) {
+      if (layer_ >= 0) s_[layer_] = sum_;
+      layer_ = layer;
+      sum_ = s_[layer];
+    }
+    return sum_;
+  }
+
+ private:
+  double* s_;
+  int layer_ = -1;
+  double sum_ = 0.0;
+};
+
+}  // namespace kernel
 
 }  // namespace granwave::crystal
