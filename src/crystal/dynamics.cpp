@@ -308,7 +308,9 @@ const ContactList::ThreadParts& ContactList::thread_parts(std::size_t n, int par
       t.shared_ends[p] = 1;
   };
   for (int q = 0; q < parts; ++q)
-    for (std::int64_t c = t.begin(nc, q); c < t.begin(nc, q + 1); ++c) touch(i[c], q), touch(j[c], q);
+    for (std::int64_t c = ThreadParts::part_begin(nc, parts, block, q); c < ThreadParts::part_begin(nc, parts, block, q + 1);
+         ++c)
+      touch(i[c], q), touch(j[c], q);
   for (std::size_t p = 0; p < n; ++p)
     if (t.shared_ends[p]) t.shared_particles.push_back(static_cast<std::int32_t>(p));
   return t;

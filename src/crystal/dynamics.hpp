@@ -58,7 +58,7 @@ struct ContactList {
   mutable std::vector<std::int32_t> j_first, j_contacts;
   void j_lists(std::size_t particles) const;
   // Threads: the list cut into `parts` runs of whole blocks of `block` contacts, part q from
-  // contact part_begin(q), each run scattered into the particles' sums by one thread. A particle
+  // contact part_begin(..., q), each run scattered into the particles' sums by one thread. A particle
   // that contacts of two parts touch is shared (shared_ends[p] = 1, listed in shared_particles):
   // no part adds to its sums; they are made after the parts join, in contact order. Built by
   // thread_parts at its first use after a list build (and for another number of parts).
@@ -67,7 +67,7 @@ struct ContactList {
     std::int64_t block = 0;
     std::vector<std::uint8_t> shared_ends;
     std::vector<std::int32_t> shared_particles;
-    std::int64_t begin(std::int64_t contacts, int q) const {
+    static std::int64_t part_begin(std::int64_t contacts, int parts, std::int64_t block, int q) {
       const std::int64_t blocks = (contacts + block - 1) / block;
       return std::min(contacts, blocks * q / parts * block);
     }

@@ -55,14 +55,15 @@ void in_blocks(std::int64_t n, bool threaded, const Body& body) {
 }
 
 // body(c0, c1) over [0, n) in blocks, cut into `parts` runs of whole blocks
-// (ContactList::ThreadParts::begin), each run on one OpenMP thread in block order.
+// (ContactList::ThreadParts::part_begin), each run on one OpenMP thread in block order.
 template <class Body>
 void in_parts(std::int64_t n, int parts, const Body& body) {
-  const ContactList::ThreadParts cut{parts, kBlock, {}, {}};
+  using Cut = ContactList::ThreadParts;
 #pragma omp parallel for schedule(static, 1) if (parts > 1)
   for (int q = 0; q < parts; ++q) {
     const Body local = body;  // as in_blocks
-    for (std::int64_t c0 = cut.begin(n, q); c0 < cut.begin(n, q + 1); c0 += kBlock)
+    for (std::int64_t c0 = Cut::part_begin(n, parts, kBlock, q); c0 < Cut::part_begin(n, parts, kBlock, q + 1);
+         c0 += kBlock)
       local(c0, std::min(n, c0 + kBlock));
   }
 }

@@ -30,6 +30,18 @@ namespace granwave::crystal {
 
 namespace {
 
+// Whether body(q0, q1) returned nonzero for any block of [p0, p1), the blocks of 1024 particles (a
+// multiple of four) on the OpenMP threads: a threaded particle pass's "one of them left half the skin".
+template <class Body>
+std::int64_t any_block_on_threads(std::int64_t p0, std::int64_t p1, const Body& body) {
+  constexpr std::int64_t kBlock = 1024;
+  const std::int64_t nb = (p1 - p0 + kBlock - 1) / kBlock;
+  std::int64_t any = 0;
+#pragma omp parallel for schedule(static) reduction(| : any)
+  for (std::int64_t b = 0; b < nb; ++b) any |= body(p0 + b * kBlock, std::min(p1, p0 + (b + 1) * kBlock));
+  return any;
+}
+
 #ifdef GRANWAVE_GATHER_VECTORS
 // Four particles at a time, for the one-thread particle passes (finish_pass, kick_drift,
 // finish_kick_drift): each helper does one step of the scalar code in four lanes, the same
@@ -404,14 +416,10 @@ Drift Dynamics::kick_drift(std::int64_t from) {
     return {far != 0, rows != nullptr};
   }
 #endif
-  if constexpr (Threaded) {
-    constexpr std::int64_t kBlock = 1024;
-    const std::int64_t nb = (p1 - p0 + kBlock - 1) / kBlock;
-#pragma omp parallel for schedule(static) reduction(| : far)
-    for (std::int64_t b = 0; b < nb; ++b) far |= range(p0 + b * kBlock, std::min(p1, p0 + (b + 1) * kBlock));
-  } else {
+  if constexpr (Threaded)
+    far = any_block_on_threads(p0, p1, range);
+  else
     far = range(p0, p1);
-  }
   return {far != 0, false};
 }
 
@@ -452,15 +460,8 @@ Drift Dynamics::finish_kick_drift() {
     return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
   };
   const std::int64_t p = n / 4 * 4;
-  std::int64_t far = 0;
-  if (threaded()) {  // the threaded contact pass's rows (kernel::in_parts)
-    constexpr std::int64_t kBlock = 1024;
-    const std::int64_t nb = (p + kBlock - 1) / kBlock;
-#pragma omp parallel for schedule(static) reduction(| : far)
-    for (std::int64_t b = 0; b < nb; ++b) far |= fours(b * kBlock, std::min(p, (b + 1) * kBlock));
-  } else {
-    far = fours(0, p);
-  }
+  // Threaded: the rows of the threaded contact pass (kernel::in_parts).
+  const std::int64_t far = threaded() ? any_block_on_threads(0, p, fours) : fours(0, p);
   Drift drift{far != 0, rows != nullptr};
   if (p < n) {
     finish_pass<true, Rows, Couples>(h, p);
