@@ -1,6 +1,7 @@
 // The lattice branches of a case's text for the analysis (crystal/case_lattice.hpp).
 #include "crystal/case_lattice.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <limits>
@@ -16,7 +17,24 @@ namespace granwave::crystal {
 
 namespace {
 std::atomic<long> g_lattice_solves{0};
+
+// Leaves the particles of layers lo..hi, in their order (the contacts' order among them unchanged).
+void keep_layers(Packing& p, int lo, int hi) {
+  std::size_t k = 0;
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    if (p.layer[q] < lo || p.layer[q] > hi) continue;
+    p.x[k] = p.x[q], p.y[k] = p.y[q], p.z[k] = p.z[q];
+    p.radius[k] = p.radius[q], p.mass[k] = p.mass[q], p.inertia[k] = p.inertia[q];
+    p.layer[k] = p.layer[q], p.fixed[k] = p.fixed[q];
+    if (!p.role.empty()) p.role[k] = p.role[q];
+    ++k;
+  }
+  for (auto* v : {&p.x, &p.y, &p.z, &p.radius, &p.mass, &p.inertia}) v->resize(k);
+  p.layer.resize(k);
+  p.fixed.resize(k);
+  if (!p.role.empty()) p.role.resize(k);
 }
+}  // namespace
 
 long lattice_solves() { return g_lattice_solves.load(); }
 
@@ -74,12 +92,19 @@ void add_case_lattice(analysis::CrystalAnalysisOptions& options, const config::C
     return;
   }
   ++g_lattice_solves;
-  const Packing pk = lattice_packing(c);
+  Packing pk = lattice_packing(c);
+  // The cell is the bonds of the first particle of the slab's middle layer. The lattice repeats
+  // along z, so the five layers about the middle hold every kind of particle the slab has: they are
+  // checked (`granwave theory` checks the whole slab), and only their network, with two layers more
+  // each side for their bonds, is made -- the same particle, its bonds in the same order, the same
+  // cell bit for bit, at a fraction of a long crystal's cost.
+  const int lo = pk.fixed_layers, hi = pk.layers - 1 - pk.fixed_layers, mid = (lo + hi) / 2;
+  const int slab_lo = std::max(lo, mid - 2), slab_hi = std::min(hi, mid + 2);  // (slab_lo + slab_hi) / 2 == mid
+  keep_layers(pk, slab_lo - 2, slab_hi + 2);
   // As `granwave theory`: bonds agree to the rounding of Hertz forces from overlaps of positions.
   const theory::LatticeCellOptions lopt = lattice_options(c, 1e-6);
   std::string why;
-  const auto cell = theory::lattice_cell(contact_network(c, pk), {pk.fixed_layers, pk.layers - 1 - pk.fixed_layers}, lopt,
-                                         &why);
+  const auto cell = theory::lattice_cell(contact_network(c, pk), {slab_lo, slab_hi}, lopt, &why);
   if (!cell) {
     options.no_lattice = branches ? why : sine;
     return;

@@ -2,6 +2,7 @@
 #include "crystal/neighbors.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -49,79 +50,108 @@ PairList search_pairs(const double* x, const double* y, const double* z, const d
     for (std::size_t p = 0; p < n; ++p) members[fill[cell_of[p]]++] = static_cast<int>(p);
   }
 
-  struct Candidate {
-    std::int32_t i, j;
-    std::int8_t ix, iy;
-  };
-  std::vector<Candidate> found;
-  auto neighbours = [](int c, int nc) {  // distinct cells c-1, c, c+1 with wrap-around
-    std::vector<int> v{(c + nc - 1) % nc, c, (c + 1) % nc};
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
+  // The distinct neighbour cells c-1, c, c+1 of each cell along x and y (wrapped: a box of one or
+  // two cells has fewer), made once.
+  auto neighbour_cells = [](int nc) {
+    std::vector<std::array<int, 4>> v(nc);  // [count, cells...]
+    for (int c = 0; c < nc; ++c) {
+      std::array<int, 3> m{(c + nc - 1) % nc, c, (c + 1) % nc};
+      std::sort(m.begin(), m.end());
+      const int k = static_cast<int>(std::unique(m.begin(), m.end()) - m.begin());
+      v[c] = {k, m[0], m[1], m[2]};
+    }
     return v;
   };
-  for (int cz = 0; cz < ncz; ++cz)
-    for (int cy = 0; cy < ncy; ++cy)
-      for (int cx = 0; cx < ncx; ++cx) {
-        const int c = (cz * ncy + cy) * ncx + cx;
-        for (int nz = std::max(0, cz - 1); nz <= std::min(ncz - 1, cz + 1); ++nz)
-          for (int ny : neighbours(cy, ncy))
-            for (int nx : neighbours(cx, ncx)) {
-              const int c2 = (nz * ncy + ny) * ncx + nx;
-              for (int a = start[c]; a < start[c + 1]; ++a) {
-                const int i = members[a];
-                for (int b = start[c2]; b < start[c2 + 1]; ++b) {
-                  const int j = members[b];
-                  if (j <= i) continue;
-                  if (skip && skip[i] && skip[j]) continue;
-                  const double reach = radius[i] + radius[j] + skin;
-                  const double dz = z[j] - z[i];
-                  if (std::abs(dz) >= reach) continue;
-                  // j's image (sx, sy) at x_j + sx box_x (+ sy shift_x), y_j + sy box_y
-                  auto add = [&](int sx, int sy) {
-                    if (std::abs(sx) > 127 || std::abs(sy) > 127)  // images are stored in a byte
-                      throw RunError("particles " + std::to_string(i) + " and " + std::to_string(j) +
-                                     " are more than 127 periodic boxes apart");
-                    found.push_back({i, j, static_cast<std::int8_t>(sx), static_cast<std::int8_t>(sy)});
-                  };
-                  const double reach2 = reach * reach;
-                  if constexpr (Sheared) {
-                    const int by = static_cast<int>(std::lround((y[i] - y[j]) / box_y));
-                    for (int sy = by - 1; sy <= by + 1; ++sy) {
-                      const double sheared = sy * shift_x;
-                      const int bx = static_cast<int>(std::lround((x[i] - x[j] - sheared) / box_x));
-                      for (int sx = bx - 1; sx <= bx + 1; ++sx) {
-                        const double dx = x[j] + sx * box_x + sheared - x[i];
-                        const double dy = y[j] + sy * box_y - y[i];
-                        if (dx * dx + dy * dy + dz * dz < reach2) add(sx, sy);
-                      }
-                    }
-                  } else {
-                    const int bx = static_cast<int>(std::lround((x[i] - x[j]) / box_x));
-                    const int by = static_cast<int>(std::lround((y[i] - y[j]) / box_y));
-                    for (int sx = bx - 1; sx <= bx + 1; ++sx)
-                      for (int sy = by - 1; sy <= by + 1; ++sy) {
-                        const double dx = x[j] + sx * box_x - x[i];
-                        const double dy = y[j] + sy * box_y - y[i];
-                        if (dx * dx + dy * dy + dz * dz < reach2) add(sx, sy);
-                      }
-                  }
+  const auto near_x = neighbour_cells(ncx), near_y = neighbour_cells(ncy);
+
+  // Particle by particle in index order, each one's partners j > i sorted by (j, image): the
+  // list comes out sorted by (i, j, image) with no sort of the whole list.
+  struct Candidate {
+    std::int32_t j;
+    std::int8_t ix, iy;
+  };
+  std::vector<Candidate> mine;
+  out.i.reserve(8 * n);
+  out.j.reserve(8 * n);
+  out.image_x.reserve(8 * n);
+  out.image_y.reserve(8 * n);
+  for (std::size_t ip = 0; ip < n; ++ip) {
+    const int i = static_cast<int>(ip);
+    mine.clear();
+    const int c = cell_of[ip];
+    const int cx = c % ncx, cy = (c / ncx) % ncy, cz = c / (ncx * ncy);
+    const auto& nxs = near_x[cx];
+    const auto& nys = near_y[cy];
+    for (int nz = std::max(0, cz - 1); nz <= std::min(ncz - 1, cz + 1); ++nz)
+      for (int a = 1; a <= nys[0]; ++a)
+        for (int b = 1; b <= nxs[0]; ++b) {
+          const int c2 = (nz * ncy + nys[a]) * ncx + nxs[b];
+          for (int m = start[c2]; m < start[c2 + 1]; ++m) {
+            const int j = members[m];
+            if (j <= i) continue;
+            if (skip && skip[i] && skip[j]) continue;
+            const double reach = radius[i] + radius[j] + skin;
+            const double dz = z[j] - z[i];
+            if (std::abs(dz) >= reach) continue;
+            // j's image (sx, sy) at x_j + sx box_x (+ sy shift_x), y_j + sy box_y
+            auto add = [&](int sx, int sy) {
+              if (std::abs(sx) > 127 || std::abs(sy) > 127)  // images are stored in a byte
+                throw RunError("particles " + std::to_string(i) + " and " + std::to_string(j) +
+                               " are more than 127 periodic boxes apart");
+              mine.push_back({j, static_cast<std::int8_t>(sx), static_cast<std::int8_t>(sy)});
+            };
+            const double reach2 = reach * reach;
+            if constexpr (Sheared) {
+              const int by = static_cast<int>(std::lround((y[i] - y[j]) / box_y));
+              for (int sy = by - 1; sy <= by + 1; ++sy) {
+                const double sheared = sy * shift_x;
+                const int bx = static_cast<int>(std::lround((x[i] - x[j] - sheared) / box_x));
+                for (int sx = bx - 1; sx <= bx + 1; ++sx) {
+                  const double dx = x[j] + sx * box_x + sheared - x[i];
+                  const double dy = y[j] + sy * box_y - y[i];
+                  if (dx * dx + dy * dy + dz * dz < reach2) add(sx, sy);
+                }
+              }
+            } else {
+              const int bx = static_cast<int>(std::lround((x[i] - x[j]) / box_x));
+              const int by = static_cast<int>(std::lround((y[i] - y[j]) / box_y));
+              // An image whose dx^2 (or dy^2) alone reaches reach^2 fails the test below, rounding
+              // included (sums of terms >= 0 never fall below a term): only the others are tried.
+              double dxs[3], dys[3];
+              for (int k = 0; k < 3; ++k) {
+                dxs[k] = x[j] + (bx - 1 + k) * box_x - x[i];
+                dys[k] = y[j] + (by - 1 + k) * box_y - y[i];
+              }
+              for (int kx = 0; kx < 3; ++kx) {
+                const double dx = dxs[kx];
+                if (dx * dx >= reach2) continue;
+                for (int ky = 0; ky < 3; ++ky) {
+                  const double dy = dys[ky];
+                  if (dy * dy >= reach2) continue;
+                  if (dx * dx + dy * dy + dz * dz < reach2) add(bx - 1 + kx, by - 1 + ky);
                 }
               }
             }
-      }
-  std::sort(found.begin(), found.end(), [](const Candidate& u, const Candidate& v) {
-    if (u.i != v.i) return u.i < v.i;
-    if (u.j != v.j) return u.j < v.j;
-    if (u.ix != v.ix) return u.ix < v.ix;
-    return u.iy < v.iy;
-  });
-  out.i.reserve(found.size());
-  for (const auto& f : found) {
-    out.i.push_back(f.i);
-    out.j.push_back(f.j);
-    out.image_x.push_back(f.ix);
-    out.image_y.push_back(f.iy);
+          }
+        }
+    // a handful of partners: insertion sort
+    for (std::size_t u = 1; u < mine.size(); ++u) {
+      const Candidate t = mine[u];
+      std::size_t v = u;
+      auto before = [](const Candidate& p, const Candidate& q) {
+        if (p.j != q.j) return p.j < q.j;
+        if (p.ix != q.ix) return p.ix < q.ix;
+        return p.iy < q.iy;
+      };
+      for (; v > 0 && before(t, mine[v - 1]); --v) mine[v] = mine[v - 1];
+      mine[v] = t;
+    }
+    for (const auto& f : mine) {
+      out.i.push_back(i);
+      out.j.push_back(f.j);
+      out.image_x.push_back(f.ix);
+      out.image_y.push_back(f.iy);
+    }
   }
   return out;
 }

@@ -7,9 +7,11 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <random>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "contact/linear_luding_params.hpp"
@@ -28,8 +30,8 @@ std::vector<Pair> brute_force(const std::vector<double>& x, const std::vector<do
   const int n = static_cast<int>(x.size());
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j)
-      for (int sy = -2; sy <= 2; ++sy)
-        for (int sx = -6; sx <= 6; ++sx) {
+      for (int sy = -6; sy <= 6; ++sy)
+        for (int sx = -8; sx <= 8; ++sx) {
           const double dx = x[j] + sx * box_x + sy * shift - x[i], dy = y[j] + sy * box_y - y[i], dz = z[j] - z[i];
           const double reach = a[i] + a[j] + skin;
           if (dx * dx + dy * dy + dz * dz < reach * reach) out.emplace_back(i, j, sx, sy);
@@ -81,6 +83,37 @@ TEST_CASE("find_pairs in a sheared box = a brute-force search over the images", 
     CHECK(want.size() > 100);
     CHECK(got == want);  // sorted by (i, j, image) as the contact list needs
   }
+}
+
+TEST_CASE("find_pairs in boxes one to three spheres across, fixed pairs left out = a brute-force search", "[crystal][neighbors]") {
+  // Boxes so small that a pair touches through two images, one to three cells across.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::size_t twice = 0;  // pairs found through more than one image
+  for (const auto& [box_x, box_y] : {std::pair{2.1, 1.9}, std::pair{3.3, 5.0}, std::pair{1.2, 7.5}}) {
+    std::vector<double> x, y, z, a;
+    std::vector<std::uint8_t> skip;
+    for (int p = 0; p < 120; ++p) {
+      x.push_back(box_x * u(rng) + (p % 7 == 0 ? 3.0 * box_x : 0.0));  // some outside the box: any image
+      y.push_back(box_y * u(rng) - (p % 5 == 0 ? 2.0 * box_y : 0.0));
+      z.push_back(9.0 * u(rng));
+      a.push_back(0.4 + 0.4 * u(rng));
+      skip.push_back(p % 3 == 0);
+    }
+    const crystal::PairList found =
+        crystal::find_pairs(x.data(), y.data(), z.data(), a.data(), x.size(), box_x, box_y, 0.1, skip.data());
+    std::vector<Pair> got;
+    for (std::size_t c = 0; c < found.size(); ++c) got.emplace_back(found.i[c], found.j[c], found.image_x[c], found.image_y[c]);
+    std::vector<Pair> want;
+    for (const Pair& q : brute_force(x, y, z, a, box_x, box_y, 0.1, 0.0))
+      if (!(skip[std::get<0>(q)] && skip[std::get<1>(q)])) want.push_back(q);
+    for (std::size_t k = 1; k < want.size(); ++k)
+      twice += std::get<0>(want[k]) == std::get<0>(want[k - 1]) && std::get<1>(want[k]) == std::get<1>(want[k - 1]);
+    INFO("box " << box_x << " x " << box_y);
+    CHECK(want.size() > 200);
+    CHECK(got == want);
+  }
+  CHECK(twice > 0);
 }
 
 TEST_CASE("a contact across the faces of a sheared, moving box = the same contact inside a large box",
