@@ -110,6 +110,9 @@ struct ContactPassPlan {
   // Write ContactList::f_x, f_y, f_z and Dynamics::end_arms (the layer stress of a sample reads
   // them); false lets a one-thread pass of a law with torques sum straight into contact_sums.
   bool store_forces = true;
+  // A step whose finish may join the next drift: a one-thread pass that sums into contact_sums
+  // runs it behind itself, block by block (Dynamics::finish_behind; then ContactSums::finished).
+  bool finish_behind = false;
 };
 // What the contact pass leaves for the finish: the rows per particle of Dynamics::contact_sums it
 // filled (one thread: 1 f, 2 and n x f^t, 3 and delta n x f^t), 0 when the finish sums the
@@ -117,6 +120,7 @@ struct ContactPassPlan {
 struct ContactSums {
   int rows = 0;
   bool couples = false;
+  bool finished = false;  // finish_behind ran: the sums are taken, the next drift made
 };
 
 // Where a run's time loop spends its wall time (s), phase by phase. On one thread the finish of
@@ -231,6 +235,10 @@ class Dynamics {
     contact_sums.resize(4 * static_cast<std::size_t>(rows) * size(), 0.0);
     return contact_sums.data();
   }
+  // The finish, second half kick and next first half kick and drift (finish_kick_drift) of the
+  // particles below `to`, called by a one-thread contact pass asked for it (ContactPassPlan::
+  // finish_behind) once their contacts are all made; `to` = size() at its end.
+  void finish_behind(int rows, bool couples, std::int64_t to);
   double time = 0.0;
   long steps = 0;
   long rebuilds = 0;
@@ -361,6 +369,15 @@ class Dynamics {
   void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (one thread), from `from` on
   template <int Rows, bool Couples>
   Drift finish_kick_drift();  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time
+  template <int Rows, bool Couples>
+  std::int64_t finish_kick_drift_fours(std::int64_t q0, std::int64_t q1);  // its particles [q0, q1)
+  template <int Rows, bool Couples>
+  Drift finish_kick_drift_tail(bool far);  // its last size() % 4 particles
+  struct Behind {  // finish_behind's progress through one contact pass
+    std::int64_t done = 0;
+    bool far = false;
+    Drift drift;
+  } behind_;
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   // Kinetic and/or Verlet (nullptr: not wanted), through layer_order().
   void add_particle_energies(double* kinetic, double* verlet) const;

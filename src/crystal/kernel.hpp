@@ -241,6 +241,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
   // The forces are stored per contact when a sample reads them, when the threads' shared particles
   // are summed from them, or without the scatter; else the block's stay on the stack.
   const bool keep_forces = plan.store_forces || shared || !sum_rows;
+  Dynamics* const behind = plan.finish_behind && sum_rows && parts == 1 ? &d : nullptr;  // as the gathered pass
   auto range = [=](std::int64_t c0, std::int64_t c1, auto with_arms) GRANWAVE_ALWAYS_INLINE {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
     double block_fx[kBlock], block_fy[kBlock], block_fz[kBlock];
@@ -264,6 +265,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
                               nullptr, nullptr, nullptr, nullptr, shared);
     else
       scatter<1>(sum_rows, np, c1 - c0, ci + c0, cj + c0, fo[0], fo[1], fo[2], nullptr, nullptr, nullptr, nullptr);
+    if (behind && c1 < nc) behind->finish_behind(1, false, ci[c1]);
 #endif
   };
   if (d.end_arms_stored)
@@ -272,8 +274,9 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     in_parts(nc, parts, [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
 #ifdef GRANWAVE_GATHER_VECTORS
   if (split) sum_shared_forces(C, *split, sum_rows);
+  if (behind) behind->finish_behind(1, false, np);
 #endif
-  return {rows};
+  return {rows, false, behind != nullptr};
 }
 
 // The one-thread scatter's mode for a lever arm: 1 (the rows f | n x f^t), 2 (and delta n x f^t).
@@ -324,6 +327,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     sum_rows = d.begin_contact_sums(scatter_mode + 1 + Couples);
   }
 #endif
+  // The finish behind the pass (Dynamics::finish_behind), every kBlock contacts.
+  Dynamics* const behind = plan.finish_behind && scatter_mode != 0 ? &d : nullptr;
   // With the forces, the layer stress's end arms (one thread: where the forces are stored per chunk).
   d.end_arms_stored = scatter_mode != 0 && keep_forces;
   if (d.end_arms_stored) d.end_arms.resize(2 * C.size());
@@ -419,6 +424,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
           }
           end_arms_of_chunk(g, s1 - s0, cdelta + s0, end_arms + 2 * s0);
         }
+        if (behind && s1 % kBlock == 0 && s1 < c1) behind->finish_behind(scatter_mode + 1, Couples, ci[s1]);
       }
 #endif
     }
@@ -427,7 +433,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     range(0, nc, std::true_type{});
   else
     in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
-  return {scatter_mode == 0 ? 0 : scatter_mode + 1, Couples && scatter_mode != 0};
+  if (behind) behind->finish_behind(scatter_mode + 1, Couples, np);
+  return {scatter_mode == 0 ? 0 : scatter_mode + 1, Couples && scatter_mode != 0, behind != nullptr};
 }
 
 // The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law

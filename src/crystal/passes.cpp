@@ -426,54 +426,85 @@ Drift Dynamics::kick_drift(std::int64_t from) {
 // Dynamics::advance's pass: finish_pass<true, Rows, Couples> (the second half kick of the step before)
 // and kick_drift<Torques, false> (this step's first half kick and drift) for four particles at a
 // time, F and the torques kept in registers (fx..tz are not stored: the step's last finish
-// writes them); the last n % 4 particles through the two passes as they are.
+// writes them); the last n % 4 particles through the two passes as they are (finish_kick_drift_tail).
 template <int Rows, bool Couples>
 Drift Dynamics::finish_kick_drift() {
 #ifdef GRANWAVE_GATHER_VECTORS
+  const std::int64_t p = static_cast<std::int64_t>(size()) / 4 * 4;
+  // Threaded: the rows of the threaded contact pass (kernel::in_parts).
+  auto fours = [this](std::int64_t q0, std::int64_t q1) { return finish_kick_drift_fours<Rows, Couples>(q0, q1); };
+  const std::int64_t far = threaded() ? any_block_on_threads(0, p, fours) : fours(0, p);
+  return finish_kick_drift_tail<Rows, Couples>(far != 0);
+#else
+  finish_pass<true, Rows, Couples>(0.5 * dt_);
+  return kick_drift<Rows >= 2, false>();
+#endif
+}
+
+#ifdef GRANWAVE_GATHER_VECTORS
+// Particles [q0, q1) (a multiple of four) of finish_kick_drift; whether one of them left half the skin.
+template <int Rows, bool Couples>
+std::int64_t Dynamics::finish_kick_drift_fours(std::int64_t q0, std::int64_t q1) {
   constexpr bool Torques = Rows >= 2;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
   const std::int64_t n = static_cast<std::int64_t>(size());
   double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t | couples
   double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
   const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
-  // Particles [q0, q1) (a multiple of four); whether one of them left half the skin.
-  auto fours = [=, this](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
-    V4m far4{0, 0, 0, 0};
-    for (std::int64_t p = q0; p < q1; p += 4) {
-      V4 sx, sy, sz, tqx, tqy, tqz;
-      take_rows(sums + 4 * p, sx, sy, sz);
-      torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, radius.data(), p, tqx, tqy,
-                                     tqz);
-      const V4m m = mobile4(mobile.data(), p);
-      const V4 inv_m = load4(inv_mass.data() + p);
-      const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
-      const V4 dy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), y_build_.data(), m, hv, dtv, inv_m, p);
-      const V4 dz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), z_build_.data(), m, hv, dtv, inv_m, p);
-      if constexpr (Torques) {
-        const V4 inv_i = load4(inv_inertia.data() + p);
-        for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
-          store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
-      }
-      far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
-      if (rows) kernel::fill_rows(*this, rows, p, p + 4);
+  V4m far4{0, 0, 0, 0};
+  for (std::int64_t p = q0; p < q1; p += 4) {
+    V4 sx, sy, sz, tqx, tqy, tqz;
+    take_rows(sums + 4 * p, sx, sy, sz);
+    torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, radius.data(), p, tqx, tqy, tqz);
+    const V4m m = mobile4(mobile.data(), p);
+    const V4 inv_m = load4(inv_mass.data() + p);
+    const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
+    const V4 dy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), y_build_.data(), m, hv, dtv, inv_m, p);
+    const V4 dz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), z_build_.data(), m, hv, dtv, inv_m, p);
+    if constexpr (Torques) {
+      const V4 inv_i = load4(inv_inertia.data() + p);
+      for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
+        store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
     }
-    return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
-  };
-  const std::int64_t p = n / 4 * 4;
-  // Threaded: the rows of the threaded contact pass (kernel::in_parts).
-  const std::int64_t far = threaded() ? any_block_on_threads(0, p, fours) : fours(0, p);
-  Drift drift{far != 0, rows != nullptr};
+    far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+    if (rows) kernel::fill_rows(*this, rows, p, p + 4);
+  }
+  return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+}
+
+// The last n % 4 particles of finish_kick_drift, after the fours (`far`: one of those left half the skin).
+template <int Rows, bool Couples>
+Drift Dynamics::finish_kick_drift_tail(bool far) {
+  const std::int64_t n = static_cast<std::int64_t>(size()), p = n / 4 * 4;
+  Drift drift{far, Rows >= 2 && gather_rows.size() == 12 * size()};
   if (p < n) {
-    finish_pass<true, Rows, Couples>(h, p);
-    const Drift tail = kick_drift<Torques, false>(p);
+    finish_pass<true, Rows, Couples>(0.5 * dt_, p);
+    const Drift tail = kick_drift<Rows >= 2, false>(p);
     drift = {drift.far || tail.far, tail.rows_fresh};
   }
   return drift;
-#else
-  finish_pass<true, Rows, Couples>(0.5 * dt_);
-  return kick_drift<Rows >= 2, false>();
-#endif
 }
+
+// finish_kick_drift of the particles [behind_.done, to) rounded down to four, while a one-thread
+// contact pass runs (ContactPassPlan::finish_behind): their contacts are all made (the list is
+// sorted by i, and j > i), their rows are still in cache, and the pass reads no particle below
+// `to` again. to = size() ends it, the last n % 4 particles with it.
+void Dynamics::finish_behind(int rows, bool couples, std::int64_t to) {
+  auto go = [&]<int Rows, bool Couples>() {
+    const std::int64_t n = static_cast<std::int64_t>(size());
+    const std::int64_t q1 = std::min(to, n) / 4 * 4;
+    if (q1 > behind_.done) behind_.far |= finish_kick_drift_fours<Rows, Couples>(behind_.done, q1) != 0;
+    behind_.done = std::max(behind_.done, q1);
+    if (to >= n) behind_.drift = finish_kick_drift_tail<Rows, Couples>(behind_.far);
+  };
+  switch (rows) {
+    case 1: return go.template operator()<1, false>();
+    case 2: return couples ? go.template operator()<2, true>() : go.template operator()<2, false>();
+    case 3: return couples ? go.template operator()<3, true>() : go.template operator()<3, false>();
+    default: throw RunError("finish_behind: no rows of sums");
+  }
+}
+#endif
 
 Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
   switch (waiting.rows) {
@@ -504,20 +535,31 @@ void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
     if (clock) clock->lap(phase);
   };
   ContactSums waiting;  // the step before's sums, when their finish joins this step's drift
+  Drift behind;         // this step's drift, when the step before's contact pass made it (finished)
+  bool drifted = false;
   for (long s = 1; s <= k; ++s) {
     const bool last = s == k;
-    const Drift drift = half_kick_drift(waiting);  // v(t + dt/2), x(t + dt)
+    const Drift drift = drifted ? behind : half_kick_drift(waiting);  // v(t + dt/2), x(t + dt)
     time += dt_;
     ++steps;
-    lap(PhaseTimes::kick_drift);
+    if (!drifted) lap(PhaseTimes::kick_drift);
     if (slab_) {
       exchange_halo();  // the neighbours' boundary layers at t + dt
       lap(PhaseTimes::halo);
     }
     upkeep_list(drift);  // a rebuild when a particle left its skin
     lap(PhaseTimes::list_upkeep);
-    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces});
+    // When the finish could join the next drift (finish_step), it may run behind the pass instead.
+    const bool joins = !last && !slab_;
+    behind_ = {};
+    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces, joins});
     lap(PhaseTimes::contact_pass);
+    drifted = sums.finished;
+    if (drifted) {
+      behind = behind_.drift;
+      waiting = {};
+      continue;
+    }
     waiting = finish_step(sums, last);  // F(t + dt) and the second half kick, v(t + dt)
     lap(PhaseTimes::finish);
   }
