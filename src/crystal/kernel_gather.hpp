@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "crystal/dynamics.hpp"
+#include "crystal/simd.hpp"
 
 namespace granwave::crystal {
 
@@ -40,30 +41,8 @@ struct Gathered {
   alignas(64) double col[kColumns][kChunk];
 };
 
-#if defined(__GNUC__) && defined(__has_builtin)
-#if __has_builtin(__builtin_shufflevector)
-#define GRANWAVE_GATHER_VECTORS 1
-#endif
-#endif
 #ifdef GRANWAVE_GATHER_VECTORS
-// Four doubles (GCC/Clang vector extension: AVX registers where the target has them, SSE
-// pairs otherwise); +, - are lane-wise IEEE operations.
-typedef double V4 __attribute__((vector_size(32)));
-typedef double V4u __attribute__((vector_size(32), aligned(8), may_alias));  // for unaligned loads, stores
-GRANWAVE_ALWAYS_INLINE inline V4 load4(const double* p) { return *reinterpret_cast<const V4u*>(p); }
-GRANWAVE_ALWAYS_INLINE inline void store4(double* p, const V4& v) { *reinterpret_cast<V4u*>(p) = v; }
-// The 4 x 4 transpose: rows r0..r3 in, columns c0..c3 out (and back).
-GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const V4& r2, const V4& r3, V4& c0, V4& c1,
-                                              V4& c2, V4& c3) {
-  const V4 t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);  // r0x r1x r0z r1z
-  const V4 t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);  // r0y r1y r0a r1a
-  const V4 t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
-  const V4 t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
-  c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-  c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-  c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-  c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
-}
+using simd::load4, simd::store4, simd::transpose4, simd::V4;
 #endif
 
 // rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0. The rows of particles

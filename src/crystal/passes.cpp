@@ -25,6 +25,7 @@
 #include "core/inline.hpp"
 #include "crystal/kernel.hpp"
 #include "crystal/neighbors.hpp"
+#include "crystal/simd.hpp"
 
 namespace granwave::crystal {
 
@@ -46,20 +47,16 @@ std::int64_t any_block_on_threads(std::int64_t p0, std::int64_t p1, const Body& 
 // Four particles at a time, for the one-thread particle passes (finish_pass, kick_drift,
 // finish_kick_drift): each helper does one step of the scalar code in four lanes, the same
 // operations in the same order.
-using kernel::load4, kernel::store4, kernel::V4;
-typedef long long V4m __attribute__((vector_size(32)));  // lane masks
-typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));
+using simd::load4, simd::store4, simd::V4, simd::V4m;
 
 // The `mobile` flags of particles p..p+3 as lane masks.
-GRANWAVE_ALWAYS_INLINE inline V4m mobile4(const std::uint8_t* on, std::int64_t p) {
-  return V4m{on[p] ? -1LL : 0LL, on[p + 1] ? -1LL : 0LL, on[p + 2] ? -1LL : 0LL, on[p + 3] ? -1LL : 0LL};
-}
+GRANWAVE_ALWAYS_INLINE inline V4m mobile4(const std::uint8_t* on, std::int64_t p) { return simd::mask4(on + p); }
 // Four rows of a per-particle sum (Dynamics::contact_sums) as x, y, z lanes; the rows are
 // zeroed for the next contact pass.
 GRANWAVE_ALWAYS_INLINE inline void take_rows(double* r, V4& cx, V4& cy, V4& cz) {
   const V4 zero{0.0, 0.0, 0.0, 0.0};
   V4 unused;
-  kernel::transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
+  simd::transpose4(load4(r), load4(r + 4), load4(r + 8), load4(r + 12), cx, cy, cz, unused);
   store4(r, zero), store4(r + 4, zero), store4(r + 8, zero), store4(r + 12, zero);
 }
 // The torques of particles p..p+3 from their rows: -a (sum n x f^t), and with the contact-point
@@ -106,7 +103,7 @@ GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(double* v, double* r, const V4& f, 
   const V4 x1 = m ? x0 + dtv * v1 : x0;
   store4(v + p, v1);
   store4(r + p, x1);
-  return (x1 - load4(r0 + p)) - __builtin_convertvector(*reinterpret_cast<const V4f*>(rb + p), V4);
+  return (x1 - load4(r0 + p)) - load4(rb + p);
 }
 #endif
 

@@ -1,0 +1,52 @@
+// The crystal's one SIMD layer: four doubles as lanes of a GCC/Clang vector extension (AVX
+// registers where the target has them, SSE pairs otherwise). Every operation on them is lane-wise
+// IEEE (+, -, *, / and compares of the extension; no fused multiply-add: -ffp-contract=off), so a
+// routine built from them gives the bits of its scalar twin, one lane per particle or contact
+// (tests/unit/crystal_simd.cpp checks each routine against its twin). The contact laws never see
+// these types: the contact passes vectorise the laws' scalar code (crystal/kernel.hpp), and only
+// the data movement around them -- the gather into columns, the scatter into rows, the particle
+// passes four at a time -- is written here, in crystal/kernel_gather.hpp and crystal/passes.cpp.
+#pragma once
+#include <cstdint>
+
+#include "core/inline.hpp"
+
+#if defined(__GNUC__) && defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector) && __has_builtin(__builtin_convertvector)
+#define GRANWAVE_GATHER_VECTORS 1  // the vector routines are built (else the scalar twins alone)
+#endif
+#endif
+
+#ifdef GRANWAVE_GATHER_VECTORS
+namespace granwave::crystal::simd {
+
+typedef double V4 __attribute__((vector_size(32)));                               // four doubles
+typedef double V4u __attribute__((vector_size(32), aligned(8), may_alias));        // unaligned access
+typedef long long V4m __attribute__((vector_size(32)));                           // lane masks (-1, 0)
+typedef float V4f __attribute__((vector_size(16), aligned(4), may_alias));         // four floats, unaligned
+
+GRANWAVE_ALWAYS_INLINE inline V4 load4(const double* p) { return *reinterpret_cast<const V4u*>(p); }
+GRANWAVE_ALWAYS_INLINE inline void store4(double* p, const V4& v) { *reinterpret_cast<V4u*>(p) = v; }
+// Four floats widened to doubles (exact).
+GRANWAVE_ALWAYS_INLINE inline V4 load4(const float* p) {
+  return __builtin_convertvector(*reinterpret_cast<const V4f*>(p), V4);
+}
+// Flags p[0..3] as lane masks: -1 where the flag is nonzero.
+GRANWAVE_ALWAYS_INLINE inline V4m mask4(const std::uint8_t* p) {
+  return V4m{p[0] ? -1LL : 0LL, p[1] ? -1LL : 0LL, p[2] ? -1LL : 0LL, p[3] ? -1LL : 0LL};
+}
+// The 4 x 4 transpose: rows r0..r3 in, columns c0..c3 out (and back).
+GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const V4& r2, const V4& r3, V4& c0, V4& c1,
+                                              V4& c2, V4& c3) {
+  const V4 t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);  // r0x r1x r0z r1z
+  const V4 t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);  // r0y r1y r0a r1a
+  const V4 t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+  const V4 t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+  c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+}  // namespace granwave::crystal::simd
+#endif

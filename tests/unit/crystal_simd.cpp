@@ -1,0 +1,178 @@
+// The SIMD layer (crystal/simd.hpp) and the data movement built on it (crystal/kernel_gather.hpp),
+// each vector routine against its scalar twin written out here, bit for bit: the 4 x 4 transpose,
+// the masks, the widened floats, the particle rows, the gather of a chunk's columns, the scatter of
+// contact sums into rows (the particle pass's order of additions). Values include signed zeros,
+// subnormals and large magnitudes, and counts that are not multiples of four (the scalar tails).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "crystal/kernel_gather.hpp"
+#include "crystal/packing.hpp"
+#include "crystal/simd.hpp"
+
+using namespace granwave;
+using namespace granwave::crystal;
+
+#ifdef GRANWAVE_GATHER_VECTORS
+
+namespace {
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Doubles of many kinds: signs, zeros, subnormals, large and small magnitudes (no sum or product
+// overflows: a NaN's payload is not what is compared here).
+std::vector<double> mixed_values(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double kinds[] = {0.0, -0.0, std::numeric_limits<double>::denorm_min(), -3e-310, 1e150, -7.5e-3, 1.0, 2.5e12};
+  std::vector<double> v(n);
+  for (std::size_t k = 0; k < n; ++k) v[k] = k % 5 == 0 ? kinds[(k / 5) % 8] : u(rng) * std::pow(10.0, static_cast<int>(k % 7) - 3);
+  return v;
+}
+
+// A Dynamics of n particles (a 2 x 2 crystal cut to n) whose state is set to mixed values.
+Dynamics particles(std::size_t n) {
+  config::Case c = config::parse_case(
+      "[case]\nname = \"simd\"\nmodel = \"crystal\"\n[crystal]\nlattice = \"fcc\"\ncells = [2, 2, 8]\nradius = 1e-3\n"
+      "density = 2000\noverlap = 1e-3\nfixed_layers = 1\n[contact]\nkn = 1e5\nkt = 5e4\nmu_static = 0.5\n"
+      "mu_dynamic = 0.5\n[excitation]\nmode = \"P\"\namplitude = 1e-4\n[integrator]\ndt = 1e-7\nt_end = 1e-6\n",
+      "simd");
+  Dynamics d(lattice_packing(c), c.contact, 1e-7);
+  REQUIRE(d.size() >= n);
+  for (auto* v : {&d.x, &d.y, &d.z, &d.vx, &d.vy, &d.vz, &d.wx, &d.wy, &d.wz, &d.radius}) v->resize(n);
+  int seed = 1;
+  for (auto* v : {&d.x, &d.y, &d.z, &d.vx, &d.vy, &d.vz, &d.wx, &d.wy, &d.wz, &d.radius}) *v = mixed_values(n, seed++);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("simd: transpose4, mask4 and widened floats = their scalar twins", "[crystal][simd]") {
+  const std::vector<double> v = mixed_values(64, 3);
+  for (std::size_t k = 0; k + 16 <= v.size(); k += 16) {
+    simd::V4 c[4];
+    simd::transpose4(simd::load4(&v[k]), simd::load4(&v[k + 4]), simd::load4(&v[k + 8]), simd::load4(&v[k + 12]), c[0],
+                     c[1], c[2], c[3]);
+    double out[16];
+    for (int q = 0; q < 4; ++q) simd::store4(out + 4 * q, c[q]);
+    for (int r = 0; r < 4; ++r)
+      for (int q = 0; q < 4; ++q) CHECK(same_bits(out[4 * q + r], v[k + 4 * r + q]));  // column q, lane r = row r's q
+  }
+  const std::uint8_t flags[8] = {0, 1, 2, 255, 0, 0, 7, 1};
+  for (int k = 0; k < 8; k += 4) {
+    const simd::V4m m = simd::mask4(flags + k);
+    for (int q = 0; q < 4; ++q) CHECK(m[q] == (flags[k + q] ? -1LL : 0LL));
+  }
+  const float f[6] = {0.5f, -0.0f, 1e-40f, 3.25e7f, -1.0f, 7.0f};
+  const simd::V4 w = simd::load4(f + 1);  // unaligned
+  for (int q = 0; q < 4; ++q) CHECK(same_bits(w[q], static_cast<double>(f[1 + q])));
+}
+
+TEST_CASE("simd: the particle rows (fill_rows) = the state copied one value at a time", "[crystal][simd]") {
+  for (const std::size_t n : {std::size_t{4}, std::size_t{13}, std::size_t{30}}) {
+    const Dynamics d = particles(n);
+    std::vector<double> rows(12 * n, 1.0);
+    kernel::fill_rows(d, rows.data(), 0, static_cast<std::int64_t>(n));
+    for (std::size_t p = 0; p < n; ++p) {
+      const double want[12] = {d.x[p], d.y[p], d.z[p], d.radius[p], d.vx[p], d.vy[p],
+                               d.vz[p], 0.0,    d.wx[p], d.wy[p],     d.wz[p], 0.0};
+      for (int k = 0; k < 4; ++k) {
+        CHECK(same_bits(rows[4 * p + k], want[k]));
+        CHECK(same_bits(rows[4 * (n + p) + k], want[4 + k]));
+        CHECK(same_bits(rows[4 * (2 * n + p) + k], want[8 + k]));
+      }
+    }
+  }
+}
+
+TEST_CASE("simd: the gather of a chunk's columns = the contact's own scalar expressions", "[crystal][simd]") {
+  const std::size_t n = 30;
+  const Dynamics d = particles(n);
+  std::vector<double> rows(12 * n);
+  kernel::fill_rows(d, rows.data(), 0, static_cast<std::int64_t>(n));
+  std::mt19937 rng(5);
+  std::vector<std::int32_t> ci, cj;
+  std::vector<std::int8_t> imx, imy;
+  for (int c = 0; c < 47; ++c) {  // not a multiple of four
+    ci.push_back(static_cast<std::int32_t>(rng() % n));
+    cj.push_back(static_cast<std::int32_t>(rng() % n));
+    imx.push_back(static_cast<std::int8_t>(static_cast<int>(rng() % 5) - 2));
+    imy.push_back(static_cast<std::int8_t>(static_cast<int>(rng() % 255) - 127));
+  }
+  const double box_x = 3.1e-3, box_y = 7.7e-3;
+  for (const std::int64_t s0 : {std::int64_t{0}, std::int64_t{3}}) {
+    const std::int64_t s1 = static_cast<std::int64_t>(ci.size());
+    kernel::Gathered g;
+    kernel::gather(g, s0, s1, ci.data(), cj.data(), imx.data(), imy.data(), box_x, box_y, rows.data(),
+                   rows.data() + 4 * n, rows.data() + 8 * n);
+    using G = kernel::Gathered;
+    for (std::int64_t c = s0; c < s1; ++c) {
+      const std::int64_t u = c - s0;
+      const int i = ci[c], j = cj[c];
+      CHECK(same_bits(g.col[G::bx][u], (d.x[j] + imx[c] * box_x) - d.x[i]));
+      CHECK(same_bits(g.col[G::by][u], (d.y[j] + imy[c] * box_y) - d.y[i]));
+      CHECK(same_bits(g.col[G::bz][u], d.z[j] - d.z[i]));
+      CHECK(same_bits(g.col[G::reach][u], d.radius[i] + d.radius[j]));
+      CHECK(same_bits(g.col[G::a_i][u], d.radius[i]));
+      CHECK(same_bits(g.col[G::a_j][u], d.radius[j]));
+      CHECK(same_bits(g.col[G::dvx][u], d.vx[i] - d.vx[j]));
+      CHECK(same_bits(g.col[G::dvy][u], d.vy[i] - d.vy[j]));
+      CHECK(same_bits(g.col[G::dvz][u], d.vz[i] - d.vz[j]));
+      CHECK(same_bits(g.col[G::wix][u], d.wx[i]));
+      CHECK(same_bits(g.col[G::wjz][u], d.wz[j]));
+    }
+  }
+}
+
+TEST_CASE("simd: the scatter into rows = the particle pass's sums in list order", "[crystal][simd]") {
+  // A list as the contact list is: sorted by i, j > i, runs of equal i, particles met as j first.
+  const std::int64_t n = 23;
+  std::mt19937 rng(9);
+  std::vector<std::int32_t> ci, cj;
+  for (std::int32_t i = 0; i < n - 1; ++i)
+    for (int k = 0; k < static_cast<int>(rng() % 4); ++k) {
+      ci.push_back(i);
+      cj.push_back(static_cast<std::int32_t>(i + 1 + rng() % (n - 1 - i)));
+    }
+  const std::int64_t m = static_cast<std::int64_t>(ci.size());
+  REQUIRE(m % 4 != 0);
+  std::vector<double> f[3], nf[3], cp[3];
+  for (int q = 0; q < 3; ++q) f[q] = mixed_values(m, 20 + q), nf[q] = mixed_values(m, 30 + q), cp[q] = mixed_values(m, 40 + q);
+  const std::vector<double> delta = mixed_values(m, 50);
+  // The scalar twin: each sum starts from 0.0; i adds f, n x f^t, delta n x f^t and the couple; j
+  // subtracts f and the couple and adds the others, contact by contact in list order.
+  constexpr int K = 3;
+  std::vector<double> want(4 * (K + 1) * n, 0.0);
+  for (std::int64_t c = 0; c < m; ++c)
+    for (int q = 0; q < 3; ++q) {
+      double* w = want.data();
+      const std::int64_t i = ci[c], j = cj[c];
+      w[4 * i + q] += f[q][c];
+      w[4 * (n + i) + q] += nf[q][c];
+      w[4 * (2 * n + i) + q] += delta[c] * nf[q][c];
+      w[4 * (3 * n + i) + q] += cp[q][c];
+      w[4 * j + q] -= f[q][c];
+      w[4 * (n + j) + q] += nf[q][c];
+      w[4 * (2 * n + j) + q] += delta[c] * nf[q][c];
+      w[4 * (3 * n + j) + q] -= cp[q][c];
+    }
+  std::vector<double> rows(4 * (K + 1) * n, 0.0);
+  // In two calls, as two chunks of the contact pass (the second starting inside a run of equal i).
+  const std::int64_t half = m / 2 + 1;
+  for (const auto& [c0, c1] : {std::pair{std::int64_t{0}, half}, std::pair{half, m}})
+    kernel::scatter<K, true>(rows.data(), n, c1 - c0, ci.data() + c0, cj.data() + c0, f[0].data() + c0,
+                             f[1].data() + c0, f[2].data() + c0, nf[0].data() + c0, nf[1].data() + c0,
+                             nf[2].data() + c0, delta.data() + c0, cp[0].data() + c0, cp[1].data() + c0,
+                             cp[2].data() + c0);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    INFO("row entry " << k << ": " << rows[k] << " against " << want[k]);
+    CHECK(same_bits(rows[k], want[k]));
+  }
+}
+
+#endif
