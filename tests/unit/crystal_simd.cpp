@@ -1,7 +1,8 @@
-// The SIMD layer (crystal/simd.hpp) and the data movement built on it (crystal/kernel_gather.hpp),
-// each vector routine against its scalar twin written out here, bit for bit: the 4 x 4 transpose,
-// the masks, the widened floats, the particle rows, the gather of a chunk's columns, the scatter of
-// contact sums into rows (the particle pass's order of additions). Values include signed zeros,
+// The SIMD layer (crystal/simd.hpp) and what is built on it (crystal/kernel_gather.hpp,
+// crystal/particle_lanes.hpp), each vector routine against its scalar twin written out here, bit
+// for bit: the 4 x 4 transpose, the masks, the widened floats, the particle rows, the gather of a
+// chunk's columns, the scatter of contact sums into rows (the particle pass's order of additions),
+// the particle passes' rows of sums, torques, kicks and drift. Values include signed zeros,
 // subnormals and large magnitudes, and counts that are not multiples of four (the scalar tails).
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -13,6 +14,7 @@
 
 #include "crystal/kernel_gather.hpp"
 #include "crystal/packing.hpp"
+#include "crystal/particle_lanes.hpp"
 #include "crystal/simd.hpp"
 
 using namespace granwave;
@@ -172,6 +174,69 @@ TEST_CASE("simd: the scatter into rows = the particle pass's sums in list order"
   for (std::size_t k = 0; k < rows.size(); ++k) {
     INFO("row entry " << k << ": " << rows[k] << " against " << want[k]);
     CHECK(same_bits(rows[k], want[k]));
+  }
+}
+
+TEST_CASE("simd: the particle passes' steps four at a time = the passes' scalar code", "[crystal][simd]") {
+  const std::vector<double> v = mixed_values(96, 60);
+  const std::uint8_t on[4] = {1, 0, 3, 1};
+  const simd::V4m m = lanes::mobile4(on, 0);
+  const double h = 0.5e-7, dt = 1e-7;
+  const simd::V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt};
+  auto lane = [](const simd::V4& x, int q) { return x[q]; };
+  // take_rows: four rows of a sum as x, y, z lanes, the rows zeroed.
+  std::vector<double> rows(v.begin(), v.begin() + 16);
+  simd::V4 cx, cy, cz;
+  lanes::take_rows(rows.data(), cx, cy, cz);
+  for (int q = 0; q < 4; ++q) {
+    CHECK(same_bits(lane(cx, q), v[4 * q]));
+    CHECK(same_bits(lane(cy, q), v[4 * q + 1]));
+    CHECK(same_bits(lane(cz, q), v[4 * q + 2]));
+  }
+  for (double r : rows) CHECK(same_bits(r, 0.0));
+  // torques_of_rows: -a n, + 1/2 delta n (contact-point arm), + the couples (finish_pass's tail).
+  const std::vector<double> a(v.begin() + 80, v.begin() + 84);
+  for (const int kind : {1, 2, 3}) {
+    std::vector<double> rn(v.begin() + 16, v.begin() + 32), rd(v.begin() + 32, v.begin() + 48),
+        rc(v.begin() + 48, v.begin() + 64);
+    const std::vector<double> n0 = rn, d0 = rd, c0 = rc;
+    simd::V4 t[3];
+    if (kind == 1) lanes::torques_of_rows<1, false>(rn.data(), rd.data(), rc.data(), a.data(), 0, t[0], t[1], t[2]);
+    if (kind == 2) lanes::torques_of_rows<2, true>(rn.data(), rd.data(), rc.data(), a.data(), 0, t[0], t[1], t[2]);
+    if (kind == 3) lanes::torques_of_rows<3, true>(rn.data(), rd.data(), rc.data(), a.data(), 0, t[0], t[1], t[2]);
+    for (int q = 0; q < 4; ++q)
+      for (int k = 0; k < 3; ++k) {
+        double want = 0.0;
+        if (kind >= 2) want = -a[q] * n0[4 * q + k];
+        if (kind == 3) want = want + 0.5 * d0[4 * q + k];
+        if (kind >= 2) want = want + c0[4 * q + k];
+        CHECK(same_bits(lane(t[k], q), want));
+      }
+  }
+  // kicked4 and kick_drift4: the mobile ones' v += h f/m (twice: a finish's kick and the next
+  // step's), x += dt v, and the displacement since the build (x - x0) - x_build.
+  for (int group = 0; group < 64; ++group) {  // many values: a rounding differs in some lane
+    for (const int kicks : {1, 2}) {
+      const std::vector<double> w = mixed_values(24, 100 + group);
+      std::vector<double> vel(w.begin(), w.begin() + 4), pos(w.begin() + 4, w.begin() + 8);
+      const std::vector<double> v0 = vel, x0 = pos, f(w.begin() + 8, w.begin() + 12), inv(w.begin() + 12, w.begin() + 16),
+                                r0(w.begin() + 16, w.begin() + 20);
+      const float rb[4] = {1.5e-6f, -0.0f, 3e-9f, -2.25e-5f};
+      const simd::V4 fv = simd::load4(f.data()), iv = simd::load4(inv.data());
+      const simd::V4 k = kicks == 1 ? lanes::kicked4<1>(simd::load4(v0.data()), fv, m, hv, iv)
+                                    : lanes::kicked4<2>(simd::load4(v0.data()), fv, m, hv, iv);
+      const simd::V4 disp = kicks == 1 ? lanes::kick_drift4<1>(vel.data(), pos.data(), fv, r0.data(), rb, m, hv, dtv, iv, 0)
+                                       : lanes::kick_drift4<2>(vel.data(), pos.data(), fv, r0.data(), rb, m, hv, dtv, iv, 0);
+      for (int q = 0; q < 4; ++q) {
+        double vq = v0[q];
+        for (int s = 0; s < kicks; ++s) vq = on[q] ? vq + h * f[q] * inv[q] : vq;
+        const double xq = on[q] ? x0[q] + dt * vq : x0[q];
+        CHECK(same_bits(lane(k, q), vq));
+        CHECK(same_bits(vel[q], vq));
+        CHECK(same_bits(pos[q], xq));
+        CHECK(same_bits(lane(disp, q), (xq - r0[q]) - static_cast<double>(rb[q])));
+      }
+    }
   }
 }
 
