@@ -10,10 +10,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "../case_text.hpp"
 #include "analysis/long_wave.hpp"
 #include "config/case.hpp"
 #include "crystal/case_lattice.hpp"
@@ -27,18 +26,9 @@ namespace {
 
 // crystal_hm_s.toml itself, on 2 x 2 x 200 cells, as an S or a P wave.
 std::string hm_case(const char* mode) {
-  std::ifstream in(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_hm_s.toml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  auto replace = [&s](const std::string& from, const std::string& to) {
-    const auto at = s.find(from);
-    REQUIRE(at != std::string::npos);
-    s.replace(at, from.size(), to);
-  };
-  replace("cells = [4, 4, 200]", "cells = [2, 2, 200]");
-  replace("mode = \"S\"", std::string("mode = \"") + mode + "\"");
-  return s;
+  return test_support::case_text("data/cases/crystal_hm_s.toml",
+                                 {{"cells = [4, 4, 200]", "cells = [2, 2, 200]"},
+                                  {"mode = \"S\"", std::string("mode = \"") + mode + "\""}});
 }
 
 }  // namespace

@@ -9,10 +9,9 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "../case_text.hpp"
 #include "analysis/pulse_fronts.hpp"
 #include "config/case.hpp"
 #include "crystal/derive.hpp"
@@ -27,16 +26,10 @@ using namespace granwave;
 TEST_CASE("tall packing: the longest pulse's front runs at the relaxed slab's speed, not the affine one",
           "[physics][packing]") {
   const std::string file = std::string(GRANWAVE_SOURCE_DIR) + "/data/packings/lammps_tall/pulse_w5.toml";
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
   // 7 ms instead of 16: the smoothed fronts need the record only until the T = 32 pulse has passed
   // z/l0 = 75 (about 6 ms); the rest is for the small-k slope, not tested here.
-  const std::string from = "t_end = 16e-3";
-  const auto at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  s.replace(at, from.size(), "t_end = 7e-3");
+  const std::string s =
+      test_support::case_text("data/packings/lammps_tall/pulse_w5.toml", {{"t_end = 16e-3", "t_end = 7e-3"}});
   const config::Case c = config::parse_case(s, file);
   const crystal::Packing pk = crystal::make_packing(c);
 

@@ -8,11 +8,10 @@
 // the box strains xx, yy and yx (a sheared box) with tangential springs stretched across its faces.
 #include <catch2/catch.hpp>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "../case_text.hpp"
 #include "config/case.hpp"
 #include "crystal/derive.hpp"
 #include "crystal/packing.hpp"
@@ -25,14 +24,7 @@ using namespace granwave;
 namespace {
 
 config::Case case_text(const std::string& file, const std::string& from, const std::string& to) {
-  std::ifstream in(std::string(GRANWAVE_SOURCE_DIR) + "/" + file);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const auto at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  s.replace(at, from.size(), to);
-  return config::parse_case(s, std::string(GRANWAVE_SOURCE_DIR) + "/" + file);
+  return config::parse_case(test_support::case_text(file, {{from, to}}), std::string(GRANWAVE_SOURCE_DIR) + "/" + file);
 }
 
 using S = crystal::ProbeStrain;

@@ -8,10 +8,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "../case_text.hpp"
 #include "config/case.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
@@ -24,15 +23,9 @@ using namespace granwave;
 namespace {
 
 config::Case small_case(const std::string& name) {
-  std::ifstream in(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/" + name + ".toml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const std::string from = "cells = [4, 4, 200]";
-  const auto at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  s.replace(at, from.size(), "cells = [4, 4, 20]");
-  return config::parse_case(s, name + "_small");
+  return config::parse_case(
+      test_support::case_text("data/cases/" + name + ".toml", {{"cells = [4, 4, 200]", "cells = [4, 4, 20]"}}),
+      name + "_small");
 }
 
 struct Built {

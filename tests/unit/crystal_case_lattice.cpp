@@ -5,10 +5,9 @@
 // (each contact's own stiffness, contact-point arm), rolling and torsion springs; crystals long
 // enough for the window and so short that the window is the whole slab.
 #include <catch2/catch.hpp>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "../case_text.hpp"
 #include "config/case.hpp"
 #include "crystal/case_lattice.hpp"
 #include "crystal/derive.hpp"
@@ -16,22 +15,6 @@
 #include "theory/lattice_dynamics.hpp"
 
 using namespace granwave;
-
-namespace {
-
-std::string case_text(const std::string& file, const std::string& cells_from, const std::string& cells_to) {
-  std::ifstream in(std::string(GRANWAVE_SOURCE_DIR) + "/" + file);
-  REQUIRE(in);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const auto at = s.find(cells_from);
-  REQUIRE(at != std::string::npos);
-  s.replace(at, cells_from.size(), cells_to);
-  return s;
-}
-
-}  // namespace
 
 TEST_CASE("the run's lattice from the layers about the middle = the whole slab's, bit for bit", "[crystal][lattice]") {
   struct Example {
@@ -46,7 +29,7 @@ TEST_CASE("the run's lattice from the layers about the middle = the whole slab's
       {"tests/crosscheck/cases/crystal_small_rolltors.toml", "cells = [4, 4, 40]", "cells = [2, 2, 33]"},
   };
   for (const auto& e : examples) {
-    const std::string text = case_text(e.file, e.cells_from, e.cells_to);
+    const std::string text = test_support::case_text(e.file, {{e.cells_from, e.cells_to}});
     const config::Case c = config::parse_case(text, e.file);
     INFO(e.file << " " << e.cells_to);
     REQUIRE(c.excitation.mode == config::Excitation::Mode::S);
