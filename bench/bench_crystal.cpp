@@ -36,8 +36,8 @@ config::Case seed_case(int layers, double kt, config::LeverArm arm = config::Lev
   return c;
 }
 
-template <class T>
-std::size_t bytes(const std::vector<T>& v) {
+template <class T, class A>
+std::size_t bytes(const std::vector<T, A>& v) {
   return v.capacity() * sizeof(T);
 }
 

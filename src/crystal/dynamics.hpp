@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "config/case.hpp"
+#include "core/aligned_allocator.hpp"
 #include "core/error.hpp"
 #include "contact/lever_arm.hpp"
 #include "crystal/layer_sums.hpp"
@@ -201,8 +202,9 @@ class Dynamics {
   ContactList contacts;
   // The contact pass's copy of the particle state it reads, as rows of four doubles
   // (crystal/kernel.hpp's gather), refreshed at every pass (or by the one-thread drift, then
-  // Drift::rows_fresh): 96 bytes per particle with a law with torques, empty otherwise.
-  std::vector<double> gather_rows;
+  // Drift::rows_fresh): 96 bytes per particle with a law with torques, empty otherwise; each
+  // four particles' rows whole cache lines (streams()).
+  std::vector<double, AlignedAllocator<double>> gather_rows;
   // Per-particle sums of a contact pass that scatters (crystal/kernel.hpp: on one thread, and a
   // law without torques on threads too), rows of four
   // doubles: f, and with a law with torques n x f^t, and with the contact-point arm
@@ -303,6 +305,12 @@ class Dynamics {
   std::size_t parallel_min_particles = 20000;
   bool threaded() const { return size() >= parallel_min_particles && threads_available() > 1; }
   static int threads_available();  // omp_get_max_threads(); 1 without OpenMP
+  // From this many particles on, what a step writes whole for a later pass to read -- the gather
+  // rows of the kick and drift, the forces and end arms a sampled step stores -- goes past the
+  // caches (simd::stream4): the step then streams more than the L3 holds before it is read back,
+  // and a plain store would first read each line from memory. Results do not depend on it.
+  std::size_t stream_min_particles = 65536;
+  bool streams() const { return size() >= stream_min_particles; }
 
   // ---- energies (J) ----
   // Each is a sum per layer (particles in index order, contacts in list order counted in the

@@ -318,6 +318,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   int scatter_mode = 0;
   double* sum_rows = nullptr;
   const bool keep_forces = plan.store_forces;
+  [[maybe_unused]] const bool stream = keep_forces && d.streams();  // the forces and end arms past the caches
 #ifdef GRANWAVE_GATHER_VECTORS
   if (!d.threaded()) {
     scatter_mode = scatter_mode_of(law.lever_arm());
@@ -411,7 +412,12 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
         else
           scatter<3, Couples>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3],
                               o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2]);
-        if (keep_forces) {
+        if (keep_forces && stream) {  // past the caches (Dynamics::streams)
+          alignas(64) double arms[2 * kChunk];
+          end_arms_of_chunk(g, s1 - s0, cdelta + s0, arms);
+          for (int q = 0; q < 3; ++q) simd::stream_copy((q == 0 ? cfx : q == 1 ? cfy : cfz) + s0, o.col[q], s1 - s0);
+          simd::stream_copy(end_arms + 2 * s0, arms, 2 * (s1 - s0));
+        } else if (keep_forces) {
           for (std::int64_t u = 0; u < s1 - s0; ++u) {
             cfx[s0 + u] = o.col[0][u];
             cfy[s0 + u] = o.col[1][u];
@@ -423,9 +429,12 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
 #endif
     }
   };
-  if (scatter_mode != 0)
+  if (scatter_mode != 0) {
     range(0, nc, std::true_type{});
-  else
+#ifdef GRANWAVE_GATHER_VECTORS
+    if (stream) simd::fence_streams();
+#endif
+  } else
     in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
   return {scatter_mode == 0 ? 0 : scatter_mode + 1, Couples && scatter_mode != 0};
 }

@@ -46,7 +46,9 @@ using simd::load4, simd::store4, simd::transpose4, simd::V4;
 #endif
 
 // rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0. The rows of particles
-// [p0, p1), four at a time where it can (also the one-thread drift's, Dynamics::kick_drift).
+// [p0, p1), four at a time where it can (also the one-thread drift's, Dynamics::kick_drift);
+// Stream: past the caches (simd::stream4; the caller fences).
+template <bool Stream = false>
 GRANWAVE_ALWAYS_INLINE inline void fill_rows(const Dynamics& d, double* rows, std::int64_t p0, std::int64_t p1) {
   const std::int64_t n = static_cast<std::int64_t>(d.size());
   double* __restrict pos = rows;
@@ -60,12 +62,18 @@ GRANWAVE_ALWAYS_INLINE inline void fill_rows(const Dynamics& d, double* rows, st
   for (; p + 4 <= p1; p += 4) {
     const V4 zero{0.0, 0.0, 0.0, 0.0};
     V4 r0, r1, r2, r3;
+    auto put = [](double* q, const V4& c0, const V4& c1, const V4& c2, const V4& c3) GRANWAVE_ALWAYS_INLINE {
+      if constexpr (Stream)
+        simd::stream4(q, c0), simd::stream4(q + 4, c1), simd::stream4(q + 8, c2), simd::stream4(q + 12, c3);
+      else
+        store4(q, c0), store4(q + 4, c1), store4(q + 8, c2), store4(q + 12, c3);
+    };
     transpose4(load4(x + p), load4(y + p), load4(z + p), load4(a + p), r0, r1, r2, r3);
-    store4(pos + 4 * p, r0), store4(pos + 4 * p + 4, r1), store4(pos + 4 * p + 8, r2), store4(pos + 4 * p + 12, r3);
+    put(pos + 4 * p, r0, r1, r2, r3);
     transpose4(load4(vx + p), load4(vy + p), load4(vz + p), zero, r0, r1, r2, r3);
-    store4(vel + 4 * p, r0), store4(vel + 4 * p + 4, r1), store4(vel + 4 * p + 8, r2), store4(vel + 4 * p + 12, r3);
+    put(vel + 4 * p, r0, r1, r2, r3);
     transpose4(load4(wx + p), load4(wy + p), load4(wz + p), zero, r0, r1, r2, r3);
-    store4(rot + 4 * p, r0), store4(rot + 4 * p + 4, r1), store4(rot + 4 * p + 8, r2), store4(rot + 4 * p + 12, r3);
+    put(rot + 4 * p, r0, r1, r2, r3);
   }
 #endif
   for (; p < p1; ++p) {

@@ -334,6 +334,7 @@ Drift Dynamics::kick_drift(std::int64_t from) {
     double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
                                                                                                 : nullptr;
     V4m far4{0, 0, 0, 0};
+    const bool stream = rows && streams();
     std::int64_t p = std::max(p0, from);
     for (; p + 4 <= p1; p += 4) {
       const V4m m = mobile4(on, p);
@@ -347,8 +348,10 @@ Drift Dynamics::kick_drift(std::int64_t from) {
           store4(w + p, kicked4<1>(load4(w + p), load4(t + p), m, hv, iiv));
       }
       far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
-      if (rows) kernel::fill_rows(*this, rows, p, p + 4);  // the contact pass's rows of these four
+      if (rows)  // the contact pass's rows of these four
+        stream ? kernel::fill_rows<true>(*this, rows, p, p + 4) : kernel::fill_rows<false>(*this, rows, p, p + 4);
     }
+    if (stream) simd::fence_streams();
     far = range(p, p1);
     far |= far4[0] | far4[1] | far4[2] | far4[3];
     if (rows) kernel::fill_rows(*this, rows, p, p1);
@@ -375,6 +378,7 @@ Drift Dynamics::finish_kick_drift() {
   double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t | couples
   double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
   const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
+  const bool stream = rows && streams();
   // Particles [q0, q1) (a multiple of four); whether one of them left half the skin.
   auto fours = [=, this](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
     V4m far4{0, 0, 0, 0};
@@ -394,8 +398,9 @@ Drift Dynamics::finish_kick_drift() {
           store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
       }
       far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
-      if (rows) kernel::fill_rows(*this, rows, p, p + 4);
+      if (rows) stream ? kernel::fill_rows<true>(*this, rows, p, p + 4) : kernel::fill_rows<false>(*this, rows, p, p + 4);
     }
+    if (stream) simd::fence_streams();
     return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
   };
   const std::int64_t p = n / 4 * 4;

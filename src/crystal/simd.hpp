@@ -8,6 +8,9 @@
 // passes four at a time -- is written here, in crystal/kernel_gather.hpp and crystal/passes.cpp.
 #pragma once
 #include <cstdint>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "core/inline.hpp"
 
@@ -46,6 +49,33 @@ GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const 
   c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
   c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
   c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+
+// Stores past the caches (non-temporal), for what a pass writes whole and the next pass or sample
+// reads only after more than the caches hold has gone through them (Dynamics::streams()): they
+// save the read of each line a plain store makes first. The same values as store4; 16-byte
+// aligned addresses (operator new's); fence_streams() before another thread reads them.
+GRANWAVE_ALWAYS_INLINE inline void stream4(double* p, const V4& v) {
+#ifdef __SSE2__
+  _mm_stream_pd(p, __m128d{v[0], v[1]});
+  _mm_stream_pd(p + 2, __m128d{v[2], v[3]});
+#else
+  store4(p, v);
+#endif
+}
+// dst[0 .. n) = src[0 .. n), past the caches (dst 16-byte aligned).
+GRANWAVE_ALWAYS_INLINE inline void stream_copy(double* dst, const double* src, std::int64_t n) {
+  std::int64_t u = 0;
+#ifdef __SSE2__
+  for (; u + 2 <= n; u += 2) _mm_stream_pd(dst + u, _mm_loadu_pd(src + u));
+#endif
+  for (; u < n; ++u) dst[u] = src[u];
+}
+inline void fence_streams() {
+#ifdef __SSE2__
+  _mm_sfence();
+#endif
 }
 
 }  // namespace granwave::crystal::simd

@@ -75,11 +75,30 @@ TEST_CASE("simd: transpose4, mask4 and widened floats = their scalar twins", "[c
   for (int q = 0; q < 4; ++q) CHECK(same_bits(w[q], static_cast<double>(f[1 + q])));
 }
 
+TEST_CASE("simd: stream_copy = the values copied one at a time", "[crystal][simd]") {
+  const std::vector<double> v = mixed_values(37, 5);
+  for (const std::int64_t n : {0, 1, 2, 7, 37}) {
+    std::vector<double> out(38, 1.0);
+    simd::stream_copy(out.data(), v.data(), n);
+    simd::fence_streams();
+    for (std::int64_t u = 0; u < n; ++u) CHECK(same_bits(out[u], v[u]));
+    CHECK(out[n] == 1.0);  // nothing beyond
+  }
+}
+
 TEST_CASE("simd: the particle rows (fill_rows) = the state copied one value at a time", "[crystal][simd]") {
-  for (const std::size_t n : {std::size_t{4}, std::size_t{13}, std::size_t{30}}) {
+  // Plain stores, and stores past the caches (simd::stream4) into rows whose four particles are
+  // one cache line apart (the AlignedAllocator of Dynamics::gather_rows) or only 16 bytes aligned.
+  for (const std::size_t n : {std::size_t{4}, std::size_t{13}, std::size_t{30}})
+  for (const int route : {0, 1, 2}) {
     const Dynamics d = particles(n);
-    std::vector<double> rows(12 * n, 1.0);
-    kernel::fill_rows(d, rows.data(), 0, static_cast<std::int64_t>(n));
+    std::vector<double> storage(12 * n + 2, 1.0);
+    std::vector<double, AlignedAllocator<double>> lined(12 * n, 1.0);
+    double* rows = route == 0 ? storage.data() : route == 1 ? lined.data() : storage.data() + 2;
+    if (route == 0)
+      kernel::fill_rows(d, rows, 0, static_cast<std::int64_t>(n));
+    else
+      kernel::fill_rows<true>(d, rows, 0, static_cast<std::int64_t>(n)), simd::fence_streams();
     for (std::size_t p = 0; p < n; ++p) {
       const double want[12] = {d.x[p], d.y[p], d.z[p], d.radius[p], d.vx[p], d.vy[p],
                                d.vz[p], 0.0,    d.wx[p], d.wy[p],     d.wz[p], 0.0};
