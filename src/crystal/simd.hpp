@@ -5,7 +5,8 @@
 // (tests/unit/crystal_simd.cpp checks each routine against its twin). The contact laws never see
 // these types: the contact passes vectorise the laws' scalar code (crystal/kernel.hpp), and only
 // the data movement around them -- the gather into columns, the scatter into rows, the particle
-// passes four at a time -- is written here, in crystal/kernel_gather.hpp and crystal/passes.cpp.
+// passes four at a time, and the stores past the caches of a crystal beyond the L3 -- is written
+// here, in crystal/kernel_gather.hpp and crystal/passes.cpp.
 #pragma once
 #include <cstdint>
 #ifdef __SSE2__
@@ -50,7 +51,6 @@ GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const 
   c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
   c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
-
 
 // Stores past the caches (non-temporal), for what a pass writes whole and the next pass or sample
 // reads only after more than the caches hold has gone through them (Dynamics::streams()): they
