@@ -121,6 +121,20 @@ RouteLaws route_laws() {
   }
   return r;
 }
+// Every law of route_laws: the three, then the three with rolling and torsion.
+std::vector<contact::LawParams> all_laws(const RouteLaws& r) {
+  std::vector<contact::LawParams> laws{r.radius, r.contact_point, r.hertz};
+  laws.insert(laws.end(), r.rolling.begin(), r.rolling.end());
+  return laws;
+}
+// The disturbed velocities, and spins so fast that the surfaces slide past each other at ~0.3 m/s
+// (contacts slip).
+void set_sliding_motion(crystal::Dynamics& d, const Disturbed& base) {
+  for (std::size_t q = 0; q < base.p.size(); ++q) {
+    d.vx[q] = base.v[3 * q], d.vy[q] = base.v[3 * q + 1], d.vz[q] = base.v[3 * q + 2];
+    d.wx[q] = 300 * base.w[3 * q], d.wy[q] = 300 * base.w[3 * q + 1], d.wz[q] = 300 * base.w[3 * q + 2];
+  }
+}
 }  // namespace
 
 TEST_CASE("same forces after a shift across the periodic faces and after reordering", "[crystal][static]") {
@@ -259,21 +273,16 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
   // the last bit, for both lever arms, a sliding law (deferred contacts) and Hertz-Mindlin.
   // The threaded route needs OpenMP with two threads.
   test_support::require_openmp_threads(2, "the two-pass route");
-  const auto [c, radius, contact_point, hertz, rolling] = route_laws();
+  const RouteLaws r = route_laws();
+  const config::Case& c = r.c;
   const Disturbed base = disturb(crystal::make_packing(c));
-  std::vector<contact::LawParams> laws{radius, contact_point, hertz};
-  laws.insert(laws.end(), rolling.begin(), rolling.end());
-  for (const contact::LawParams& cp : laws) {
+  for (const contact::LawParams& cp : all_laws(r)) {
     const auto model = crystal::case_model(cp, c.crystal->density);
     crystal::Dynamics one(base.p, model, 2e-7), two(base.p, model, 2e-7);
     one.parallel_min_particles = ~std::size_t{0};  // one thread: the scatter
     two.parallel_min_particles = 0;                // the two-pass route (any number of threads)
     for (auto* d : {&one, &two}) {
-      for (std::size_t q = 0; q < base.p.size(); ++q) {
-        d->vx[q] = base.v[3 * q], d->vy[q] = base.v[3 * q + 1], d->vz[q] = base.v[3 * q + 2];
-        // fast spins: surfaces slide past each other at ~0.3 m/s, so contacts slip
-        d->wx[q] = 300 * base.w[3 * q], d->wy[q] = 300 * base.w[3 * q + 1], d->wz[q] = 300 * base.w[3 * q + 2];
-      }
+      set_sliding_motion(*d, base);
       // the scatter does not need the contact forces; the last step stores them
       for (int s = 0; s < 100; ++s) d->step(s == 99);
     }
@@ -305,7 +314,8 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   // all five row layouts of the sums (no torques; radius arm; contact-point arm; either with the
   // couples' row), a sliding law, Hertz-Mindlin, and a crystal whose particle count is not a
   // multiple of four.
-  const auto [c, radius, contact_point, hertz, rolling] = route_laws();
+  const RouteLaws r = route_laws();
+  const config::Case& c = r.c;
   contact::LawParams frictionless = c.contact;
   frictionless.set_number("kt", 0.0);
   const crystal::Packing whole = crystal::make_packing(c);
@@ -320,17 +330,14 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   REQUIRE(short_of_three.fixed.back() == 1);
   for (const crystal::Packing* packing : {&whole, static_cast<const crystal::Packing*>(&short_of_three)}) {
     const Disturbed base = disturb(*packing);
-    std::vector<contact::LawParams> laws{frictionless, radius, contact_point, hertz};
-    laws.insert(laws.end(), rolling.begin(), rolling.end());
+    std::vector<contact::LawParams> laws{frictionless};
+    for (const contact::LawParams& cp : all_laws(r)) laws.push_back(cp);
     for (const contact::LawParams& cp : laws) {
       const auto model = crystal::case_model(cp, c.crystal->density);
       crystal::Dynamics stepped(base.p, model, 2e-7), advanced(base.p, model, 2e-7);
       for (auto* d : {&stepped, &advanced}) {
         d->parallel_min_particles = ~std::size_t{0};  // one thread: the fused route
-        for (std::size_t q = 0; q < base.p.size(); ++q) {
-          d->vx[q] = base.v[3 * q], d->vy[q] = base.v[3 * q + 1], d->vz[q] = base.v[3 * q + 2];
-          d->wx[q] = 300 * base.w[3 * q], d->wy[q] = 300 * base.w[3 * q + 1], d->wz[q] = 300 * base.w[3 * q + 2];
-        }
+        set_sliding_motion(*d, base);
       }
       for (int s = 0; s < 60; ++s) stepped.step();
       advanced.advance(1);
@@ -357,22 +364,17 @@ TEST_CASE("stores past the caches (a crystal beyond the L3) give the same bits a
   // land in the same places: here the switch is lowered to 0 on a small crystal and every state,
   // force, layer stress and energy agrees with plain stores to the last bit, for both lever arms,
   // Hertz-Mindlin and rolling with torsion (the laws whose contact pass reads the rows).
-  const auto [c, radius, contact_point, hertz, rolling] = route_laws();
-  const Disturbed base = disturb(crystal::make_packing(c));
-  std::vector<contact::LawParams> laws{radius, contact_point, hertz};
-  laws.insert(laws.end(), rolling.begin(), rolling.end());
-  for (const contact::LawParams& cp : laws) {
-    const auto model = crystal::case_model(cp, c.crystal->density);
+  const RouteLaws r = route_laws();
+  const Disturbed base = disturb(crystal::make_packing(r.c));
+  for (const contact::LawParams& cp : all_laws(r)) {
+    const auto model = crystal::case_model(cp, r.c.crystal->density);
     crystal::Dynamics plain(base.p, model, 2e-7), streamed(base.p, model, 2e-7);
     plain.stream_min_particles = ~std::size_t{0};
     streamed.stream_min_particles = 0;
     std::vector<double> zz[2], zx[2];
     for (auto* d : {&plain, &streamed}) {
       d->parallel_min_particles = ~std::size_t{0};  // one thread: the route that writes the rows
-      for (std::size_t q = 0; q < base.p.size(); ++q) {
-        d->vx[q] = base.v[3 * q], d->vy[q] = base.v[3 * q + 1], d->vz[q] = base.v[3 * q + 2];
-        d->wx[q] = 300 * base.w[3 * q], d->wy[q] = 300 * base.w[3 * q + 1], d->wz[q] = 300 * base.w[3 * q + 2];
-      }
+      set_sliding_motion(*d, base);
       for (int k = 0; k < 4; ++k) d->advance(25);  // fused steps, each 25th stores the forces (a sample)
       const int r = d == &plain ? 0 : 1;
       crystal::layer_stress(*d, zz[r], zx[r]);  // from the end arms the last pass stored
