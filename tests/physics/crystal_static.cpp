@@ -376,8 +376,8 @@ TEST_CASE("stores past the caches (a crystal beyond the L3) give the same bits a
       d->parallel_min_particles = ~std::size_t{0};  // one thread: the route that writes the rows
       set_sliding_motion(*d, base);
       for (int k = 0; k < 4; ++k) d->advance(25);  // fused steps, each 25th stores the forces (a sample)
-      const int r = d == &plain ? 0 : 1;
-      crystal::layer_stress(*d, zz[r], zx[r]);  // from the end arms the last pass stored
+      const int route = d == &plain ? 0 : 1;
+      crystal::layer_stress(*d, zz[route], zx[route]);  // from the end arms the last pass stored
     }
     CHECK(!plain.streams());  // the routes really differ
     CHECK(streamed.streams());
