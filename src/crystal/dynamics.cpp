@@ -91,13 +91,11 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   packing_.layer = part(packing.layer);
   packing_.fixed = part(packing.fixed);
   if (!packing.role.empty()) packing_.role = part(packing.role);
-  x = x0 = part(packing.x);
-  y = y0 = part(packing.y);
-  z = z0 = part(packing.z);
+  auto take = [&](auto& to, const auto& from) { to.assign(from.begin() + lo, from.begin() + hi); };
+  take(x, packing.x), take(y, packing.y), take(z, packing.z);
+  x0 = x, y0 = y, z0 = z;
   for (auto* v : {&vx, &vy, &vz, &wx, &wy, &wz, &fx, &fy, &fz, &tx, &ty, &tz}) v->assign(n, 0.0);
-  radius = part(packing.radius);
-  mass = part(packing.mass);
-  inertia = part(packing.inertia);
+  take(radius, packing.radius), take(mass, packing.mass), take(inertia, packing.inertia);
   inv_mass.resize(n);
   inv_inertia.resize(n);
   mobile.resize(n);
@@ -172,7 +170,7 @@ double Dynamics::max_displacement_since_build() const {
 void Dynamics::exchange_halo() {
   if (!slab_) return;
   const std::size_t nf = torques_ ? 9 : 6;  // an angular velocity only for a law with torques
-  std::array<std::vector<double>*, 9> f{&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz};
+  std::array<SpreadVector<double>*, 9> f{&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz};
   auto pack = [&](std::vector<double>& buf, std::size_t first, std::size_t count) {
     buf.resize(nf * count);
     for (std::size_t k = 0; k < nf; ++k) std::copy_n(f[k]->data() + first, count, buf.data() + k * count);
@@ -235,10 +233,10 @@ void Dynamics::rebuild() {
   if (old.losses_booked) add_dissipated(dissipated_before_.data(), old);  // per layer: no message
   ContactList fresh;
   const std::size_t nc = pairs.size();
-  fresh.i = std::move(pairs.i);
-  fresh.j = std::move(pairs.j);
-  fresh.image_x = std::move(pairs.image_x);
-  fresh.image_y = std::move(pairs.image_y);
+  fresh.i.assign(pairs.i.begin(), pairs.i.end());
+  fresh.j.assign(pairs.j.begin(), pairs.j.end());
+  fresh.image_x.assign(pairs.image_x.begin(), pairs.image_x.end());
+  fresh.image_y.assign(pairs.image_y.begin(), pairs.image_y.end());
   for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
   const std::size_t nh = model_->history_columns();
   fresh.history_columns = nh;

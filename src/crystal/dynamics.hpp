@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "config/case.hpp"
-#include "core/aligned_allocator.hpp"
+#include "core/spread_allocator.hpp"
 #include "core/error.hpp"
 #include "contact/lever_arm.hpp"
 #include "crystal/layer_sums.hpp"
@@ -33,20 +33,20 @@ namespace granwave::crystal {
 
 // Per-contact arrays, indexed like the pair list.
 struct ContactList {
-  std::vector<std::int32_t> i, j;
-  std::vector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y (|image| <= 127)
-  std::vector<double> delta;               // overlap at the last evaluation (<= 0: open)
-  std::vector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see ContactPassPlan::store_forces)
-  std::vector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
+  SpreadVector<std::int32_t> i, j;
+  SpreadVector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y (|image| <= 127)
+  SpreadVector<double> delta;               // overlap at the last evaluation (<= 0: open)
+  SpreadVector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see ContactPassPlan::store_forces)
+  SpreadVector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
                                            // threaded runs of a law with torques only (else empty)
-  std::vector<double> couple_x, couple_y, couple_z;  // a law with couples (rolling, torsion): the torque
+  SpreadVector<double> couple_x, couple_y, couple_z;  // a law with couples (rolling, torsion): the torque
                                                      // on i beyond -arm_i n x f^t, j gets minus it (else empty)
-  std::vector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
+  SpreadVector<double> dissipated;          // cumulative dissipated energy since the last rebuild (J)
   // false: every entry of `dissipated` is still the +0.0 of the list's build, so sums of them may be
   // skipped (x + 0.0 = x). Set by a contact pass that may write one (kernel.hpp).
   bool losses_booked = false;
   // The law's history (contact/law.hpp), column by column: history[k * size() + c].
-  std::vector<double> history;
+  SpreadVector<double> history;
   std::size_t history_columns = 0;
   double* history_column(std::size_t k) { return history.data() + k * size(); }
   const double* history_column(std::size_t k) const { return history.data() + k * size(); }
@@ -194,30 +194,30 @@ class Dynamics {
            const SlabPlan* slab = nullptr);
 
   // ---- state (SoA; public so observers and tests can read and set it) ----
-  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;  // positions (unwrapped), velocities, angular velocities
-  std::vector<double> fx, fy, fz, tx, ty, tz;           // total force and torque at the current time
-  std::vector<double> x0, y0, z0;                       // positions of the packing (for displacements)
-  std::vector<double> radius, mass, inv_mass, inv_inertia, inertia;
-  std::vector<std::uint8_t> mobile;                     // 1 = integrated
+  SpreadVector<double> x, y, z, vx, vy, vz, wx, wy, wz;  // positions (unwrapped), velocities, angular velocities
+  SpreadVector<double> fx, fy, fz, tx, ty, tz;           // total force and torque at the current time
+  SpreadVector<double> x0, y0, z0;                       // positions of the packing (for displacements)
+  SpreadVector<double> radius, mass, inv_mass, inv_inertia, inertia;
+  SpreadVector<std::uint8_t> mobile;                     // 1 = integrated
   ContactList contacts;
   // The contact pass's copy of the particle state it reads, as rows of four doubles
   // (crystal/kernel.hpp's gather), refreshed at every pass (or by the one-thread drift, then
   // Drift::rows_fresh): 96 bytes per particle with a law with torques, empty otherwise; each
   // four particles' rows whole cache lines (streams()).
-  std::vector<double, AlignedAllocator<double>> gather_rows;
+  SpreadVector<double> gather_rows;
   // Per-particle sums of a contact pass that scatters (crystal/kernel.hpp: on one thread, and a
   // law without torques on threads too), rows of four
   // doubles: f, and with a law with torques n x f^t, and with the contact-point arm
   // delta n x f^t, and with a law with couples their sum (each kind a block of 4 size() doubles);
   // read and zeroed by the particle pass. 32 to 128 bytes per particle; empty when a law with
   // torques runs threaded.
-  std::vector<double> contact_sums;
+  SpreadVector<double> contact_sums;
   // The lever arms times u_z of every contact's ends, (a_i - delta/2) u_z at 2c and (a_j - delta/2)
   // u_z at 2c + 1, +0.0 for an open contact (the layer stress's terms, crystal/simulation.cpp):
   // written with the forces by a one-thread contact pass of a law with torques, while the
   // contact's values are in L1 (then end_arms_stored), so the sample's layer stress needs no walk
   // over the contacts of its own. 16 bytes per contact (the layer stress's scratch otherwise).
-  std::vector<double> end_arms;
+  SpreadVector<double> end_arms;
   bool end_arms_stored = false;
   // One end's entry of end_arms: (a - delta/2) u_z, +0.0 for an open contact (delta <= 0), whose
   // force is +0.0, so its terms subtract zeros (x - (+-0) = x for every sum not -0). Both routes
@@ -398,7 +398,7 @@ class Dynamics {
   std::vector<double> send_below_, recv_below_, send_above_, recv_above_;
   // Displacements from x0 at the last list build, in single precision (memory): the skin test
   // needs them to ~1e-13 m, float gives 6e-8 of a displacement.
-  std::vector<float> x_build_, y_build_, z_build_;
+  SpreadVector<float> x_build_, y_build_, z_build_;
 };
 
 // Frictionless relaxation of a packing (FIRE, Bitzek et al. 2006, on the mobile particles; the

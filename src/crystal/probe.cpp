@@ -141,8 +141,8 @@ void apply_affine(Dynamics& d, ProbeStrain s, double e, double z_origin) {
     moving.rate_shift = e * box_y / dt;
   }
   d.set_box(new_x, new_y, moving);
-  std::vector<double>* pos[3] = {&d.x, &d.y, &d.z};
-  std::vector<double>* vel[3] = {&d.vx, &d.vy, &d.vz};
+  SpreadVector<double>* pos[3] = {&d.x, &d.y, &d.z};
+  SpreadVector<double>* vel[3] = {&d.vx, &d.vy, &d.vz};
   for (std::size_t p = 0; p < d.size(); ++p) {
     const double xg = (*pos[g])[p] - (g == 2 ? z_origin : 0.0);
     const double u = e * xg;
@@ -159,8 +159,8 @@ void apply_affine(Dynamics& d, ProbeStrain s, double e, double z_origin) {
 
 // Over the touching contacts of d: all, or (pairs_only) those of two particles not mobile in `held`.
 // X, Y, Z: the unstrained positions (B); bx, by: the unstrained box (not sheared); b from d's box.
-void add_stress(StressSum& out, const Dynamics& d, const std::vector<double>& X, const std::vector<double>& Y,
-                const std::vector<double>& Z, double bx, double by, const std::vector<std::uint8_t>* held,
+void add_stress(StressSum& out, const Dynamics& d, const SpreadVector<double>& X, const SpreadVector<double>& Y,
+                const SpreadVector<double>& Z, double bx, double by, const SpreadVector<std::uint8_t>* held,
                 const Packing& pk, double mu) {
   const ContactList& cl = d.contacts;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y, shift_x = d.images().shift_x;

@@ -74,7 +74,7 @@ Oscillation oscillate(const contact::LawParams& cp, double omega, int axis, bool
   crystal::Dynamics dyn(pk, crystal::case_model(cp, rho), dt);
   REQUIRE(dyn.torques());
   const double w0 = 3.0;
-  std::vector<double>* w[3] = {&dyn.wx, &dyn.wy, &dyn.wz};
+  SpreadVector<double>* w[3] = {&dyn.wx, &dyn.wy, &dyn.wz};
   (*w[axis])[1] = w0;
   dyn.compute_forces_of_state();
   for (int n = 1; n <= 700; ++n) {
@@ -85,8 +85,8 @@ Oscillation oscillate(const contact::LawParams& cp, double omega, int axis, bool
     // The sphere does not move; pure couples add to zero over the three spheres.
     REQUIRE(dyn.vx[1] == 0.0);
     REQUIRE(std::abs(dyn.vz[1]) < 1e-12);
-    const std::vector<double>* t[3] = {&dyn.tx, &dyn.ty, &dyn.tz};
-    const std::vector<double>& tq = *t[axis];
+    const SpreadVector<double>* t[3] = {&dyn.tx, &dyn.ty, &dyn.tz};
+    const SpreadVector<double>& tq = *t[axis];
     if (pure) REQUIRE(std::abs(tq[0] + tq[1] + tq[2]) <= 1e-15 * std::abs(tq[1]) + 1e-300);
   }
   return o;

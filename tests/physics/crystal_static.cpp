@@ -211,7 +211,7 @@ TEST_CASE("results do not depend on the number of threads", "[crystal][static][r
     serial.parallel_min_particles = ~std::size_t{0};  // never threaded
     threaded.parallel_min_particles = 0;               // always (as many threads as OpenMP gives)
     for (auto* d : {&serial, &threaded}) {
-      d->vz = std::vector<double>(base.p.size(), 0.0);
+      d->vz.assign(base.p.size(), 0.0);
       for (std::size_t q = 0; q < base.p.size(); ++q) d->vz[q] = base.v[3 * q + 2];
       for (int s = 0; s < 200; ++s) d->step();
     }

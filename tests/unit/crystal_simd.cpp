@@ -48,7 +48,10 @@ Dynamics particles(std::size_t n) {
   REQUIRE(d.size() >= n);
   for (auto* v : {&d.x, &d.y, &d.z, &d.vx, &d.vy, &d.vz, &d.wx, &d.wy, &d.wz, &d.radius}) v->resize(n);
   int seed = 1;
-  for (auto* v : {&d.x, &d.y, &d.z, &d.vx, &d.vy, &d.vz, &d.wx, &d.wy, &d.wz, &d.radius}) *v = mixed_values(n, seed++);
+  for (auto* v : {&d.x, &d.y, &d.z, &d.vx, &d.vy, &d.vz, &d.wx, &d.wy, &d.wz, &d.radius}) {
+    const std::vector<double> m = mixed_values(n, seed++);
+    v->assign(m.begin(), m.end());
+  }
   return d;
 }
 
@@ -88,12 +91,12 @@ TEST_CASE("simd: stream_copy = the values copied one at a time", "[crystal][simd
 
 TEST_CASE("simd: the particle rows (fill_rows) = the state copied one value at a time", "[crystal][simd]") {
   // Plain stores, and stores past the caches (simd::stream4) into rows whose four particles are
-  // one cache line apart (the AlignedAllocator of Dynamics::gather_rows) or only 16 bytes aligned.
+  // one cache line apart (the SpreadAllocator of Dynamics::gather_rows) or only 16 bytes aligned.
   for (const std::size_t n : {std::size_t{4}, std::size_t{13}, std::size_t{30}})
   for (const int route : {0, 1, 2}) {
     const Dynamics d = particles(n);
     std::vector<double> storage(12 * n + 2, 1.0);
-    std::vector<double, AlignedAllocator<double>> lined(12 * n, 1.0);
+    SpreadVector<double> lined(12 * n, 1.0);
     double* rows = route == 0 ? storage.data() : route == 1 ? lined.data() : storage.data() + 2;
     if (route == 0)
       kernel::fill_rows(d, rows, 0, static_cast<std::int64_t>(n));
