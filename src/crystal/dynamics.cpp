@@ -233,10 +233,10 @@ void Dynamics::rebuild() {
   if (old.losses_booked) add_dissipated(dissipated_before_.data(), old);  // per layer: no message
   ContactList fresh;
   const std::size_t nc = pairs.size();
-  fresh.i.assign(pairs.i.begin(), pairs.i.end());
-  fresh.j.assign(pairs.j.begin(), pairs.j.end());
-  fresh.image_x.assign(pairs.image_x.begin(), pairs.image_x.end());
-  fresh.image_y.assign(pairs.image_y.begin(), pairs.image_y.end());
+  fresh.i = std::move(pairs.i);
+  fresh.j = std::move(pairs.j);
+  fresh.image_x = std::move(pairs.image_x);
+  fresh.image_y = std::move(pairs.image_y);
   for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
   const std::size_t nh = model_->history_columns();
   fresh.history_columns = nh;

@@ -6,11 +6,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/spread_allocator.hpp"
+
 namespace granwave::crystal {
 
+// In the contact list's storage (crystal/dynamics.hpp), which takes the columns over as they are.
 struct PairList {
-  std::vector<std::int32_t> i, j;          // i < j
-  std::vector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y
+  SpreadVector<std::int32_t> i, j;          // i < j
+  SpreadVector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y
   std::size_t size() const { return i.size(); }
 };
 
