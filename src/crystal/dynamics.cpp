@@ -57,7 +57,8 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   // The particles held: all, or this rank's slab and halo (a contiguous range).
   const std::size_t lo = slab ? slab->held_lo : 0, hi = slab ? slab->held_hi : packing.size();
   const std::size_t n = hi - lo;
-  auto part = [&](const auto& v) { return std::decay_t<decltype(v)>(v.begin() + lo, v.begin() + hi); };
+  // The held range [lo, hi) of a packing's per-particle array, into `to` (whatever its storage).
+  auto take = [&](auto& to, const auto& from) { to.assign(from.begin() + lo, from.begin() + hi); };
   offset_ = lo;
   own_lo_ = slab ? slab->own_lo - lo : 0;
   own_hi_ = slab ? slab->own_hi - lo : n;
@@ -88,10 +89,9 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   packing_.bin_width = packing.bin_width;
   packing_.source_thickness = packing.source_thickness;
   packing_.relax_unbalanced = packing.relax_unbalanced;
-  packing_.layer = part(packing.layer);
-  packing_.fixed = part(packing.fixed);
-  if (!packing.role.empty()) packing_.role = part(packing.role);
-  auto take = [&](auto& to, const auto& from) { to.assign(from.begin() + lo, from.begin() + hi); };
+  take(packing_.layer, packing.layer);
+  take(packing_.fixed, packing.fixed);
+  if (!packing.role.empty()) take(packing_.role, packing.role);
   take(x, packing.x), take(y, packing.y), take(z, packing.z);
   x0 = x, y0 = y, z0 = z;
   for (auto* v : {&vx, &vy, &vz, &wx, &wy, &wz, &fx, &fy, &fz, &tx, &ty, &tz}) v->assign(n, 0.0);
