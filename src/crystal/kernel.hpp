@@ -475,11 +475,10 @@ class LawModel final : public ContactModel {
       stored_energy(sum.at(layer[C.i[c]]), C.delta[c], contact::history_from<History>(h), radius[C.i[c]], radius[C.j[c]]);
     }
   }
-  // Two layers' sums side by side (layer_chains: more streams cost more than they gain here,
-  // docs/design.md §2.8); an open contact adds nothing (a select). The law's terms (its e += t, in
-  // its order) are made first for every contact in a loop that vectorises (Hertz-Mindlin's root
-  // four contacts at a time, not one by one in the chains), then the chains add them: the same
-  // terms in the same order, the same bits.
+  // The law's terms (its e += t, in its order) made first in a loop that vectorises (Hertz-Mindlin's
+  // root four contacts at a time), then added by two layers' sums side by side (layer_chains: more
+  // streams cost more than they gain, docs/design.md §2.8), an open contact adding nothing (a
+  // select): the same terms in the same order, the same bits. A block of layers at a time.
   void add_stored_energy(double* per_layer, const ContactList& C, const LayerLists& by_layer,
                          const double* radius) const override {
     if constexpr (records_terms) {
@@ -535,34 +534,52 @@ class LawModel final : public ContactModel {
     const double* delta = C.delta.data();
     const std::int32_t *pi = C.i.data(), *pj = C.j.data();
     const std::size_t nc = C.size();
-    const double* t = nullptr;  // [term][contact]
-    if constexpr (NT > 0) {
-      static thread_local std::vector<double> terms;  // no allocation per sample
-      if (terms.size() < NT * nc) terms.resize(NT * nc);
-      double* __restrict out = terms.data();
-      const double* __restrict dl = delta;
-      const double* __restrict rad = radius;
-#pragma GCC ivdep
-      for (std::size_t c = 0; c < nc; ++c) {
-        std::array<double, NH> h;
-        for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
-        EnergyTerms<NT> r;
-        stored_energy(r, dl[c], contact::history_from<History>(h), rad[pi[c]], rad[pj[c]]);
-        for (std::size_t k = 0; k < NT; ++k) out[k * nc + c] = r.t[k];
-      }
-      t = out;
-    }
-    layer_chains<2>(by_layer, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
-      double e = acc[0];
+    // The terms of contacts [c0, c1) into out[k * stride + c - c0] (a loop that vectorises).
+    auto make_terms = [&](std::size_t c0, std::size_t c1, double* __restrict out, std::size_t stride) {
       if constexpr (NT > 0) {
-        for (std::size_t k = 0; k < NT; ++k) e += t[k * nc + static_cast<std::size_t>(c)];
-      } else {
-        std::array<double, NH> h;
-        for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
-        stored_energy(e, delta[c], contact::history_from<History>(h), radius[pi[c]], radius[pj[c]]);
+        const double* __restrict dl = delta;
+        const double* __restrict rad = radius;
+#pragma GCC ivdep
+        for (std::size_t c = c0; c < c1; ++c) {
+          std::array<double, NH> h;
+          for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
+          EnergyTerms<NT> r;
+          stored_energy(r, dl[c], contact::history_from<History>(h), rad[pi[c]], rad[pj[c]]);
+          for (std::size_t k = 0; k < NT; ++k) out[k * stride + c - c0] = r.t[k];
+        }
       }
-      acc[0] = delta[c] <= 0.0 ? acc[0] : e;  // as `if (delta <= 0) continue` (NaN adds)
-    });
+    };
+    // Layers [L0, L1), their terms at t[k * stride + c - c0].
+    auto sums = [&](std::size_t L0, std::size_t L1, const double* t, std::size_t stride, std::size_t c0) {
+      layer_chains<2>(by_layer, L0, L1, std::array{per_layer}, [&](std::array<double, 1>& acc, std::int32_t c) {
+        double e = acc[0];
+        if constexpr (NT > 0) {
+          for (std::size_t k = 0; k < NT; ++k) e += t[k * stride + static_cast<std::size_t>(c) - c0];
+        } else {
+          std::array<double, NH> h;
+          for_columns<NH>([&](std::size_t q) { h[q] = column[q][c]; });
+          stored_energy(e, delta[c], contact::history_from<History>(h), radius[pi[c]], radius[pj[c]]);
+        }
+        acc[0] = delta[c] <= 0.0 ? acc[0] : e;  // as `if (delta <= 0) continue` (NaN adds)
+      });
+    };
+    static thread_local std::vector<double> terms;  // no allocation per sample
+    const std::size_t nl = by_layer.layers();
+    if (NT == 0 || !by_layer.consecutive) {  // every contact's terms, then every layer
+      if (terms.size() < NT * nc) terms.resize(NT * nc);
+      make_terms(0, nc, terms.data(), nc);
+      return sums(0, nl, terms.data(), nc, 0);
+    }
+    // Consecutive lists: a block's terms (about 2048 contacts) are still in cache for its sums.
+    const std::int32_t* first = by_layer.first.data();
+    for (std::size_t L0 = 0, L1; L0 < nl; L0 = L1) {
+      for (L1 = L0 + 1; L1 < nl && first[L1 + 1] - first[L0] <= 2048;) ++L1;
+      const std::size_t c0 = static_cast<std::size_t>(by_layer.base + first[L0]),
+                        n = static_cast<std::size_t>(first[L1] - first[L0]);
+      if (terms.size() < NT * n) terms.resize(NT * n);
+      make_terms(c0, c0 + n, terms.data(), n);
+      sums(L0, L1, terms.data(), n, c0);
+    }
   }
  private:
   template <class L>

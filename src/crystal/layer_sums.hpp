@@ -91,28 +91,32 @@ GRANWAVE_ALWAYS_INLINE inline void group(const LayerLists& ll, std::size_t L0, c
 }
 
 template <std::size_t G, bool Consecutive, std::size_t Q, class Add>
-void chains(const LayerLists& ll, const std::array<double*, Q>& s, const Add& add) {
-  const std::size_t nl = ll.layers();
-  std::size_t L = 0;
-  for (; L + G <= nl; L += G) group<G, Consecutive>(ll, L, s, add);
+void chains(const LayerLists& ll, std::size_t L, std::size_t L1, const std::array<double*, Q>& s, const Add& add) {
+  for (; L + G <= L1; L += G) group<G, Consecutive>(ll, L, s, add);
   if constexpr (G > 4)
-    for (; L + 4 <= nl; L += 4) group<4, Consecutive>(ll, L, s, add);
+    for (; L + 4 <= L1; L += 4) group<4, Consecutive>(ll, L, s, add);
   if constexpr (G > 2)
-    for (; L + 2 <= nl; L += 2) group<2, Consecutive>(ll, L, s, add);
-  for (; L < nl; ++L) group<1, Consecutive>(ll, L, s, add);
+    for (; L + 2 <= L1; L += 2) group<2, Consecutive>(ll, L, s, add);
+  for (; L < L1; ++L) group<1, Consecutive>(ll, L, s, add);
 }
 
 }  // namespace layer_sums
 
 // For every layer L and q < Q: s[q][L] is updated by add(acc, entry) for L's entries in order,
 // acc[q] holding the running s[q][L] (add must change acc[q] only from acc[q] and the entry).
-// G layers at a time, then the rest by 4, 2, 1.
+// G layers at a time, then the rest by 4, 2, 1. Layers [L0, L1):
+template <std::size_t G, std::size_t Q, class Add>
+void layer_chains(const LayerLists& ll, std::size_t L0, std::size_t L1, const std::array<double*, Q>& s,
+                  const Add& add) {
+  if (ll.consecutive)
+    layer_sums::chains<G, true>(ll, L0, L1, s, add);
+  else
+    layer_sums::chains<G, false>(ll, L0, L1, s, add);
+}
+// every layer:
 template <std::size_t G, std::size_t Q, class Add>
 void layer_chains(const LayerLists& ll, const std::array<double*, Q>& s, const Add& add) {
-  if (ll.consecutive)
-    layer_sums::chains<G, true>(ll, s, add);
-  else
-    layer_sums::chains<G, false>(ll, s, add);
+  layer_chains<G>(ll, 0, ll.layers(), s, add);
 }
 
 namespace kernel {
