@@ -31,9 +31,10 @@ class StoredEnergy {
     }
   }
   // The law's terms (its e += t, in its order) made first in a loop that vectorises (Hertz-Mindlin's
-  // root four contacts at a time), then added by two layers' sums side by side (layer_chains: more
-  // streams cost more than they gain, docs/design.md §2.8), an open contact adding nothing (a
-  // select): the same terms in the same order, the same bits. A block of layers at a time.
+  // root four contacts at a time), then added by two layers' sums side by side (layer_chains; more
+  // streams cost more than they gain, as measured for the layer stress in docs/benchmarks.md,
+  // session 29), an open contact adding nothing (a select): the same terms in the same order, the
+  // same bits. A block of layers at a time.
   void by_layers(double* per_layer, const ContactList& C, const LayerLists& by_layer, const double* radius) const {
     if constexpr (records_terms) {
       switch (energy_terms()) {
