@@ -178,7 +178,7 @@ set_tests_properties("cli: run --json of a Hertz-Mindlin crystal gives the latti
 add_test(NAME "cli: run --json counts the contact-list builds, the construction's included"
   COMMAND sh -c "${GW} run ${CMAKE_SOURCE_DIR}/tests/cli/cases/crystal_hertz_small.toml -o ${CLI_TMP}/builds.h5 --json > ${CLI_TMP}/builds.json && \
 /usr/bin/python3 -c \"import json; d = json.load(open('${CLI_TMP}/builds.json')); \
-assert d['contact_list_builds'] == 1, d['contact_list_builds']; assert d['coordination_end'] == d['coordination'], d\"")
+assert d['contact_list_builds'] == 1, d['contact_list_builds']; assert d['contact_list_relists'] == 0, d; assert d['coordination_end'] == d['coordination'], d\"")
 set_tests_properties("cli: run --json counts the contact-list builds, the construction's included" PROPERTIES LABELS "cli")
 # The time loop's phases (crystal::RunResult::phases): every name, the sum the loop's wall time
 # within 2 %, and one line of the text summary; `run --help` says what --quiet does. Bookkeeping,

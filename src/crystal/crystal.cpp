@@ -214,7 +214,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   // What the summary needs from the run; its series are freed before the analysis reads them back.
   double work_in = 0.0, dissipated = 0.0, residual = 0.0, shadow_residual = 0.0, seconds = 0.0;
   double coordination0 = 0.0, coordination_end = 0.0;
-  long steps = 0, rebuilds = 0;
+  long steps = 0, rebuilds = 0, relists = 0;
   std::size_t samples = 0;
   std::vector<double> rank_seconds, rank_message_seconds, rank_cpu_seconds, rank_message_cpu_seconds;
   PhaseTimes phases;
@@ -241,6 +241,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
     coordination_end = t["coordination"][last];
     steps = r.steps;
     rebuilds = r.rebuilds;
+    relists = r.relists;
     seconds = r.seconds;
     samples = t.samples();
     rank_seconds = r.rank_seconds;
@@ -285,6 +286,7 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
               {"coordination", coordination0},
               {"coordination_end", coordination_end},
               {"contact_list_builds", rebuilds},  // the construction's build included
+              {"contact_list_relists", relists},
               {"work_in", work_in},
               {"dissipated", dissipated},
               {"energy_residual", residual},
@@ -296,7 +298,8 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   } else {
     out << std::setprecision(5);
     out << "crystal " << c.name << ": " << packing.size() << " particles, " << steps << " steps in " << seconds << " s (" << pss
-        << " particle-steps/s), " << rebuilds << " contact-list builds\n";
+        << " particle-steps/s), " << rebuilds << " contact-list builds, " << relists
+        << " relists of the close pairs\n";
     out << "  " << phases_line(phases) << (ranks > 1 ? " (rank 0)" : "") << "\n";
     if (ranks > 1) {
       out << "  split over " << ranks << " MPI ranks (slabs of whole layers, docs/design.md §2.8); per rank, time loop"

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -113,8 +114,16 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   const double up = std::numeric_limits<double>::infinity();
   while (std::sqrt(std::nextafter(far2_, up)) <= half_skin) far2_ = std::nextafter(far2_, up);
   dissipated_before_.assign(static_cast<std::size_t>(std::max(0, packing.layers)), 0.0);
+  // A prepared packing's springs go into the whole Verlet list first: a spring of a pair beyond
+  // the margin is lost (and its energy booked) by the first contact pass, as it always was.
+  const bool springs = !packing.springs.empty();
+  list_margin_ = springs ? skin_ : 0.25 * skin_;
   rebuild();
-  if (!packing.springs.empty()) seed_springs(packing.springs);
+  if (springs) {
+    seed_springs(packing.springs);
+    list_margin_ = 0.25 * skin_;
+    relist();
+  }
   compute_forces(dt_, true);
 }
 
@@ -143,6 +152,27 @@ void Dynamics::set_box(double box_x, double box_y, const ImageMotion& images) {
   packing_.box_x = box_x;
   packing_.box_y = box_y;
   images_ = images;
+  if (images_.any() && near2_ != std::numeric_limits<double>::infinity()) relist();  // every pair: the images move
+}
+
+void Dynamics::set_list_margin(double margin) {
+  if (!(margin > 0.0 && margin < std::numeric_limits<double>::infinity()))
+    throw InputError("the contact list's margin must be > 0 and finite (m)");
+  list_margin_ = margin;
+  relist();
+}
+
+void Dynamics::relist() { make_list(false); }
+
+void Dynamics::relist_if_moved() {
+  if (near2_ == std::numeric_limits<double>::infinity()) return;
+  const SpreadVector<float>&xr = relist_x(), &yr = relist_y(), &zr = relist_z();
+  bool near = false;
+  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
+    const double dx = (x[p] - x0[p]) - xr[p], dy = (y[p] - y0[p]) - yr[p], dz = (z[p] - z0[p]) - zr[p];
+    near |= dx * dx + dy * dy + dz * dz > near2_;
+  }
+  if (near) relist();
 }
 
 void Dynamics::set_mobile(std::size_t p, bool on) {
@@ -229,44 +259,8 @@ void Dynamics::rebuild() {
     for (auto* v : {&pairs.i, &pairs.j}) v->resize(k);
     for (auto* v : {&pairs.image_x, &pairs.image_y}) v->resize(k);
   }
-  ContactList& old = contacts;
-  if (old.losses_booked) add_dissipated(dissipated_before_.data(), old);  // per layer: no message
-  ContactList fresh;
-  const std::size_t nc = pairs.size();
-  fresh.i = std::move(pairs.i);
-  fresh.j = std::move(pairs.j);
-  fresh.image_x = std::move(pairs.image_x);
-  fresh.image_y = std::move(pairs.image_y);
-  for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
-  const std::size_t nh = model_->history_columns();
-  fresh.history_columns = nh;
-  fresh.history.assign(nh * nc, 0.0);
-  auto key_less = [](const ContactList& a, std::size_t u, const ContactList& b, std::size_t v) {
-    if (a.i[u] != b.i[v]) return a.i[u] < b.i[v];
-    if (a.j[u] != b.j[v]) return a.j[u] < b.j[v];
-    if (a.image_x[u] != b.image_x[v]) return a.image_x[u] < b.image_x[v];
-    return a.image_y[u] < b.image_y[v];
-  };
-  // Both lists are sorted by (i, j, image): carry the history of persisting pairs over.
-  std::size_t u = 0;
-  for (std::size_t c = 0; c < nc; ++c) {
-    while (u < old.size() && key_less(old, u, fresh, c)) ++u;
-    if (u < old.size() && !key_less(fresh, c, old, u)) {
-      for (std::size_t k = 0; k < nh; ++k) fresh.history_column(k)[c] = old.history_column(k)[u];
-      fresh.delta[c] = old.delta[u];
-      fresh.f_x[c] = old.f_x[u];
-      fresh.f_y[c] = old.f_y[u];
-      fresh.f_z[c] = old.f_z[u];
-    }  // else a new pair: no spring yet ("if the spring is new, [its] length is zero")
-  }
-  // Per-particle contact lists in contact order, for the deterministic gather: the range where
-  // the particle is i (the list is sorted by i); the contacts where it is j: ContactList::j_lists.
-  fresh.i_first.assign(n + 1, 0);
-  for (std::size_t c = 0; c < nc; ++c) ++fresh.i_first[fresh.i[c] + 1];
-  std::partial_sum(fresh.i_first.begin(), fresh.i_first.end(), fresh.i_first.begin());
-  fresh.own_first = static_cast<std::size_t>(
-      std::lower_bound(fresh.i.begin(), fresh.i.end(), static_cast<std::int32_t>(own_lo_)) - fresh.i.begin());
-  contacts = std::move(fresh);
+  candidates_ = std::move(pairs);
+  make_list(true);
   x_build_.resize(n);
   y_build_.resize(n);
   z_build_.resize(n);
@@ -276,7 +270,104 @@ void Dynamics::rebuild() {
     z_build_[p] = static_cast<float>(z[p] - z0[p]);
   }
   ++rebuilds;
+}
+
+void Dynamics::make_list(bool verlet_build) {
+  const std::size_t n = size();
+  ContactList& old = contacts;
+  if (verlet_build && old.losses_booked) add_dissipated(dissipated_before_.data(), old);  // per layer: no message
+  if (candidates_.size() == 0 && !verlet_build) {  // the contact list was the whole Verlet list
+    candidates_.i = old.i, candidates_.j = old.j;
+    candidates_.image_x = old.image_x, candidates_.image_y = old.image_y;
+  }
+  const PairList& P = candidates_;
+  const std::size_t np = P.size();
+  const std::size_t nh = model_->history_columns();
+  // from[c]: candidate c's entry in the old list, -1 for a new pair. Both lists are sorted by
+  // (i, j, image), so a merge finds them.
+  auto key_less = [](const auto& a, std::size_t u, const auto& b, std::size_t v) {
+    if (a.i[u] != b.i[v]) return a.i[u] < b.i[v];
+    if (a.j[u] != b.j[v]) return a.j[u] < b.j[v];
+    if (a.image_x[u] != b.image_x[v]) return a.image_x[u] < b.image_x[v];
+    return a.image_y[u] < b.image_y[v];
+  };
+  std::vector<std::int64_t> from(np, -1);
+  for (std::size_t c = 0, u = 0; c < np; ++c) {
+    while (u < old.size() && key_less(old, u, P, c)) ++u;
+    if (u < old.size() && !key_less(P, c, old, u)) from[c] = static_cast<std::int64_t>(u);
+  }
+  const double margin = list_margin_;
+  const bool close_only = !slab_ && !images_.any() && margin < skin_;
+  std::vector<std::uint8_t> keep(np, 1);
+  if (close_only) {
+    const double box_x = packing_.box_x, box_y = packing_.box_y;
+    for (std::size_t c = 0; c < np; ++c) {
+      const int i = P.i[c], j = P.j[c];
+      const double bx = x[j] + P.image_x[c] * box_x - x[i], by = y[j] + P.image_y[c] * box_y - y[i], bz = z[j] - z[i];
+      const double reach = radius[i] + radius[j] + margin;
+      bool carries = false;  // a history or a loss that is not +0.0 stays listed
+      if (from[c] >= 0) {
+        const auto u = static_cast<std::size_t>(from[c]);
+        for (std::size_t k = 0; k < nh; ++k) carries |= std::bit_cast<std::uint64_t>(old.history_column(k)[u]) != 0;
+        if (!verlet_build) carries |= std::bit_cast<std::uint64_t>(old.dissipated[u]) != 0;
+      }
+      keep[c] = carries || !(bx * bx + by * by + bz * bz >= reach * reach);
+    }
+  }
+  const std::size_t nc = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), std::uint8_t{1}));
+  ContactList fresh;
+  for (auto* v : {&fresh.i, &fresh.j}) v->resize(nc);
+  for (auto* v : {&fresh.image_x, &fresh.image_y}) v->resize(nc);
+  for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
+  fresh.history_columns = nh;
+  fresh.history.assign(nh * nc, 0.0);
+  // A persisting pair keeps its history (and its force and overlap; a relist its loss too); a new
+  // pair has no spring yet ("if the spring is new, [its] length is zero").
+  for (std::size_t c = 0, k = 0; c < np; ++c) {
+    if (!keep[c]) continue;
+    fresh.i[k] = P.i[c], fresh.j[k] = P.j[c];
+    fresh.image_x[k] = P.image_x[c], fresh.image_y[k] = P.image_y[c];
+    if (from[c] >= 0) {
+      const auto u = static_cast<std::size_t>(from[c]);
+      for (std::size_t q = 0; q < nh; ++q) fresh.history_column(q)[k] = old.history_column(q)[u];
+      fresh.delta[k] = old.delta[u];
+      fresh.f_x[k] = old.f_x[u];
+      fresh.f_y[k] = old.f_y[u];
+      fresh.f_z[k] = old.f_z[u];
+      if (!verlet_build) fresh.dissipated[k] = old.dissipated[u];
+    }
+    ++k;
+  }
+  fresh.losses_booked = !verlet_build && old.losses_booked;
+  // Per-particle contact lists in contact order, for the deterministic gather: the range where
+  // the particle is i (the list is sorted by i); the contacts where it is j: ContactList::j_lists.
+  fresh.i_first.assign(n + 1, 0);
+  for (std::size_t c = 0; c < nc; ++c) ++fresh.i_first[fresh.i[c] + 1];
+  std::partial_sum(fresh.i_first.begin(), fresh.i_first.end(), fresh.i_first.begin());
+  fresh.own_first = static_cast<std::size_t>(
+      std::lower_bound(fresh.i.begin(), fresh.i.end(), static_cast<std::int32_t>(own_lo_)) - fresh.i.begin());
+  contacts = std::move(fresh);
+  // A pair left out was at least `margin` apart; while no particle has moved more than 3/8 of it
+  // since (d^2 <= near2_, from the displacements kept here in single precision, as x_build_'s),
+  // it is still margin/4 apart: room for the rounding of those displacements and of the distance.
+  for (auto* v : {&x_relist_, &y_relist_, &z_relist_}) v->clear();
+  if (nc == np) {
+    candidates_ = PairList{};
+    near2_ = std::numeric_limits<double>::infinity();
+  } else {
+    const double t = 0.375 * margin;
+    near2_ = t * t;
+    if (!verlet_build) {  // at a Verlet build x_build_ is the reference (Dynamics::rebuild)
+      for (auto* v : {&x_relist_, &y_relist_, &z_relist_}) v->resize(n);
+      for (std::size_t p = 0; p < n; ++p) {
+        x_relist_[p] = static_cast<float>(x[p] - x0[p]);
+        y_relist_[p] = static_cast<float>(y[p] - y0[p]);
+        z_relist_[p] = static_cast<float>(z[p] - z0[p]);
+      }
+    }
+  }
   ++list_builds_;
+  if (!verlet_build) ++relists;
 }
 
 void ContactList::j_lists(std::size_t n) const {
@@ -327,7 +418,7 @@ void Dynamics::displace(const std::vector<std::size_t>& which, double dx, double
     z[p] += dz;
   }
   if (max_displacement_since_build() > 0.5 * skin_) rebuild();
-  compute_forces(1.0, false);
+  compute_forces(1.0, false);  // relists if a particle moved past the close pairs' margin
   vx = keep[0];
   vy = keep[1];
   vz = keep[2];

@@ -2,7 +2,9 @@
 // forces of sec. 2.1 (or any contact law: contact/law.hpp), velocity Verlet, periodic x-y box.
 // Flat structure of arrays throughout; the contact list is a Verlet list with a skin, rebuilt
 // only when a particle has moved more than skin/2, and its per-contact history (the law's
-// columns, e.g. tangential spring xi and stick/slip flag) survives rebuilds.
+// columns, e.g. tangential spring xi and stick/slip flag) survives rebuilds. Where the Verlet
+// list holds pairs apart by more than a margin (a disordered packing), the contact list holds the
+// close pairs only, refreshed from the Verlet list's pairs (Dynamics::relist).
 //
 // Force evaluation is two passes, both free of write conflicts (so OpenMP over contacts and
 // over particles gives bit-identical results for any thread count):
@@ -17,6 +19,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +29,7 @@
 #include "core/error.hpp"
 #include "contact/lever_arm.hpp"
 #include "crystal/layer_sums.hpp"
+#include "crystal/neighbors.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/slab.hpp"
 
@@ -101,6 +105,7 @@ struct ImageMotion {
 // The half kick and drift's report.
 struct Drift {
   bool far = false;         // a particle moved more than skin/2 since the list's build: rebuild
+  bool near = false;        // one moved enough to refresh the close pairs (Dynamics::relist)
   bool rows_fresh = false;  // Dynamics::gather_rows hold the drifted state (one thread, no slab)
 };
 // What the contact pass is asked to do.
@@ -235,7 +240,8 @@ class Dynamics {
   }
   double time = 0.0;
   long steps = 0;
-  long rebuilds = 0;
+  long rebuilds = 0;  // builds of the Verlet list (a neighbour search each)
+  long relists = 0;   // of the close pairs from it (Dynamics::relist)
   double work_in = 0.0;  // cumulative work done by driven particles on the rest (J)
 
   std::size_t size() const { return x.size(); }
@@ -279,6 +285,19 @@ class Dynamics {
   void displace(const std::vector<std::size_t>& which, double dx, double dy, double dz);
   // Recompute the contact list from scratch (keeps history of pairs that persist).
   void rebuild();
+  // The close pairs (the margin below) again from the Verlet list's pairs, without a neighbour
+  // search (keeps history and losses of the pairs that persist; not a rebuild: `rebuilds` counts
+  // the Verlet list's builds, as LAMMPS counts its neighbour lists).
+  void relist();
+  // The contact list holds the Verlet list's pairs (i, j) that were closer than
+  // a_i + a_j + list_margin() at its build, and every pair with a history or a loss: no other can
+  // touch before a particle has moved 3/8 list_margin() (relist then). The same forces and sums as
+  // the whole Verlet list, bit for bit: a pair left out is open, its force, history and loss zero,
+  // and every sum over contacts starts from +0.0, so adding its zeros changes nothing. Default
+  // skin/4; at skin or more, or in a sheared or moving box, or under a slab plan: every pair.
+  void set_list_margin(double margin);
+  double list_margin() const { return list_margin_; }
+  std::size_t verlet_pairs() const { return candidates_.size() ? candidates_.size() : contacts.size(); }
   // A frictional prepared packing's springs (Packing::springs) into the history of the listed pairs:
   // the first three columns, the spring xi of the laws whose history is the displacement.
   void seed_springs(const std::vector<packing::SpringHistory>& springs);
@@ -388,6 +407,19 @@ class Dynamics {
   double dt_ = 0.0;
   double skin_ = 0.0;
   double far2_ = 0.0;  // a particle is more than skin/2 from its place at the build when d^2 > far2_
+  // The close pairs (set_list_margin): the Verlet list's pairs while the contact list holds fewer
+  // (else empty); relist when a particle's squared displacement since the build exceeds near2_
+  // (+inf: the contact list is the whole Verlet list).
+  PairList candidates_;
+  double list_margin_ = 0.0;
+  double near2_ = std::numeric_limits<double>::infinity();
+  // Displacements from x0 at the last relist, as x_build_ (empty until one: x_build_ then).
+  SpreadVector<float> x_relist_, y_relist_, z_relist_;
+  const SpreadVector<float>& relist_x() const { return x_relist_.empty() ? x_build_ : x_relist_; }
+  const SpreadVector<float>& relist_y() const { return y_relist_.empty() ? y_build_ : y_relist_; }
+  const SpreadVector<float>& relist_z() const { return z_relist_.empty() ? z_build_ : z_relist_; }
+  void make_list(bool verlet_build);  // the contact list from candidates_ (rebuild, relist)
+  void relist_if_moved();             // relist when a particle moved as far as near2_ allows
   std::vector<double> dissipated_before_;  // per layer, folded in at rebuilds
   long list_builds_ = 0;                   // rebuilds of the contact list so far
   mutable LayerOrder order_;               // layer_order() of the list build order_build_

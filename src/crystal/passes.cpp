@@ -47,6 +47,13 @@ std::int64_t any_block_on_threads(std::int64_t p0, std::int64_t p1, const Body& 
 #ifdef GRANWAVE_GATHER_VECTORS
 using lanes::kick_drift4, lanes::kicked4, lanes::mobile4, lanes::take_rows, lanes::torques_of_rows;
 using simd::load4, simd::store4, simd::V4, simd::V4m;
+
+// |u - r|^2 of particles p..p+3: u = x - x0, r a reference displacement (the list's build, the relist).
+GRANWAVE_ALWAYS_INLINE inline V4 displaced2(const V4& ux, const V4& uy, const V4& uz, const float* rx, const float* ry,
+                                            const float* rz, std::int64_t p) {
+  const V4 dx = ux - load4(rx + p), dy = uy - load4(ry + p), dz = uz - load4(rz + p);
+  return dx * dx + dy * dy + dz * dz;
+}
 #endif
 
 }  // namespace
@@ -224,6 +231,7 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
 }
 
 void Dynamics::compute_forces(double inc, bool dashpots, bool kick) {
+  relist_if_moved();  // particles moved from outside the time step (a probe's strain, a jump)
   finish_forces(model_->contact_pass(*this, {inc, dashpots, false, true}), kick);
 }
 
@@ -265,7 +273,7 @@ void Dynamics::finish_forces(const ContactSums& sums, bool kick) {
 template <bool Torques, bool Threaded>
 Drift Dynamics::kick_drift(std::int64_t from) {
   using contact::select;
-  const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
+  const double h = 0.5 * dt_, dt = dt_, far2 = far2_, near2 = near2_;
   const std::int64_t p0 = static_cast<std::int64_t>(own_lo_), p1 = static_cast<std::int64_t>(own_hi_);
   double* __restrict px = x.data();
   double* __restrict py = y.data();
@@ -290,10 +298,15 @@ Drift Dynamics::kick_drift(std::int64_t from) {
   const float* __restrict xb = x_build_.data();
   const float* __restrict yb = y_build_.data();
   const float* __restrict zb = z_build_.data();
+  const float* __restrict xr = relist_x().data();
+  const float* __restrict yr = relist_y().data();
+  const float* __restrict zr = relist_z().data();
+  const bool relisted = !x_relist_.empty();  // else the relist's reference is the build's
   const std::uint8_t* __restrict on = mobile.data();
   // [q0, q1); each particle's displacement since the build is compared as its square against
   // far2_ (the same decision as sqrt(max d^2) > skin/2; a NaN counts as not far, as std::max
-  // ignored it). ivdep: the captured pointers lose __restrict, and each p touches only its own entries.
+  // ignored it), and its displacement since the close pairs' list against near2_ (bit 1 of the
+  // result: relist). ivdep: the captured pointers lose __restrict, and each p touches only its own entries.
   auto range = [=](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
     std::int64_t far = 0;
 #pragma GCC ivdep
@@ -316,8 +329,11 @@ Drift Dynamics::kick_drift(std::int64_t from) {
         pwy[p] = select(m, pwy[p] + h * pty[p] * ii[p], pwy[p]);
         pwz[p] = select(m, pwz[p] + h * ptz[p] * ii[p], pwz[p]);
       }
-      const double dx = (xp - x0p[p]) - xb[p], dy = (yp - y0p[p]) - yb[p], dz = (zp - z0p[p]) - zb[p];
-      far |= dx * dx + dy * dy + dz * dz > far2;
+      const double ux = xp - x0p[p], uy = yp - y0p[p], uz = zp - z0p[p];
+      const double dx = ux - xb[p], dy = uy - yb[p], dz = uz - zb[p], d2 = dx * dx + dy * dy + dz * dz;
+      const double ex = ux - xr[p], ey = uy - yr[p], ez = uz - zr[p];
+      const double e2 = relisted ? ex * ex + ey * ey + ez * ez : d2;
+      far |= std::int64_t{d2 > far2} | (std::int64_t{e2 > near2} << 1);
     }
     return far;
   };
@@ -327,42 +343,45 @@ Drift Dynamics::kick_drift(std::int64_t from) {
   // narrowest type it reads (the uint8 mobile flag: 32 particles per iteration, eight registers
   // per double, most of them spilled); here the flag becomes a lane mask. The same operations.
   if constexpr (!Threaded) {
-    const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
+    const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2}, near2v{near2, near2, near2, near2};
     // Serial, no slab (this rank holds every particle): write the gather rows too, so that the
     // contact pass need not copy the state into them again.
     const std::int64_t n = static_cast<std::int64_t>(size());
     double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
                                                                                                 : nullptr;
-    V4m far4{0, 0, 0, 0};
+    V4m far4{0, 0, 0, 0}, near4{0, 0, 0, 0};
     const bool stream = rows && streams();
     std::int64_t p = std::max(p0, from);
     for (; p + 4 <= p1; p += 4) {
       const V4m m = mobile4(on, p);
       const V4 imv = load4(im + p);
-      const V4 dx = kick_drift4<1>(pvx, px, load4(pfx + p), x0p, xb, m, hv, dtv, imv, p);
-      const V4 dy = kick_drift4<1>(pvy, py, load4(pfy + p), y0p, yb, m, hv, dtv, imv, p);
-      const V4 dz = kick_drift4<1>(pvz, pz, load4(pfz + p), z0p, zb, m, hv, dtv, imv, p);
+      const V4 ux = kick_drift4<1>(pvx, px, load4(pfx + p), x0p, m, hv, dtv, imv, p);
+      const V4 uy = kick_drift4<1>(pvy, py, load4(pfy + p), y0p, m, hv, dtv, imv, p);
+      const V4 uz = kick_drift4<1>(pvz, pz, load4(pfz + p), z0p, m, hv, dtv, imv, p);
       if constexpr (Torques) {
         const V4 iiv = load4(ii + p);
         for (auto [w, t] : {std::pair{pwx, ptx}, std::pair{pwy, pty}, std::pair{pwz, ptz}})
           store4(w + p, kicked4<1>(load4(w + p), load4(t + p), m, hv, iiv));
       }
-      far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+      const V4 d2 = displaced2(ux, uy, uz, xb, yb, zb, p);
+      far4 |= d2 > far2v;
+      near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
       if (rows)  // the contact pass's rows of these four
         stream ? kernel::fill_rows<true>(*this, rows, p, p + 4) : kernel::fill_rows<false>(*this, rows, p, p + 4);
     }
     if (stream) simd::fence_streams();
     far = range(p, p1);
-    far |= far4[0] | far4[1] | far4[2] | far4[3];
+    far |= (far4[0] | far4[1] | far4[2] | far4[3]) & 1;
+    far |= (near4[0] | near4[1] | near4[2] | near4[3]) & 2;
     if (rows) kernel::fill_rows(*this, rows, p, p1);
-    return {far != 0, rows != nullptr};
+    return {(far & 1) != 0, (far & 2) != 0, rows != nullptr};
   }
 #endif
   if constexpr (Threaded)
     far = any_block_on_threads(p0, p1, range);
   else
     far = range(p0, p1);
-  return {far != 0, false};
+  return {(far & 1) != 0, (far & 2) != 0, false};
 }
 
 // Dynamics::advance's pass: finish_pass<true, Rows, Couples> (the second half kick of the step before)
@@ -373,15 +392,19 @@ template <int Rows, bool Couples>
 Drift Dynamics::finish_kick_drift() {
 #ifdef GRANWAVE_GATHER_VECTORS
   constexpr bool Torques = Rows >= 2;
-  const double h = 0.5 * dt_, dt = dt_, far2 = far2_;
+  const double h = 0.5 * dt_, dt = dt_, far2 = far2_, near2 = near2_;
   const std::int64_t n = static_cast<std::int64_t>(size());
   double* sums = contact_sums.data();  // the rows of f | n x f^t | delta n x f^t | couples
   double* rows = Torques && gather_rows.size() == 12 * size() ? gather_rows.data() : nullptr;
-  const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2};
+  const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2}, near2v{near2, near2, near2, near2};
   const bool stream = rows && streams();
-  // Particles [q0, q1) (a multiple of four); whether one of them left half the skin.
+  const float *xb = x_build_.data(), *yb = y_build_.data(), *zb = z_build_.data();
+  const float *xr = relist_x().data(), *yr = relist_y().data(), *zr = relist_z().data();
+  const bool relisted = !x_relist_.empty();  // else the relist's reference is the build's
+  // Particles [q0, q1) (a multiple of four); bit 0: one of them left half the skin, bit 1: the
+  // close pairs' margin (kick_drift's flags).
   auto fours = [=, this](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
-    V4m far4{0, 0, 0, 0};
+    V4m far4{0, 0, 0, 0}, near4{0, 0, 0, 0};
     for (std::int64_t p = q0; p < q1; p += 4) {
       V4 sx, sy, sz, tqx, tqy, tqz;
       take_rows(sums + 4 * p, sx, sy, sz);
@@ -389,28 +412,30 @@ Drift Dynamics::finish_kick_drift() {
                                      tqz);
       const V4m m = mobile4(mobile.data(), p);
       const V4 inv_m = load4(inv_mass.data() + p);
-      const V4 dx = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), x_build_.data(), m, hv, dtv, inv_m, p);
-      const V4 dy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), y_build_.data(), m, hv, dtv, inv_m, p);
-      const V4 dz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), z_build_.data(), m, hv, dtv, inv_m, p);
+      const V4 ux = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), m, hv, dtv, inv_m, p);
+      const V4 uy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), m, hv, dtv, inv_m, p);
+      const V4 uz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), m, hv, dtv, inv_m, p);
       if constexpr (Torques) {
         const V4 inv_i = load4(inv_inertia.data() + p);
         for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
           store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
       }
-      far4 |= (dx * dx + dy * dy + dz * dz) > far2v;
+      const V4 d2 = displaced2(ux, uy, uz, xb, yb, zb, p);
+      far4 |= d2 > far2v;
+      near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
       if (rows) stream ? kernel::fill_rows<true>(*this, rows, p, p + 4) : kernel::fill_rows<false>(*this, rows, p, p + 4);
     }
     if (stream) simd::fence_streams();
-    return (far4[0] | far4[1] | far4[2] | far4[3]) != 0;
+    return ((far4[0] | far4[1] | far4[2] | far4[3]) & 1) | ((near4[0] | near4[1] | near4[2] | near4[3]) & 2);
   };
   const std::int64_t p = n / 4 * 4;
   // Threaded: the rows of the threaded contact pass (kernel::in_parts).
   const std::int64_t far = threaded() ? any_block_on_threads(0, p, fours) : fours(0, p);
-  Drift drift{far != 0, rows != nullptr};
+  Drift drift{(far & 1) != 0, (far & 2) != 0, rows != nullptr};
   if (p < n) {
     finish_pass<true, Rows, Couples>(h, p);
     const Drift tail = kick_drift<Torques, false>(p);
-    drift = {drift.far || tail.far, tail.rows_fresh};
+    drift = {drift.far || tail.far, drift.near || tail.near, tail.rows_fresh};
   }
   return drift;
 #else
@@ -434,7 +459,10 @@ Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
 
 void Dynamics::upkeep_list(const Drift& drift) {
   const bool far = slab_ ? slab_->comm->max(drift.far ? 1.0 : 0.0) > 0.0 : drift.far;  // every rank alike
-  if (far) rebuild();
+  if (far)
+    rebuild();
+  else if (drift.near)  // never under a slab plan (its list holds every pair)
+    relist();
 }
 
 ContactSums Dynamics::finish_step(const ContactSums& sums, bool last) {

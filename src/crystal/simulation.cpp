@@ -200,6 +200,7 @@ RunResult simulate(const config::Case& c, const Derived& d, const Packing& packi
   res.seconds = std::chrono::duration<double>(clock.lap(PhaseTimes::other) - t0).count();
   res.steps = dyn.steps;
   res.rebuilds = dyn.rebuilds;
+  res.relists = dyn.relists;
   gather_rank_times(res, plan ? &*plan : nullptr,
                     {res.seconds, plan ? comm->message_seconds - msg0 : 0.0, process_cpu_seconds() - cpu0,
                      plan ? comm->message_cpu_seconds - msg_cpu0 : 0.0});

@@ -21,6 +21,7 @@ struct RunResult {
   std::string error;  // the RunError message when failed
   long steps = 0;
   long rebuilds = 0;
+  long relists = 0;  // of the close pairs (Dynamics::relist)
   double seconds = 0.0;  // wall time of the time loop
   // Per rank (serial: one), on rank 0 only: the time loop's wall time and CPU time, and the parts
   // of each spent in MPI calls (halo exchanges, rebuild triggers, the samples' gathers) (s).
