@@ -8,6 +8,7 @@
 #pragma GCC target("prefer-vector-width=256")
 #include <algorithm>
 #include <memory>
+#include <type_traits>
 
 #include "contact/case_laws.hpp"
 #include "crystal/dynamics.hpp"
@@ -15,14 +16,30 @@
 
 namespace granwave::crystal {
 
-// Compiled in law_model_linear.cpp and law_model_hertz_mindlin.cpp.
-extern template std::shared_ptr<const ContactModel> law_model<contact::LinearLudingCase>(
-    const contact::LinearLudingCase::Params& params, double density);
-extern template std::shared_ptr<const ContactModel> law_model<contact::HertzMindlinCase>(
-    const contact::HertzMindlinCase::Params& params, double density);
+// Compiled in law_model_<law>.cpp (the direct passes) and law_model_<law>_gathered.cpp.
+#define GRANWAVE_LAW_UNITS(D)                                                                               \
+  extern template std::shared_ptr<const ContactModel> law_model<D, Forms::direct>(const D::Params&, double); \
+  extern template std::shared_ptr<const ContactModel> law_model<D, Forms::gathered>(const D::Params&, double);
+GRANWAVE_LAW_UNITS(contact::LinearLudingCase)
+GRANWAVE_LAW_UNITS(contact::HertzMindlinCase)
+#undef GRANWAVE_LAW_UNITS
+
+namespace {
+// The laws whose two kinds of forms have units of their own.
+template <class D>
+constexpr bool has_units = std::is_same_v<D, contact::LinearLudingCase> || std::is_same_v<D, contact::HertzMindlinCase>;
+}  // namespace
 
 std::shared_ptr<const ContactModel> case_model(const contact::LawParams& cp, double density) {
-  return contact::visit_law(cp.law(), [&]<class D>(D) { return law_model<D>(cp.get<typename D::Params>(), density); });
+  return contact::visit_law(cp.law(), [&]<class D>(D) {
+    const auto& params = cp.get<typename D::Params>();
+    if constexpr (has_units<D>) {
+      std::shared_ptr<const ContactModel> m = law_model<D, Forms::gathered>(params, density);
+      return m ? m : law_model<D, Forms::direct>(params, density);
+    } else {
+      return law_model<D>(params, density);
+    }
+  });
 }
 
 RelaxResult relax(Packing& packing, const contact::LawParams& contact, double density, double tolerance,
