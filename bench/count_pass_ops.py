@@ -29,7 +29,7 @@ from pathlib import Path
 # kt = k, mu_static = mu_dynamic, no dashpots -> LinearLudingLaw<false, false>, either arm (the arm is a
 # run-time value: scatter<2> or scatter<3>); crystal_hertz.toml, undamped, displacement history ->
 # HertzMindlinLaw<false, 1, false>; bench/cases/crystal_rolling.toml -> WithRollingTorsion<
-# LinearLudingLaw<false, true>, false, false>), and the loops that make the pass, with the contacts
+# LinearLudingLaw<false, false>, false, false>), and the loops that make the pass, with the contacts
 # (particles) each iteration walks, read by hand from this build's loops (GCC 12 -O3 -march=native,
 # 256-bit vectors; since session 30 the gathered passes are built for 512-bit vectors, whose loops
 # these steps and classes do not describe: count a build with law_model_*_gathered.cpp at 256) and checked where the script can see the induction: the evaluation is unrolled twice
@@ -54,7 +54,7 @@ PASSES = [
      "loops": ["gather", "evaluation", "scatter2"], "step": {"gather": 4, "evaluation": 8, "scatter2": 4},
      "per": "contact"},
     {"name": "rolling and torsion", "object": "law_model_linear_gathered.cpp.o",
-     "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::WithRollingTorsion<granwave::contact::LinearLudingLaw<false, true>, false, false>, true, false>(",
+     "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::WithRollingTorsion<granwave::contact::LinearLudingLaw<false, false>, false, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter2c"], "step": {"gather": 4, "evaluation": 8, "scatter2c": 4},
      "per": "contact"},
 ]
