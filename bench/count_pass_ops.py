@@ -31,8 +31,8 @@ from pathlib import Path
 # HertzMindlinLaw<false, 1, false>; bench/cases/crystal_rolling.toml -> WithRollingTorsion<
 # LinearLudingLaw<false, false>, false, false>), and the loops that make the pass, with the contacts
 # (particles) each iteration walks, read by hand from this build's loops (GCC 12 -O3 -march=native,
-# 256-bit vectors; since session 30 the gathered passes are built for 512-bit vectors, whose loops
-# these steps and classes do not describe: count a build with law_model_*_gathered.cpp at 256) and checked where the script can see the induction: the evaluation is unrolled twice
+# 256-bit vectors; since session 30 the friction forms without rolling are built for 512-bit vectors, whose
+# loops these steps and classes do not describe: count a build with law_model_*_wide.cpp at 256) and checked where the script can see the induction: the evaluation is unrolled twice
 # (8 contacts: its column pointer steps 64 bytes; the frictionless one, two ymm roots for Hooke's
 # one root per contact), the gather and the scatter take 4 (their index steps 4), the frictionless
 # pass's image offsets 32 (16 ymm stores of shx, shy), the particle pass 4.
@@ -41,19 +41,19 @@ PASSES = [
      "function": "in_blocks<granwave::crystal::kernel::direct_contact_pass<granwave::contact::HookeLaw<false>, false>",
      "loops": ["images", "evaluation", "scatter1"], "step": {"images": 32, "evaluation": 8, "scatter1": 4},
      "per": "contact"},
-    {"name": "friction, radius arm", "object": "law_model_linear_gathered.cpp.o",
+    {"name": "friction, radius arm", "object": "law_model_linear_wide.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::LinearLudingLaw<false, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter2"], "step": {"gather": 4, "evaluation": 8, "scatter2": 4},
      "per": "contact"},
-    {"name": "friction, contact-point arm", "object": "law_model_linear_gathered.cpp.o",
+    {"name": "friction, contact-point arm", "object": "law_model_linear_wide.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::LinearLudingLaw<false, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter3"], "step": {"gather": 4, "evaluation": 8, "scatter3": 4},
      "per": "contact"},
-    {"name": "Hertz-Mindlin", "object": "law_model_hertz_mindlin_gathered.cpp.o",
+    {"name": "Hertz-Mindlin", "object": "law_model_hertz_mindlin_wide.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::HertzMindlinLaw<false, (granwave::contact::MindlinHistory)1, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter2"], "step": {"gather": 4, "evaluation": 8, "scatter2": 4},
      "per": "contact"},
-    {"name": "rolling and torsion", "object": "law_model_linear_gathered.cpp.o",
+    {"name": "rolling and torsion", "object": "law_model_linear.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::WithRollingTorsion<granwave::contact::LinearLudingLaw<false, false>, false, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter2c"], "step": {"gather": 4, "evaluation": 8, "scatter2c": 4},
      "per": "contact"},

@@ -316,8 +316,19 @@ void Dynamics::make_list(bool verlet_build) {
   }
   const std::size_t nc = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), std::uint8_t{1}));
   ContactList fresh;
-  for (auto* v : {&fresh.i, &fresh.j}) v->resize(nc);
-  for (auto* v : {&fresh.image_x, &fresh.image_y}) v->resize(nc);
+  if (nc == np) {  // every candidate: the list takes their columns over (a crystal's, or no margin)
+    fresh.i = std::move(candidates_.i), fresh.j = std::move(candidates_.j);
+    fresh.image_x = std::move(candidates_.image_x), fresh.image_y = std::move(candidates_.image_y);
+  } else {
+    for (auto* v : {&fresh.i, &fresh.j}) v->resize(nc);
+    for (auto* v : {&fresh.image_x, &fresh.image_y}) v->resize(nc);
+    for (std::size_t c = 0, k = 0; c < np; ++c)
+      if (keep[c]) {
+        fresh.i[k] = P.i[c], fresh.j[k] = P.j[c];
+        fresh.image_x[k] = P.image_x[c], fresh.image_y[k] = P.image_y[c];
+        ++k;
+      }
+  }
   for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
   fresh.history_columns = nh;
   fresh.history.assign(nh * nc, 0.0);
@@ -325,8 +336,6 @@ void Dynamics::make_list(bool verlet_build) {
   // pair has no spring yet ("if the spring is new, [its] length is zero").
   for (std::size_t c = 0, k = 0; c < np; ++c) {
     if (!keep[c]) continue;
-    fresh.i[k] = P.i[c], fresh.j[k] = P.j[c];
-    fresh.image_x[k] = P.image_x[c], fresh.image_y[k] = P.image_y[c];
     if (from[c] >= 0) {
       const auto u = static_cast<std::size_t>(from[c]);
       for (std::size_t q = 0; q < nh; ++q) fresh.history_column(q)[k] = old.history_column(q)[u];
@@ -347,12 +356,13 @@ void Dynamics::make_list(bool verlet_build) {
   fresh.own_first = static_cast<std::size_t>(
       std::lower_bound(fresh.i.begin(), fresh.i.end(), static_cast<std::int32_t>(own_lo_)) - fresh.i.begin());
   contacts = std::move(fresh);
+  end_arms_stored = false;  // the next contact pass makes them for this list
   // A pair left out was at least `margin` apart; while no particle has moved more than 3/8 of it
   // since (d^2 <= near2_, from the displacements kept here in single precision, as x_build_'s),
   // it is still margin/4 apart: room for the rounding of those displacements and of the distance.
   for (auto* v : {&x_relist_, &y_relist_, &z_relist_}) v->clear();
   if (nc == np) {
-    candidates_ = PairList{};
+    candidates_ = PairList{};  // (taken over above)
     near2_ = std::numeric_limits<double>::infinity();
   } else {
     const double t = 0.375 * margin;

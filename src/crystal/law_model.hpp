@@ -1,27 +1,33 @@
 // The kernel's forms of one case law: law_model<D, F> makes crystal::model_of of the form that the
 // description D's parameters select (D::model), and so instantiates the contact passes of its
-// forms: all of them (Forms::all), or only those whose pass gathers columns (laws with torques,
-// Forms::gathered) or only the others (Forms::direct), nullptr when the selected form is not of
-// that kind. A non-inline template: each real law's two kinds are compiled in units of their own
-// (law_model_<law>.cpp, the direct passes at 256-bit vectors, and law_model_<law>_gathered.cpp,
-// declared extern in law_models.cpp), so that a parallel build compiles them at once and each kind
-// takes its own vector width; a law without such units (the test law) is instantiated in
+// forms: all of them (Forms::all), or only the wide ones (Forms::wide: a gathered pass without
+// couples, friction without rolling and torsion, which 512-bit vectors make faster) or only the
+// others (Forms::narrow: the direct passes, which 512 bits make 27 % slower, and the forms with
+// rolling and torsion, 10 % slower at 320 000 particles; docs/benchmarks.md, session 30); nullptr
+// when the selected form is not of that kind. A non-inline template: each real law's two kinds are
+// compiled in units of their own (law_model_<law>.cpp at 256-bit vectors, law_model_<law>_wide.cpp
+// at 512 where the machine has them; declared extern in law_models.cpp), so that a parallel build
+// compiles them at once; a law without such units (the test law) is instantiated in
 // law_models.cpp, where the registry dispatches.
 #pragma once
 #include <memory>
 #include <type_traits>
 
+#include "contact/law.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/kernel.hpp"
 
 namespace granwave::crystal {
 
-enum class Forms { all, gathered, direct };
+enum class Forms { all, wide, narrow };
+
+template <class Law>
+inline constexpr bool wide_form = Law::torques && !contact::HasCouples<Law>;
 
 template <class D, Forms F = Forms::all>
 std::shared_ptr<const ContactModel> law_model(const typename D::Params& params, double density) {
   return D::model(params, density, [](const auto& law) -> std::shared_ptr<const ContactModel> {
-    if constexpr (F == Forms::all || (F == Forms::gathered) == std::decay_t<decltype(law)>::torques)
+    if constexpr (F == Forms::all || (F == Forms::wide) == wide_form<std::decay_t<decltype(law)>>)
       return model_of(law);
     else
       return nullptr;

@@ -16,10 +16,10 @@
 
 namespace granwave::crystal {
 
-// Compiled in law_model_<law>.cpp (the direct passes) and law_model_<law>_gathered.cpp.
+// Compiled in law_model_<law>.cpp (256-bit vectors) and law_model_<law>_wide.cpp (512).
 #define GRANWAVE_LAW_UNITS(D)                                                                               \
-  extern template std::shared_ptr<const ContactModel> law_model<D, Forms::direct>(const D::Params&, double); \
-  extern template std::shared_ptr<const ContactModel> law_model<D, Forms::gathered>(const D::Params&, double);
+  extern template std::shared_ptr<const ContactModel> law_model<D, Forms::narrow>(const D::Params&, double); \
+  extern template std::shared_ptr<const ContactModel> law_model<D, Forms::wide>(const D::Params&, double);
 GRANWAVE_LAW_UNITS(contact::LinearLudingCase)
 GRANWAVE_LAW_UNITS(contact::HertzMindlinCase)
 #undef GRANWAVE_LAW_UNITS
@@ -34,8 +34,8 @@ std::shared_ptr<const ContactModel> case_model(const contact::LawParams& cp, dou
   return contact::visit_law(cp.law(), [&]<class D>(D) {
     const auto& params = cp.get<typename D::Params>();
     if constexpr (has_units<D>) {
-      std::shared_ptr<const ContactModel> m = law_model<D, Forms::gathered>(params, density);
-      return m ? m : law_model<D, Forms::direct>(params, density);
+      std::shared_ptr<const ContactModel> m = law_model<D, Forms::wide>(params, density);
+      return m ? m : law_model<D, Forms::narrow>(params, density);
     } else {
       return law_model<D>(params, density);
     }

@@ -1,5 +1,5 @@
-// The gathered contact passes of the Hertz-Mindlin law's forms with torques (each tangential history,
-// with and without rolling and torsion): law_model<HertzMindlinCase, Forms::gathered>
+// The Hertz-Mindlin law's tangential forms without rolling and torsion (each tangential history),
+// whose gathered passes 512-bit vectors make faster: law_model<HertzMindlinCase, Forms::wide>
 // (crystal/law_model.hpp).
 //
 // 512-bit vectors where the machine has them (docs/benchmarks.md, session 30).
@@ -9,7 +9,7 @@
 
 namespace granwave::crystal {
 
-template std::shared_ptr<const ContactModel> law_model<contact::HertzMindlinCase, Forms::gathered>(
+template std::shared_ptr<const ContactModel> law_model<contact::HertzMindlinCase, Forms::wide>(
     const contact::HertzMindlinCase::Params& params, double density);
 
 }  // namespace granwave::crystal

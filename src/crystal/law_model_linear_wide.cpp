@@ -1,5 +1,6 @@
-// The gathered contact passes of the linear law's forms with torques (Luding's spring-dashpot with
-// friction, rolling and torsion): law_model<LinearLudingCase, Forms::gathered> (crystal/law_model.hpp).
+// The linear law's friction forms without rolling and torsion (Luding's spring-dashpot, each lever
+// arm), whose gathered passes 512-bit vectors make faster: law_model<LinearLudingCase, Forms::wide>
+// (crystal/law_model.hpp).
 //
 // 512-bit vectors where the machine has them (docs/benchmarks.md, session 30).
 #pragma GCC target("prefer-vector-width=512")
@@ -8,7 +9,7 @@
 
 namespace granwave::crystal {
 
-template std::shared_ptr<const ContactModel> law_model<contact::LinearLudingCase, Forms::gathered>(
+template std::shared_ptr<const ContactModel> law_model<contact::LinearLudingCase, Forms::wide>(
     const contact::LinearLudingCase::Params& params, double density);
 
 }  // namespace granwave::crystal
