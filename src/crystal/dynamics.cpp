@@ -166,13 +166,7 @@ void Dynamics::relist() { make_list(false); }
 
 void Dynamics::relist_if_moved() {
   if (near2_ == std::numeric_limits<double>::infinity()) return;
-  const SpreadVector<float>&xr = relist_x(), &yr = relist_y(), &zr = relist_z();
-  bool near = false;
-  for (std::size_t p = own_lo_; p < own_hi_; ++p) {
-    const double dx = (x[p] - x0[p]) - xr[p], dy = (y[p] - y0[p]) - yr[p], dz = (z[p] - z0[p]) - zr[p];
-    near |= dx * dx + dy * dy + dz * dz > near2_;
-  }
-  if (near) relist();
+  if (max_displacement2_from(relist_x(), relist_y(), relist_z()) > near2_) relist();
 }
 
 void Dynamics::set_mobile(std::size_t p, bool on) {
@@ -186,13 +180,28 @@ void Dynamics::set_mobile(const std::vector<std::size_t>& which, bool on) {
   rebuild();  // collective under a slab plan: every rank rebuilds, holding the particles or not
 }
 
-double Dynamics::max_displacement_since_build() const {
+double Dynamics::max_displacement2_from(const SpreadVector<float>& rx, const SpreadVector<float>& ry,
+                                        const SpreadVector<float>& rz) const {
   double m2 = 0.0;
   for (std::size_t p = own_lo_; p < own_hi_; ++p) {
-    const double dx = (x[p] - x0[p]) - x_build_[p], dy = (y[p] - y0[p]) - y_build_[p],
-                 dz = (z[p] - z0[p]) - z_build_[p];
-    m2 = std::max(m2, dx * dx + dy * dy + dz * dz);
+    const double dx = (x[p] - x0[p]) - rx[p], dy = (y[p] - y0[p]) - ry[p], dz = (z[p] - z0[p]) - rz[p];
+    m2 = std::max(m2, dx * dx + dy * dy + dz * dz);  // a NaN is passed over
   }
+  return m2;
+}
+
+void Dynamics::keep_displacements(SpreadVector<float>& rx, SpreadVector<float>& ry, SpreadVector<float>& rz) const {
+  const std::size_t n = size();
+  for (auto* v : {&rx, &ry, &rz}) v->resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    rx[p] = static_cast<float>(x[p] - x0[p]);
+    ry[p] = static_cast<float>(y[p] - y0[p]);
+    rz[p] = static_cast<float>(z[p] - z0[p]);
+  }
+}
+
+double Dynamics::max_displacement_since_build() const {
+  double m2 = max_displacement2_from(x_build_, y_build_, z_build_);
   if (slab_) m2 = slab_->comm->max(m2);
   return std::sqrt(m2);
 }
@@ -261,14 +270,7 @@ void Dynamics::rebuild() {
   }
   candidates_ = std::move(pairs);
   make_list(true);
-  x_build_.resize(n);
-  y_build_.resize(n);
-  z_build_.resize(n);
-  for (std::size_t p = 0; p < n; ++p) {
-    x_build_[p] = static_cast<float>(x[p] - x0[p]);
-    y_build_[p] = static_cast<float>(y[p] - y0[p]);
-    z_build_[p] = static_cast<float>(z[p] - z0[p]);
-  }
+  keep_displacements(x_build_, y_build_, z_build_);
   ++rebuilds;
 }
 
@@ -367,14 +369,7 @@ void Dynamics::make_list(bool verlet_build) {
   } else {
     const double t = 0.375 * margin;
     near2_ = t * t;
-    if (!verlet_build) {  // at a Verlet build x_build_ is the reference (Dynamics::rebuild)
-      for (auto* v : {&x_relist_, &y_relist_, &z_relist_}) v->resize(n);
-      for (std::size_t p = 0; p < n; ++p) {
-        x_relist_[p] = static_cast<float>(x[p] - x0[p]);
-        y_relist_[p] = static_cast<float>(y[p] - y0[p]);
-        z_relist_[p] = static_cast<float>(z[p] - z0[p]);
-      }
-    }
+    if (!verlet_build) keep_displacements(x_relist_, y_relist_, z_relist_);  // else x_build_ (Dynamics::rebuild)
   }
   ++list_builds_;
   if (!verlet_build) ++relists;

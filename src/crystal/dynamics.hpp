@@ -419,6 +419,11 @@ class Dynamics {
   const SpreadVector<float>& relist_y() const { return y_relist_.empty() ? y_build_ : y_relist_; }
   const SpreadVector<float>& relist_z() const { return z_relist_.empty() ? z_build_ : z_relist_; }
   void make_list(bool verlet_build);  // the contact list from candidates_ (rebuild, relist)
+  // The largest |(x - x0) - r|^2 of the owned particles (this rank's), r a kept displacement.
+  double max_displacement2_from(const SpreadVector<float>& rx, const SpreadVector<float>& ry,
+                                const SpreadVector<float>& rz) const;
+  // x - x0 of every held particle into rx, ry, rz, in single precision (a list's reference).
+  void keep_displacements(SpreadVector<float>& rx, SpreadVector<float>& ry, SpreadVector<float>& rz) const;
   void relist_if_moved();             // relist when a particle moved as far as near2_ allows
   std::vector<double> dissipated_before_;  // per layer, folded in at rebuilds
   long list_builds_ = 0;                   // rebuilds of the contact list so far
