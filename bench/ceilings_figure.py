@@ -42,7 +42,8 @@ BYTES = {
 # L1): Hooke reads x, y, z, v, a of i and j one double at a time (14); the laws with torques load whole
 # rows of four (x y z a | v | w of i and j: 6) and transpose them (crystal/kernel_gather.hpp).
 RANDOM_LOADS = {"frictionless (Hooke)": 14}
-DISPATCH_WIDTH = 6  # Zen 3 and Zen 4 dispatch 6 macro-ops a cycle (AMD's optimisation guides)
+DISPATCH_WIDTH = 6  # Zen 3 and Zen 4 dispatch 6 macro-ops a cycle (AMD's guides); Golden Cove (Sapphire
+# Rapids) allocates 6 a cycle (Intel's optimisation manual)
 
 CEILINGS = ["divider", "FP pipes", "L1 ports", "dispatch", "gathers", "memory (L2)", "memory (L3)", "memory (DRAM)",
             "chain"]
@@ -73,6 +74,15 @@ def achieved(text):
     return out
 
 
+def fp_time(p, key, op, tput):
+    """ns of one kind of arithmetic per contact: its instructions by width at each width's rate (counts from
+    count_pass_ops' add_sub_insns_<lanes>; older counts without them: the flops at 4 lanes)."""
+    by_width = {int(k.rsplit("_", 1)[1]): v for k, v in p.items() if k.startswith(key + "_insns_")}
+    if not by_width:
+        return p[key] / 4 * tput(op, 4)
+    return sum(v * tput(op, lanes if lanes != 2 else 1) for lanes, v in by_width.items())
+
+
 def bounds(ops, ceil, name, per):
     """ns per contact (particle) that each ceiling allows for a pass."""
     ns_cycle = 1.0 / ceil["core_ghz"]
@@ -89,7 +99,9 @@ def bounds(ops, ceil, name, per):
     p = ops["per_" + per]
     b = {
         "divider": div,  # one unit for both (ceilings' mix: div + sqrt interleaved cost their sum)
-        "FP pipes": max((p["add_sub"] + p["minmax"]) / 4 * tput("add", 4), p["mul"] / 4 * tput("mul", 4)),
+        # each add and multiply instruction at its width's measured rate (a zmm one is one instruction)
+        "FP pipes": max(fp_time(p, "add_sub", "add", tput) + p["minmax"] / 4 * tput("add", 4),
+                        fp_time(p, "mul", "mul", tput)),
         "L1 ports": max(p["loads"] * ceil["l1_ymm"]["load_ns"], p["stores"] * ceil["l1_ymm"]["store_ns"]),
         "dispatch": p["instructions"] / DISPATCH_WIDTH * ns_cycle,
         "chain": chain,

@@ -12,10 +12,12 @@ hand and checked against the loop's induction where the script can read it). Onl
 path is counted: a block placed out of line (the scatter's change of particle i, once per ~6 contacts)
 is not. Each loop's critical path (one iteration's longest register dependency chain: the measured
 latencies of div, sqrt, add, mul with --ceilings, else Zen 4's published ones). With --mca, each loop
-is also handed to llvm-mca-14 -mcpu=znver3 (LLVM 14 has no Zen 4 model; it reads AVX-512VL
-instructions on ymm as their Zen 3 forms) for its cycles per iteration and the bottleneck it names.
+is also handed to llvm-mca-14 for its cycles per iteration and the bottleneck it names: -mcpu=znver3 on
+AMD (LLVM 14 has no Zen 4 model; it reads AVX-512VL instructions on ymm as their Zen 3 forms),
+-mcpu=sapphirerapids on an Intel core with AVX512-FP16 (LLVM 14 schedules it with its Ice Lake server
+model), icelake-server on other Intel cores with AVX-512, skylake on Intel cores without; --mcpu NAME sets it.
 
-Usage: /usr/bin/python3 bench/count_pass_ops.py BUILD_DIR [--ceilings CEILINGS.json] [--mca] [--json FILE]
+Usage: /usr/bin/python3 bench/count_pass_ops.py BUILD_DIR [--ceilings CEILINGS.json] [--mca [--mcpu NAME]] [--json FILE]
        /usr/bin/python3 bench/count_pass_ops.py BUILD_DIR --list FUNCTION_SUBSTRING   (every loop of it)
 """
 import json
@@ -31,14 +33,16 @@ from pathlib import Path
 # HertzMindlinLaw<false, 1, false>; bench/cases/crystal_rolling.toml -> WithRollingTorsion<
 # LinearLudingLaw<false, false>, false, false>), and the loops that make the pass, with the contacts
 # (particles) each iteration walks, read by hand from this build's loops (GCC 12 -O3 -march=native,
-# 256-bit vectors; since session 30 the friction forms without rolling are built for 512-bit vectors, whose
-# loops these steps and classes do not describe: count a build with law_model_*_wide.cpp at 256) and checked where the script can see the induction: the evaluation is unrolled twice
-# (8 contacts: its column pointer steps 64 bytes; the frictionless one, two ymm roots for Hooke's
-# one root per contact), the gather and the scatter take 4 (their index steps 4), the frictionless
-# pass's image offsets 32 (16 ymm stores of shx, shy), the particle pass 4.
+# 256-bit vectors, except law_model_*_wide.cpp's friction forms without couples at 512) and checked where
+# the script can see the induction: the evaluation is unrolled twice (8 contacts at 256 bits, 16 at 512:
+# pass() doubles the step where the loop's root is a zmm one; its column pointer steps 64 bytes; the
+# frictionless one, two ymm roots for Hooke's one root per contact), the gather and the scatter take 4
+# (their index steps 4, ymm in either unit), the frictionless pass's image offsets 32 (16 ymm stores of
+# shx, shy), the particle pass 4. The one-thread route: the gathered passes' own function, the direct
+# pass's lambda #4 (kernel::in_parts' body without stored end arms, a run's step).
 PASSES = [
     {"name": "frictionless (Hooke)", "object": "law_model_linear.cpp.o",
-     "function": "in_blocks<granwave::crystal::kernel::direct_contact_pass<granwave::contact::HookeLaw<false>, false>",
+     "function": "direct_contact_pass<granwave::contact::HookeLaw<false>, false>(granwave::crystal::Dynamics&, granwave::contact::HookeLaw<false> const&, granwave::crystal::ContactPassPlan const&)::{lambda(long, long)#4}::operator()",
      "loops": ["images", "evaluation", "scatter1"], "step": {"images": 32, "evaluation": 8, "scatter1": 4},
      "per": "contact"},
     {"name": "friction, radius arm", "object": "law_model_linear_wide.cpp.o",
@@ -162,8 +166,10 @@ def classify(body):
                 c["sqrt_lanes"] += n
             elif kind in ("add", "sub"):
                 c["add_sub"] += n
+                c[f"add_sub_insns_{n}"] = c.get(f"add_sub_insns_{n}", 0) + 1
             elif kind == "mul":
                 c["mul"] += n
+                c[f"mul_insns_{n}"] = c.get(f"mul_insns_{n}", 0) + 1
             else:
                 c["minmax"] += n
             c["flops"] += n
@@ -197,7 +203,8 @@ def signature(body):
     text = [mn + " " + ops for _, mn, ops in body]
     c = classify(body)
     return {
-        "sqrt_ymm": any(t.startswith("vsqrtpd") and "%ymm" in t for t in text),
+        "sqrt_ymm": any(t.startswith("vsqrtpd") and ("%ymm" in t or "%zmm" in t) for t in text),
+        "sqrt_zmm": any(t.startswith("vsqrtpd") and "%zmm" in t for t in text),
         "perm": sum(t.startswith(("vperm2f128", "vinsertf128", "vshuff64x2", "vunpck", "vpermt2pd", "vpermi2pd"))
                     for t in text),
         "int8": any(t.startswith(("movsbl", "movsbq", "vpmovsxbd", "vpmovsxbq", "vpmovsxbw")) for t in text),
@@ -261,6 +268,20 @@ def elements_per_iteration(body):
     return best[1]
 
 
+def default_mcpu():
+    """llvm-mca-14's model nearest this machine's core (/proc/cpuinfo)."""
+    try:
+        info = Path("/proc/cpuinfo").read_text()
+    except OSError:
+        return "znver3"
+    flags = set(re.search(r"^flags\s*:(.*)$", info, re.M).group(1).split()) if "flags" in info else set()
+    if "GenuineIntel" not in info:
+        return "znver3"
+    if "avx512_fp16" in flags:
+        return "sapphirerapids"
+    return "icelake-server" if "avx512f" in flags else "skylake"
+
+
 def mca(body, mcpu="znver3"):
     """llvm-mca-14's cycles per iteration and its bottleneck note for a loop body, or None."""
     lines = ["L0:"]
@@ -290,14 +311,15 @@ def mca(body, mcpu="znver3"):
 # the rest Zen 4's published figures (AMD's software optimisation guide for family 19h): an L1 load
 # 7 (FP), a lane shuffle across halves 3, within 1, a conversion 3, a compare into a mask 3 (approximate).
 def latency_of(mn, ops, lat):
+    z = "_zmm" if "%zmm" in ops and lat.get("div_zmm") else ""  # a 512-bit instruction's own latency
     if mn.startswith(("vdivpd", "vdivsd")):
-        return lat["div"]
+        return lat["div" + z]
     if mn.startswith(("vsqrtpd", "vsqrtsd")):
-        return lat["sqrt"]
+        return lat["sqrt" + z]
     if mn.startswith(("vmul",)):
-        return lat["mul"]
+        return lat["mul" + z]
     if re.match(r"^v(add|sub|min|max)(pd|sd)$", mn):
-        return lat["add"]
+        return lat["add" + z]
     if mn.startswith(("vperm2", "vinsertf", "vextractf", "vshuff", "vpermt", "vpermi")):
         return 3
     if mn.startswith(("vcvt", "vcmp", "vpcmp")):
@@ -352,6 +374,8 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
         lo, hi = pick(insns, kind)
         body = insns[lo:hi + 1]
         n = spec["step"][kind]
+        if kind == "evaluation" and signature(body)["sqrt_zmm"]:
+            n *= 2  # 512-bit vectors: the same loop unrolled twice walks 16 contacts
         seen = elements_per_iteration(body)
         if seen and seen != n:
             print(f"count_pass_ops: note: {spec['name']}, {kind}: the induction reads {seen} per iteration, "
@@ -368,7 +392,7 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
                 k = str(lanes(ops, mn))
                 d[k] = d.get(k, 0) + 1
         if with_mca:
-            row["mca"] = mca(body)
+            row["mca"] = mca(body, with_mca)
         out["loops"].append(row)
         for k, v in c.items():
             if isinstance(v, (int, float)) and v is not None:
@@ -404,7 +428,10 @@ def main():
         cj = json.loads(Path(args[args.index("--ceilings") + 1]).read_text())
         ymm = next(r for r in cj["arithmetic"] if r["lanes"] == 4)
         lat = {k: ymm[k]["latency_cycles"] for k in ("div", "sqrt", "add", "mul")}
-    with_mca = "--mca" in args
+        zmm = next((r for r in cj["arithmetic"] if r["lanes"] == 8), None)
+        if zmm:
+            lat.update({k + "_zmm": zmm[k]["latency_cycles"] for k in ("div", "sqrt", "add", "mul")})
+    with_mca = ("--mca" in args) and (args[args.index("--mcpu") + 1] if "--mcpu" in args else default_mcpu())
     cache = {}
     result = {"format": "granwave-pass-ops/1", "latencies_cycles": lat, "passes": []}
     for spec in PASSES + PARTICLE:
