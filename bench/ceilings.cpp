@@ -1,6 +1,7 @@
 // The processor's ceilings, measured on the machine it runs on (issue #41 item 1): divider and
 // square-root throughput and latency (scalar, 256-bit, 512-bit where built for), add and multiply
-// for reference, the gather rate against scalar loads (L1, L2-size and memory-size tables), a
+// for reference, the gather rows' shuffles (in-lane unpacks and lane shuffles, and whether they share a
+// port), the gather rate against scalar loads (L1, L2-size and memory-size tables), a
 // STREAM-like triad on 1 and 2 threads, the CPU's model, flags and whether logical CPUs share a core.
 // Usage: ceilings [--quick] [--json FILE]
 // Every figure is the minimum over many short timed blocks (the best block is the one no other
@@ -263,6 +264,52 @@ L1Rate l1_rates(int reps) {
   return r;
 }
 
+// ---- Shuffles: the gather's row transposes (crystal/kernel_gather.hpp) are in-lane unpacks and 128-bit
+// lane shuffles on ymm; 12 independent per block, ns per instruction. The mix (6 unpacks and 6 lane
+// shuffles interleaved) tells whether they share one port: it then costs their sum, else about the
+// lane shuffles' alone. ----
+struct ShuffleRate {
+  double unpack_ns, lanes_ns, mix_ns;  // vunpcklpd ymm; vshuff64x2 ymm (AVX-512VL) or vperm2f128; the mix
+  const char* lanes_name;
+};
+
+ShuffleRate shuffle_rates(int reps) {
+  __m256d a = _mm256_set1_pd(1.0), b = _mm256_set1_pd(2.0);
+  ShuffleRate r{};
+  r.unpack_ns = min_ns(reps, [&] {
+    for (int k = 0; k < kIter; ++k) {
+      __m256d d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11;
+      asm volatile(T12("vunpcklpd") : OUT12 : [a] "v"(a), [b] "v"(b));
+    }
+  }) / (12.0 * kIter);
+#ifdef __AVX512VL__
+#define LANES(D) "vshuff64x2 $1, %[b], %[a], %[" D "]\n\t"
+  r.lanes_name = "vshuff64x2";
+#else
+#define LANES(D) "vperm2f128 $0x21, %[b], %[a], %[" D "]\n\t"
+  r.lanes_name = "vperm2f128";
+#endif
+  r.lanes_ns = min_ns(reps, [&] {
+    for (int k = 0; k < kIter; ++k) {
+      __m256d d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11;
+      asm volatile(LANES("d0") LANES("d1") LANES("d2") LANES("d3") LANES("d4") LANES("d5") LANES("d6")
+                       LANES("d7") LANES("d8") LANES("d9") LANES("d10") LANES("d11")
+                   : OUT12 : [a] "v"(a), [b] "v"(b));
+    }
+  }) / (12.0 * kIter);
+  r.mix_ns = min_ns(reps, [&] {
+    for (int k = 0; k < kIter; ++k) {
+      __m256d d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11;
+      asm volatile("vunpcklpd %[b], %[a], %[d0]\n\t" LANES("d1") "vunpcklpd %[b], %[a], %[d2]\n\t" LANES("d3")
+                   "vunpcklpd %[b], %[a], %[d4]\n\t" LANES("d5") "vunpcklpd %[b], %[a], %[d6]\n\t" LANES("d7")
+                   "vunpcklpd %[b], %[a], %[d8]\n\t" LANES("d9") "vunpcklpd %[b], %[a], %[d10]\n\t" LANES("d11")
+                   : OUT12 : [a] "v"(a), [b] "v"(b));
+    }
+  }) / (12.0 * kIter);
+#undef LANES
+  return r;
+}
+
 // ---- Gathers against scalar loads: ns per double loaded from `table` at random indices ----
 struct GatherRow {
   std::string where;
@@ -442,6 +489,11 @@ int main(int argc, char** argv) {
   const L1Rate l1 = l1_rates(reps);
   std::printf("\nL1, 256-bit: a load %.2f cycles [%.3f ns], a store %.2f cycles [%.3f ns] (12 independent per block)\n",
               l1.load_ns / cyc_ns, l1.load_ns, l1.store_ns / cyc_ns, l1.store_ns);
+  const ShuffleRate sh = shuffle_rates(reps);
+  std::printf("shuffles, 256-bit: vunpcklpd %.2f cycles [%.3f ns], %s %.2f [%.3f ns]; 6 + 6 interleaved %.2f a "
+              "shuffle (one port for both: %.2f, apart: %.2f)\n",
+              sh.unpack_ns / cyc_ns, sh.unpack_ns, sh.lanes_name, sh.lanes_ns / cyc_ns, sh.lanes_ns, sh.mix_ns / cyc_ns,
+              0.5 * (sh.unpack_ns + sh.lanes_ns) / cyc_ns, 0.5 * std::max(sh.unpack_ns, sh.lanes_ns) / cyc_ns);
   struct Level {
     const char* name;
     std::size_t bytes;
@@ -504,6 +556,9 @@ int main(int argc, char** argv) {
     j["arithmetic"] = arith;
     j["l1_ymm"] = {{"load_ns", l1.load_ns}, {"load_cycles", l1.load_ns / cyc_ns}, {"store_ns", l1.store_ns},
                    {"store_cycles", l1.store_ns / cyc_ns}};
+    j["shuffles_ymm"] = {{"unpack_ns", sh.unpack_ns}, {"unpack_cycles", sh.unpack_ns / cyc_ns},
+                         {"lanes_instruction", sh.lanes_name}, {"lanes_ns", sh.lanes_ns},
+                         {"lanes_cycles", sh.lanes_ns / cyc_ns}, {"mix_ns", sh.mix_ns}, {"mix_cycles", sh.mix_ns / cyc_ns}};
     Json g = Json::array();
     for (const GatherRow& r : gathers)
       g.push_back({{"table", r.where}, {"bytes", r.bytes}, {"scalar_ns_per_double", r.scalar_ns},

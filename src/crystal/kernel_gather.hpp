@@ -42,7 +42,7 @@ struct Gathered {
 };
 
 #ifdef GRANWAVE_GATHER_VECTORS
-using simd::load4, simd::store4, simd::transpose4, simd::V4;
+using simd::load4, simd::store4, simd::transpose4, simd::transpose4_rows, simd::V4;
 #endif
 
 // rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0. The rows of particles
@@ -114,26 +114,27 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
     const std::int64_t j0 = 4 * std::int64_t{J[0]}, j1 = 4 * std::int64_t{J[1]}, j2 = 4 * std::int64_t{J[2]},
                        j3 = 4 * std::int64_t{J[3]};
     V4 xi, yi, zi, ai, xj, yj, zj, aj;
-    transpose4(load4(pos + i0), load4(pos + i1), load4(pos + i2), load4(pos + i3), xi, yi, zi, ai);
-    transpose4(load4(pos + j0), load4(pos + j1), load4(pos + j2), load4(pos + j3), xj, yj, zj, aj);
+    transpose4_rows(pos + i0, pos + i1, pos + i2, pos + i3, xi, yi, zi, ai);
+    transpose4_rows(pos + j0, pos + j1, pos + j2, pos + j3, xj, yj, zj, aj);
     store4(&g.col[G::bx][u], (xj + sx) - xi);
     store4(&g.col[G::by][u], (yj + sy) - yi);
     store4(&g.col[G::bz][u], zj - zi);
     store4(&g.col[G::reach][u], ai + aj);
     store4(&g.col[G::a_i][u], ai);
     store4(&g.col[G::a_j][u], aj);
-    // v_i - v_j lane-wise on the rows, then one transpose (the same subtractions)
-    V4 unused;
-    transpose4(load4(vel + i0) - load4(vel + j0), load4(vel + i1) - load4(vel + j1),
-               load4(vel + i2) - load4(vel + j2), load4(vel + i3) - load4(vel + j3), xi, yi, zi, unused);
+    // v_i - v_j lane-wise on the rows' halves, then the columns (the same subtractions)
+    V4 unused, hi[4], hj[4];
+    simd::row_halves4(vel + i0, vel + i1, vel + i2, vel + i3, hi[0], hi[1], hi[2], hi[3]);
+    simd::row_halves4(vel + j0, vel + j1, vel + j2, vel + j3, hj[0], hj[1], hj[2], hj[3]);
+    simd::columns_of_halves4(hi[0] - hj[0], hi[1] - hj[1], hi[2] - hj[2], hi[3] - hj[3], xi, yi, zi, unused);
     store4(&g.col[G::dvx][u], xi);
     store4(&g.col[G::dvy][u], yi);
     store4(&g.col[G::dvz][u], zi);
-    transpose4(load4(rot + i0), load4(rot + i1), load4(rot + i2), load4(rot + i3), xi, yi, zi, unused);
+    transpose4_rows(rot + i0, rot + i1, rot + i2, rot + i3, xi, yi, zi, unused);
     store4(&g.col[G::wix][u], xi);
     store4(&g.col[G::wiy][u], yi);
     store4(&g.col[G::wiz][u], zi);
-    transpose4(load4(rot + j0), load4(rot + j1), load4(rot + j2), load4(rot + j3), xj, yj, zj, unused);
+    transpose4_rows(rot + j0, rot + j1, rot + j2, rot + j3, xj, yj, zj, unused);
     store4(&g.col[G::wjx][u], xj);
     store4(&g.col[G::wjy][u], yj);
     store4(&g.col[G::wjz][u], zj);

@@ -12,6 +12,9 @@
 #ifdef __SSE2__
 #include <emmintrin.h>
 #endif
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 
 #include "core/inline.hpp"
 
@@ -50,6 +53,44 @@ GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const 
   c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
   c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
   c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// The same transpose of four rows read from memory, with fewer lane shuffles: the rows' halves are
+// loaded and paired across two rows (a 128-bit load into each half: vinsertf128 from memory, which
+// does not take the shuffle port), then one in-lane unpack per column. The gather's transposes were
+// bound by that port on Golden Cove (docs/benchmarks.md, session 31). Split in two so that a
+// lane-wise operation can sit between (the gather's v_i - v_j: the same subtractions as on the rows).
+typedef double V2u __attribute__((vector_size(16), aligned(8), may_alias));  // two doubles, unaligned
+// p0..p3: four rows of four; h0 = p0[0:2] p2[0:2], h1 = p1[0:2] p3[0:2], h2 = p0[2:4] p2[2:4], h3 = p1[2:4] p3[2:4].
+GRANWAVE_ALWAYS_INLINE inline void row_halves4(const double* p0, const double* p1, const double* p2, const double* p3,
+                                               V4& h0, V4& h1, V4& h2, V4& h3) {
+#ifdef __AVX__
+  // the intrinsic, not a shufflevector of two loads: GCC 12 makes that a lane shuffle (vshuff64x2)
+  h0 = V4(_mm256_loadu2_m128d(p2, p0));
+  h1 = V4(_mm256_loadu2_m128d(p3, p1));
+  h2 = V4(_mm256_loadu2_m128d(p2 + 2, p0 + 2));
+  h3 = V4(_mm256_loadu2_m128d(p3 + 2, p1 + 2));
+#else
+  auto half = [](const double* q) GRANWAVE_ALWAYS_INLINE { return *reinterpret_cast<const V2u*>(q); };
+  h0 = __builtin_shufflevector(half(p0), half(p2), 0, 1, 2, 3);
+  h1 = __builtin_shufflevector(half(p1), half(p3), 0, 1, 2, 3);
+  h2 = __builtin_shufflevector(half(p0 + 2), half(p2 + 2), 0, 1, 2, 3);
+  h3 = __builtin_shufflevector(half(p1 + 2), half(p3 + 2), 0, 1, 2, 3);
+#endif
+}
+// The columns from row_halves4's pairs: c_q lane r = row r's q.
+GRANWAVE_ALWAYS_INLINE inline void columns_of_halves4(const V4& h0, const V4& h1, const V4& h2, const V4& h3, V4& c0,
+                                                      V4& c1, V4& c2, V4& c3) {
+  c0 = __builtin_shufflevector(h0, h1, 0, 4, 2, 6);
+  c1 = __builtin_shufflevector(h0, h1, 1, 5, 3, 7);
+  c2 = __builtin_shufflevector(h2, h3, 0, 4, 2, 6);
+  c3 = __builtin_shufflevector(h2, h3, 1, 5, 3, 7);
+}
+GRANWAVE_ALWAYS_INLINE inline void transpose4_rows(const double* p0, const double* p1, const double* p2,
+                                                   const double* p3, V4& c0, V4& c1, V4& c2, V4& c3) {
+  V4 h0, h1, h2, h3;
+  row_halves4(p0, p1, p2, p3, h0, h1, h2, h3);
+  columns_of_halves4(h0, h1, h2, h3, c0, c1, c2, c3);
 }
 
 // Stores past the caches (non-temporal), for what a pass writes whole and the next pass or sample

@@ -57,7 +57,7 @@ Dynamics particles(std::size_t n) {
 
 }  // namespace
 
-TEST_CASE("simd: transpose4, mask4 and widened floats = their scalar twins", "[crystal][simd]") {
+TEST_CASE("simd: transpose4, transpose4_rows, mask4 and widened floats = their scalar twins", "[crystal][simd]") {
   const std::vector<double> v = mixed_values(64, 3);
   for (std::size_t k = 0; k + 16 <= v.size(); k += 16) {
     simd::V4 c[4];
@@ -67,6 +67,22 @@ TEST_CASE("simd: transpose4, mask4 and widened floats = their scalar twins", "[c
     for (int q = 0; q < 4; ++q) simd::store4(out + 4 * q, c[q]);
     for (int r = 0; r < 4; ++r)
       for (int q = 0; q < 4; ++q) CHECK(same_bits(out[4 * q + r], v[k + 4 * r + q]));  // column q, lane r = row r's q
+  }
+  // The transpose from memory (the gather's): rows anywhere, 8-byte aligned; and its halves with a
+  // lane-wise subtraction between, against the scalar differences (the gather's v_i - v_j).
+  for (std::size_t k = 0; k + 19 <= v.size(); k += 5) {
+    const double* r[4] = {&v[k + 15], &v[k + 1], &v[k + 7], &v[k + 3]};  // overlapping, out of order
+    simd::V4 c[4];
+    simd::transpose4_rows(r[0], r[1], r[2], r[3], c[0], c[1], c[2], c[3]);
+    for (int q = 0; q < 4; ++q)
+      for (int l = 0; l < 4; ++l) CHECK(same_bits(c[q][l], r[l][q]));
+    const double* s[4] = {&v[k + 2], &v[k + 11], &v[k + 9], &v[k]};
+    simd::V4 hi[4], hj[4];
+    simd::row_halves4(r[0], r[1], r[2], r[3], hi[0], hi[1], hi[2], hi[3]);
+    simd::row_halves4(s[0], s[1], s[2], s[3], hj[0], hj[1], hj[2], hj[3]);
+    simd::columns_of_halves4(hi[0] - hj[0], hi[1] - hj[1], hi[2] - hj[2], hi[3] - hj[3], c[0], c[1], c[2], c[3]);
+    for (int q = 0; q < 4; ++q)
+      for (int l = 0; l < 4; ++l) CHECK(same_bits(c[q][l], r[l][q] - s[l][q]));
   }
   const std::uint8_t flags[8] = {0, 1, 2, 255, 0, 0, 7, 1};
   for (int k = 0; k < 8; k += 4) {
