@@ -80,21 +80,22 @@ def fp_time(p, key, op, tput):
     by_width = {int(k.rsplit("_", 1)[1]): v for k, v in p.items() if k.startswith(key + "_insns_")}
     if not by_width:
         return p[key] / 4 * tput(op, 4)
-    return sum(v * tput(op, lanes if lanes != 2 else 1) for lanes, v in by_width.items())
+    return sum(v * tput(op, lanes) for lanes, v in by_width.items())
 
 
 def bounds(ops, ceil, name, per):
     """ns per contact (particle) that each ceiling allows for a pass."""
     ns_cycle = 1.0 / ceil["core_ghz"]
     by_lanes = {r["lanes"]: r for r in ceil["arithmetic"]}
-    tput = lambda op, lanes: by_lanes[lanes if lanes in by_lanes else 4][op]["throughput_ns"]
+    # packed xmm (2 lanes) at the scalar rate (the probe times scalar, ymm and zmm); a width it has not, at ymm's
+    tput = lambda op, lanes: by_lanes[1 if lanes == 2 else lanes if lanes in by_lanes else 4][op]["throughput_ns"]
     div = chain = 0.0
     for L in ops["loops"]:
         n = L["per_iteration"]
         for lanes, k in L["div_by_lanes"].items():
-            div += k * tput("div", int(lanes) if int(lanes) != 2 else 1) / n
+            div += k * tput("div", int(lanes)) / n
         for lanes, k in L["sqrt_by_lanes"].items():
-            div += k * tput("sqrt", int(lanes) if int(lanes) != 2 else 1) / n
+            div += k * tput("sqrt", int(lanes)) / n
         chain += L["critical_path_cycles"] * ns_cycle / n
     p = ops["per_" + per]
     b = {

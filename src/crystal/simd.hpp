@@ -42,13 +42,21 @@ GRANWAVE_ALWAYS_INLINE inline V4 load4(const float* p) {
 GRANWAVE_ALWAYS_INLINE inline V4m mask4(const std::uint8_t* p) {
   return V4m{p[0] ? -1LL : 0LL, p[1] ? -1LL : 0LL, p[2] ? -1LL : 0LL, p[3] ? -1LL : 0LL};
 }
+// The in-lane unpacks of two pairs of registers, (h0, h1) and (h2, h3): c0 = h0[0] h1[0] h0[2] h1[2],
+// c1 = h0[1] h1[1] h0[3] h1[3], c2 and c3 the same of h2, h3. Of row_halves4's pairs these are the
+// columns (c_q lane r = row r's q); of four rows, transpose4's first half.
+GRANWAVE_ALWAYS_INLINE inline void columns_of_halves4(const V4& h0, const V4& h1, const V4& h2, const V4& h3, V4& c0,
+                                                      V4& c1, V4& c2, V4& c3) {
+  c0 = __builtin_shufflevector(h0, h1, 0, 4, 2, 6);
+  c1 = __builtin_shufflevector(h0, h1, 1, 5, 3, 7);
+  c2 = __builtin_shufflevector(h2, h3, 0, 4, 2, 6);
+  c3 = __builtin_shufflevector(h2, h3, 1, 5, 3, 7);
+}
 // The 4 x 4 transpose: rows r0..r3 in, columns c0..c3 out (and back).
 GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const V4& r2, const V4& r3, V4& c0, V4& c1,
                                               V4& c2, V4& c3) {
-  const V4 t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);  // r0x r1x r0z r1z
-  const V4 t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);  // r0y r1y r0a r1a
-  const V4 t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
-  const V4 t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+  V4 t0, t1, t2, t3;  // r0x r1x r0z r1z | r0y r1y r0a r1a | the same of r2, r3
+  columns_of_halves4(r0, r1, r2, r3, t0, t1, t2, t3);
   c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
   c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
   c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
@@ -56,9 +64,10 @@ GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const 
 }
 
 // The same transpose of four rows read from memory, with fewer lane shuffles: the rows' halves are
-// loaded and paired across two rows (a 128-bit load into each half: vinsertf128 from memory, which
-// does not take the shuffle port), then one in-lane unpack per column. The gather's transposes were
-// bound by that port on Golden Cove (docs/benchmarks.md, session 31). Split in two so that a
+// loaded and paired across two rows (a 128-bit load into each half: vinsertf128, or its EVEX twin
+// vinsertf64x2, from memory, which does not take the shuffle port), then one in-lane unpack per
+// column. The gather's transposes were bound by that port on Golden Cove (docs/benchmarks.md,
+// session 31). Split in two so that a
 // lane-wise operation can sit between (the gather's v_i - v_j: the same subtractions as on the rows).
 typedef double V2u __attribute__((vector_size(16), aligned(8), may_alias));  // two doubles, unaligned
 // p0..p3: four rows of four; h0 = p0[0:2] p2[0:2], h1 = p1[0:2] p3[0:2], h2 = p0[2:4] p2[2:4], h3 = p1[2:4] p3[2:4].
@@ -77,14 +86,6 @@ GRANWAVE_ALWAYS_INLINE inline void row_halves4(const double* p0, const double* p
   h2 = __builtin_shufflevector(half(p0 + 2), half(p2 + 2), 0, 1, 2, 3);
   h3 = __builtin_shufflevector(half(p1 + 2), half(p3 + 2), 0, 1, 2, 3);
 #endif
-}
-// The columns from row_halves4's pairs: c_q lane r = row r's q.
-GRANWAVE_ALWAYS_INLINE inline void columns_of_halves4(const V4& h0, const V4& h1, const V4& h2, const V4& h3, V4& c0,
-                                                      V4& c1, V4& c2, V4& c3) {
-  c0 = __builtin_shufflevector(h0, h1, 0, 4, 2, 6);
-  c1 = __builtin_shufflevector(h0, h1, 1, 5, 3, 7);
-  c2 = __builtin_shufflevector(h2, h3, 0, 4, 2, 6);
-  c3 = __builtin_shufflevector(h2, h3, 1, 5, 3, 7);
 }
 GRANWAVE_ALWAYS_INLINE inline void transpose4_rows(const double* p0, const double* p1, const double* p2,
                                                    const double* p3, V4& c0, V4& c1, V4& c2, V4& c3) {
