@@ -103,10 +103,8 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
   for (; u + 4 <= m; u += 4) {
     // j's image offsets in metres, converted here from the int8 images (not stored per contact:
     // memory; a loop of their own over the chunk cost 1.3 % of the pass)
-    const std::int8_t* X = imx + s0 + u;
-    const std::int8_t* Y = imy + s0 + u;
-    const V4 sx = V4{double(X[0]), double(X[1]), double(X[2]), double(X[3])} * bxv;
-    const V4 sy = V4{double(Y[0]), double(Y[1]), double(Y[2]), double(Y[3])} * byv;
+    const V4 sx = load4(imx + s0 + u) * bxv;
+    const V4 sy = load4(imy + s0 + u) * byv;
     const std::int32_t* I = ci + s0 + u;
     const std::int32_t* J = cj + s0 + u;
     const std::int64_t i0 = 4 * std::int64_t{I[0]}, i1 = 4 * std::int64_t{I[1]}, i2 = 4 * std::int64_t{I[2]},
@@ -205,37 +203,48 @@ GRANWAVE_ALWAYS_INLINE inline void end_arms_of_chunk(const Gathered& g, std::int
 // list, into the particles no other run touches (Masked); the few that two runs share are summed
 // after the runs join, from the stored forces in the same order (sum_shared_forces).
 #ifdef GRANWAVE_GATHER_VECTORS
-template <int K>
-struct ScatterState {
-  std::int64_t cur = -1;  // the particle i whose sums are in registers
-  V4 sum[K]{};
+// Where the sums go: row kind k of particle p at kind[k] + 4 p (one base pointer a kind, so that a
+// row's address is a base and a scaled index, not index arithmetic of its own).
+template <int R>
+struct RowKinds {
+  double* kind[R];
+  RowKinds(double* rows, std::int64_t n) {
+    for (int k = 0; k < R; ++k) kind[k] = rows + 4 * k * n;
+  }
 };
 
-// K rows of f | n x f^t | delta n x f^t, then with Couples the couple's row (row K). Masked
-// (threads): an end with shared[p] set is left out; its sums are made after the parts join.
+template <int R>
+struct ScatterState {
+  std::int64_t cur = -1;  // 4 x the particle i whose sums are in registers
+  V4 sum[R]{};
+};
+
+// K rows of f | n x f^t | delta n x f^t, then with Couples the couple's row (row K); i4, j4: 4 x
+// the particle indices. Masked (threads): an end with shared[p] set is left out; its sums are made
+// after the parts join.
 template <int K, bool Couples, bool Masked = false>
-GRANWAVE_ALWAYS_INLINE inline void scatter_one(ScatterState<K + Couples>& st, double* __restrict rows, std::int64_t n,
-                                               std::int64_t i, std::int64_t j, const V4& f, const V4& nf,
+GRANWAVE_ALWAYS_INLINE inline void scatter_one(ScatterState<K + Couples>& st, const RowKinds<K + Couples>& rk,
+                                               std::int64_t i4, std::int64_t j4, const V4& f, const V4& nf,
                                                double delta, const V4& couple, const std::uint8_t* shared) {
   constexpr int R = K + Couples;
   const V4 d{delta, delta, delta, delta};
-  if (!Masked || !shared[i]) {
-    if (i != st.cur) {
+  if (!Masked || !shared[i4 >> 2]) {
+    if (i4 != st.cur) {
       if (st.cur >= 0)
-        for (int k = 0; k < R; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
-      st.cur = i;
-      for (int k = 0; k < R; ++k) st.sum[k] = load4(rows + 4 * (k * n + i));
+        for (int k = 0; k < R; ++k) store4(rk.kind[k] + st.cur, st.sum[k]);
+      st.cur = i4;
+      for (int k = 0; k < R; ++k) st.sum[k] = load4(rk.kind[k] + i4);
     }
     st.sum[0] = st.sum[0] + f;
     if constexpr (K >= 2) st.sum[1] = st.sum[1] + nf;
     if constexpr (K >= 3) st.sum[2] = st.sum[2] + d * nf;
     if constexpr (Couples) st.sum[K] = st.sum[K] + couple;
   }
-  if (Masked && shared[j]) return;
-  store4(rows + 4 * j, load4(rows + 4 * j) - f);
-  if constexpr (K >= 2) store4(rows + 4 * (n + j), load4(rows + 4 * (n + j)) + nf);
-  if constexpr (K >= 3) store4(rows + 4 * (2 * n + j), load4(rows + 4 * (2 * n + j)) + d * nf);
-  if constexpr (Couples) store4(rows + 4 * (K * n + j), load4(rows + 4 * (K * n + j)) - couple);  // j: the opposite
+  if (Masked && shared[j4 >> 2]) return;
+  store4(rk.kind[0] + j4, load4(rk.kind[0] + j4) - f);
+  if constexpr (K >= 2) store4(rk.kind[1] + j4, load4(rk.kind[1] + j4) + nf);
+  if constexpr (K >= 3) store4(rk.kind[2] + j4, load4(rk.kind[2] + j4) + d * nf);
+  if constexpr (Couples) store4(rk.kind[K] + j4, load4(rk.kind[K] + j4) - couple);  // j: the opposite
 }
 
 // The m contacts (their i, j, forces, n x f^t, overlaps, couples: cc, Couples only; indexed
@@ -247,26 +256,29 @@ GRANWAVE_ALWAYS_INLINE inline void scatter(double* rows, std::int64_t n, std::in
                                            const double* cnz, const double* cdelta, const double* ccx = nullptr,
                                            const double* ccy = nullptr, const double* ccz = nullptr,
                                            const std::uint8_t* shared = nullptr) {
-  ScatterState<K + Couples> st;
+  constexpr int R = K + Couples;
+  const RowKinds<R> rk(rows, n);
+  ScatterState<R> st;
   const V4 zero{0.0, 0.0, 0.0, 0.0};
   V4 f[4], nf[4], cp[4];
+  auto at4 = [](const std::int32_t* p) GRANWAVE_ALWAYS_INLINE { return 4 * std::int64_t{*p}; };
   std::int64_t c = 0;
   for (; c + 4 <= m; c += 4) {
     transpose4(load4(cfx + c), load4(cfy + c), load4(cfz + c), zero, f[0], f[1], f[2], f[3]);
     if constexpr (K >= 2) transpose4(load4(cnx + c), load4(cny + c), load4(cnz + c), zero, nf[0], nf[1], nf[2], nf[3]);
     if constexpr (Couples) transpose4(load4(ccx + c), load4(ccy + c), load4(ccz + c), zero, cp[0], cp[1], cp[2], cp[3]);
     for (int q = 0; q < 4; ++q)
-      scatter_one<K, Couples, Masked>(st, rows, n, ci[c + q], cj[c + q], f[q], nf[q], K >= 3 ? cdelta[c + q] : 0.0,
-                                      cp[q], shared);
+      scatter_one<K, Couples, Masked>(st, rk, at4(ci + c + q), at4(cj + c + q), f[q], nf[q],
+                                      K >= 3 ? cdelta[c + q] : 0.0, cp[q], shared);
   }
   for (; c < m; ++c) {
     const V4 fc{cfx[c], cfy[c], cfz[c], 0.0};
     const V4 nc = K >= 2 ? V4{cnx[c], cny[c], cnz[c], 0.0} : zero;
     const V4 cc = Couples ? V4{ccx[c], ccy[c], ccz[c], 0.0} : zero;
-    scatter_one<K, Couples, Masked>(st, rows, n, ci[c], cj[c], fc, nc, K >= 3 ? cdelta[c] : 0.0, cc, shared);
+    scatter_one<K, Couples, Masked>(st, rk, at4(ci + c), at4(cj + c), fc, nc, K >= 3 ? cdelta[c] : 0.0, cc, shared);
   }
   if (st.cur >= 0)
-    for (int k = 0; k < K + Couples; ++k) store4(rows + 4 * (k * n + st.cur), st.sum[k]);
+    for (int k = 0; k < R; ++k) store4(rk.kind[k] + st.cur, st.sum[k]);
 }
 
 // The force rows of the particles the parts share, from the stored forces in the scatter's order:

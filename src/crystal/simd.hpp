@@ -38,6 +38,17 @@ GRANWAVE_ALWAYS_INLINE inline void store4(double* p, const V4& v) { *reinterpret
 GRANWAVE_ALWAYS_INLINE inline V4 load4(const float* p) {
   return __builtin_convertvector(*reinterpret_cast<const V4f*>(p), V4);
 }
+// Four signed bytes widened to doubles (exact): one load and two widening conversions where GCC
+// builds the vector from four scalar conversions through the stack.
+GRANWAVE_ALWAYS_INLINE inline V4 load4(const std::int8_t* p) {
+#ifdef __AVX__
+  std::int32_t word;
+  __builtin_memcpy(&word, p, 4);
+  return V4(_mm256_cvtepi32_pd(_mm_cvtepi8_epi32(_mm_cvtsi32_si128(word))));
+#else
+  return V4{double(p[0]), double(p[1]), double(p[2]), double(p[3])};
+#endif
+}
 // Flags p[0..3] as lane masks: -1 where the flag is nonzero.
 GRANWAVE_ALWAYS_INLINE inline V4m mask4(const std::uint8_t* p) {
   return V4m{p[0] ? -1LL : 0LL, p[1] ? -1LL : 0LL, p[2] ? -1LL : 0LL, p[3] ? -1LL : 0LL};

@@ -57,7 +57,7 @@ Dynamics particles(std::size_t n) {
 
 }  // namespace
 
-TEST_CASE("simd: transpose4, transpose4_rows, mask4 and widened floats = their scalar twins", "[crystal][simd]") {
+TEST_CASE("simd: transpose4, transpose4_rows, mask4, widened floats and bytes = their scalar twins", "[crystal][simd]") {
   const std::vector<double> v = mixed_values(64, 3);
   for (std::size_t k = 0; k + 16 <= v.size(); k += 16) {
     simd::V4 c[4];
@@ -88,6 +88,11 @@ TEST_CASE("simd: transpose4, transpose4_rows, mask4 and widened floats = their s
   for (int k = 0; k < 8; k += 4) {
     const simd::V4m m = simd::mask4(flags + k);
     for (int q = 0; q < 4; ++q) CHECK(m[q] == (flags[k + q] ? -1LL : 0LL));
+  }
+  const std::int8_t b[7] = {0, -128, 127, -1, 1, -7, 64};
+  for (int k = 0; k < 4; ++k) {  // every alignment
+    const simd::V4 e = simd::load4(b + k);
+    for (int q = 0; q < 4; ++q) CHECK(same_bits(e[q], static_cast<double>(b[k + q])));
   }
   const float f[6] = {0.5f, -0.0f, 1e-40f, 3.25e7f, -1.0f, 7.0f};
   const simd::V4 w = simd::load4(f + 1);  // unaligned
