@@ -8,9 +8,10 @@ found by their backward jumps, the hot loops picked by what they hold (the evalu
 root; the gather: the row transposes; the scatter: the row sums), each instruction classified by
 mnemonic and operand (xmm/ymm/zmm lanes of doubles, a memory source or destination, %rsp: the stack).
 A loop's counts are divided by the contacts (particles) an iteration walks (the table PASSES, read by
-hand and checked against the loop's induction where the script can read it). Only the fall-through
-path is counted: a block placed out of line (the scatter's change of particle i, once per ~6 contacts)
-is not. Each loop's critical path (one iteration's longest register dependency chain: the measured
+hand and checked against the loop's induction where the script can read it). The scatter's change
+of particle i (its sums stored and the next i's loaded), once per run of equal i, is a block that a
+forward jump skips when i is unchanged (or placed out of line): it is counted once per I_RUN contacts
+(the crystals' 6: twelve neighbours, half of them as i), the rest of the loop every time. Each loop's critical path (one iteration's longest register dependency chain: the measured
 latencies of div, sqrt, add, mul with --ceilings, else Zen 4's published ones). With --mca, each loop
 is also handed to llvm-mca-14 for its cycles per iteration and the bottleneck it names: -mcpu=znver3 on
 AMD (LLVM 14 has no Zen 4 model; it reads AVX-512VL instructions on ymm as their Zen 3 forms),
@@ -216,6 +217,38 @@ def is_inner(insns, lo, hi):
     return not any(l2 >= lo and h2 <= hi and (l2, h2) != (lo, hi) for l2, h2 in loops(insns))
 
 
+# Contacts in a run of equal i (the FCC crystal: 6 of its 12 neighbours have the larger index).
+I_RUN = 6
+
+
+def rare_blocks(body):
+    """Indices of the instructions a forward conditional jump inside the loop skips where the skipped
+    range stores vector rows: the scatter's change of particle i, not on the common path."""
+    index = {a: k for k, (a, _, _) in enumerate(body)}
+    rare = set()
+    for k, (a, mn, ops) in enumerate(body):
+        if not mn.startswith("j") or mn == "jmp":
+            continue
+        t = re.match(r"([0-9a-f]+)\b", ops)
+        if not t or int(t.group(1), 16) <= a or int(t.group(1), 16) not in index:
+            continue
+        skipped = range(k + 1, index[int(t.group(1), 16)])
+        if any(body[q][1].startswith("vmov") and re.search(r"%[yz]mm\d+,\s*-?(0x[0-9a-f]+)?\(", body[q][2])
+               for q in skipped):
+            rare.update(skipped)
+    return rare
+
+
+def weighted_counts(body):
+    """classify() of the common path plus the rare blocks' counts / I_RUN (floats)."""
+    rare = rare_blocks(body)
+    common = classify([x for q, x in enumerate(body) if q not in rare])
+    if not rare:
+        return common, 0
+    r = classify([x for q, x in enumerate(body) if q in rare])
+    return {k: common.get(k, 0) + r.get(k, 0) / I_RUN for k in set(common) | set(r)}, len(rare)
+
+
 # What each kind of loop holds (per iteration of 4 contacts): scatter<K, Couples>'s row sums.
 SCATTER = {"scatter1": (32, 0), "scatter2": (64, 0), "scatter3": (96, 16), "scatter2c": (96, 0)}
 
@@ -380,9 +413,10 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
         if seen and seen != n:
             print(f"count_pass_ops: note: {spec['name']}, {kind}: the induction reads {seen} per iteration, "
                   f"the table says {n} (a byte-offset index or a second pointer; checked by hand)", file=sys.stderr)
-        c = classify(body)
+        c, rare = weighted_counts(body) if kind in SCATTER else (classify(body), 0)
         row = {"kind": kind, "range": [hex(body[0][0]), hex(body[-1][0])], "per_iteration": n,
-               "instructions": len(body), "counts": c, "induction_seen": seen, "critical_path_cycles": critical_path(body, lat)}
+               "instructions": c["instructions"], "instructions_in_loop": len(body), "rare_instructions": rare,
+               "counts": c, "induction_seen": seen, "critical_path_cycles": critical_path(body, lat)}
         # division and root instructions by width, for the divider's time
         row["div_by_lanes"] = {}
         row["sqrt_by_lanes"] = {}
@@ -392,7 +426,8 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
                 k = str(lanes(ops, mn))
                 d[k] = d.get(k, 0) + 1
         if with_mca:
-            row["mca"] = mca(body, with_mca)
+            skip = rare_blocks(body) if kind in SCATTER else set()  # llvm-mca runs the common path
+            row["mca"] = mca([x for q, x in enumerate(body) if q not in skip], with_mca)
         out["loops"].append(row)
         for k, v in c.items():
             if isinstance(v, (int, float)) and v is not None:
@@ -444,7 +479,9 @@ def main():
               f"({per['stack_stores']:.1f} stack), shuffles {per['shuffles']:.1f}")
         for L in r["loops"]:
             m = L.get("mca") or {}
-            print(f"    {L['kind']:<11} {L['instructions']:4d} insns / {L['per_iteration']} {spec['per']}s, critical path "
+            rare = f" ({L['rare_instructions']} of {L['instructions_in_loop']} once per {I_RUN} contacts)" \
+                if L["rare_instructions"] else ""
+            print(f"    {L['kind']:<11} {L['instructions']:6.1f} insns / {L['per_iteration']} {spec['per']}s{rare}, critical path "
                   f"{L['critical_path_cycles']:.0f} cycles" + (f"; llvm-mca {m.get('cycles_per_iteration')} cycles/iteration "
                                                                  f"(rthroughput {m.get('block_rthroughput')})" if m else ""))
     if "--json" in args:
