@@ -3,7 +3,7 @@
 // forms: all of them (Forms::all), or only the wide ones (Forms::wide: a gathered pass without
 // couples, friction without rolling and torsion, which 512-bit vectors make faster) or only the
 // others (Forms::narrow: the direct passes, which 512 bits make 27 % slower, and the forms with
-// rolling and torsion, 10 % slower at 320 000 particles; docs/benchmarks.md, session 30); nullptr
+// rolling and torsion where couples_wide is not set, below); nullptr
 // when the selected form is not of that kind. A non-inline template: each real law's two kinds are
 // compiled in units of their own (law_model_<law>.cpp at 256-bit vectors, law_model_<law>_wide.cpp
 // at 512 where the machine has them; declared extern in law_models.cpp), so that a parallel build
@@ -21,8 +21,17 @@ namespace granwave::crystal {
 
 enum class Forms { all, wide, narrow };
 
+// The forms with couples join the wide units where the cores run 512-bit operations whole (CMake's
+// GRANWAVE_COUPLES_512: Intel cores with AVX-512, the rolling pass 9 % faster); Zen 4 runs them as two
+// halves, and there they lost 10 % at 320 000 particles (docs/benchmarks.md, sessions 30 and 32).
+#ifdef GRANWAVE_COUPLES_512
+inline constexpr bool couples_wide = true;
+#else
+inline constexpr bool couples_wide = false;
+#endif
+
 template <class Law>
-inline constexpr bool wide_form = Law::torques && !contact::HasCouples<Law>;
+inline constexpr bool wide_form = Law::torques && (couples_wide || !contact::HasCouples<Law>);
 
 template <class D, Forms F = Forms::all>
 std::shared_ptr<const ContactModel> law_model(const typename D::Params& params, double density) {

@@ -1,6 +1,6 @@
 // The Hertz-Mindlin law's forms whose contact passes run at 256-bit vectors: the direct passes (no
-// tangential force) and the forms with rolling and torsion, law_model<HertzMindlinCase,
-// Forms::narrow> (crystal/law_model.hpp); the tangential forms without them are in
+// tangential force) and, unless GRANWAVE_COUPLES_512, the forms with rolling and torsion,
+// law_model<HertzMindlinCase, Forms::narrow> (crystal/law_model.hpp); the tangential forms are in
 // law_model_hertz_mindlin_wide.cpp.
 //
 // 256-bit vectors, as in crystal/dynamics.cpp (whose comment gives the measurements).

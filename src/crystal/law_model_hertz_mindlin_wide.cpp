@@ -1,6 +1,6 @@
-// The Hertz-Mindlin law's tangential forms without rolling and torsion (each tangential history),
-// whose gathered passes 512-bit vectors make faster: law_model<HertzMindlinCase, Forms::wide>
-// (crystal/law_model.hpp).
+// The Hertz-Mindlin law's tangential forms (each tangential history; with GRANWAVE_COUPLES_512 also
+// those with rolling and torsion), whose gathered passes 512-bit vectors make faster:
+// law_model<HertzMindlinCase, Forms::wide> (crystal/law_model.hpp).
 //
 // 512-bit vectors where the machine has them (docs/benchmarks.md, session 30).
 #pragma GCC target("prefer-vector-width=512")
