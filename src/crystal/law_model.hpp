@@ -1,10 +1,9 @@
 // The kernel's forms of one case law: law_model<D, F> makes crystal::model_of of the form that the
 // description D's parameters select (D::model), and so instantiates the contact passes of its
-// forms: all of them (Forms::all), or only the wide ones (Forms::wide: a gathered pass without
-// couples, friction without rolling and torsion, which 512-bit vectors make faster) or only the
-// others (Forms::narrow: the direct passes, which 512 bits make 27 % slower, and the forms with
-// rolling and torsion where couples_wide is not set, below); nullptr
-// when the selected form is not of that kind. A non-inline template: each real law's two kinds are
+// forms: all of them (Forms::all), or only the wide ones (Forms::wide: the gathered passes, friction,
+// which 512-bit vectors make faster; with rolling and torsion only where couples_wide is set, below)
+// or only the others (Forms::narrow: the direct passes, which 512 bits make 27 % slower, and
+// otherwise the forms with rolling and torsion); nullptr when the selected form is not of that kind. A non-inline template: each real law's two kinds are
 // compiled in units of their own (law_model_<law>.cpp at 256-bit vectors, law_model_<law>_wide.cpp
 // at 512 where the machine has them; declared extern in law_models.cpp), so that a parallel build
 // compiles them at once; a law without such units (the test law) is instantiated in
