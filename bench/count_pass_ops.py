@@ -11,8 +11,8 @@ A loop's counts are divided by the contacts (particles) an iteration walks (the 
 hand and checked against the loop's induction where the script can read it). The scatter's change
 of particle i (its sums stored and the next i's loaded), once per run of equal i, is a block that a
 forward jump skips when i is unchanged (or placed out of line): it is counted once per I_RUN contacts
-(the crystals' 6: twelve neighbours, half of them as i), the rest of the loop every time. Each loop's critical path (one iteration's longest register dependency chain: the measured
-latencies of div, sqrt, add, mul with --ceilings, else Zen 4's published ones). With --mca, each loop
+(the crystals' 6: twelve neighbours, half of them as i), the rest of the loop every time. Each loop's
+critical path (one iteration's longest register dependency chain: the measured latencies of div, sqrt, add, mul with --ceilings, else Zen 4's published ones). With --mca, each loop
 is also handed to llvm-mca-14 for its cycles per iteration and the bottleneck it names: -mcpu=znver3 on
 AMD (LLVM 14 has no Zen 4 model; it reads AVX-512VL instructions on ymm as their Zen 3 forms),
 -mcpu=sapphirerapids on an Intel core with AVX512-FP16 (LLVM 14 schedules it with its Ice Lake server
@@ -239,14 +239,13 @@ def rare_blocks(body):
     return rare
 
 
-def weighted_counts(body):
+def weighted_counts(body, rare):
     """classify() of the common path plus the rare blocks' counts / I_RUN (floats)."""
-    rare = rare_blocks(body)
     common = classify([x for q, x in enumerate(body) if q not in rare])
     if not rare:
-        return common, 0
+        return common
     r = classify([x for q, x in enumerate(body) if q in rare])
-    return {k: common.get(k, 0) + r.get(k, 0) / I_RUN for k in set(common) | set(r)}, len(rare)
+    return {k: common.get(k, 0) + r.get(k, 0) / I_RUN for k in set(common) | set(r)}
 
 
 # What each kind of loop holds (per iteration of 4 contacts): scatter<K, Couples>'s row sums.
@@ -395,7 +394,7 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
     # the table's unit first; a form CMake moved to the other width's unit (GRANWAVE_COUPLES_512: the
     # rolling forms in law_model_<law>_wide.cpp) is found in it
     stem = spec["object"].replace("_wide.cpp.o", ".cpp.o")
-    for obj in (objdir / spec["object"], objdir / stem, objdir / stem.replace(".cpp.o", "_wide.cpp.o")):
+    for obj in dict.fromkeys((objdir / spec["object"], objdir / stem, objdir / stem.replace(".cpp.o", "_wide.cpp.o"))):
         if obj not in cache:
             cache[obj] = disassemble(obj) if obj.exists() else {}
         funcs = cache[obj]
@@ -419,9 +418,10 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
         if seen and seen != n:
             print(f"count_pass_ops: note: {spec['name']}, {kind}: the induction reads {seen} per iteration, "
                   f"the table says {n} (a byte-offset index or a second pointer; checked by hand)", file=sys.stderr)
-        c, rare = weighted_counts(body) if kind in SCATTER else (classify(body), 0)
+        rare = rare_blocks(body) if kind in SCATTER else set()
+        c = weighted_counts(body, rare)
         row = {"kind": kind, "range": [hex(body[0][0]), hex(body[-1][0])], "per_iteration": n,
-               "instructions": c["instructions"], "instructions_in_loop": len(body), "rare_instructions": rare,
+               "instructions": c["instructions"], "instructions_in_loop": len(body), "rare_instructions": len(rare),
                "counts": c, "induction_seen": seen, "critical_path_cycles": critical_path(body, lat)}
         # division and root instructions by width, for the divider's time
         row["div_by_lanes"] = {}
@@ -432,8 +432,7 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
                 k = str(lanes(ops, mn))
                 d[k] = d.get(k, 0) + 1
         if with_mca:
-            skip = rare_blocks(body) if kind in SCATTER else set()  # llvm-mca runs the common path
-            row["mca"] = mca([x for q, x in enumerate(body) if q not in skip], with_mca)
+            row["mca"] = mca([x for q, x in enumerate(body) if q not in rare], with_mca)  # the common path
         out["loops"].append(row)
         for k, v in c.items():
             if isinstance(v, (int, float)) and v is not None:

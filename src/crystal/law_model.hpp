@@ -3,11 +3,11 @@
 // forms: all of them (Forms::all), or only the wide ones (Forms::wide: the gathered passes, friction,
 // which 512-bit vectors make faster; with rolling and torsion only where couples_wide is set, below)
 // or only the others (Forms::narrow: the direct passes, which 512 bits make 27 % slower, and
-// otherwise the forms with rolling and torsion); nullptr when the selected form is not of that kind. A non-inline template: each real law's two kinds are
-// compiled in units of their own (law_model_<law>.cpp at 256-bit vectors, law_model_<law>_wide.cpp
-// at 512 where the machine has them; declared extern in law_models.cpp), so that a parallel build
-// compiles them at once; a law without such units (the test law) is instantiated in
-// law_models.cpp, where the registry dispatches.
+// otherwise the forms with rolling and torsion); nullptr when the selected form is not of that kind.
+// A non-inline template: each real law's two kinds are compiled in units of their own
+// (law_model_<law>.cpp at 256-bit vectors, law_model_<law>_wide.cpp at 512 where the machine has
+// them; declared extern in law_models.cpp), so that a parallel build compiles them at once; a law
+// without such units (the test law) is instantiated in law_models.cpp, where the registry dispatches.
 #pragma once
 #include <memory>
 #include <type_traits>
