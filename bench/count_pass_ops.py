@@ -36,7 +36,7 @@ from pathlib import Path
 # (particles) each iteration walks, read by hand from this build's loops (GCC 12 -O3 -march=native,
 # 256-bit vectors, except law_model_*_wide.cpp's friction forms without couples at 512) and checked where
 # the script can see the induction: the evaluation is unrolled twice (8 contacts at 256 bits, 16 at 512:
-# pass() doubles the step where the loop's root is a zmm one; its column pointer steps 64 bytes; the
+# pass() doubles the step where the loop's root or division is a zmm one; its column pointer steps 64 bytes; the
 # frictionless one, two ymm roots for Hooke's one root per contact), the gather and the scatter take 4
 # (their index steps 4, ymm in either unit), the frictionless pass's image offsets 32 (16 ymm stores of
 # shx, shy), the particle pass 4. The one-thread route: the gathered passes' own function, the direct
@@ -205,7 +205,8 @@ def signature(body):
     c = classify(body)
     return {
         "sqrt_ymm": any(t.startswith("vsqrtpd") and ("%ymm" in t or "%zmm" in t) for t in text),
-        "sqrt_zmm": any(t.startswith("vsqrtpd") and "%zmm" in t for t in text),
+        "sqrt_zmm": any(t.startswith(("vsqrtpd", "vdivpd")) and "%zmm" in t for t in text),  # a 512-bit loop
+        "div_ymm": any(t.startswith("vdivpd") and ("%ymm" in t or "%zmm" in t) for t in text),
         "perm": sum(t.startswith(("vperm2f128", "vinsertf128", "vshuff64x2", "vunpck", "vpermt2pd", "vpermi2pd"))
                     for t in text),
         "int8": any(t.startswith(("movsbl", "movsbq", "vpmovsxbd", "vpmovsxbq", "vpmovsxbw")) for t in text),
@@ -261,13 +262,15 @@ def pick(insns, kind):
         sg = signature(body)
         c = sg["counts"]
         ok = False
-        if kind == "evaluation":  # the largest innermost loop with a packed root (not the end arms' 32)
-            ok = sg["sqrt_ymm"] and is_inner(insns, lo, hi)
+        gathers = sg["perm"] >= 8 and sg["int8"]  # row transposes and j's image bytes
+        if kind == "evaluation":  # the largest innermost loop with a packed root or division, not the
+            # gather (which takes the contact's length) nor the end arms' loop of 32
+            ok = (sg["sqrt_ymm"] or sg["div_ymm"]) and not gathers and is_inner(insns, lo, hi)
             if ok and (best is None or hi - lo > best[1] - best[0]):
                 best = (lo, hi)
             continue
         elif kind == "gather":
-            ok = not sg["sqrt_ymm"] and sg["perm"] >= 8 and sg["int8"] and is_inner(insns, lo, hi)
+            ok = gathers and is_inner(insns, lo, hi)
         elif kind == "images":
             ok = not sg["sqrt_ymm"] and sg["int8"] and sg["perm"] < 8 and is_inner(insns, lo, hi)
         elif kind == "fkd":

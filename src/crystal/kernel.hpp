@@ -99,17 +99,14 @@ struct ListColumns {
 template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
 GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
                                                     double* cdelta, std::int64_t c, double bx, double by, double bz,
-                                                    double reach, double a_i, double a_j, const contact::Vec3& dv,
+                                                    double r, double inv_r, double reach, double a_i, double a_j, const contact::Vec3& dv,
                                                     const contact::Vec3& w_i, const contact::Vec3& w_j, double inc,
                                                     contact::Response& res, bool& open) {
   using History = typename Law::History;
   static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
   constexpr bool Defers = contact::DefersContacts<Law>;
-  const double r2 = bx * bx + by * by + bz * bz;
-  const double r = std::sqrt(r2);
   const double delta = reach - r;
   open = r >= reach;  // no force; the history is lost
-  const double inv_r = 1.0 / r;
   contact::Contact k;
   k.n = contact::Vec3(-bx * inv_r, -by * inv_r, -bz * inv_r);  // n = (r_i - r_j)/|r_i - r_j|
   k.delta = delta;
@@ -207,10 +204,11 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     const double by = py[j] + shy[u] - py[i];
     const double bz = pz[j] - pz[i];
     const contact::Vec3 dv(pvx[i] - pvx[j], pvy[i] - pvy[j], pvz[i] - pvz[j]);
+    const double r = std::sqrt(bx * bx + by * by + bz * bz);
     contact::Response res;
     bool open;
     const bool deferred = evaluate_contact<Law, Vector, Dissipative, false>(
-        law, hist, diss, cdelta, c, bx, by, bz, pa[i] + pa[j], pa[i], pa[j], dv, contact::Vec3::Zero(),
+        law, hist, diss, cdelta, c, bx, by, bz, r, 1.0 / r, pa[i] + pa[j], pa[i], pa[j], dv, contact::Vec3::Zero(),
         contact::Vec3::Zero(), inc, res, open);
     using contact::select;
     fo[0][u] = select(open, 0.0, res.force.x());
@@ -360,7 +358,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     contact::Response res;
     bool open;
     const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
-        law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::reach][u],
+        law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::r][u],
+        g.col[G::inv_r][u], g.col[G::reach][u],
         g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
     using contact::select;
     const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),

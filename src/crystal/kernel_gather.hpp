@@ -36,8 +36,8 @@ struct Sums {
 };
 
 struct Gathered {
-  // r_j - r_i at j's image; a_i + a_j; the radii; v_i - v_j; w_i, w_j.
-  enum Column { bx, by, bz, reach, a_i, a_j, dvx, dvy, dvz, wix, wiy, wiz, wjx, wjy, wjz, kColumns };
+  // r_j - r_i at j's image, its length r and 1/r; a_i + a_j; the radii; v_i - v_j; w_i, w_j.
+  enum Column { bx, by, bz, r, inv_r, reach, a_i, a_j, dvx, dvy, dvz, wix, wiy, wiz, wjx, wjy, wjz, kColumns };
   alignas(64) double col[kColumns][kChunk];
 };
 
@@ -90,6 +90,14 @@ inline void fill_rows(const Dynamics& d, double* rows) {
   for (std::int64_t b = 0; b <= n / 4; ++b) fill_rows(d, rows, 4 * b, std::min(n, 4 * b + 4));
 }
 
+// Contact u's length r = |b| and 1/r from its b columns (evaluate_contact's operations).
+GRANWAVE_ALWAYS_INLINE inline void lengths(Gathered& g, std::int64_t u) {
+  using G = Gathered;
+  const double bx = g.col[G::bx][u], by = g.col[G::by][u], bz = g.col[G::bz][u];
+  g.col[G::r][u] = std::sqrt(bx * bx + by * by + bz * bz);
+  g.col[G::inv_r][u] = 1.0 / g.col[G::r][u];
+}
+
 // The columns of contacts [s0, s1) (at most kChunk) from the particle rows.
 GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int64_t s1,
                                           const std::int32_t* ci, const std::int32_t* cj, const std::int8_t* imx,
@@ -114,9 +122,15 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
     V4 xi, yi, zi, ai, xj, yj, zj, aj;
     transpose4_rows(pos + i0, pos + i1, pos + i2, pos + i3, xi, yi, zi, ai);
     transpose4_rows(pos + j0, pos + j1, pos + j2, pos + j3, xj, yj, zj, aj);
-    store4(&g.col[G::bx][u], (xj + sx) - xi);
-    store4(&g.col[G::by][u], (yj + sy) - yi);
-    store4(&g.col[G::bz][u], zj - zi);
+    const V4 bx = (xj + sx) - xi, by = (yj + sy) - yi, bz = zj - zi;
+    store4(&g.col[G::bx][u], bx);
+    store4(&g.col[G::by][u], by);
+    store4(&g.col[G::bz][u], bz);
+    // the contact's length and its reciprocal here, where the divider is idle (the gather waits on
+    // its shuffles), not at the head of the evaluation's dependency chain
+    const V4 r = simd::sqrt4(bx * bx + by * by + bz * bz);
+    store4(&g.col[G::r][u], r);
+    store4(&g.col[G::inv_r][u], 1.0 / r);
     store4(&g.col[G::reach][u], ai + aj);
     store4(&g.col[G::a_i][u], ai);
     store4(&g.col[G::a_j][u], aj);
@@ -143,6 +157,7 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
     g.col[G::bx][u] = (pos[j] + imx[s0 + u] * box_x) - pos[i];
     g.col[G::by][u] = (pos[j + 1] + imy[s0 + u] * box_y) - pos[i + 1];
     g.col[G::bz][u] = pos[j + 2] - pos[i + 2];
+    lengths(g, u);
     g.col[G::reach][u] = pos[i + 3] + pos[j + 3];
     g.col[G::a_i][u] = pos[i + 3];
     g.col[G::a_j][u] = pos[j + 3];
@@ -166,6 +181,7 @@ inline void move_images(Gathered& g, std::int64_t m, const std::int8_t* imx, con
     g.col[G::dvx][u] -= sx * im.rate_x + sy * im.rate_shift;
     g.col[G::dvy][u] -= sy * im.rate_y;
   }
+  for (std::int64_t u = 0; u < m; ++u) lengths(g, u);
 }
 
 // The layer stress's lever arms times u_z of the chunk's contact ends (Dynamics::end_arms), from

@@ -49,6 +49,14 @@ GRANWAVE_ALWAYS_INLINE inline V4 load4(const std::int8_t* p) {
   return V4{double(p[0]), double(p[1]), double(p[2]), double(p[3])};
 #endif
 }
+// The correctly rounded square root of each lane (sqrtpd: std::sqrt's bits lane-wise).
+GRANWAVE_ALWAYS_INLINE inline V4 sqrt4(const V4& v) {
+#ifdef __AVX__
+  return V4(_mm256_sqrt_pd(__m256d(v)));
+#else
+  return V4{__builtin_sqrt(v[0]), __builtin_sqrt(v[1]), __builtin_sqrt(v[2]), __builtin_sqrt(v[3])};
+#endif
+}
 // Flags p[0..3] as lane masks: -1 where the flag is nonzero.
 GRANWAVE_ALWAYS_INLINE inline V4m mask4(const std::uint8_t* p) {
   return V4m{p[0] ? -1LL : 0LL, p[1] ? -1LL : 0LL, p[2] ? -1LL : 0LL, p[3] ? -1LL : 0LL};

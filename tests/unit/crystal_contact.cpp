@@ -302,9 +302,14 @@ TEST_CASE("contact-pass gather: the columns are the direct loads' values, bit fo
   int mismatches = 0;
   for (std::int64_t c = 0; c < m; ++c) {
     const std::int64_t i = 4 * std::int64_t{ci[c]}, j = 4 * std::int64_t{cj[c]};
-    const double expect[G::kColumns] = {pos[j] + imx[c] * box_x - pos[i],
-                                        pos[j + 1] + imy[c] * box_y - pos[i + 1],
-                                        pos[j + 2] - pos[i + 2],
+    const double bx = pos[j] + imx[c] * box_x - pos[i], by = pos[j + 1] + imy[c] * box_y - pos[i + 1],
+                 bz = pos[j + 2] - pos[i + 2];
+    const double r = std::sqrt(bx * bx + by * by + bz * bz);  // the contact evaluation's length
+    const double expect[G::kColumns] = {bx,
+                                        by,
+                                        bz,
+                                        r,
+                                        1.0 / r,
                                         pos[i + 3] + pos[j + 3],
                                         pos[i + 3],
                                         pos[j + 3],

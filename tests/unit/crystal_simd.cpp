@@ -57,7 +57,7 @@ Dynamics particles(std::size_t n) {
 
 }  // namespace
 
-TEST_CASE("simd: transpose4, transpose4_rows, mask4, widened floats and bytes = their scalar twins", "[crystal][simd]") {
+TEST_CASE("simd: transpose4, transpose4_rows, mask4, the root, widened floats and bytes = their scalar twins", "[crystal][simd]") {
   const std::vector<double> v = mixed_values(64, 3);
   for (std::size_t k = 0; k + 16 <= v.size(); k += 16) {
     simd::V4 c[4];
@@ -93,6 +93,11 @@ TEST_CASE("simd: transpose4, transpose4_rows, mask4, widened floats and bytes = 
   for (int k = 0; k < 4; ++k) {  // every alignment
     const simd::V4 e = simd::load4(b + k);
     for (int q = 0; q < 4; ++q) CHECK(same_bits(e[q], static_cast<double>(b[k + q])));
+  }
+  // The lane-wise root: std::sqrt's bits, subnormals, zeros of both signs and a negative (NaN) included.
+  for (std::size_t k = 0; k + 4 <= v.size(); k += 4) {
+    const simd::V4 q = simd::sqrt4(simd::load4(&v[k]));
+    for (int l = 0; l < 4; ++l) CHECK(same_bits(q[l], std::sqrt(v[k + l])));
   }
   const float f[6] = {0.5f, -0.0f, 1e-40f, 3.25e7f, -1.0f, 7.0f};
   const simd::V4 w = simd::load4(f + 1);  // unaligned
@@ -162,6 +167,10 @@ TEST_CASE("simd: the gather of a chunk's columns = the contact's own scalar expr
       CHECK(same_bits(g.col[G::bx][u], (d.x[j] + imx[c] * box_x) - d.x[i]));
       CHECK(same_bits(g.col[G::by][u], (d.y[j] + imy[c] * box_y) - d.y[i]));
       CHECK(same_bits(g.col[G::bz][u], d.z[j] - d.z[i]));
+      const double bx = (d.x[j] + imx[c] * box_x) - d.x[i], by = (d.y[j] + imy[c] * box_y) - d.y[i],
+                   bz = d.z[j] - d.z[i];
+      CHECK(same_bits(g.col[G::r][u], std::sqrt(bx * bx + by * by + bz * bz)));
+      CHECK(same_bits(g.col[G::inv_r][u], 1.0 / std::sqrt(bx * bx + by * by + bz * bz)));
       CHECK(same_bits(g.col[G::reach][u], d.radius[i] + d.radius[j]));
       CHECK(same_bits(g.col[G::a_i][u], d.radius[i]));
       CHECK(same_bits(g.col[G::a_j][u], d.radius[j]));
