@@ -1,7 +1,8 @@
 // Throughput of the crystal time step (issue 4, "Speed"): particle-steps per second for the
 // 3200-particle crystal of seed 002 with and without friction (and with Hertz-Mindlin contacts,
 // issue #14: data/cases/crystal_hertz.toml), on one and two threads; the
-// cost per step as the number of layers grows; memory per particle.
+// cost per step as the number of layers grows; memory per particle. Beside the two-thread speed-up, its
+// ceiling here: two copies of the crystal stepped at once, one a thread.
 // Usage: bench_crystal [--passes] [steps=2000] [repeats=3]  (--passes: the passes alone and a run by phase,
 // bench/ceilings_figure.py's achieved times, issue #41)
 // Each figure is the best of `repeats` measurements, by wall clock and by CPU time (on a loaded
@@ -104,6 +105,41 @@ crystal::Dynamics excited(const config::Case& c) {
   dyn.displace(source, 0.0, 0.0, 1e-4 * p.d);
   return dyn;
 }
+
+#ifdef _OPENMP
+// Two crystals of case c stepped at once, one a thread, each on one thread (no shared data, no
+// barrier within a step): seconds per step of the slower and the faster, best of `repeats`. What two
+// of this machine's cores give a step is the ceiling of the two-thread speed-up of one crystal.
+struct TwoCopies {
+  double slower = 1e300, faster = 1e300;
+  std::size_t particles = 0;  // of one copy
+};
+TwoCopies two_copies(const config::Case& c, long steps, int repeats) {
+  crystal::Dynamics d0 = excited(c), d1 = excited(c);
+  crystal::Dynamics* copy[2] = {&d0, &d1};
+  TwoCopies best;
+  best.particles = d0.size();
+  double took[2] = {0.0, 0.0};
+  omp_set_num_threads(2);
+  for (int r = 0; r < repeats; ++r) {
+#pragma omp parallel num_threads(2)
+    {
+      crystal::Dynamics& d = *copy[omp_get_thread_num()];
+      d.parallel_min_particles = d.size() + 1;
+      if (r == 0)
+        for (int k = 0; k < 20; ++k) d.step();
+#pragma omp barrier
+      const auto t0 = std::chrono::steady_clock::now();
+      for (long k = 0; k < steps; ++k) d.step();
+      took[omp_get_thread_num()] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    if (omp_get_max_threads() < 2) break;
+    best.slower = std::min(best.slower, std::max(took[0], took[1]) / steps);
+    best.faster = std::min(best.faster, std::min(took[0], took[1]) / steps);
+  }
+  return best;
+}
+#endif
 
 // The vector extensions this binary was compiled for (the loops use what the compiler may).
 const char* build_flags() {
@@ -289,6 +325,14 @@ int main(int argc, char** argv) {
       std::printf("%-34s %8d %12.1f %18.3g %18.3g %8.2fx\n", row.name, threads, 1e6 * s.wall, dyn.size() / s.wall,
                   dyn.size() / s.cpu, one / s.wall);
     }
+    // The ceiling of that speed-up on this machine: two copies of the crystal, one a thread, nothing
+    // shared and no synchronisation within a step; their steps against one copy's alone.
+    const TwoCopies two = two_copies(c, std::max<long>(20, steps / 10), repeats);
+    if (two.slower < 1e300)  // two threads to be had
+      std::printf("%-34s %8s %12.1f %18.3g %18s %8.2fx  (two copies, one a thread: the slower %.1f, the faster %.1f "
+                "us/step)\n",
+                row.name, "2 copies", 1e6 * two.slower, 2 * two.particles / two.slower, "-",
+                2 * one / two.slower, 1e6 * two.slower, 1e6 * two.faster);
   }
   omp_set_num_threads(1);
 #endif

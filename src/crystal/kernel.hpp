@@ -293,8 +293,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   const double inc = plan.increment_time;
   constexpr std::size_t NH = contact::history_columns<typename Law::History>;
   constexpr bool Defers = contact::DefersContacts<Law>;
-  // A law with couples (rolling, torsion): one thread, the scatter sums them in a row of their
-  // own; threaded, they are left per contact for the particle pass.
+  // A law with couples (rolling, torsion): the scatter sums them in a row of their own.
   constexpr bool Couples = contact::HasCouples<Law>;
   ContactList& C = d.contacts;
   using G = Gathered;
@@ -311,28 +310,36 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   const double* prow_pos = d.gather_rows.data();
   const double* prow_vel = prow_pos + 4 * d.size();
   const double* prow_rot = prow_pos + 8 * d.size();
-  // One thread: the sums go straight into the particles' rows (scatter, above); 0: none,
-  // 1: radius arm, 2: contact-point arm.
+  // The sums go straight into the particles' rows (scatter, above); 0: none (the particle pass
+  // makes them), 1: radius arm, 2: contact-point arm. On threads, each part of the list into the
+  // particles it alone touches; the shared ones' after the parts join, from the stored values.
   const std::int64_t np = static_cast<std::int64_t>(d.size());
   int scatter_mode = 0;
   double* sum_rows = nullptr;
-  const bool keep_forces = plan.store_forces;
-  [[maybe_unused]] const bool stream = keep_forces && d.streams();  // the forces and end arms past the caches
+  const bool store_forces = plan.store_forces;
+  [[maybe_unused]] const bool stream = store_forces && d.streams();  // the forces and end arms past the caches
+  const int parts = d.threaded() ? Dynamics::threads_available() : 1;
+  [[maybe_unused]] const ContactList::ThreadParts* split = nullptr;
+  const std::uint8_t* shared = nullptr;
 #ifdef GRANWAVE_GATHER_VECTORS
-  if (!d.threaded()) {
-    scatter_mode = scatter_mode_of(law.lever_arm());
-    sum_rows = d.begin_contact_sums(scatter_mode + 1 + Couples);
+  scatter_mode = scatter_mode_of(law.lever_arm());
+  sum_rows = d.begin_contact_sums(scatter_mode + 1 + Couples);
+  if (parts > 1) {
+    split = &C.thread_parts(d.size(), parts, kBlock);
+    shared = split->shared_ends.data();
+    C.j_lists(d.size());
   }
 #endif
-  // With the forces, the layer stress's end arms (one thread: where the forces are stored per chunk).
-  d.end_arms_stored = scatter_mode != 0 && keep_forces;
+  // f, n x f^t and the couples per contact: for a sample (f), for the shared particles' sums (the
+  // chunks that touch one), or without the scatter (the particle pass reads them).
+  const bool keep_torques = shared || scatter_mode == 0;  // 24 bytes per contact a one-thread run does not need
+  // With the forces, the layer stress's end arms (where the forces are stored per chunk).
+  d.end_arms_stored = scatter_mode != 0 && store_forces;
   if (d.end_arms_stored) d.end_arms.resize(2 * C.size());
   double* end_arms = d.end_arms.data();
-  // Per-contact n x f^t: only the particle pass of the threaded route reads it (made here, not
-  // at the list's build: 24 bytes per contact a one-thread run does not need).
-  if (scatter_mode == 0)
+  if (keep_torques)
     for (auto* v : {&C.nf_x, &C.nf_y, &C.nf_z}) v->resize(C.size());
-  if (Couples && scatter_mode == 0)
+  if (Couples && keep_torques)
     for (auto* v : {&C.couple_x, &C.couple_y, &C.couple_z}) v->resize(C.size());
   double* ccx = C.couple_x.data();
   double* ccy = C.couple_y.data();
@@ -383,8 +390,9 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
-  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep) GRANWAVE_ALWAYS_INLINE {
+  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep, auto masked) GRANWAVE_ALWAYS_INLINE {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
+    constexpr bool Masked = decltype(masked)::value;
     auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o) GRANWAVE_ALWAYS_INLINE {
       sweep_contacts<Defers, kChunk>(
           s0, s1,
@@ -407,35 +415,60 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
         const double* cc[3] = {nullptr, nullptr, nullptr};
         if constexpr (Couples) cc[0] = o.col[6], cc[1] = o.col[7], cc[2] = o.col[8];
         if (scatter_mode == 1)
-          scatter<2, Couples>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3],
-                              o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2]);
+          scatter<2, Couples, Masked>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2],
+                                      o.col[3], o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2], shared);
         else
-          scatter<3, Couples>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2], o.col[3],
-                              o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2]);
-        if (keep_forces && stream) {  // past the caches (Dynamics::streams)
+          scatter<3, Couples, Masked>(sum_rows, np, s1 - s0, ci + s0, cj + s0, o.col[0], o.col[1], o.col[2],
+                                      o.col[3], o.col[4], o.col[5], cdelta + s0, cc[0], cc[1], cc[2], shared);
+        if (store_forces && stream) {  // past the caches (Dynamics::streams)
           alignas(64) double arms[2 * kChunk];
           end_arms_of_chunk(g, s1 - s0, cdelta + s0, arms);
           for (int q = 0; q < 3; ++q) simd::stream_copy((q == 0 ? cfx : q == 1 ? cfy : cfz) + s0, o.col[q], s1 - s0);
           simd::stream_copy(end_arms + 2 * s0, arms, 2 * (s1 - s0));
-        } else if (keep_forces) {
+        }
+        bool touches_shared = false;  // a chunk with a contact of a shared particle
+        if constexpr (Masked) {
+          std::uint8_t any = 0;
+          for (std::int64_t u = 0; u < s1 - s0; ++u) any |= shared[ci[s0 + u]] | shared[cj[s0 + u]];
+          touches_shared = any != 0;
+        }
+        if ((store_forces && !stream) || touches_shared) {
           for (std::int64_t u = 0; u < s1 - s0; ++u) {
             cfx[s0 + u] = o.col[0][u];
             cfy[s0 + u] = o.col[1][u];
             cfz[s0 + u] = o.col[2][u];
           }
-          end_arms_of_chunk(g, s1 - s0, cdelta + s0, end_arms + 2 * s0);
+          if (store_forces && !stream) end_arms_of_chunk(g, s1 - s0, cdelta + s0, end_arms + 2 * s0);
         }
+        if (touches_shared)  // the shared particles' sums read them after the parts join
+          for (std::int64_t u = 0; u < s1 - s0; ++u) {
+            cnx[s0 + u] = o.col[3][u], cny[s0 + u] = o.col[4][u], cnz[s0 + u] = o.col[5][u];
+            if constexpr (Couples) ccx[s0 + u] = o.col[6][u], ccy[s0 + u] = o.col[7][u], ccz[s0 + u] = o.col[8][u];
+          }
       }
 #endif
     }
   };
-  if (scatter_mode != 0) {
-    range(0, nc, std::true_type{});
+  if (scatter_mode != 0 && !shared) {
+    range(0, nc, std::true_type{}, std::false_type{});
 #ifdef GRANWAVE_GATHER_VECTORS
     if (stream) simd::fence_streams();
 #endif
+  } else if (scatter_mode != 0) {
+#ifdef GRANWAVE_GATHER_VECTORS
+    in_parts(nc, parts, [=](std::int64_t c0, std::int64_t c1) {
+      range(c0, c1, std::true_type{}, std::true_type{});
+      if (stream) simd::fence_streams();  // each thread its own stores
+    });
+    if (scatter_mode == 1)
+      sum_shared_rows<2, Couples>(C, *split, sum_rows, np);
+    else
+      sum_shared_rows<3, Couples>(C, *split, sum_rows, np);
+#endif
   } else
-    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
+    in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) {
+      range(c0, c1, std::false_type{}, std::false_type{});
+    });
   return {scatter_mode == 0 ? 0 : scatter_mode + 1, Couples && scatter_mode != 0};
 }
 

@@ -310,6 +310,34 @@ inline void sum_shared_forces(const ContactList& C, const ContactList::ThreadPar
     rows[4 * p] = s[0], rows[4 * p + 1] = s[1], rows[4 * p + 2] = s[2], rows[4 * p + 3] = 0.0;
   }
 }
+
+// The rows of the shared particles of a law with torques (K rows: f | n x f^t | delta n x f^t, then
+// with Couples the couple's), from the stored values in the scatter's order of additions: the
+// contacts where p is j (f and the couple subtracted), then its own.
+template <int K, bool Couples>
+void sum_shared_rows(const ContactList& C, const ContactList::ThreadParts& parts, double* rows, std::int64_t n) {
+  for (const std::int32_t p : parts.shared_particles) {
+    double s[K + Couples][3] = {};
+    auto add = [&](std::int32_t c, double sign) {
+      const double f[3] = {C.f_x[c], C.f_y[c], C.f_z[c]}, nf[3] = {C.nf_x[c], C.nf_y[c], C.nf_z[c]};
+      for (int q = 0; q < 3; ++q) {
+        s[0][q] = sign < 0.0 ? s[0][q] - f[q] : s[0][q] + f[q];
+        s[1][q] += nf[q];
+        if constexpr (K >= 3) s[2][q] += C.delta[c] * nf[q];
+      }
+      if constexpr (Couples) {
+        const double m[3] = {C.couple_x[c], C.couple_y[c], C.couple_z[c]};
+        for (int q = 0; q < 3; ++q) s[K][q] = sign < 0.0 ? s[K][q] - m[q] : s[K][q] + m[q];
+      }
+    };
+    for (std::int32_t k = C.j_first[p]; k < C.j_first[p + 1]; ++k) add(C.j_contacts[k], -1.0);
+    for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) add(c, 1.0);
+    for (int k = 0; k < K + Couples; ++k) {
+      double* row = rows + 4 * (k * n + p);
+      row[0] = s[k][0], row[1] = s[k][1], row[2] = s[k][2], row[3] = 0.0;
+    }
+  }
+}
 #endif
 
 }  // namespace kernel

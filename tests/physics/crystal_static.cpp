@@ -266,21 +266,23 @@ TEST_CASE("threaded contact sums of a law without torques equal one thread's bit
   }
 }
 
-TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit", "[crystal][static][route]") {
-  // On one thread a law with torques adds each contact's force and n x f^t straight into
-  // per-particle rows (crystal/kernel.hpp's scatter); threaded, the particle pass sums the stored
-  // per-contact values. Both add in the same order: every force, torque and position agrees to
-  // the last bit, for both lever arms, a sliding law (deferred contacts) and Hertz-Mindlin.
-  // The threaded route needs OpenMP with two threads.
-  test_support::require_openmp_threads(2, "the two-pass route");
+TEST_CASE("threaded contact sums of a law with torques equal one thread's bit for bit", "[crystal][static][route]") {
+  // A law with torques adds each contact's force and n x f^t (and its couple) straight into
+  // per-particle rows (crystal/kernel.hpp's scatter); threaded, each part of the list into the
+  // particles it alone touches, the particles two parts share summed from the stored values after
+  // the parts join. Both add in the same order: every force, torque and position agrees to the
+  // last bit, for both lever arms, a sliding law (deferred contacts), Hertz-Mindlin and the rolling
+  // and torsion springs. Needs OpenMP with two threads.
+  test_support::require_openmp_threads(2, "the threaded scatter");
   const RouteLaws r = route_laws();
-  const config::Case& c = r.c;
+  config::Case c = r.c;
+  c.crystal->cells = {4, 4, 40};  // about 3 500 contacts: parts that share particles
   const Disturbed base = disturb(crystal::make_packing(c));
   for (const contact::LawParams& cp : all_laws(r)) {
     const auto model = crystal::case_model(cp, c.crystal->density);
     crystal::Dynamics one(base.p, model, 2e-7), two(base.p, model, 2e-7);
     one.parallel_min_particles = ~std::size_t{0};  // one thread: the scatter
-    two.parallel_min_particles = 0;                // the two-pass route (any number of threads)
+    two.parallel_min_particles = 0;                // threaded: the parts and the shared sums
     for (auto* d : {&one, &two}) {
       set_sliding_motion(*d, base);
       // the scatter does not need the contact forces; the last step stores them
@@ -288,6 +290,7 @@ TEST_CASE("one-thread contact sums (scatter) equal the two-pass sums bit for bit
     }
     CHECK(!one.threaded());  // the routes really differ
     CHECK(two.threaded());
+    CHECK(!two.contacts.thread_parts(two.size(), crystal::Dynamics::threads_available(), 1024).shared_particles.empty());
     for (auto f : {&crystal::Dynamics::fx, &crystal::Dynamics::fy, &crystal::Dynamics::fz, &crystal::Dynamics::tx,
                    &crystal::Dynamics::ty, &crystal::Dynamics::tz, &crystal::Dynamics::x, &crystal::Dynamics::z,
                    &crystal::Dynamics::vy, &crystal::Dynamics::wx, &crystal::Dynamics::wz})
