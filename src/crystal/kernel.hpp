@@ -89,8 +89,9 @@ struct ListColumns {
   std::array<double*, NH> hist{};
 };
 
-// One contact c: its geometry from r_j - r_i = b (j at its image), the radii, v_i - v_j and (a law
-// with torques) the spins; the law's response (Vector: the Deferrable evaluation of a law that
+// One contact c: its geometry from r_j - r_i = b (j at its image) with its length r = |b| and 1/r
+// (the caller's: the gather takes them, off the head of this loop's dependency chain), the radii,
+// v_i - v_j and (a law with torques) the spins; the law's response (Vector: the Deferrable evaluation of a law that
 // defers, contact::DefersContacts); its history written back (kept for a deferred contact, which
 // the exact sweep evaluates again from it; lost on opening), its loss added, its overlap stored.
 // Quiet (a contact::LosslessSweep law's vector sweep): the losses are left alone and an opening
@@ -99,9 +100,10 @@ struct ListColumns {
 template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
 GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
                                                     double* cdelta, std::int64_t c, double bx, double by, double bz,
-                                                    double r, double inv_r, double reach, double a_i, double a_j, const contact::Vec3& dv,
-                                                    const contact::Vec3& w_i, const contact::Vec3& w_j, double inc,
-                                                    contact::Response& res, bool& open) {
+                                                    double r, double inv_r, double reach, double a_i, double a_j,
+                                                    const contact::Vec3& dv, const contact::Vec3& w_i,
+                                                    const contact::Vec3& w_j, double inc, contact::Response& res,
+                                                    bool& open) {
   using History = typename Law::History;
   static_assert(contact::FlatHistory<History>, "a law's History holds doubles only");
   constexpr bool Defers = contact::DefersContacts<Law>;
@@ -366,8 +368,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     bool open;
     const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
         law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::r][u],
-        g.col[G::inv_r][u], g.col[G::reach][u],
-        g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
+        g.col[G::inv_r][u], g.col[G::reach][u], g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
     using contact::select;
     const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
                           select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
