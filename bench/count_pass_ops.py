@@ -12,7 +12,8 @@ hand and checked against the loop's induction where the script can read it). The
 of particle i (its sums stored and the next i's loaded), once per run of equal i, is a block that a
 forward jump skips when i is unchanged (or placed out of line): it is counted once per I_RUN contacts
 (the crystals' 6: twelve neighbours, half of them as i), the rest of the loop every time. Each loop's
-critical path (one iteration's longest register dependency chain: the measured latencies of div, sqrt, add, mul with --ceilings, else Zen 4's published ones). With --mca, each loop
+critical path (one iteration's longest register dependency chain: the measured latencies of div,
+sqrt, add, mul with --ceilings, else Zen 4's published ones). With --mca, each loop
 is also handed to llvm-mca-14 for its cycles per iteration and the bottleneck it names: -mcpu=znver3 on
 AMD (LLVM 14 has no Zen 4 model; it reads AVX-512VL instructions on ymm as their Zen 3 forms),
 -mcpu=sapphirerapids on an Intel core with AVX512-FP16 (LLVM 14 schedules it with its Ice Lake server
@@ -36,8 +37,8 @@ from pathlib import Path
 # (particles) each iteration walks, read by hand from this build's loops (GCC 12 -O3 -march=native,
 # 256-bit vectors, except law_model_*_wide.cpp's friction forms without couples at 512) and checked where
 # the script can see the induction: the evaluation is unrolled twice (8 contacts at 256 bits, 16 at 512:
-# pass() doubles the step where the loop's root or division is a zmm one; its column pointer steps 64 bytes; the
-# frictionless one, two ymm roots for Hooke's one root per contact), the gather and the scatter take 4
+# pass() doubles the step where the loop's root or division is a zmm one; its column pointer steps 64
+# bytes; the frictionless one, two ymm roots for Hooke's one root per contact), the gather and the scatter take 4
 # (their index steps 4, ymm in either unit), the frictionless pass's image offsets 32 (16 ymm stores of
 # shx, shy), the particle pass 4. The one-thread route: the gathered passes' own function, the direct
 # pass's lambda #4 (kernel::in_parts' body without stored end arms, a run's step).
@@ -205,7 +206,7 @@ def signature(body):
     c = classify(body)
     return {
         "sqrt_ymm": any(t.startswith("vsqrtpd") and ("%ymm" in t or "%zmm" in t) for t in text),
-        "sqrt_zmm": any(t.startswith(("vsqrtpd", "vdivpd")) and "%zmm" in t for t in text),  # a 512-bit loop
+        "zmm_loop": any(t.startswith(("vsqrtpd", "vdivpd")) and "%zmm" in t for t in text),  # a 512-bit loop
         "div_ymm": any(t.startswith("vdivpd") and ("%ymm" in t or "%zmm" in t) for t in text),
         "perm": sum(t.startswith(("vperm2f128", "vinsertf128", "vshuff64x2", "vunpck", "vpermt2pd", "vpermi2pd"))
                     for t in text),
@@ -415,7 +416,7 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
         lo, hi = pick(insns, kind)
         body = insns[lo:hi + 1]
         n = spec["step"][kind]
-        if kind == "evaluation" and signature(body)["sqrt_zmm"]:
+        if kind == "evaluation" and signature(body)["zmm_loop"]:
             n *= 2  # 512-bit vectors: the same loop unrolled twice walks 16 contacts
         seen = elements_per_iteration(body)
         if seen and seen != n:

@@ -91,9 +91,10 @@ struct ListColumns {
 
 // One contact c: its geometry from r_j - r_i = b (j at its image) with its length r = |b| and 1/r
 // (the caller's: the gather takes them, off the head of this loop's dependency chain), the radii,
-// v_i - v_j and (a law with torques) the spins; the law's response (Vector: the Deferrable evaluation of a law that
-// defers, contact::DefersContacts); its history written back (kept for a deferred contact, which
-// the exact sweep evaluates again from it; lost on opening), its loss added, its overlap stored.
+// v_i - v_j and (a law with torques) the spins; the law's response (Vector: the Deferrable
+// evaluation of a law that defers, contact::DefersContacts); its history written back (kept for a
+// deferred contact, which the exact sweep evaluates again from it; lost on opening), its loss
+// added, its overlap stored.
 // Quiet (a contact::LosslessSweep law's vector sweep): the losses are left alone and an opening
 // contact that loses stored energy is deferred. Returns whether the contact was deferred; `res`
 // and `open` (no force) are the caller's (a returned struct is not vectorised).
@@ -217,7 +218,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     fo[1][u] = select(open, 0.0, res.force.y());
     fo[2][u] = select(open, 0.0, res.force.z());
     if constexpr (decltype(with_arms)::value) {
-      const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);  // evaluate_contact's root
+      const double u_z = bz / r;  // evaluate_contact's root
       end_arms[2 * c] = Dynamics::end_arm(pa[i], cdelta[c], u_z);
       end_arms[2 * c + 1] = Dynamics::end_arm(pa[j], cdelta[c], u_z);
     }
@@ -272,7 +273,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
   else
     in_parts(nc, parts, [=](std::int64_t c0, std::int64_t c1) { range(c0, c1, std::false_type{}); });
 #ifdef GRANWAVE_GATHER_VECTORS
-  if (split) sum_shared_forces(C, *split, sum_rows);
+  if (split) sum_shared_rows<1, false>(C, *split, sum_rows, np);
 #endif
   return {rows};
 }

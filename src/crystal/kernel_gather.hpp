@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "crystal/dynamics.hpp"
 #include "crystal/simd.hpp"
@@ -215,9 +216,9 @@ GRANWAVE_ALWAYS_INLINE inline void end_arms_of_chunk(const Gathered& g, std::int
 // particle first meets the contacts where it is j, then its own range as i; each sum starts from
 // 0.0 and adds (j: subtracts the force) in that order, lane-wise IEEE: the same bits. The sums
 // of the current i stay in registers over the list's run of equal i; j's are read and written.
-// A law without torques scatters on threads too (kernel::in_parts): each thread its run of the
-// list, into the particles no other run touches (Masked); the few that two runs share are summed
-// after the runs join, from the stored forces in the same order (sum_shared_forces).
+// On threads (kernel::in_parts) each thread scatters its run of the list into the particles no
+// other run touches (Masked); the few that two runs share are summed after the runs join, from the
+// stored values in the same order (sum_shared_rows).
 #ifdef GRANWAVE_GATHER_VECTORS
 // Where the sums go: row kind k of particle p at kind[k] + 4 p (one base pointer a kind, so that a
 // row's address is a base and a scaled index, not index arithmetic of its own).
@@ -297,41 +298,31 @@ GRANWAVE_ALWAYS_INLINE inline void scatter(double* rows, std::int64_t n, std::in
     for (int k = 0; k < R; ++k) store4(rk.kind[k] + st.cur, st.sum[k]);
 }
 
-// The force rows of the particles the parts share, from the stored forces in the scatter's order:
-// the contacts where p is j (their force subtracted), then its own (the particle pass's sums).
-inline void sum_shared_forces(const ContactList& C, const ContactList::ThreadParts& parts, double* rows) {
-  for (const std::int32_t p : parts.shared_particles) {
-    double s[3] = {0.0, 0.0, 0.0};
-    for (std::int32_t k = C.j_first[p]; k < C.j_first[p + 1]; ++k) {
-      const std::int32_t c = C.j_contacts[k];
-      s[0] -= C.f_x[c], s[1] -= C.f_y[c], s[2] -= C.f_z[c];
-    }
-    for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) s[0] += C.f_x[c], s[1] += C.f_y[c], s[2] += C.f_z[c];
-    rows[4 * p] = s[0], rows[4 * p + 1] = s[1], rows[4 * p + 2] = s[2], rows[4 * p + 3] = 0.0;
-  }
-}
-
-// The rows of the shared particles of a law with torques (K rows: f | n x f^t | delta n x f^t, then
-// with Couples the couple's), from the stored values in the scatter's order of additions: the
-// contacts where p is j (f and the couple subtracted), then its own.
+// The rows of the particles the parts share (K rows: f | n x f^t | delta n x f^t, then with Couples
+// the couple's), from the stored values in the scatter's order of additions: the contacts where p is
+// j (f and the couple subtracted), then its own (the particle pass's sums).
 template <int K, bool Couples>
 void sum_shared_rows(const ContactList& C, const ContactList::ThreadParts& parts, double* rows, std::int64_t n) {
   for (const std::int32_t p : parts.shared_particles) {
     double s[K + Couples][3] = {};
-    auto add = [&](std::int32_t c, double sign) {
-      const double f[3] = {C.f_x[c], C.f_y[c], C.f_z[c]}, nf[3] = {C.nf_x[c], C.nf_y[c], C.nf_z[c]};
-      for (int q = 0; q < 3; ++q) {
-        s[0][q] = sign < 0.0 ? s[0][q] - f[q] : s[0][q] + f[q];
-        s[1][q] += nf[q];
-        if constexpr (K >= 3) s[2][q] += C.delta[c] * nf[q];
+    auto add = [&](std::int32_t c, auto as_j) GRANWAVE_ALWAYS_INLINE {
+      constexpr bool J = decltype(as_j)::value;
+      const double f[3] = {C.f_x[c], C.f_y[c], C.f_z[c]};
+      for (int q = 0; q < 3; ++q) s[0][q] = J ? s[0][q] - f[q] : s[0][q] + f[q];
+      if constexpr (K >= 2) {
+        const double nf[3] = {C.nf_x[c], C.nf_y[c], C.nf_z[c]};
+        for (int q = 0; q < 3; ++q) {
+          s[1][q] += nf[q];
+          if constexpr (K >= 3) s[2][q] += C.delta[c] * nf[q];
+        }
       }
       if constexpr (Couples) {
         const double m[3] = {C.couple_x[c], C.couple_y[c], C.couple_z[c]};
-        for (int q = 0; q < 3; ++q) s[K][q] = sign < 0.0 ? s[K][q] - m[q] : s[K][q] + m[q];
+        for (int q = 0; q < 3; ++q) s[K][q] = J ? s[K][q] - m[q] : s[K][q] + m[q];
       }
     };
-    for (std::int32_t k = C.j_first[p]; k < C.j_first[p + 1]; ++k) add(C.j_contacts[k], -1.0);
-    for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) add(c, 1.0);
+    for (std::int32_t k = C.j_first[p]; k < C.j_first[p + 1]; ++k) add(C.j_contacts[k], std::true_type{});
+    for (std::int32_t c = C.i_first[p]; c < C.i_first[p + 1]; ++c) add(c, std::false_type{});
     for (int k = 0; k < K + Couples; ++k) {
       double* row = rows + 4 * (k * n + p);
       row[0] = s[k][0], row[1] = s[k][1], row[2] = s[k][2], row[3] = 0.0;
