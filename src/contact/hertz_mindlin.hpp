@@ -128,6 +128,7 @@ struct HertzMindlinLaw {
   using History = std::conditional_t<H == MindlinHistory::none, MindlinNone, Tangential>;
   static constexpr bool torques = H != MindlinHistory::none;
   static constexpr bool lossless_sweep = !Damped;  // undamped, a sticking contact dissipates nothing
+  static constexpr bool reads_reduced_radius = true;  // R* (Contact::r_eff)
 
   explicit HertzMindlinLaw(const HertzMindlinParams& params) : p(params) {
     p.validate();
@@ -172,8 +173,7 @@ struct HertzMindlinLaw {
   };
   GRANWAVE_ALWAYS_INLINE Normal normal_of(const Contact& c) const {
     const double d = select(c.delta > 0.0, c.delta, 0.0);
-    const double r_eff = c.a_i * c.a_j / (c.a_i + c.a_j);
-    const double a = std::sqrt(r_eff * d);  // contact radius
+    const double a = std::sqrt(c.r_eff * d);  // contact radius
     const double f_elastic = (4.0 / 3.0) * e_star * a * d;
     if constexpr (!Damped) return {a, f_elastic, f_elastic};
     const double m_i = mass_factor * c.a_i * c.a_i * c.a_i, m_j = mass_factor * c.a_j * c.a_j * c.a_j;

@@ -46,6 +46,10 @@
 //                                     -arm_i n x f^t (j gets minus it); the kernel then sums it
 //                                     (a law without the member never has one: its instantiations
 //                                     are those of a kernel without couples)
+// and optionally, for a law that reads the reduced radius Contact::r_eff (Hertz: R*):
+//   static constexpr bool reads_reduced_radius;
+//                                     true: the kernel's gather takes R* for it (a law with
+//                                     torques that does not declare it reads NaN there)
 // Every contact writes only its own entries, so results do not depend on the sweep, the block
 // or the thread that evaluates it.
 #pragma once
@@ -68,6 +72,7 @@ struct Contact {
   Vec3 dv;           // v_i - v_j
   Vec3 w_i, w_j;     // angular velocities (zero unless the law has torques)
   double a_i, a_j;   // radii
+  double r_eff;      // R* = a_i a_j/(a_i + a_j), the reduced radius (ReadsReducedRadius)
   double dt;         // time since the last evaluation (springs advance by v dt; 0 for a state set from outside)
 };
 
@@ -92,6 +97,11 @@ template <class Law>
 concept DefersContacts = requires(const Law& law, const Contact& c, typename Law::History& h) {
   { law.evaluate(c, h, Deferrable{}) } -> std::same_as<Response>;
 };
+
+// A law that reads Contact::r_eff: the kernel's gather takes it (a division off the head of the
+// law's chain); for the other laws the gathered pass leaves it NaN.
+template <class Law>
+concept ReadsReducedRadius = requires { requires Law::reads_reduced_radius; };
 
 template <class Law>
 concept HasCouples = requires { requires Law::couples; };

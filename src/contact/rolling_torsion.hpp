@@ -75,6 +75,7 @@ struct WithRollingTorsion {
   static constexpr bool torques = true;
   static constexpr bool couples = true;
   static constexpr bool lossless_sweep = LosslessSweep<Base> && !Dashpots;
+  static constexpr bool reads_reduced_radius = ReadsReducedRadius<Base>;
 
   WithRollingTorsion(const Base& b, const RollingTorsionParams& p)
       : base(b), rt(p), shift(rolling_shift(p.lever, b.lever_arm())) {

@@ -22,6 +22,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 #include <memory>
 #include <type_traits>
@@ -90,8 +91,8 @@ struct ListColumns {
 };
 
 // One contact c: its geometry from r_j - r_i = b (j at its image) with its length r = |b| and 1/r
-// (the caller's: the gather takes them, off the head of this loop's dependency chain), the radii,
-// v_i - v_j and (a law with torques) the spins; the law's response (Vector: the Deferrable
+// (the caller's: the gather takes them, off the head of this loop's dependency chain), the radii
+// and R* (the gather's too, for a law that reads it: contact::ReadsReducedRadius), v_i - v_j and (a law with torques) the spins; the law's response (Vector: the Deferrable
 // evaluation of a law that defers, contact::DefersContacts); its history written back (kept for a
 // deferred contact, which the exact sweep evaluates again from it; lost on opening), its loss
 // added, its overlap stored.
@@ -102,7 +103,7 @@ template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
 GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
                                                     double* cdelta, std::int64_t c, double bx, double by, double bz,
                                                     double r, double inv_r, double reach, double a_i, double a_j,
-                                                    const contact::Vec3& dv, const contact::Vec3& w_i,
+                                                    double r_eff, const contact::Vec3& dv, const contact::Vec3& w_i,
                                                     const contact::Vec3& w_j, double inc, contact::Response& res,
                                                     bool& open) {
   using History = typename Law::History;
@@ -121,6 +122,7 @@ GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::a
   }
   k.a_i = a_i;
   k.a_j = a_j;
+  k.r_eff = r_eff;
   k.dt = inc;
   std::array<double, NH> h0;
   for_columns<NH>([&](std::size_t q) { h0[q] = hist[q][c]; });
@@ -211,8 +213,8 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     contact::Response res;
     bool open;
     const bool deferred = evaluate_contact<Law, Vector, Dissipative, false>(
-        law, hist, diss, cdelta, c, bx, by, bz, r, 1.0 / r, pa[i] + pa[j], pa[i], pa[j], dv, contact::Vec3::Zero(),
-        contact::Vec3::Zero(), inc, res, open);
+        law, hist, diss, cdelta, c, bx, by, bz, r, 1.0 / r, pa[i] + pa[j], pa[i], pa[j],
+        pa[i] * pa[j] / (pa[i] + pa[j]), dv, contact::Vec3::Zero(), contact::Vec3::Zero(), inc, res, open);
     using contact::select;
     fo[0][u] = select(open, 0.0, res.force.x());
     fo[1][u] = select(open, 0.0, res.force.y());
@@ -298,6 +300,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   constexpr bool Defers = contact::DefersContacts<Law>;
   // A law with couples (rolling, torsion): the scatter sums them in a row of their own.
   constexpr bool Couples = contact::HasCouples<Law>;
+  constexpr bool ReducedRadius = contact::ReadsReducedRadius<Law>;  // the gather's R* column
   ContactList& C = d.contacts;
   using G = Gathered;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
@@ -369,7 +372,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     bool open;
     const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
         law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::r][u],
-        g.col[G::inv_r][u], g.col[G::reach][u], g.col[G::a_i][u], g.col[G::a_j][u], dv, w_i, w_j, inc, res, open);
+        g.col[G::inv_r][u], g.col[G::reach][u], g.col[G::a_i][u], g.col[G::a_j][u],
+        ReducedRadius ? g.col[G::r_eff][u] : std::numeric_limits<double>::quiet_NaN(), dv, w_i, w_j, inc, res, open);
     using contact::select;
     const double fo[6] = {select(open, 0.0, res.force.x()), select(open, 0.0, res.force.y()),
                           select(open, 0.0, res.force.z()), select(open, 0.0, res.nf.x()),
@@ -409,7 +413,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     Out o;
     for (std::int64_t s0 = c0; s0 < c1; s0 += kChunk) {
       const std::int64_t s1 = std::min(c1, s0 + kChunk);
-      gather(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
+      gather<ReducedRadius>(g, s0, s1, ci, cj, imx, imy, box_x, box_y, prow_pos, prow_vel, prow_rot);
       if constexpr (MovedImages) move_images(g, s1 - s0, imx + s0, imy + s0, images);
       sweep(s0, s1, g, o);
 #ifdef GRANWAVE_GATHER_VECTORS

@@ -37,8 +37,9 @@ struct Sums {
 };
 
 struct Gathered {
-  // r_j - r_i at j's image, its length r and 1/r; a_i + a_j; the radii; v_i - v_j; w_i, w_j.
-  enum Column { bx, by, bz, r, inv_r, reach, a_i, a_j, dvx, dvy, dvz, wix, wiy, wiz, wjx, wjy, wjz, kColumns };
+  // r_j - r_i at j's image, its length r and 1/r; a_i + a_j; the radii; v_i - v_j; w_i, w_j;
+  // R* = a_i a_j/(a_i + a_j) (gather<true> only: for a law that reads it).
+  enum Column { bx, by, bz, r, inv_r, reach, a_i, a_j, dvx, dvy, dvz, wix, wiy, wiz, wjx, wjy, wjz, r_eff, kColumns };
   alignas(64) double col[kColumns][kChunk];
 };
 
@@ -99,7 +100,9 @@ GRANWAVE_ALWAYS_INLINE inline void lengths(Gathered& g, std::int64_t u) {
   g.col[G::inv_r][u] = 1.0 / g.col[G::r][u];
 }
 
-// The columns of contacts [s0, s1) (at most kChunk) from the particle rows.
+// The columns of contacts [s0, s1) (at most kChunk) from the particle rows; ReducedRadius: and R*
+// (a division the divider does while the gather waits on its shuffles, as with 1/r).
+template <bool ReducedRadius = false>
 GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int64_t s1,
                                           const std::int32_t* ci, const std::int32_t* cj, const std::int8_t* imx,
                                           const std::int8_t* imy, double box_x, double box_y, const double* pos,
@@ -135,6 +138,7 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
     store4(&g.col[G::reach][u], ai + aj);
     store4(&g.col[G::a_i][u], ai);
     store4(&g.col[G::a_j][u], aj);
+    if constexpr (ReducedRadius) store4(&g.col[G::r_eff][u], ai * aj / (ai + aj));
     // v_i - v_j lane-wise on the rows' halves, then the columns (the same subtractions)
     V4 unused, hi[4], hj[4];
     simd::row_halves4(vel + i0, vel + i1, vel + i2, vel + i3, hi[0], hi[1], hi[2], hi[3]);
@@ -162,6 +166,7 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
     g.col[G::reach][u] = pos[i + 3] + pos[j + 3];
     g.col[G::a_i][u] = pos[i + 3];
     g.col[G::a_j][u] = pos[j + 3];
+    if constexpr (ReducedRadius) g.col[G::r_eff][u] = pos[i + 3] * pos[j + 3] / (pos[i + 3] + pos[j + 3]);
     g.col[G::dvx][u] = vel[i] - vel[j];
     g.col[G::dvy][u] = vel[i + 1] - vel[j + 1];
     g.col[G::dvz][u] = vel[i + 2] - vel[j + 2];

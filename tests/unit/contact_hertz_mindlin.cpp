@@ -34,6 +34,7 @@ Contact touching(double delta, double delta_dot, const Vec3& v_t, double dt) {
   c.delta_dot = delta_dot;
   c.dv = v_t - delta_dot * c.n;
   c.a_i = c.a_j = kA;
+  c.r_eff = kA * kA / (kA + kA);
   c.dt = dt;
   return c;
 }

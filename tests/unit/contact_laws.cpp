@@ -22,6 +22,7 @@ Contact touching(double delta, double delta_dot, const Vec3& v_t, double dt) {
   c.dv = v_t - delta_dot * c.n;  // delta_dot = -n . (v_i - v_j)
   c.w_i = c.w_j = Vec3();
   c.a_i = c.a_j = 1e-3;
+  c.r_eff = c.a_i * c.a_j / (c.a_i + c.a_j);
   c.dt = dt;
   return c;
 }

@@ -37,6 +37,7 @@ Contact turning(const Vec3& n, const Vec3& w_i, const Vec3& w_j) {
   c.w_j = w_j;
   c.a_i = ra;
   c.a_j = rb;
+  c.r_eff = ra * rb / (ra + rb);
   c.dt = dt;
   return c;
 }

@@ -297,7 +297,7 @@ TEST_CASE("contact-pass gather: the columns are the direct loads' values, bit fo
   }
   const double box_x = 3.7e-3, box_y = 2.9e-3;
   K::Gathered g;
-  K::gather(g, 0, m, ci.data(), cj.data(), imx.data(), imy.data(), box_x, box_y, pos, vel, rot);
+  K::gather<true>(g, 0, m, ci.data(), cj.data(), imx.data(), imy.data(), box_x, box_y, pos, vel, rot);
   using G = K::Gathered;
   int mismatches = 0;
   for (std::int64_t c = 0; c < m; ++c) {
@@ -321,7 +321,8 @@ TEST_CASE("contact-pass gather: the columns are the direct loads' values, bit fo
                                         rot[i + 2],
                                         rot[j],
                                         rot[j + 1],
-                                        rot[j + 2]};
+                                        rot[j + 2],
+                                        pos[i + 3] * pos[j + 3] / (pos[i + 3] + pos[j + 3])};
     for (int q = 0; q < G::kColumns; ++q) mismatches += std::bit_cast<std::uint64_t>(g.col[q][c]) !=
                                                        std::bit_cast<std::uint64_t>(expect[q]);
   }
