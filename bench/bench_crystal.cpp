@@ -74,15 +74,27 @@ struct StepCost {
   double wall = 1e300, cpu = 1e300;  // seconds per step; cpu = summed over threads / threads
 };
 
+// `steps` steps (a multiple of kSampleEvery) as a run takes them (crystal/simulation.cpp): advances
+// of kSampleEvery steps, each step's finish joined to the next drift, the forces kept at the last
+// step of each for its sample (the samples' observers not timed). dyn.step() would keep them at
+// every step and finish each step apart: on two threads that step scaled 1.46x where a run's
+// scaled 1.86x (frictionless, 32 000 particles; docs/benchmarks.md session 34).
+constexpr long kSampleEvery = 5;  // bench/side_by_side.py's cases: a sample every 5 steps
+void advance_as_run(crystal::Dynamics& dyn, long steps) {
+  for (long k = 0; k < steps; k += kSampleEvery) dyn.advance(kSampleEvery, true);
+}
+long as_run_steps(long steps) { return std::max(kSampleEvery, steps / kSampleEvery * kSampleEvery); }
+
 // Seconds per step after a short warm-up, best of `repeats`; the crystal is excited so the
 // forces are not trivial.
 StepCost seconds_per_step(crystal::Dynamics& dyn, long steps, int repeats, int threads) {
+  steps = as_run_steps(steps);
   for (int k = 0; k < 20; ++k) dyn.step();
   StepCost best;
   for (int r = 0; r < repeats; ++r) {
     const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
-    for (long k = 0; k < steps; ++k) dyn.step();
+    advance_as_run(dyn, steps);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = (cpu_seconds() - c0) / threads;
     best.wall = std::min(best.wall, wall / steps);
@@ -115,6 +127,7 @@ struct TwoCopies {
   std::size_t particles = 0;  // of one copy
 };
 TwoCopies two_copies(const config::Case& c, long steps, int repeats) {
+  steps = as_run_steps(steps);
   TwoCopies best;
   if (omp_get_num_procs() < 2) return best;  // no second CPU: nothing to measure
   crystal::Dynamics d0 = excited(c), d1 = excited(c);
@@ -131,7 +144,7 @@ TwoCopies two_copies(const config::Case& c, long steps, int repeats) {
         for (int k = 0; k < 20; ++k) d.step();
 #pragma omp barrier
       const auto t0 = std::chrono::steady_clock::now();
-      for (long k = 0; k < steps; ++k) d.step();
+      advance_as_run(d, steps);
       took[omp_get_thread_num()] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     best.slower = std::min(best.slower, std::max(took[0], took[1]) / steps);
