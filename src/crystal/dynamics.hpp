@@ -171,9 +171,10 @@ class ContactModel {
   virtual void add_stored_energy(double* per_layer, const ContactList& contacts, std::size_t first,
                                  const int* layer, const double* radius) const = 0;
   // The same sums with the contacts [first, size()) given layer by layer, in list order
-  // (Dynamics::LayerOrder::contacts): several layers' sums at once (layer_chains), the same bits.
+  // (Dynamics::LayerOrder::contacts): several layers' sums at once (layer_chains), the same bits;
+  // `threaded`: blocks of layers on OpenMP threads, each layer's sum on one (the same bits).
   virtual void add_stored_energy(double* per_layer, const ContactList& contacts, const LayerLists& by_layer,
-                                 const double* radius) const = 0;
+                                 const double* radius, bool threaded) const = 0;
 };
 
 // The law of a case, as its description makes it (contact/case_laws.hpp; crystal/law_models.cpp):

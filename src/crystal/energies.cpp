@@ -86,27 +86,39 @@ void Dynamics::add_particle_energies(double* kinetic, double* verlet) const {
   terms.resize(2 * n);
   double* t_kin = terms.data();
   double* t_ver = t_kin + n;
-  if (kinetic)
-    particle_energy_terms(own_lo_, own_hi_, mass.data(), inertia.data(), vx.data(), vy.data(), vz.data(), wx.data(),
-                          wy.data(), wz.data(), mobile.data(), t_kin);
-  if (verlet)
-    particle_verlet_terms(own_lo_, own_hi_, inv_mass.data(), inv_inertia.data(), fx.data(), fy.data(), fz.data(),
-                          tx.data(), ty.data(), tz.data(), mobile.data(), t_ver);
+  const bool threads = threaded();  // each term and each layer's sum on one thread: the same bits
+  const std::int64_t lo = static_cast<std::int64_t>(own_lo_), hi = static_cast<std::int64_t>(own_hi_);
+  constexpr std::int64_t kBlock = 4096;
+#pragma omp parallel for schedule(static) if (threads)
+  for (std::int64_t p0 = lo; p0 < hi; p0 += kBlock) {
+    const std::size_t q0 = static_cast<std::size_t>(p0), q1 = static_cast<std::size_t>(std::min(hi, p0 + kBlock));
+    if (kinetic)
+      particle_energy_terms(q0, q1, mass.data(), inertia.data(), vx.data(), vy.data(), vz.data(), wx.data(), wy.data(),
+                            wz.data(), mobile.data(), t_kin);
+    if (verlet)
+      particle_verlet_terms(q0, q1, inv_mass.data(), inv_inertia.data(), fx.data(), fy.data(), fz.data(), tx.data(),
+                            ty.data(), tz.data(), mobile.data(), t_ver);
+  }
   const LayerLists& order = layer_order().particles;
   if (kinetic && verlet)
-    layer_chains<4>(order, std::array{kinetic, verlet}, [=](std::array<double, 2>& acc, std::int32_t p) {
-      acc[0] += t_kin[p];
-      acc[1] += t_ver[p];
-    });
+    layer_chains<4>(
+        order, std::array{kinetic, verlet},
+        [=](std::array<double, 2>& acc, std::int32_t p) {
+          acc[0] += t_kin[p];
+          acc[1] += t_ver[p];
+        },
+        threads);
   else if (kinetic || verlet)
-    layer_chains<8>(order, std::array{kinetic ? kinetic : verlet},
-                    [t = kinetic ? t_kin : t_ver](std::array<double, 1>& acc, std::int32_t p) { acc[0] += t[p]; });
+    layer_chains<8>(
+        order, std::array{kinetic ? kinetic : verlet},
+        [t = kinetic ? t_kin : t_ver](std::array<double, 1>& acc, std::int32_t p) { acc[0] += t[p]; }, threads);
 }
 
 void Dynamics::add_dissipated(double* s) const {
   const double* loss = contacts.dissipated.data();
-  layer_chains<8>(layer_order().contacts, std::array{s},
-                  [=](std::array<double, 1>& acc, std::int32_t c) { acc[0] += loss[c]; });
+  layer_chains<8>(
+      layer_order().contacts, std::array{s}, [=](std::array<double, 1>& acc, std::int32_t c) { acc[0] += loss[c]; },
+      threaded());
 }
 
 void Dynamics::add_dissipated(double* s, const ContactList& C) const {
@@ -146,7 +158,7 @@ double Dynamics::kinetic_energy() const {
 
 double Dynamics::potential_energy() const {
   std::vector<double> s(dissipated_before_.size(), 0.0);
-  model_->add_stored_energy(s.data(), contacts, layer_order().contacts, radius.data());
+  model_->add_stored_energy(s.data(), contacts, layer_order().contacts, radius.data(), threaded());
   double t = 0.0;
   layer_totals(&s, 1, &t);
   return t;
@@ -175,7 +187,7 @@ Dynamics::Energies Dynamics::energies() const {
   std::vector<double> s[4] = {std::vector<double>(nl, 0.0), std::vector<double>(nl, 0.0), dissipated_before_,
                               std::vector<double>(nl, 0.0)};
   add_particle_energies(s[0].data(), s[3].data());
-  model_->add_stored_energy(s[1].data(), contacts, layer_order().contacts, radius.data());
+  model_->add_stored_energy(s[1].data(), contacts, layer_order().contacts, radius.data(), threaded());
   if (contacts.losses_booked) add_dissipated(s[2].data());  // else +0.0 each
   double t[4];
   layer_totals(s, 4, t);

@@ -507,8 +507,8 @@ class LawModel final : public ContactModel {
     StoredEnergy<Law>(law_).walk(per_layer, C, first, layer, radius);
   }
   void add_stored_energy(double* per_layer, const ContactList& C, const LayerLists& by_layer,
-                         const double* radius) const override {
-    StoredEnergy<Law>(law_).by_layers(per_layer, C, by_layer, radius);
+                         const double* radius, bool threaded) const override {
+    StoredEnergy<Law>(law_).by_layers(per_layer, C, by_layer, radius, threaded);
   }
  private:
   template <class L>

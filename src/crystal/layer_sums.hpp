@@ -14,6 +14,9 @@
 #include <limits>
 #include <utility>
 #include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace granwave::crystal {
 
@@ -113,10 +116,31 @@ void layer_chains(const LayerLists& ll, std::size_t L0, std::size_t L1, const st
   else
     layer_sums::chains<G, false>(ll, L0, L1, s, add);
 }
-// every layer:
+// body(L0, L1) over the layers [0, n): on OpenMP threads when `threaded`, one run of whole groups
+// of G layers a thread. Each layer's sums are made by one thread, in their own order: the same
+// bits for any thread count (docs/design.md §2.8).
+template <std::size_t G, class Body>
+void over_layer_runs(std::size_t n, bool threaded, const Body& body) {
+#ifdef _OPENMP
+  if (threaded && n >= 2 * G) {
+#pragma omp parallel
+    {
+      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+      const std::size_t parts = static_cast<std::size_t>(omp_get_num_threads()), groups = n / G;
+      const std::size_t L0 = groups * t / parts * G, L1 = t + 1 == parts ? n : groups * (t + 1) / parts * G;
+      if (L0 < L1) body(L0, L1);
+    }
+    return;
+  }
+#endif
+  (void)threaded;
+  body(std::size_t{0}, n);
+}
+// every layer (on threads when `threaded`):
 template <std::size_t G, std::size_t Q, class Add>
-void layer_chains(const LayerLists& ll, const std::array<double*, Q>& s, const Add& add) {
-  layer_chains<G>(ll, 0, ll.layers(), s, add);
+void layer_chains(const LayerLists& ll, const std::array<double*, Q>& s, const Add& add, bool threaded = false) {
+  over_layer_runs<G>(ll.layers(), threaded,
+                     [&](std::size_t L0, std::size_t L1) { layer_chains<G>(ll, L0, L1, s, add); });
 }
 
 namespace kernel {

@@ -44,22 +44,25 @@ const double* contact_end_arms(const Dynamics& dyn, std::vector<double>& scratch
   const double *z = dyn.z.data(), *delta = C.delta.data();
   const std::int32_t *pi = C.i.data(), *pj = C.j.data();
   constexpr std::size_t kBlock = 256;
-  for (std::size_t c0 = 0; c0 < nc; c0 += kBlock) {
-    const std::size_t c1 = std::min(nc, c0 + kBlock);
+  const std::int64_t blocks = static_cast<std::int64_t>((nc + kBlock - 1) / kBlock);
+  double* arms = scratch.data();
+#pragma omp parallel for schedule(static) if (dyn.threaded())
+  for (std::int64_t b = 0; b < blocks; ++b) {  // each block's arms on one thread
+    const std::size_t c0 = static_cast<std::size_t>(b) * kBlock, c1 = std::min(nc, c0 + kBlock);
     // The distance r = |r_j - r_i| from the overlap the contact pass stored at these positions,
     // delta = (a_i + a_j) - r: while r/2 <= a_i + a_j <= 2r that subtraction is exact (Sterbenz),
     // so (a_i + a_j) - delta gives the root's r bit for bit without x, y and the root. Checked
     // per block on the stored delta with a margin (-reach/2 <= delta <= reach/4); else the
     // block again with the root.
-    if (exact_end_arms(c0, c1, pi, pj, a, z, delta, scratch.data()) != static_cast<std::int64_t>(c1 - c0)) {
+    if (exact_end_arms(c0, c1, pi, pj, a, z, delta, arms) != static_cast<std::int64_t>(c1 - c0)) {
       for (std::size_t c = c0; c < c1; ++c) {
         const int i = C.i[c], j = C.j[c];
         const double bx = dyn.x[j] + C.image_x[c] * pk.box_x - dyn.x[i];
         const double by = dyn.y[j] + C.image_y[c] * pk.box_y - dyn.y[i];
         const double bz = dyn.z[j] - dyn.z[i];
         const double u_z = bz / std::sqrt(bx * bx + by * by + bz * bz);
-        scratch[2 * c] = Dynamics::end_arm(a[i], delta[c], u_z);
-        scratch[2 * c + 1] = Dynamics::end_arm(a[j], delta[c], u_z);
+        arms[2 * c] = Dynamics::end_arm(a[i], delta[c], u_z);
+        arms[2 * c + 1] = Dynamics::end_arm(a[j], delta[c], u_z);
       }
     }
   }
@@ -112,11 +115,13 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
     static thread_local std::vector<double> arms;  // scratch of contact_end_arms
     const double* arm_u = contact_end_arms(dyn, arms);
     const double *f_z = C.f_z.data(), *f_x = C.f_x.data();
-    layer_chains<2>(dyn.layer_order().ends, std::array{zz.data(), zx.data()},
-                    [=](std::array<double, 2>& acc, std::int32_t e) {
-                      acc[0] -= arm_u[e] * f_z[e >> 1];
-                      acc[1] -= arm_u[e] * f_x[e >> 1];
-                    });
+    layer_chains<2>(
+        dyn.layer_order().ends, std::array{zz.data(), zx.data()},
+        [=](std::array<double, 2>& acc, std::int32_t e) {
+          acc[0] -= arm_u[e] * f_z[e >> 1];
+          acc[1] -= arm_u[e] * f_x[e >> 1];
+        },
+        dyn.threaded());
   }
   for (std::size_t L = 0; L < nl; ++L) {
     zz[L] /= volume;
@@ -170,13 +175,15 @@ void sample_layer_motion(const Dynamics& dyn, double* const* out) {
   const double *z = dyn.z.data(), *z0 = dyn.z0.data(), *x = dyn.x.data(), *x0 = dyn.x0.data(),
                *v_z = dyn.vz.data(), *v_x = dyn.vx.data();
   const LayerLists& particles = dyn.layer_order().particles;
-  layer_chains<2>(particles, std::array{uz.data(), ux.data(), vz.data(), vx.data()},
-                  [=](std::array<double, 4>& acc, std::int32_t p) {
-                    acc[0] += z[p] - z0[p];
-                    acc[1] += x[p] - x0[p];
-                    acc[2] += v_z[p];
-                    acc[3] += v_x[p];
-                  });
+  layer_chains<2>(
+      particles, std::array{uz.data(), ux.data(), vz.data(), vx.data()},
+      [=](std::array<double, 4>& acc, std::int32_t p) {
+        acc[0] += z[p] - z0[p];
+        acc[1] += x[p] - x0[p];
+        acc[2] += v_z[p];
+        acc[3] += v_x[p];
+      },
+      dyn.threaded());
   for (std::size_t L = 0; L < nl; ++L) {
     const double count = static_cast<double>(particles.first[L + 1] - particles.first[L]);
     const double per = count > 0.0 ? 1.0 / count : 0.0;

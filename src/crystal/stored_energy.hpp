@@ -35,16 +35,18 @@ class StoredEnergy {
   // streams cost more than they gain, as measured for the layer stress in docs/benchmarks.md,
   // session 29), an open contact adding nothing (a select): the same terms in the same order, the
   // same bits. A block of layers at a time.
-  void by_layers(double* per_layer, const ContactList& C, const LayerLists& by_layer, const double* radius) const {
+  // On OpenMP threads when `threaded`: runs of whole blocks, each layer's sum on one thread.
+  void by_layers(double* per_layer, const ContactList& C, const LayerLists& by_layer, const double* radius,
+                 bool threaded = false) const {
     if constexpr (records_terms) {
       switch (energy_terms()) {
-        case 1: return add_stored_energy_terms<1>(per_layer, C, by_layer, radius);
-        case 2: return add_stored_energy_terms<2>(per_layer, C, by_layer, radius);
-        case 3: return add_stored_energy_terms<3>(per_layer, C, by_layer, radius);
+        case 1: return add_stored_energy_terms<1>(per_layer, C, by_layer, radius, threaded);
+        case 2: return add_stored_energy_terms<2>(per_layer, C, by_layer, radius, threaded);
+        case 3: return add_stored_energy_terms<3>(per_layer, C, by_layer, radius, threaded);
         default: break;
       }
     }
-    add_stored_energy_terms<0>(per_layer, C, by_layer, radius);
+    add_stored_energy_terms<0>(per_layer, C, by_layer, radius, threaded);
   }
  private:
   const Law& law_;
@@ -82,7 +84,7 @@ class StoredEnergy {
   // chains (more than three terms, or a law on a double only).
   template <std::size_t NT>
   void add_stored_energy_terms(double* per_layer, const ContactList& C, const LayerLists& by_layer,
-                               const double* radius) const {
+                               const double* radius, bool threaded) const {
     using History = typename Law::History;
     constexpr std::size_t NH = contact::history_columns<History>;
     std::array<const double*, NH> column;
@@ -119,17 +121,28 @@ class StoredEnergy {
         acc[0] = delta[c] <= 0.0 ? acc[0] : e;  // as `if (delta <= 0) continue` (NaN adds)
       });
     };
-    static thread_local std::vector<double> terms;  // no allocation per sample
+    static thread_local std::vector<double> terms;  // no allocation per sample (one per thread)
     const std::size_t nl = by_layer.layers();
     if (NT == 0 || !by_layer.consecutive) {  // every contact's terms, then every layer
       if (terms.size() < NT * nc) terms.resize(NT * nc);
-      make_terms(0, nc, terms.data(), nc);
-      return sums(0, nl, terms.data(), nc, 0);
+      double* t = terms.data();  // the calling thread's, shared with the others for the sums
+      make_terms(0, nc, t, nc);
+      return over_layer_runs<2>(nl, threaded, [&](std::size_t L0, std::size_t L1) { sums(L0, L1, t, nc, 0); });
     }
     // Consecutive lists: a block's terms (about 2048 contacts) are still in cache for its sums.
     const std::int32_t* first = by_layer.first.data();
+    static thread_local std::vector<std::size_t> blocks;  // the blocks' first layers, then nl
+    blocks.clear();
     for (std::size_t L0 = 0, L1; L0 < nl; L0 = L1) {
+      blocks.push_back(L0);
       for (L1 = L0 + 1; L1 < nl && first[L1 + 1] - first[L0] <= 2048;) ++L1;
+    }
+    blocks.push_back(nl);
+    const std::int64_t nb = static_cast<std::int64_t>(blocks.size()) - 1;
+    const std::size_t* block = blocks.data();
+#pragma omp parallel for schedule(static) if (threaded)
+    for (std::int64_t b = 0; b < nb; ++b) {
+      const std::size_t L0 = block[b], L1 = block[b + 1];
       const std::size_t c0 = static_cast<std::size_t>(by_layer.base + first[L0]),
                         n = static_cast<std::size_t>(first[L1] - first[L0]);
       if (terms.size() < NT * n) terms.resize(NT * n);
