@@ -12,6 +12,7 @@
 #include "contact/hertz_mindlin_params.hpp"
 #include "core/rng.hpp"
 #include "crystal/dynamics.hpp"
+#include "crystal/observers.hpp"
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 
@@ -272,7 +273,7 @@ TEST_CASE("threaded contact sums of a law with torques equal one thread's bit fo
   // particles it alone touches, the particles two parts share summed from the stored values after
   // the parts join. Both add in the same order: every force, torque and position agrees to the
   // last bit, for both lever arms, a sliding law (deferred contacts), Hertz-Mindlin and the rolling
-  // and torsion springs. Needs OpenMP with two threads.
+  // and torsion springs; and then a sample's observers. Needs OpenMP with two threads.
   test_support::require_openmp_threads(2, "the threaded scatter");
   const RouteLaws r = route_laws();
   config::Case c = r.c;
@@ -299,6 +300,30 @@ TEST_CASE("threaded contact sums of a law with torques equal one thread's bit fo
     CHECK(one.contacts.f_z == two.contacts.f_z);
     CHECK(one.dissipated_energy() == two.dissipated_energy());
     CHECK(one.dissipated_energy() > 0.0);
+    // A sample's observers: threaded, each layer's sums on one thread (over_layer_runs), the same
+    // bits; the layer stress from the end arms the pass stored and from those it makes itself.
+    for (bool stored : {true, false}) {
+      std::vector<double> zz1, zx1, zz2, zx2;
+      one.end_arms_stored = two.end_arms_stored = stored && one.end_arms_stored && two.end_arms_stored;
+      crystal::layer_stress(one, zz1, zx1);
+      crystal::layer_stress(two, zz2, zx2);
+      CHECK(zz1 == zz2);
+      CHECK(zx1 == zx2);
+      CHECK(std::count(zz1.begin(), zz1.end(), 0.0) < static_cast<std::ptrdiff_t>(zz1.size()));
+    }
+    const std::size_t nl = static_cast<std::size_t>(base.p.layers);
+    std::vector<double> motion1(4 * nl), motion2(4 * nl);
+    double* out1[4] = {&motion1[0], &motion1[nl], &motion1[2 * nl], &motion1[3 * nl]};
+    double* out2[4] = {&motion2[0], &motion2[nl], &motion2[2 * nl], &motion2[3 * nl]};
+    crystal::sample_layer_motion(one, out1);
+    crystal::sample_layer_motion(two, out2);
+    CHECK(motion1 == motion2);
+    const crystal::Dynamics::Energies e1 = one.energies(), e2 = two.energies();
+    CHECK(e1.kinetic == e2.kinetic);
+    CHECK(e1.potential == e2.potential);
+    CHECK(e1.dissipated == e2.dissipated);
+    CHECK(e1.verlet_correction == e2.verlet_correction);
+    CHECK(e1.potential > 0.0);
     // Some contacts slide (deferred to the exact sweep): column 3 of both laws' history is the
     // stick/slip flag (after the spring's three components).
     const double* flag = one.contacts.history_column(3);
