@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -15,7 +16,9 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <map>
 #include <mutex>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/resources.hpp"
@@ -63,8 +66,12 @@ std::uint64_t le(const unsigned char* p, int n) {
   return v;
 }
 
-// "" when every collection ("GCOL", version 1; data/SCHEMA.md cites the format) is consistent.
-std::string check_global_heaps(const std::string& path) {
+// A global heap's objects: (collection address, index) -> size in bytes.
+using HeapObjects = std::map<std::pair<std::uint64_t, std::uint64_t>, std::uint64_t>;
+
+// "" when every collection ("GCOL", version 1; data/SCHEMA.md cites the format) is consistent;
+// its objects into `objects`.
+std::string check_global_heaps(const std::string& path, HeapObjects& objects) {
   std::FILE* fp = std::fopen(path.c_str(), "rb");
   if (!fp) return "cannot reopen the file to check its global heap";
   std::vector<unsigned char> buf;
@@ -106,6 +113,7 @@ std::string check_global_heaps(const std::string& path) {
                     " at offset " + std::to_string(p) + " has an impossible size " + std::to_string(osize);
           break;
         }
+        if (idx > 0) objects[{at, idx}] = osize;
         p += need;
       }
       if (!problem.empty()) break;
@@ -118,6 +126,86 @@ std::string check_global_heaps(const std::string& path) {
   }
   std::fclose(fp);
   return problem;
+}
+
+// ---- a variable-length attribute's stored value, before the library reads it ----
+// A scalar variable-length string is stored as its length (4 bytes), its global heap object's
+// collection address (8) and index (4). HDF5 1.10 allocates and fills that length before it looks
+// at the heap, so a damaged length makes a small file cost gigabytes (libFuzzer: 1.8 GB for a
+// 236 kB trace). So the attribute message is found in the object header (file format version 0
+// superblocks' headers: version 1, no signature; version 2, "OHDR", and its "OCHK" continuation
+// blocks) and its value checked against the heap walked above. Attributes in dense storage (a
+// fractal heap) are not looked for: the read then goes ahead as before, under the crash guard.
+
+bool read_at(std::FILE* fp, std::uint64_t at, std::size_t n, unsigned char* out) {
+  return std::fseek(fp, static_cast<long>(at), SEEK_SET) == 0 && std::fread(out, 1, n, fp) == n;
+}
+
+// The first 16 bytes of the value of attribute `name` of the object whose header is at `header`;
+// `base`: where the file's addresses count from (its superblock's offset).
+std::optional<std::array<unsigned char, 16>> attribute_value(const std::string& path, std::uint64_t base,
+                                                             std::uint64_t header, const std::string& name) {
+  header += base;
+  std::FILE* fp = std::fopen(path.c_str(), "rb");
+  if (!fp) return std::nullopt;
+  const std::uint64_t file_size = std::filesystem::file_size(path);
+  std::optional<std::array<unsigned char, 16>> found;
+  struct Chunk {
+    std::uint64_t at, size;
+  };
+  std::vector<Chunk> chunks;
+  unsigned char prefix[32];
+  int version = 0;
+  std::size_t message_head = 8;  // a message's type, size and flags before its data
+  bool order_field = false;
+  if (header < file_size && read_at(fp, header, 16, prefix)) {
+    if (prefix[0] == 1) {  // version 1: the messages from byte 16, chunk 0's size at byte 8
+      version = 1;
+      chunks.push_back({header + 16, le(prefix + 8, 4)});
+    } else if (std::memcmp(prefix, "OHDR", 4) == 0 && prefix[4] == 2 && read_at(fp, header, 32, prefix)) {
+      version = 2;
+      const unsigned flags = prefix[5];
+      std::uint64_t at = 6 + ((flags & 0x20) ? 16 : 0) + ((flags & 0x10) ? 4 : 0);
+      const int width = 1 << (flags & 3);
+      const std::uint64_t size = le(prefix + at, width);
+      order_field = (flags & 0x04) != 0;
+      message_head = order_field ? 6 : 4;
+      chunks.push_back({header + at + width, size});
+    }
+  }
+  for (std::size_t k = 0; k < chunks.size() && k < 64 && !found; ++k) {
+    const Chunk chunk = chunks[k];
+    if (chunk.size > file_size || chunk.at > file_size - chunk.size) break;
+    std::vector<unsigned char> b(chunk.size);
+    if (!read_at(fp, chunk.at, b.size(), b.data())) break;
+    for (std::size_t p = 0; p + message_head <= b.size();) {
+      const unsigned type = version == 1 ? static_cast<unsigned>(le(&b[p], 2)) : b[p];
+      const std::size_t size = static_cast<std::size_t>(version == 1 ? le(&b[p + 2], 2) : le(&b[p + 1], 2));
+      const unsigned flags = version == 1 ? b[p + 4] : b[p + 3];
+      const std::size_t data = p + message_head;
+      if (size > b.size() - data) break;
+      if (type == 0x10 && size >= 16) {  // continuation: its chunk
+        const std::uint64_t at = base + le(&b[data], 8), length = le(&b[data + 8], 8);
+        if (version == 1) chunks.push_back({at, length});
+        else if (length >= 8) chunks.push_back({at + 4, length - 8});  // "OCHK" ... checksum
+      } else if (type == 0x0C && !(flags & 0x02) && size >= 8) {  // an attribute, not shared
+        const unsigned av = b[data];
+        const std::size_t name_size = le(&b[data + 2], 2), dt_size = le(&b[data + 4], 2), ds_size = le(&b[data + 6], 2);
+        auto padded = [av](std::size_t n) { return av == 1 ? (n + 7) / 8 * 8 : n; };
+        const std::size_t name_at = data + (av >= 3 ? 9 : 8);
+        const std::size_t value_at = name_at + padded(name_size) + padded(dt_size) + padded(ds_size);
+        if (av >= 1 && av <= 3 && name_size == name.size() + 1 && name_at + name_size <= data + size &&
+            std::memcmp(&b[name_at], name.data(), name.size()) == 0 && value_at + 16 <= data + size) {
+          found.emplace();
+          std::memcpy(found->data(), &b[value_at], 16);
+          break;
+        }
+      }
+      p = data + size;
+    }
+  }
+  std::fclose(fp);
+  return found;
 }
 
 // Signal-safe state of the crash guard: one thread in the reader at a time (HDF5 serialises its
@@ -175,6 +263,8 @@ struct H5Reader::Impl {
   double file_size = 0.0;
   double memory = 0.0;       // the memory guard (core/resources.hpp): MemAvailable
   bool heaps_checked = false;
+  HeapObjects heap_objects;          // the global heap's objects, once checked (check_heaps)
+  bool heap_objects_known = false;   // not for a file being written here
   ~Impl() {
     if (file >= 0) H5Fclose(file);
   }
@@ -312,9 +402,9 @@ std::vector<std::int64_t> H5Reader::read_int(const std::string& path, std::vecto
 
 void H5Reader::check_heaps() const {
   if (impl_->heaps_checked) return;
-  if (const std::string why = check_global_heaps(path_); !why.empty())
+  if (const std::string why = check_global_heaps(path_, impl_->heap_objects); !why.empty())
     throw InputError(path_ + ": damaged file: " + why);
-  impl_->heaps_checked = true;
+  impl_->heaps_checked = impl_->heap_objects_known = true;
 }
 
 std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
@@ -399,6 +489,23 @@ std::string H5Reader::attr_string(const std::string& object, const std::string& 
   herr_t err;
   if (H5Tis_variable_str(a.type.id) > 0) {
     check_heaps();
+    H5O_info_t info;
+    hsize_t base = 0;  // the file's addresses count from its superblock, after a user block
+    {
+      Hid plist(H5Fget_create_plist(impl_->file), H5Pclose);
+      if (!plist || H5Pget_userblock(plist.id, &base) < 0) base = 0;
+    }
+    if (impl_->heap_objects_known && H5Oget_info2(a.obj.id, &info, H5O_INFO_BASIC) >= 0)
+      if (const auto value = attribute_value(path_, base, info.addr, name)) {  // its length against its heap object
+        const std::uint64_t length = le(value->data(), 4);
+        const auto held = impl_->heap_objects.find({base + le(value->data() + 4, 8), le(value->data() + 12, 4)});
+        if (length > 0 && (held == impl_->heap_objects.end() || length > held->second))
+          throw InputError(path_ + ": damaged file: attribute '" + name + "' of '" + object + "' claims a string of " +
+                           std::to_string(length) + " bytes, " +
+                           (held == impl_->heap_objects.end()
+                                ? std::string("in no object of the global heap")
+                                : "where its global heap object holds " + std::to_string(held->second)));
+      }
     char* p = nullptr;
     Hid mtype(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(mtype.id, H5T_VARIABLE);
