@@ -250,7 +250,7 @@ struct HertzMindlinLaw {
   // Radii-dependent (R*), so the kernel passes them (contact/law.hpp, the optional form).
   template <class Energy>
   void add_stored_energy(Energy& e, double delta, const History& h, double a_i, double a_j) const {
-    const double a = std::sqrt(a_i * a_j / (a_i + a_j) * delta);
+    const double a = std::sqrt(reduced_radius(a_i, a_j) * delta);
     e += 0.4 * ((4.0 / 3.0) * e_star * a * delta) * delta;  // (2/5) A delta^(5/2) = (2/5) f_n delta
     if constexpr (H != MindlinHistory::none) e += tangential_energy(h, g8 * a);
   }

@@ -70,7 +70,7 @@ struct HertzMindlinCase {
   static LinearisedContact at(const Params& cp, double density, double a_i, double a_j, double delta) {
     const double m_i = density * 4.0 / 3.0 * std::numbers::pi * a_i * a_i * a_i;
     const double m_j = density * 4.0 / 3.0 * std::numbers::pi * a_j * a_j * a_j;
-    const HertzMindlinStiffness s = hertz_mindlin_at(params(cp, density), a_i * a_j / (a_i + a_j), m_i * m_j / (m_i + m_j), delta);
+    const HertzMindlinStiffness s = hertz_mindlin_at(params(cp, density), reduced_radius(a_i, a_j), m_i * m_j / (m_i + m_j), delta);
     return {s.f_n, s.k_n, cp.mindlin ? s.k_t : 0.0, s.gamma_n, 0.0};
   }
   static NormalForm normal_form(const Params& cp, double density) {

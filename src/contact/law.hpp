@@ -60,9 +60,16 @@
 #include <type_traits>
 
 #include "contact/lever_arm.hpp"
+#include "core/inline.hpp"
 #include "contact/vec3.hpp"
 
 namespace granwave::contact {
+
+// R* = a_i a_j/(a_i + a_j), the reduced radius of two spheres (also lane-wise on the kernel's vectors).
+template <class T>
+GRANWAVE_ALWAYS_INLINE inline T reduced_radius(const T& a_i, const T& a_j) {
+  return a_i * a_j / (a_i + a_j);
+}
 
 // One contact between spheres i and j as the kernel sees it (after the periodic image shift).
 struct Contact {
@@ -72,7 +79,7 @@ struct Contact {
   Vec3 dv;           // v_i - v_j
   Vec3 w_i, w_j;     // angular velocities (zero unless the law has torques)
   double a_i, a_j;   // radii
-  double r_eff;      // R* = a_i a_j/(a_i + a_j), the reduced radius (ReadsReducedRadius)
+  double r_eff;      // reduced_radius(a_i, a_j) (ReadsReducedRadius)
   double dt;         // time since the last evaluation (springs advance by v dt; 0 for a state set from outside)
 };
 

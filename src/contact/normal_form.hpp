@@ -5,6 +5,8 @@
 #pragma once
 #include <cmath>
 
+#include "contact/law.hpp"
+
 namespace granwave::contact {
 
 struct NormalForm {
@@ -27,7 +29,7 @@ struct LinearNormal {
 struct HertzNormal {
   double e_star;
   NormalForce operator()(double a_i, double a_j, double delta) const {
-    const double a = std::sqrt(a_i * a_j / (a_i + a_j) * delta);
+    const double a = std::sqrt(reduced_radius(a_i, a_j) * delta);
     return {4.0 / 3.0 * e_star * a * delta, 2.0 * e_star * a};
   }
 };

@@ -92,7 +92,8 @@ struct ListColumns {
 
 // One contact c: its geometry from r_j - r_i = b (j at its image) with its length r = |b| and 1/r
 // (the caller's: the gather takes them, off the head of this loop's dependency chain), the radii
-// and R* (the gather's too, for a law that reads it: contact::ReadsReducedRadius), v_i - v_j and (a law with torques) the spins; the law's response (Vector: the Deferrable
+// and R* (the gather's too, for a law that reads it: contact::ReadsReducedRadius), v_i - v_j and
+// (a law with torques) the spins; the law's response (Vector: the Deferrable
 // evaluation of a law that defers, contact::DefersContacts); its history written back (kept for a
 // deferred contact, which the exact sweep evaluates again from it; lost on opening), its loss
 // added, its overlap stored.
@@ -214,7 +215,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     bool open;
     const bool deferred = evaluate_contact<Law, Vector, Dissipative, false>(
         law, hist, diss, cdelta, c, bx, by, bz, r, 1.0 / r, pa[i] + pa[j], pa[i], pa[j],
-        pa[i] * pa[j] / (pa[i] + pa[j]), dv, contact::Vec3::Zero(), contact::Vec3::Zero(), inc, res, open);
+        contact::reduced_radius(pa[i], pa[j]), dv, contact::Vec3::Zero(), contact::Vec3::Zero(), inc, res, open);
     using contact::select;
     fo[0][u] = select(open, 0.0, res.force.x());
     fo[1][u] = select(open, 0.0, res.force.y());

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "contact/law.hpp"
 #include "crystal/dynamics.hpp"
 #include "crystal/simd.hpp"
 
@@ -138,7 +139,7 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
     store4(&g.col[G::reach][u], ai + aj);
     store4(&g.col[G::a_i][u], ai);
     store4(&g.col[G::a_j][u], aj);
-    if constexpr (ReducedRadius) store4(&g.col[G::r_eff][u], ai * aj / (ai + aj));
+    if constexpr (ReducedRadius) store4(&g.col[G::r_eff][u], contact::reduced_radius(ai, aj));
     // v_i - v_j lane-wise on the rows' halves, then the columns (the same subtractions)
     V4 unused, hi[4], hj[4];
     simd::row_halves4(vel + i0, vel + i1, vel + i2, vel + i3, hi[0], hi[1], hi[2], hi[3]);
@@ -166,7 +167,7 @@ GRANWAVE_ALWAYS_INLINE inline void gather(Gathered& g, std::int64_t s0, std::int
     g.col[G::reach][u] = pos[i + 3] + pos[j + 3];
     g.col[G::a_i][u] = pos[i + 3];
     g.col[G::a_j][u] = pos[j + 3];
-    if constexpr (ReducedRadius) g.col[G::r_eff][u] = pos[i + 3] * pos[j + 3] / (pos[i + 3] + pos[j + 3]);
+    if constexpr (ReducedRadius) g.col[G::r_eff][u] = contact::reduced_radius(pos[i + 3], pos[j + 3]);
     g.col[G::dvx][u] = vel[i] - vel[j];
     g.col[G::dvy][u] = vel[i + 1] - vel[j + 1];
     g.col[G::dvz][u] = vel[i + 2] - vel[j + 2];

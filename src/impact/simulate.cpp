@@ -55,7 +55,7 @@ Series run_law(const Setup& s, const Law& law) {
     contact::Contact c;
     c.n = n, c.delta = delta, c.dv = b1.v - b2.v, c.delta_dot = -n.dot(c.dv);
     c.w_i = b1.w, c.w_j = b2.w, c.a_i = b1.radius, c.a_j = b2.radius, c.dt = dt;
-    c.r_eff = c.a_i * c.a_j / (c.a_i + c.a_j);
+    c.r_eff = contact::reduced_radius(c.a_i, c.a_j);
     const contact::Response r = law.evaluate(c, h);
     f1 = r.force;
     lost += r.loss;

@@ -157,7 +157,6 @@ std::optional<std::array<unsigned char, 16>> attribute_value(const std::string& 
   unsigned char prefix[32];
   int version = 0;
   std::size_t message_head = 8;  // a message's type, size and flags before its data
-  bool order_field = false;
   if (header < file_size && read_at(fp, header, 16, prefix)) {
     if (prefix[0] == 1) {  // version 1: the messages from byte 16, chunk 0's size at byte 8
       version = 1;
@@ -168,8 +167,7 @@ std::optional<std::array<unsigned char, 16>> attribute_value(const std::string& 
       std::uint64_t at = 6 + ((flags & 0x20) ? 16 : 0) + ((flags & 0x10) ? 4 : 0);
       const int width = 1 << (flags & 3);
       const std::uint64_t size = le(prefix + at, width);
-      order_field = (flags & 0x04) != 0;
-      message_head = order_field ? 6 : 4;
+      message_head = (flags & 0x04) ? 6 : 4;  // and its creation order
       chunks.push_back({header + at + width, size});
     }
   }
@@ -265,6 +263,7 @@ struct H5Reader::Impl {
   bool heaps_checked = false;
   HeapObjects heap_objects;          // the global heap's objects, once checked (check_heaps)
   bool heap_objects_known = false;   // not for a file being written here
+  std::uint64_t address_base = 0;    // the file's addresses count from its superblock, after a user block
   ~Impl() {
     if (file >= 0) H5Fclose(file);
   }
@@ -405,6 +404,9 @@ void H5Reader::check_heaps() const {
   if (const std::string why = check_global_heaps(path_, impl_->heap_objects); !why.empty())
     throw InputError(path_ + ": damaged file: " + why);
   impl_->heaps_checked = impl_->heap_objects_known = true;
+  Hid plist(H5Fget_create_plist(impl_->file), H5Pclose);
+  hsize_t user_block = 0;
+  if (plist && H5Pget_userblock(plist.id, &user_block) >= 0) impl_->address_base = user_block;
 }
 
 std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
@@ -490,11 +492,7 @@ std::string H5Reader::attr_string(const std::string& object, const std::string& 
   if (H5Tis_variable_str(a.type.id) > 0) {
     check_heaps();
     H5O_info_t info;
-    hsize_t base = 0;  // the file's addresses count from its superblock, after a user block
-    {
-      Hid plist(H5Fget_create_plist(impl_->file), H5Pclose);
-      if (!plist || H5Pget_userblock(plist.id, &base) < 0) base = 0;
-    }
+    const std::uint64_t base = impl_->address_base;
     if (impl_->heap_objects_known && H5Oget_info2(a.obj.id, &info, H5O_INFO_BASIC) >= 0)
       if (const auto value = attribute_value(path_, base, info.addr, name)) {  // its length against its heap object
         const std::uint64_t length = le(value->data(), 4);
