@@ -132,7 +132,8 @@ std::string check_global_heaps(const std::string& path, HeapObjects& objects) {
 // A scalar variable-length string is stored as its length (4 bytes), its global heap object's
 // collection address (8) and index (4). HDF5 1.10 allocates and fills that length before it looks
 // at the heap, so a damaged length makes a small file cost gigabytes (libFuzzer: 1.8 GB for a
-// 236 kB trace). So the attribute message is found in the object header (file format version 0
+// 236 kB trace), then copies the whole heap object into it, so a length short of the object's size
+// writes past the library's buffer (libFuzzer, under ASan). So the attribute message is found in the object header (file format version 0
 // superblocks' headers: version 1, no signature; version 2, "OHDR", and its "OCHK" continuation
 // blocks) and its value checked against the heap walked above. Attributes in dense storage (a
 // fractal heap) are not looked for: the read then goes ahead as before, under the crash guard.
@@ -204,6 +205,19 @@ std::optional<std::array<unsigned char, 16>> attribute_value(const std::string& 
   }
   std::fclose(fp);
   return found;
+}
+
+// "" when a stored variable-length string (length, collection address, index) is held by its heap
+// object, else what is wrong. Collection 0 is a null string. The library copies the whole object into
+// a buffer of the stored length (rounded up to 4 kB): a length other than the object's size is refused.
+std::string unheld_string(const unsigned char* stored, const HeapObjects& heap, std::uint64_t base) {
+  const std::uint64_t length = le(stored, 4), collection = le(stored + 4, 8);
+  if (collection == 0) return "";
+  const auto held = heap.find({base + collection, le(stored + 12, 4)});
+  if (held != heap.end() && held->second == length) return "";
+  return "claims a string of " + std::to_string(length) + " bytes, " +
+         (held == heap.end() ? std::string("in no object of the global heap")
+                             : "where its global heap object holds " + std::to_string(held->second));
 }
 
 // Signal-safe state of the crash guard: one thread in the reader at a time (HDF5 serialises its
@@ -423,6 +437,20 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   if (H5Tis_variable_str(ftype.id) > 0) {
     const std::size_t n = checked_count(space.id, 16, 1.0, *this, impl_->file_size, impl_->memory, path, nullptr);
     check_heaps();
+    // A contiguous dataset's stored strings, each checked as an attribute's is (h5py's layout; a
+    // chunked or compact one is read as before, under the crash guard). H5Dget_offset counts from the
+    // file's first byte, the stored heap addresses from the superblock (after a user block).
+    const haddr_t offset = H5Dget_offset(ds.id);
+    if (impl_->heap_objects_known && n && offset != HADDR_UNDEF && H5Dget_storage_size(ds.id) == n * 16) {
+      std::vector<unsigned char> stored(n * 16);
+      std::FILE* fp = std::fopen(path_.c_str(), "rb");
+      const bool read = fp && read_at(fp, offset, stored.size(), stored.data());  // from the file's start
+      if (fp) std::fclose(fp);
+      if (!read) throw InputError(path_ + ": damaged file: dataset '" + path + "' lies past the end of the file");
+      for (std::size_t k = 0; k < n; ++k)
+        if (const std::string why = unheld_string(&stored[16 * k], impl_->heap_objects, impl_->address_base); !why.empty())
+          throw InputError(path_ + ": damaged file: dataset '" + path + "' element " + std::to_string(k) + " " + why);
+    }
     Hid type(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(type.id, H5T_VARIABLE);
     H5Tset_cset(type.id, cset);
@@ -495,14 +523,8 @@ std::string H5Reader::attr_string(const std::string& object, const std::string& 
     const std::uint64_t base = impl_->address_base;
     if (impl_->heap_objects_known && H5Oget_info2(a.obj.id, &info, H5O_INFO_BASIC) >= 0)
       if (const auto value = attribute_value(path_, base, info.addr, name)) {  // its length against its heap object
-        const std::uint64_t length = le(value->data(), 4);
-        const auto held = impl_->heap_objects.find({base + le(value->data() + 4, 8), le(value->data() + 12, 4)});
-        if (length > 0 && (held == impl_->heap_objects.end() || length > held->second))
-          throw InputError(path_ + ": damaged file: attribute '" + name + "' of '" + object + "' claims a string of " +
-                           std::to_string(length) + " bytes, " +
-                           (held == impl_->heap_objects.end()
-                                ? std::string("in no object of the global heap")
-                                : "where its global heap object holds " + std::to_string(held->second)));
+        if (const std::string why = unheld_string(value->data(), impl_->heap_objects, base); !why.empty())
+          throw InputError(path_ + ": damaged file: attribute '" + name + "' of '" + object + "' " + why);
       }
     char* p = nullptr;
     Hid mtype(H5Tcopy(H5T_C_S1), H5Tclose);

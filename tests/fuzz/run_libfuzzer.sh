@@ -37,7 +37,10 @@ while ((SECONDS < deadline)); do
     echo "crash guard: $(tail -n 1 "$log")"
     continue
   fi
-  tail -n 60 "$log"
+  # The report's head (what was accessed, where, and whose memory) before its tail: CI keeps a log's end.
+  grep -m1 -A40 "ERROR: AddressSanitizer\|runtime error:\|ERROR: libFuzzer" "$log"
+  echo "..."
+  tail -n 30 "$log"
   echo "libFuzzer: exit $rc (a finding; inputs in $(dirname "$fuzzer")/)"
   exit 1
 done

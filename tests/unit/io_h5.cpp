@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -134,6 +135,83 @@ TEST_CASE("a variable-length string attribute whose stored length or heap refere
   write_bytes(with_block, b);
   CHECK_THROWS_WITH(io::H5Reader(with_block).attr_string("/", "note"),
                     Catch::Contains("claims a string of 13 bytes, where its global heap object holds 12"));
+  // A length short of its object: the library copies the whole object into a buffer of the stored
+  // length rounded up to 4 kB, so a reference moved to a larger object wrote past it (libFuzzer,
+  // ASan: the trace's code_version pointed at a longer string of the same file).
+  b = sound;
+  put_le(&b[at], 11, 4);
+  write_bytes(path, b);
+  CHECK_THROWS_WITH(io::H5Reader(path).attr_string("/", "note"),
+                    Catch::Contains("claims a string of 11 bytes, where its global heap object holds 12"));
+  const std::string two = (std::filesystem::temp_directory_path() / "granwave_io_vlen_two.h5").string();
+  {
+    const std::string long_text(9000, 'x');
+    const char* long_ptr = long_text.c_str();
+    const hid_t f = H5Fcreate(two.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    for (const auto& [name, value] : {std::pair{"note", &text}, std::pair{"long", &long_ptr}}) {
+      const hid_t a = H5Acreate2(f, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+      H5Awrite(a, type, value);
+      H5Aclose(a);
+    }
+    H5Sclose(space), H5Tclose(type), H5Fclose(f);
+  }
+  CHECK(io::H5Reader(two).attr_string("/", "long").size() == 9000);
+  b = bytes_of(two);
+  // The long string's reference: the 12 bytes after its length (9000) that name a GCOL in the file.
+  std::size_t long_at = 0;
+  for (std::size_t k = 0; k + 16 <= b.size() && !long_at; ++k) {
+    std::uint64_t len = 0, col = 0;
+    for (int i = 3; i >= 0; --i) len = (len << 8) | b[k + i];
+    for (int i = 7; i >= 0; --i) col = (col << 8) | b[k + 4 + i];
+    if (len == 9000 && col + 4 <= b.size() && std::memcmp(&b[col], "GCOL", 4) == 0) long_at = k;
+  }
+  REQUIRE(long_at != 0);
+  const std::size_t note_at = vlen_value_at(b, 12);
+  REQUIRE(note_at != long_at);
+  std::copy(b.begin() + long_at + 4, b.begin() + long_at + 16, b.begin() + note_at + 4);  // note -> the long object
+  write_bytes(two, b);
+  CHECK_THROWS_WITH(io::H5Reader(two).attr_string("/", "note"),
+                    Catch::Contains("claims a string of 12 bytes, where its global heap object holds 9000"));
   std::filesystem::remove(path);
   std::filesystem::remove(with_block);
+  std::filesystem::remove(two);
+}
+
+TEST_CASE("a variable-length string dataset whose stored length is damaged is refused before it is read", "[io]") {
+  // h5py's layout (contiguous): each element is stored as an attribute's value is, and checked the same way.
+  for (const hsize_t user_block : {hsize_t{0}, hsize_t{512}}) {
+    const std::string path = (std::filesystem::temp_directory_path() / "granwave_io_vlen_ds.h5").string();
+    const char* names[3] = {"steel", "aluminium", "glass"};
+    {
+      const hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+      if (user_block) H5Pset_userblock(fcpl, user_block);
+      const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+      const hid_t type = H5Tcopy(H5T_C_S1);
+      H5Tset_size(type, H5T_VARIABLE);
+      const hsize_t three = 3;
+      const hid_t space = H5Screate_simple(1, &three, nullptr);
+      const hid_t ds = H5Dcreate2(f, "/material_names", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, names);
+      H5Dclose(ds), H5Sclose(space), H5Tclose(type), H5Fclose(f), H5Pclose(fcpl);
+    }
+    CHECK(io::H5Reader(path).read_strings("/material_names") == std::vector<std::string>{"steel", "aluminium", "glass"});
+    std::vector<unsigned char> b = bytes_of(path);
+    // Element 1 ("aluminium"): its length, 9, then the collection's address (the library numbers the
+    // objects in its own order).
+    const std::string gcol = "GCOL";
+    const auto g = static_cast<std::uint64_t>(std::search(b.begin(), b.end(), gcol.begin(), gcol.end()) - b.begin());
+    unsigned char want[12];
+    put_le(want, 9, 4), put_le(want + 4, g - user_block, 8);
+    const auto at = std::search(b.begin(), b.end(), want, want + 12);
+    REQUIRE(at != b.end());
+    put_le(&*at, 4, 4);  // 4 of its 9 bytes
+    write_bytes(path, b);
+    CHECK_THROWS_WITH(io::H5Reader(path).read_strings("/material_names"),
+                      Catch::Contains("dataset '/material_names' element 1 claims a string of 4 bytes, where its "
+                                      "global heap object holds 9") && Catch::Contains(path));
+    std::filesystem::remove(path);
+  }
 }
