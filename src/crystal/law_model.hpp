@@ -21,8 +21,9 @@ namespace granwave::crystal {
 enum class Forms { all, wide, narrow };
 
 // The forms with couples join the wide units where the cores run 512-bit operations whole (CMake's
-// GRANWAVE_COUPLES_512: Intel cores with AVX-512, the rolling pass 9 % faster); Zen 4 runs them as two
-// halves, and there they lost 10 % at 320 000 particles (docs/benchmarks.md, sessions 30 and 32).
+// GRANWAVE_COUPLES_512: Intel cores with AVX-512, the rolling pass 9 % faster; Zen 5, 14 %); Zen 4
+// runs them as two halves, and there they lost 10 % at 320 000 particles (docs/benchmarks.md,
+// sessions 30, 32 and 36).
 #ifdef GRANWAVE_COUPLES_512
 inline constexpr bool couples_wide = true;
 #else
