@@ -392,6 +392,8 @@ std::string read_first(const std::string& path) {
 
 struct CpuInfo {
   std::string model;
+  std::string vendor;              // GenuineIntel, AuthenticAMD
+  int family = -1, model_number = -1;  // /proc/cpuinfo's "cpu family" and "model" (Zen 5: 26)
   std::vector<std::string> flags;  // of those that matter here
   int logical = 0;
   bool smt = false;                // two logical CPUs share a core
@@ -405,6 +407,9 @@ CpuInfo cpu_info() {
   while (std::getline(f, line)) {
     auto value = [&] { return line.substr(line.find(':') + 2); };
     if (info.model.empty() && line.rfind("model name", 0) == 0) info.model = value();
+    if (info.vendor.empty() && line.rfind("vendor_id", 0) == 0) info.vendor = value();
+    if (info.family < 0 && line.rfind("cpu family", 0) == 0) info.family = std::atoi(value().c_str());
+    if (info.model_number < 0 && line.rfind("model\t", 0) == 0) info.model_number = std::atoi(value().c_str());
     if (flags.empty() && line.rfind("flags", 0) == 0) flags = value();
     if (line.rfind("processor", 0) == 0) ++info.logical;
   }
@@ -455,7 +460,8 @@ int main(int argc, char** argv) {
   }
   const int reps = quick ? 20 : 2000;
   const CpuInfo cpu = cpu_info();
-  std::printf("ceilings: %s, %d logical CPUs; built for %s\n", cpu.model.c_str(), cpu.logical, build_target());
+  std::printf("ceilings: %s (%s family %d model %d), %d logical CPUs; built for %s\n", cpu.model.c_str(),
+              cpu.vendor.c_str(), cpu.family, cpu.model_number, cpu.logical, build_target());
   std::string fl;
   for (const auto& w : cpu.flags) fl += w + " ";
   std::printf("flags: %s\nSMT: %s (thread_siblings_list: ", fl.c_str(), cpu.smt ? "yes, logical CPUs share a core" : "no, one logical CPU per core");
@@ -537,10 +543,12 @@ int main(int argc, char** argv) {
   if (!json_path.empty()) {
     Json j;
     j["format"] = "granwave-ceilings/1";
-    j["cpu"] = {{"model", cpu.model}, {"logical_cpus", cpu.logical}, {"flags", cpu.flags}, {"smt", cpu.smt},
-                {"thread_siblings", cpu.siblings}};
+    j["cpu"] = {{"model", cpu.model},          {"vendor", cpu.vendor},
+                {"family", cpu.family},        {"model_number", cpu.model_number},
+                {"logical_cpus", cpu.logical}, {"flags", cpu.flags},
+                {"smt", cpu.smt},              {"thread_siblings", cpu.siblings}};
     j["build"] = build_target();
-    j["method"] = "minimum over short timed blocks; cycles from a dependent integer add chain";
+    j["method"] = "minimum over short timed blocks; cycles from a chain of dependent integer multiplies";
     j["repetitions"] = reps;
     j["core_ghz"] = 1.0 / cyc_ns;
     j["tsc_ghz"] = tsc;

@@ -42,8 +42,14 @@ BYTES = {
 # L1): Hooke reads x, y, z, v, a of i and j one double at a time (14); the laws with torques load whole
 # rows of four (x y z a | v | w of i and j: 6) and transpose them (crystal/kernel_gather.hpp).
 RANDOM_LOADS = {"frictionless (Hooke)": 14}
-DISPATCH_WIDTH = 6  # Zen 3 and Zen 4 dispatch 6 macro-ops a cycle (AMD's guides); Golden Cove (Sapphire
-# Rapids) allocates 6 a cycle (Intel's optimisation manual)
+
+
+def dispatch_width(cpu):
+    """Macro-ops dispatched a cycle: Zen 3 and Zen 4 (AMD family 25) 6, Zen 5 (family 26) 8 (AMD's
+    guides); Golden Cove (Sapphire Rapids) allocates 6 a cycle (Intel's optimisation manual). A probe
+    file from before the family was recorded counts 6."""
+    return 8 if cpu.get("vendor") == "AuthenticAMD" and cpu.get("family", 0) >= 26 else 6
+
 
 CEILINGS = ["divider", "FP pipes", "L1 ports", "dispatch", "gathers", "memory (L2)", "memory (L3)", "memory (DRAM)",
             "chain"]
@@ -104,7 +110,7 @@ def bounds(ops, ceil, name, per):
         "FP pipes": max(fp_time(p, "add_sub", "add", tput) + p["minmax"] / 4 * tput("add", 4),
                         fp_time(p, "mul", "mul", tput)),
         "L1 ports": max(p["loads"] * ceil["l1_ymm"]["load_ns"], p["stores"] * ceil["l1_ymm"]["store_ns"]),
-        "dispatch": p["instructions"] / DISPATCH_WIDTH * ns_cycle,
+        "dispatch": p["instructions"] / dispatch_width(ceil["cpu"]) * ns_cycle,
         "chain": chain,
     }
     l1 = next(g for g in ceil["gathers"] if g["table"].startswith("L1"))

@@ -1,5 +1,7 @@
 // granwave: one verb per file in src/cli/. Exit codes (docs/design.md §2.3): 0 success,
 // 2 bad input, 1 a failed run or check.
+#include <malloc.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -43,8 +45,23 @@ Exit codes: 0 success, 2 bad input, 1 a failed run.
 
 }  // namespace
 
+namespace {
+// A run frees and takes again the same large buffers (HDF5's chunk and filter buffers as the trace
+// is written, the analysis' reads of it); glibc hands them back to the kernel (fresh mmaps, the heap's
+// top trimmed), so every reuse page-faults anew. Where a fault is dear (a paravirtualised VM: about
+// 10 us) that was 10 % of a crystal run; keeping freed memory in the process costs 2-4 MB of peak RSS
+// (docs/benchmarks.md, session 36). A user's own malloc settings win.
+void keep_freed_memory() {
+  if (std::getenv("GLIBC_TUNABLES") || std::getenv("MALLOC_TOP_PAD_") || std::getenv("MALLOC_MMAP_THRESHOLD_"))
+    return;
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  mallopt(M_TOP_PAD, 64 << 20);
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace granwave;
+  keep_freed_memory();
   const sweep::MpiSession mpi(&argc, &argv);  // MPI only when started by mpirun (sweep/distributed.hpp)
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
     std::cout << kUsage;
