@@ -43,9 +43,6 @@ usage: granwave VERB [ARGS] (granwave VERB --help for each verb)
 Exit codes: 0 success, 2 bad input, 1 a failed run.
 )";
 
-}  // namespace
-
-namespace {
 // A run frees and takes again the same large buffers (HDF5's chunk and filter buffers as the trace
 // is written, the analysis' reads of it); glibc hands them back to the kernel (fresh mmaps, the heap's
 // top trimmed), so every reuse page-faults anew. Where a fault is dear (a paravirtualised VM: about
@@ -57,6 +54,7 @@ void keep_freed_memory() {
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TOP_PAD, 64 << 20);
 }
+
 }  // namespace
 
 int main(int argc, char** argv) {
