@@ -1,10 +1,14 @@
 // granwave: one verb per file in src/cli/. Exit codes (docs/design.md §2.3): 0 success,
 // 2 bad input, 1 a failed run or check.
 #include <malloc.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -45,21 +49,34 @@ Exit codes: 0 success, 2 bad input, 1 a failed run.
 
 // A run frees and takes again the same large buffers (HDF5's chunk and filter buffers as the trace
 // is written, the analysis' reads of it); glibc hands them back to the kernel (fresh mmaps, the heap's
-// top trimmed), so every reuse page-faults anew. Where a fault is dear (a paravirtualised VM: about
-// 10 us) that was 10 % of a crystal run; keeping freed memory in the process costs 2-4 MB of peak RSS
-// (docs/benchmarks.md, session 36). A user's own malloc settings win.
-void keep_freed_memory() {
-  if (std::getenv("GLIBC_TUNABLES") || std::getenv("MALLOC_TOP_PAD_") || std::getenv("MALLOC_MMAP_THRESHOLD_"))
+// top trimmed), so every reuse page-faults anew. And each first touch of its arrays (the trace's
+// series, the state, the buffers) faults once a 4 KiB page. Where a fault is dear (a paravirtualised
+// VM: about 10 us) that was 10-20 % of a crystal run. So the heap keeps what is freed, and is grown
+// once by 1 GiB of address space advised for transparent huge pages: a 2 MiB page faults once where
+// 512 did, and memory is still taken only as it is touched (peak RSS 1-10 MB more; glibc's own
+// `glibc.malloc.hugetlb=1` does the same; docs/benchmarks.md, sessions 36 and 37). A user's own
+// malloc settings win: none of this is done then.
+void prepare_heap() {
+  if (std::getenv("GLIBC_TUNABLES") || std::getenv("MALLOC_TOP_PAD_") || std::getenv("MALLOC_MMAP_THRESHOLD_") ||
+      std::getenv("MALLOC_TRIM_THRESHOLD_"))
     return;
-  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  constexpr std::size_t kReserve = std::size_t{1} << 30, kHugePage = std::size_t{2} << 20;
+  mallopt(M_MMAP_THRESHOLD, static_cast<int>(kReserve));  // blocks below 1 GiB come from the heap
   mallopt(M_TOP_PAD, 64 << 20);
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());  // the reserve is never trimmed
+  void* block = std::malloc(kReserve - 2 * kHugePage);
+  if (!block) return;
+  const auto lo = (reinterpret_cast<std::uintptr_t>(block) + kHugePage - 1) & ~(kHugePage - 1);
+  const auto hi = reinterpret_cast<std::uintptr_t>(sbrk(0)) & ~(kHugePage - 1);
+  if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // a kernel without THP: no effect
+  std::free(block);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace granwave;
-  keep_freed_memory();
+  prepare_heap();
   const sweep::MpiSession mpi(&argc, &argv);  // MPI only when started by mpirun (sweep/distributed.hpp)
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
     std::cout << kUsage;
