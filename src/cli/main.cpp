@@ -47,15 +47,11 @@ usage: granwave VERB [ARGS] (granwave VERB --help for each verb)
 Exit codes: 0 success, 2 bad input, 1 a failed run.
 )";
 
-// A run frees and takes again the same large buffers (HDF5's chunk and filter buffers as the trace
-// is written, the analysis' reads of it); glibc hands them back to the kernel (fresh mmaps, the heap's
-// top trimmed), so every reuse page-faults anew. And each first touch of its arrays (the trace's
-// series, the state, the buffers) faults once a 4 KiB page. Where a fault is dear (a paravirtualised
-// VM: about 10 us) that was 10-20 % of a crystal run. So the heap keeps what is freed, and is grown
-// once by 1 GiB of address space advised for transparent huge pages: a 2 MiB page faults once where
-// 512 did, and memory is still taken only as it is touched (peak RSS 1-10 MB more; glibc's own
-// `glibc.malloc.hugetlb=1` does the same; docs/benchmarks.md, sessions 36 and 37). A user's own
-// malloc settings win: none of this is done then.
+// Page faults are dear on a paravirtualised VM (about 10 us each): a run reuses large buffers that
+// glibc would hand back to the kernel, and first-touches megabytes of arrays a 4 KiB page at a time.
+// So the heap keeps what is freed and is grown once by 1 GiB of address space advised for 2 MiB
+// pages, taken only as touched (what glibc's `glibc.malloc.hugetlb=1` does; measured in
+// docs/benchmarks.md, sessions 36 and 37). A user's own malloc settings win: then nothing is done.
 void prepare_heap() {
   if (std::getenv("GLIBC_TUNABLES") || std::getenv("MALLOC_TOP_PAD_") || std::getenv("MALLOC_MMAP_THRESHOLD_") ||
       std::getenv("MALLOC_TRIM_THRESHOLD_"))
@@ -64,11 +60,14 @@ void prepare_heap() {
   mallopt(M_MMAP_THRESHOLD, static_cast<int>(kReserve));  // blocks below 1 GiB come from the heap
   mallopt(M_TOP_PAD, 64 << 20);
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());  // the reserve is never trimmed
-  void* block = std::malloc(kReserve - 2 * kHugePage);
+  const std::size_t bytes = kReserve - 2 * kHugePage;
+  void* block = std::malloc(bytes);
   if (!block) return;
-  const auto lo = (reinterpret_cast<std::uintptr_t>(block) + kHugePage - 1) & ~(kHugePage - 1);
-  const auto hi = reinterpret_cast<std::uintptr_t>(sbrk(0)) & ~(kHugePage - 1);
-  if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // a kernel without THP: no effect
+  const auto start = reinterpret_cast<std::uintptr_t>(block);
+  const auto brk = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  const auto lo = (start + kHugePage - 1) & ~(kHugePage - 1), hi = brk & ~(kHugePage - 1);
+  // Only a block from the heap (glibc falls back to mmap where the break cannot grow).
+  if (start + bytes <= brk && hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
   std::free(block);
 }
 
