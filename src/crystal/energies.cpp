@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -54,6 +56,12 @@ const Dynamics::LayerOrder& Dynamics::layer_order() const {
 }
 
 namespace {
+// on ? e : -0.0, through the bits: GCC 12 leaves a select on a byte out of its 256-bit vector
+// loops (no vector type for the byte's load), so the loops below ran one particle at a time.
+GRANWAVE_ALWAYS_INLINE inline double kept_or_negative_zero(std::uint8_t on, double e) {
+  const std::uint64_t keep = std::uint64_t{0} - static_cast<std::uint64_t>(on != 0);
+  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(e) & keep) | (~keep & (std::uint64_t{1} << 63)));
+}
 // Each particle's kinetic energy and |F|^2/m + |T|^2/I in [p0, p1), -0.0 for one that is not
 // integrated (adding -0.0 changes no sum: the walk's `continue`); a loop that vectorises.
 void particle_energy_terms(std::size_t p0, std::size_t p1, const double* __restrict m,
@@ -63,7 +71,7 @@ void particle_energy_terms(std::size_t p0, std::size_t p1, const double* __restr
   for (std::size_t p = p0; p < p1; ++p) {
     const double e = 0.5 * m[p] * (vx[p] * vx[p] + vy[p] * vy[p] + vz[p] * vz[p]) +
                      0.5 * inertia[p] * (wx[p] * wx[p] + wy[p] * wy[p] + wz[p] * wz[p]);
-    kinetic[p] = on[p] ? e : -0.0;
+    kinetic[p] = kept_or_negative_zero(on[p], e);
   }
 }
 void particle_verlet_terms(std::size_t p0, std::size_t p1, const double* __restrict inv_mass,
@@ -74,7 +82,7 @@ void particle_verlet_terms(std::size_t p0, std::size_t p1, const double* __restr
   for (std::size_t p = p0; p < p1; ++p) {
     const double e = (fx[p] * fx[p] + fy[p] * fy[p] + fz[p] * fz[p]) * inv_mass[p] +
                      (tx[p] * tx[p] + ty[p] * ty[p] + tz[p] * tz[p]) * inv_inertia[p];
-    verlet[p] = on[p] ? e : -0.0;
+    verlet[p] = kept_or_negative_zero(on[p], e);
   }
 }
 }  // namespace
