@@ -168,7 +168,7 @@ TraceFile read_trace(const io::H5Reader& r, const std::vector<crystal::Observabl
     bool known = false;
     if (!toml.empty()) {
       try {
-        const auto cs = config::parse_case(toml, path + ":/case_toml");
+        const auto cs = config::parse_case(toml, path + ":/case_toml", config::CaseParse::keys_only);
         c.mode = cs.excitation.mode == config::Excitation::Mode::S ? 'S' : 'P';
         c.mode_source = "case_toml";
         if (!cs.analysis.period.empty()) c.period = parse_period_reading(cs.analysis.period);

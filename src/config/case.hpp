@@ -177,6 +177,11 @@ struct Case {
 // Read, parse and validate a case file. Throws InputError naming file, key and allowed range.
 Case load_case(const std::string& path);
 // Same, from text (tests; `origin` names it in messages).
-Case parse_case(const std::string& toml_text, const std::string& origin);
+// What a parse builds: everything, or the keys only (every key read and refused as above, but no
+// packing imported or prepared, and no file a key names opened: a trace's case text, read for its
+// excitation and analysis keys, whose packing may be minutes of compression or on another machine).
+// A keys-only crystal of lattice "file" or "random" has no imported packing, radius nor overlap.
+enum class CaseParse { everything, keys_only };
+Case parse_case(const std::string& toml_text, const std::string& origin, CaseParse what = CaseParse::everything);
 
 }  // namespace granwave::config

@@ -260,7 +260,7 @@ const Material& Case::material(const std::string& n) const {
   throw InputError(path + ": unknown material \"" + n + "\"");
 }
 
-Case parse_case(const std::string& toml_text, const std::string& origin) {
+Case parse_case(const std::string& toml_text, const std::string& origin, CaseParse what) {
   const TomlReader r(origin);
   const toml::table root = parse_toml(toml_text, origin);
   r.allow_only(root, "", {"case", "materials", "chain", "crystal", "packing", "random", "impact", "contact", "excitation", "integrator",
@@ -302,7 +302,7 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
     }
     const toml::table* crystal = r.table(root, "", "crystal", true);
     c.crystal = read_crystal(r, *crystal);
-    read_packing(r, root, *crystal, *c.crystal, origin);  // lattice = "file": [packing] and its import
+    read_packing(r, root, *crystal, *c.crystal, origin, what == CaseParse::everything);  // lattice = "file": [packing] and its import
     c.contact = read_contact(r, *r.table(root, "", "contact", true));
     check_contact_law(r, root, c);  // what the law needs of the rest of the case
     if (const toml::table* e = r.table(root, "", "excitation", false)) c.excitation = read_excitation(r, *e);
@@ -333,7 +333,7 @@ Case parse_case(const std::string& toml_text, const std::string& origin) {
   }
 
   // lattice = "random": prepared now, with the case's law and time step known (config/random_loader.cpp).
-  if (c.crystal) read_random(r, root, c);
+  if (c.crystal) read_random(r, root, c, what == CaseParse::everything);
 
   // [stop] (chains)
   int nbeads = c.chain ? chain_bead_count(*c.chain) : 0;

@@ -71,7 +71,7 @@ void apply_density(packing::Packing& pk, const PackingKeys& keys, double case_de
 }  // namespace
 
 void read_packing(const TomlReader& r, const toml::table& root, const toml::table& crystal, CrystalCase& k,
-                  const std::string& origin) {
+                  const std::string& origin, bool import_file) {
   const toml::node* table = root.get("packing");
   if (k.lattice != "file") {
     if (table) r.fail("packing", "belongs to crystal.lattice = \"file\" (this crystal is \"" + k.lattice + "\")", table);
@@ -116,6 +116,10 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
   // drifts at 4 % of a 1e-4 d step's velocity scale in a quiescent run, at 1e-14 below 1e-4 of it.
   p.relax_tolerance = r.number_in(*t, "packing", "relax_tolerance", false, [](double v) { return v > 0 && v < 1; }, "in (0, 1)")
                           .value_or(1e-14);
+  if (!import_file) {
+    k.packing_file = p;
+    return;
+  }
 
   packing::Packing pk;
   try {  // the importer names the packing file, its line and particle; the case that named the file leads

@@ -10,9 +10,10 @@ namespace granwave::config {
 // With lattice = "file": refuses the lattice's own [crystal] keys, reads [packing], imports the file
 // (src/packing: exit 2 naming file, line and particle for a bad one), applies the density rule,
 // resolves the slabs' and bins' defaults and fills k.radius and k.overlap from the packing.
-// With lattice = "fcc": refuses a [packing] table. `origin` is the case file's path.
+// With lattice = "fcc": refuses a [packing] table. `origin` is the case file's path. Without
+// `import_file`, the keys only (CaseParse::keys_only): no import, no slabs resolved.
 void read_packing(const TomlReader& r, const toml::table& root, const toml::table& crystal, CrystalCase& k,
-                  const std::string& origin);
+                  const std::string& origin, bool import_file = true);
 
 // The slabs' and bins' keys of a periodic packing `pk` (in table `table`: "packing" or "random")
 // with their defaults (source 2 largest diameters deep, top as deep, bins a mean diameter), their

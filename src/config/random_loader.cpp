@@ -70,7 +70,7 @@ RadiusLaw read_radii(const TomlReader& r, const toml::table& t) {
 
 }  // namespace
 
-void read_random(const TomlReader& r, const toml::table& root, Case& c) {
+void read_random(const TomlReader& r, const toml::table& root, Case& c, bool prepare) {
   CrystalCase& k = *c.crystal;
   const toml::node* node = root.get("random");
   if (k.lattice != "random") {
@@ -203,8 +203,13 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c) {
     std::filesystem::path sp(*v);
     if (sp.is_relative()) sp = std::filesystem::path(c.path).parent_path() / sp;
     start = sp.string();
-    if (!std::filesystem::exists(start)) r.fail("random.start", "no such saved packing: " + start, t.get("start"));
+    if (prepare && !std::filesystem::exists(start)) r.fail("random.start", "no such saved packing: " + start, t.get("start"));
     s.start_static = true;
+  }
+  if (!prepare) {
+    k.random = s;
+    k.packing_file = p;
+    return;
   }
 
   packing::Packing pk;

@@ -12,7 +12,8 @@ namespace granwave::config {
 // own [crystal] keys, reads [random], refuses what cannot be prepared (exit 2 naming the key),
 // prepares the packing (a progress line on stderr while it compresses) and fills c.crystal's
 // imported, packing_file (format "random"), random, preparation, radius and overlap.
-// With another lattice: refuses a [random] table.
-void read_random(const TomlReader& r, const toml::table& root, Case& c);
+// With another lattice: refuses a [random] table. Without `prepare`, the keys and the refusals that
+// need no file only (CaseParse::keys_only): no saved start opened, nothing compressed.
+void read_random(const TomlReader& r, const toml::table& root, Case& c, bool prepare = true);
 
 }  // namespace granwave::config

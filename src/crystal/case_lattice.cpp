@@ -46,8 +46,10 @@ void add_case_lattice(analysis::CrystalAnalysisOptions& options, const std::stri
     return;
   }
   config::Case c;
-  try {
-    c = config::parse_case(case_toml, origin);
+  try {  // the keys first: a packing is imported (or prepared) only if its linearisation is needed
+    c = config::parse_case(case_toml, origin, config::CaseParse::keys_only);
+    const bool sine = need == LatticeNeed::when_not_sine && c.excitation.mode != config::Excitation::Mode::S;
+    if (c.model == config::Model::crystal && c.crystal && c.crystal->from_file() && !sine) c = config::parse_case(case_toml, origin);
   } catch (const std::exception&) {
     options.no_lattice = "the trace's case text does not load: the lattice's branches are unknown";
     return;

@@ -397,6 +397,41 @@ TEST_CASE("trace file round trip: any code's file, mode from the data, S polarit
   std::filesystem::remove(path);
 }
 
+// A trace's case text is read for its keys only: a packing case whose file is not on this machine
+// (or a random packing, minutes to prepare) still gives its excitation mode and analysis keys.
+TEST_CASE("trace file: the case text's mode without its packing file", "[analysis]") {
+  const int layers = 60;
+  const std::size_t nt = 400;
+  std::vector<double> time, z, zero(nt * layers, 0.0), ux(nt * layers), szz(nt * layers, 1.4e5);
+  for (std::size_t n = 0; n < nt; ++n) time.push_back(n * h);
+  for (int p = 0; p < layers; ++p) z.push_back((p - 1) * l0);
+  for (std::size_t n = 0; n < nt; ++n)  // a P-like motion in the data; the case text says S
+    for (int p = 0; p < layers; ++p) ux[n * layers + p] = 1e-12 * pulse(n * h, z[p], 8e-6);
+  const std::string case_toml =
+      "[case]\nname = \"moved\"\nmodel = \"crystal\"\n[crystal]\nlattice = \"file\"\ndensity = 2500\n[packing]\n"
+      "file = \"/no/such/dir/packing.data\"\nformat = \"lammps_data\"\n[contact]\nkn = 1000\n[integrator]\n"
+      "dt_over_tc = 0.02\nt_end = 1e-5\n[excitation]\nmode = \"S\"\n[analysis]\nperiod = \"pulse\"\n";
+  const std::string path = (std::filesystem::temp_directory_path() / "granwave_analysis_case_keys.h5").string();
+  {
+    io::H5Writer w(path);
+    w.attr("/", "code", std::string("granwave"));
+    w.attr("/", "case_name", std::string("moved"));
+    w.attr("/", "case_toml", case_toml);
+    w.write("/time", time);
+    w.write("/crystal/layer_z", z);
+    w.write("/crystal/layer_stress_zx", zero, {nt, static_cast<std::size_t>(layers)});
+    w.write("/crystal/layer_stress_zz", szz, {nt, static_cast<std::size_t>(layers)});
+    w.write("/crystal/layer_displacement_x", zero, {nt, static_cast<std::size_t>(layers)});
+    w.write("/crystal/layer_displacement_z", ux, {nt, static_cast<std::size_t>(layers)});
+    w.commit();
+  }
+  const auto f = read_trace(path, crystal::observables());
+  CHECK(f.crystal.mode == 'S');
+  CHECK(f.crystal.mode_source == "case_toml");
+  CHECK(f.crystal.period == PeriodReading::pulse);
+  std::filesystem::remove(path);
+}
+
 // The provenance text (UTF-8 attributes) reads back; read_trace would say "(unreadable)".
 TEST_CASE("trace file provenance attributes are readable", "[analysis]") {
   const std::string path = (std::filesystem::temp_directory_path() / "granwave_analysis_attr.h5").string();

@@ -120,3 +120,27 @@ TEST_CASE("[packing] refusals name the key and what is allowed", "[config][packi
   SECTION("an overlap above max_overlap names the particle") { require_refused(file_case("", "max_overlap = 0.01\n"), {"packing.data", "particle"}); }
   SECTION("an unknown key") { require_refused(file_case("", "seed = 1\n"), {"packing.seed", "unknown key"}); }
 }
+
+// CaseParse::keys_only (a trace's case text, read for its excitation and analysis keys): the keys are
+// read and refused as in a full parse, but no packing file is opened.
+TEST_CASE("keys_only reads a file packing's keys without importing the file", "[config][packing]") {
+  const std::string missing = file_case("", "", "file = \"no_such_packing.data\"\nformat = \"lammps_data\"\n");
+  require_refused(missing, {"packing.file", "no_such_packing.data"});
+  const Case keys = parse_case(missing, kOrigin, CaseParse::keys_only);
+  REQUIRE(keys.crystal);
+  CHECK(keys.crystal->from_file());
+  CHECK(keys.crystal->imported == nullptr);
+  REQUIRE(keys.crystal->packing_file);
+  CHECK(keys.crystal->packing_file->format == "lammps_data");
+  CHECK(keys.crystal->packing_file->file.find("no_such_packing.data") != std::string::npos);
+  // a bad key is still refused, naming it
+  try {
+    parse_case(file_case("", "max_overlap = 2\n", "file = \"no_such_packing.data\"\nformat = \"lammps_data\"\n"), kOrigin,
+               CaseParse::keys_only);
+    FAIL("keys_only accepted packing.max_overlap = 2");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("packing.max_overlap") != std::string::npos);
+  }
+  const Case full = parse_case(file_case(), kOrigin);
+  CHECK(full.crystal->imported != nullptr);
+}

@@ -156,3 +156,28 @@ TEST_CASE("random: a compression path's start is refused with friction, missing 
   std::filesystem::remove(damaged);
   std::filesystem::remove(file);
 }
+
+// CaseParse::keys_only: the keys and the refusals that need no compression, nothing prepared (the
+// analysis of a random packing's trace prepared its packing again, twice).
+TEST_CASE("random: keys_only reads the keys and prepares nothing", "[config][random]") {
+  const Case keys = parse_case(random_case(), kOrigin, CaseParse::keys_only);
+  REQUIRE(keys.crystal);
+  CHECK(keys.crystal->imported == nullptr);
+  CHECK(keys.crystal->preparation == nullptr);
+  REQUIRE(keys.crystal->random);
+  CHECK(keys.crystal->random->count == 300);
+  CHECK(keys.crystal->random->pressure == 1000.0);
+  REQUIRE(keys.crystal->packing_file);
+  CHECK(keys.crystal->packing_file->format == "random");
+  // refusals made before the compression still come
+  try {
+    parse_case(random_case("", "", "dt_over_tc = 0.02\n", "[1, 1, 3]", "1e12"), kOrigin, CaseParse::keys_only);
+    FAIL("keys_only accepted a pressure beyond the overlap bound");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("random.pressure") != std::string::npos);
+  }
+  // a saved start that is not here: refused when prepared, read when the keys only are wanted
+  const std::string start = random_case("start = \"no_such_saved_packing.h5\"\n");
+  CHECK_THROWS_AS(parse_case(start, kOrigin), InputError);
+  CHECK(parse_case(start, kOrigin, CaseParse::keys_only).crystal->random->start_static);
+}
