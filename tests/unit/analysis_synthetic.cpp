@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "analysis/coda.hpp"
 #include "analysis/dispersion.hpp"
@@ -71,6 +74,23 @@ double half_crossing_bound(double sigma) {
   return h * h * ypp / (8 * yp);
 }
 
+
+// A crystal trace file of another code's layout: the root's text attributes, then /time, /crystal/layer_z
+// and the four [nt][layers] fields.
+void write_crystal_trace(const std::string& path, const std::vector<std::pair<std::string, std::string>>& attrs,
+                         const std::vector<double>& time, const std::vector<double>& z, const std::vector<double>& sxz,
+                         const std::vector<double>& szz, const std::vector<double>& ux, const std::vector<double>& uz) {
+  const std::vector<std::size_t> shape{time.size(), z.size()};
+  io::H5Writer w(path);
+  for (const auto& [name, value] : attrs) w.attr("/", name, value);
+  w.write("/time", time);
+  w.write("/crystal/layer_z", z);
+  w.write("/crystal/layer_stress_zx", sxz, shape);
+  w.write("/crystal/layer_stress_zz", szz, shape);
+  w.write("/crystal/layer_displacement_x", ux, shape);
+  w.write("/crystal/layer_displacement_z", uz, shape);
+  w.commit();
+}
 }  // namespace
 
 TEST_CASE("a pulse at exactly 200 m/s: speed fits and local speeds", "[analysis]") {
@@ -361,19 +381,8 @@ TEST_CASE("trace file round trip: any code's file, mode from the data, S polarit
       ux[n * layers + p] = 1e-9 * pulse(n * h, z[p], sigma) / A;
     }
   const std::string path = (std::filesystem::temp_directory_path() / "granwave_analysis_roundtrip.h5").string();
-  {
-    io::H5Writer w(path);
-    w.attr("/", "code", std::string("yade"));
-    w.attr("/", "case_name", std::string("synthetic_s"));
-    w.attr("/", "time_convention", std::string("shifted to synchronous"));
-    w.write("/time", time);
-    w.write("/crystal/layer_z", z);
-    w.write("/crystal/layer_stress_zx", sxz, {nt, static_cast<std::size_t>(layers)});
-    w.write("/crystal/layer_stress_zz", szz, {nt, static_cast<std::size_t>(layers)});
-    w.write("/crystal/layer_displacement_x", ux, {nt, static_cast<std::size_t>(layers)});
-    w.write("/crystal/layer_displacement_z", uz, {nt, static_cast<std::size_t>(layers)});
-    w.commit();
-  }
+  write_crystal_trace(path, {{"code", "yade"}, {"case_name", "synthetic_s"}, {"time_convention", "shifted to synchronous"}}, time,
+                      z, sxz, szz, ux, uz);
   const auto f = read_trace(path, crystal::observables());
   CHECK(f.model == "crystal");
   CHECK(f.code == "yade");
@@ -402,29 +411,17 @@ TEST_CASE("trace file round trip: any code's file, mode from the data, S polarit
 TEST_CASE("trace file: the case text's mode without its packing file", "[analysis]") {
   const int layers = 60;
   const std::size_t nt = 400;
-  std::vector<double> time, z, zero(nt * layers, 0.0), ux(nt * layers), szz(nt * layers, 1.4e5);
+  std::vector<double> time, z, zero(nt * layers, 0.0), uz(nt * layers), szz(nt * layers, 1.4e5);
   for (std::size_t n = 0; n < nt; ++n) time.push_back(n * h);
   for (int p = 0; p < layers; ++p) z.push_back((p - 1) * l0);
   for (std::size_t n = 0; n < nt; ++n)  // a P-like motion in the data; the case text says S
-    for (int p = 0; p < layers; ++p) ux[n * layers + p] = 1e-12 * pulse(n * h, z[p], 8e-6);
+    for (int p = 0; p < layers; ++p) uz[n * layers + p] = 1e-12 * pulse(n * h, z[p], 8e-6);
   const std::string case_toml =
       "[case]\nname = \"moved\"\nmodel = \"crystal\"\n[crystal]\nlattice = \"file\"\ndensity = 2500\n[packing]\n"
       "file = \"/no/such/dir/packing.data\"\nformat = \"lammps_data\"\n[contact]\nkn = 1000\n[integrator]\n"
       "dt_over_tc = 0.02\nt_end = 1e-5\n[excitation]\nmode = \"S\"\n[analysis]\nperiod = \"pulse\"\n";
   const std::string path = (std::filesystem::temp_directory_path() / "granwave_analysis_case_keys.h5").string();
-  {
-    io::H5Writer w(path);
-    w.attr("/", "code", std::string("granwave"));
-    w.attr("/", "case_name", std::string("moved"));
-    w.attr("/", "case_toml", case_toml);
-    w.write("/time", time);
-    w.write("/crystal/layer_z", z);
-    w.write("/crystal/layer_stress_zx", zero, {nt, static_cast<std::size_t>(layers)});
-    w.write("/crystal/layer_stress_zz", szz, {nt, static_cast<std::size_t>(layers)});
-    w.write("/crystal/layer_displacement_x", zero, {nt, static_cast<std::size_t>(layers)});
-    w.write("/crystal/layer_displacement_z", ux, {nt, static_cast<std::size_t>(layers)});
-    w.commit();
-  }
+  write_crystal_trace(path, {{"code", "granwave"}, {"case_name", "moved"}, {"case_toml", case_toml}}, time, z, zero, szz, zero, uz);
   const auto f = read_trace(path, crystal::observables());
   CHECK(f.crystal.mode == 'S');
   CHECK(f.crystal.mode_source == "case_toml");
