@@ -74,7 +74,6 @@ double half_crossing_bound(double sigma) {
   return h * h * ypp / (8 * yp);
 }
 
-
 // A crystal trace file of another code's layout: the root's text attributes, then /time, /crystal/layer_z
 // and the four [nt][layers] fields.
 void write_crystal_trace(const std::string& path, const std::vector<std::pair<std::string, std::string>>& attrs,
