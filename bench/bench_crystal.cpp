@@ -103,6 +103,19 @@ StepCost seconds_per_step(crystal::Dynamics& dyn, long steps, int repeats, int t
   return best;
 }
 
+// The phases of `steps` more steps taken as a run takes them (Dynamics::advance's clock), us a step:
+// the one that does not halve on two threads is the one that caps their speed-up.
+void print_phases(crystal::Dynamics& dyn, long steps) {
+  steps = as_run_steps(steps);
+  crystal::PhaseTimes times;
+  crystal::PhaseClock clock(times, crystal::PhaseClock::Clock::now());
+  for (long k = 0; k < steps; k += kSampleEvery) dyn.advance(kSampleEvery, true, &clock);
+  std::printf("%-34s %8s ", "", "");
+  for (int q = 0; q < crystal::PhaseTimes::kPhases; ++q)
+    if (times.seconds[q] > 0.0) std::printf(" %s %.1f", crystal::PhaseTimes::names[q], 1e6 * times.seconds[q] / steps);
+  std::printf("  (us/step)\n");
+}
+
 // Issue #14: the same crystal of glass beads with Hertz normal and Mindlin tangential forces.
 config::Case hertz_case() {
   return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_hertz.toml");
@@ -337,6 +350,7 @@ int main(int argc, char** argv) {
       if (threads == 1) one = s.wall;
       std::printf("%-34s %8d %12.1f %18.3g %18.3g %8.2fx\n", row.name, threads, 1e6 * s.wall, dyn.size() / s.wall,
                   dyn.size() / s.cpu, one / s.wall);
+      print_phases(dyn, std::max<long>(20, steps / 10));
     }
     // The ceiling of that speed-up on this machine: two copies of the crystal, one a thread, nothing
     // shared and no synchronisation within a step; their steps against one copy's alone.

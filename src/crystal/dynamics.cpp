@@ -407,6 +407,8 @@ const ContactList::ThreadParts& ContactList::thread_parts(std::size_t n, int par
       touch(i[c], q), touch(j[c], q);
   for (std::size_t p = 0; p < n; ++p)
     if (t.shared_ends[p]) t.shared_particles.push_back(static_cast<std::int32_t>(p));
+  t.shared_blocks.assign(static_cast<std::size_t>((nc + block - 1) / block), 0);
+  for (std::int64_t c = 0; c < nc; ++c) t.shared_blocks[c / block] |= t.shared_ends[i[c]] | t.shared_ends[j[c]];
   return t;
 }
 

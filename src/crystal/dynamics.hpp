@@ -67,11 +67,13 @@ struct ContactList {
   // that contacts of two parts touch is shared (shared_ends[p] = 1, listed in shared_particles):
   // no part adds to its sums; they are made after the parts join, in contact order. Built by
   // thread_parts at its first use after a list build (and for another number of parts).
+  // shared_blocks[b] = 1: block b has a contact of a shared particle, whose values the shared sums read.
   struct ThreadParts {
     int parts = 0;
     std::int64_t block = 0;
     std::vector<std::uint8_t> shared_ends;
     std::vector<std::int32_t> shared_particles;
+    std::vector<std::uint8_t> shared_blocks;
     static std::int64_t part_begin(std::int64_t contacts, int parts, std::int64_t block, int q) {
       const std::int64_t blocks = (contacts + block - 1) / block;
       return std::min(contacts, blocks * q / parts * block);
@@ -386,7 +388,7 @@ class Dynamics {
   template <bool Kick, bool Torques, bool ContactPointArm, bool Threaded, bool Couples>
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   template <bool Kick, int Rows, bool Couples>
-  void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (one thread), from `from` on
+  void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (threaded when from < 0), from `from` on
   template <int Rows, bool Couples>
   Drift finish_kick_drift();  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].

@@ -243,12 +243,17 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
     C.j_lists(d.size());
   }
 #endif
-  // The forces are stored per contact when a sample reads them, when the threads' shared particles
-  // are summed from them, or without the scatter; else the block's stay on the stack.
-  const bool keep_forces = plan.store_forces || shared || !sum_rows;
+  // The forces are stored per contact when a sample reads them, in a block of the threads' shared
+  // particles (summed from them), or without the scatter; else the block's stay on the stack.
+  const bool keep_all_forces = plan.store_forces || !sum_rows;
+  [[maybe_unused]] const std::uint8_t* shared_blocks = split ? split->shared_blocks.data() : nullptr;
   auto range = [=](std::int64_t c0, std::int64_t c1, auto with_arms) GRANWAVE_ALWAYS_INLINE {
     double shx[kBlock], shy[kBlock];  // image offsets in metres (not stored per contact: memory)
     double block_fx[kBlock], block_fy[kBlock], block_fz[kBlock];
+    bool keep_forces = keep_all_forces;
+#ifdef GRANWAVE_GATHER_VECTORS
+    if (shared_blocks) keep_forces = keep_forces || shared_blocks[c0 / kBlock] != 0;
+#endif
     double* const fo[3] = {keep_forces ? cfx + c0 : block_fx, keep_forces ? cfy + c0 : block_fy,
                            keep_forces ? cfz + c0 : block_fz};
     for (std::int64_t c = c0; c < c1; ++c) {

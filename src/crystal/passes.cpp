@@ -182,13 +182,13 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
   double* __restrict rc = rf + 4 * Rows * n;  // the couples' row, Couples only
   const ParticleOut out(*this);
   const double* __restrict a = out.a;
-  std::int64_t p = std::max(p0, from);
+  // [q0, q1): four particles at a time, their rows transposed into lanes, the same operations
+  // lane-wise, the rows zeroed behind them; the last (q1 - q0) % 4 one by one, their rows zeroed after.
+  auto range = [=](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
+    std::int64_t p = q0;
 #ifdef GRANWAVE_GATHER_VECTORS
-  // Four particles at a time: their rows transposed into lanes, the same operations lane-wise,
-  // the rows zeroed behind them.
-  {
     const V4 hv{h, h, h, h};
-    for (; p + 4 <= p1; p += 4) {
+    for (; p + 4 <= q1; p += 4) {
       V4 sx, sy, sz, tqx, tqy, tqz;
       take_rows(rf + 4 * p, sx, sy, sz);
       torques_of_rows<Rows, Couples>(rn, rd, rc, a, p, tqx, tqy, tqz);
@@ -206,27 +206,34 @@ void Dynamics::finish_pass(double h, std::int64_t from) {
         }
       }
     }
-  }
 #endif
-  const std::int64_t zeroed = p;  // rows [p0, zeroed) are zero again
-  for (; p < p1; ++p) {
-    const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
-    double tqx = 0.0, tqy = 0.0, tqz = 0.0;
-    if constexpr (Rows == 3) {
-      tqx = -a[p] * rn[4 * p] + 0.5 * rd[4 * p];
-      tqy = -a[p] * rn[4 * p + 1] + 0.5 * rd[4 * p + 1];
-      tqz = -a[p] * rn[4 * p + 2] + 0.5 * rd[4 * p + 2];
-    } else if constexpr (Rows == 2) {
-      tqx = -a[p] * rn[4 * p];
-      tqy = -a[p] * rn[4 * p + 1];
-      tqz = -a[p] * rn[4 * p + 2];
+    const std::int64_t zeroed = p;  // rows [q0, zeroed) are zero again
+    for (; p < q1; ++p) {
+      const double sx = rf[4 * p], sy = rf[4 * p + 1], sz = rf[4 * p + 2];
+      double tqx = 0.0, tqy = 0.0, tqz = 0.0;
+      if constexpr (Rows == 3) {
+        tqx = -a[p] * rn[4 * p] + 0.5 * rd[4 * p];
+        tqy = -a[p] * rn[4 * p + 1] + 0.5 * rd[4 * p + 1];
+        tqz = -a[p] * rn[4 * p + 2] + 0.5 * rd[4 * p + 2];
+      } else if constexpr (Rows == 2) {
+        tqx = -a[p] * rn[4 * p];
+        tqy = -a[p] * rn[4 * p + 1];
+        tqz = -a[p] * rn[4 * p + 2];
+      }
+      if constexpr (Couples) tqx = tqx + rc[4 * p], tqy = tqy + rc[4 * p + 1], tqz = tqz + rc[4 * p + 2];
+      out.store<Kick, Rows >= 2, Rows >= 2>(p, h, sx, sy, sz, tqx, tqy, tqz);
     }
-    if constexpr (Couples) tqx = tqx + rc[4 * p], tqy = tqy + rc[4 * p + 1], tqz = tqz + rc[4 * p + 2];
-    out.store<Kick, Rows >= 2, Rows >= 2>(p, h, sx, sy, sz, tqx, tqy, tqz);
-  }
+    for (int k = 0; k < Rows + Couples; ++k) std::fill(rf + 4 * (k * n + zeroed), rf + 4 * (k * n + q1), 0.0);
+    return 0;
+  };
+  const std::int64_t q = std::max(p0, from);
+  if (threaded() && from < 0)  // not the tail of finish_kick_drift
+    any_block_on_threads(q, p1, range);
+  else
+    range(q, p1);
   for (int k = 0; k < Rows + Couples; ++k) {  // the others (the halo's sums are incomplete and never used)
     std::fill(rf + 4 * (k * n), rf + 4 * (k * n + p0), 0.0);
-    std::fill(rf + 4 * (k * n + zeroed), rf + 4 * (k * n + n), 0.0);
+    std::fill(rf + 4 * (k * n + p1), rf + 4 * (k * n + n), 0.0);
   }
 }
 
@@ -337,22 +344,22 @@ Drift Dynamics::kick_drift(std::int64_t from) {
     }
     return far;
   };
-  std::int64_t far = 0;
 #ifdef GRANWAVE_GATHER_VECTORS
-  // One thread: four particles at a time with explicit vectors. GCC vectorises `range` by the
-  // narrowest type it reads (the uint8 mobile flag: 32 particles per iteration, eight registers
-  // per double, most of them spilled); here the flag becomes a lane mask. The same operations.
-  if constexpr (!Threaded) {
-    const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2}, near2v{near2, near2, near2, near2};
-    // Serial, no slab (this rank holds every particle): write the gather rows too, so that the
-    // contact pass need not copy the state into them again.
-    const std::int64_t n = static_cast<std::int64_t>(size());
-    double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
-                                                                                                : nullptr;
+  // Four particles at a time with explicit vectors (on threads, a block of particles each). GCC
+  // vectorises `range` by the narrowest type it reads (the uint8 mobile flag: 32 particles per
+  // iteration, eight registers per double, most of them spilled); here the flag becomes a lane mask.
+  // The same operations. With no slab (this rank holds every particle), write the gather rows too,
+  // so that the contact pass need not copy the state into them again.
+  const V4 hv{h, h, h, h}, dtv{dt, dt, dt, dt}, far2v{far2, far2, far2, far2}, near2v{near2, near2, near2, near2};
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  double* rows = Torques && !slab_ && p0 == 0 && p1 == n && gather_rows.size() == 12 * size() ? gather_rows.data()
+                                                                                              : nullptr;
+  const bool stream = rows && streams();
+  // [q0, q1): kick_drift's flags (bit 0 far, bit 1 near), the last q1 - q0 % 4 particles by `range`.
+  auto fours = [=, this](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
     V4m far4{0, 0, 0, 0}, near4{0, 0, 0, 0};
-    const bool stream = rows && streams();
-    std::int64_t p = std::max(p0, from);
-    for (; p + 4 <= p1; p += 4) {
+    std::int64_t p = q0;
+    for (; p + 4 <= q1; p += 4) {
       const V4m m = mobile4(on, p);
       const V4 imv = load4(im + p);
       const V4 ux = kick_drift4<1>(pvx, px, load4(pfx + p), x0p, m, hv, dtv, imv, p);
@@ -369,19 +376,28 @@ Drift Dynamics::kick_drift(std::int64_t from) {
       if (rows)  // the contact pass's rows of these four
         stream ? kernel::fill_rows<true>(*this, rows, p, p + 4) : kernel::fill_rows<false>(*this, rows, p, p + 4);
     }
-    if (stream) simd::fence_streams();
-    far = range(p, p1);
+    if (stream) simd::fence_streams();  // each thread its own stores
+    std::int64_t far = range(p, q1);
+    if (rows) kernel::fill_rows(*this, rows, p, q1);
     far |= (far4[0] | far4[1] | far4[2] | far4[3]) & 1;
     far |= (near4[0] | near4[1] | near4[2] | near4[3]) & 2;
-    if (rows) kernel::fill_rows(*this, rows, p, p1);
-    return {(far & 1) != 0, (far & 2) != 0, rows != nullptr};
-  }
-#endif
+    return far;
+  };
+  const std::int64_t q = std::max(p0, from);
+  std::int64_t far = 0;
+  if constexpr (Threaded)
+    far = any_block_on_threads(q, p1, fours);
+  else
+    far = fours(q, p1);
+  return {(far & 1) != 0, (far & 2) != 0, rows != nullptr};
+#else
+  std::int64_t far = 0;
   if constexpr (Threaded)
     far = any_block_on_threads(p0, p1, range);
   else
     far = range(p0, p1);
   return {(far & 1) != 0, (far & 2) != 0, false};
+#endif
 }
 
 // Dynamics::advance's pass: finish_pass<true, Rows, Couples> (the second half kick of the step before)
