@@ -243,3 +243,10 @@ test \$rc -eq 2 || { cat fric_bad.err; echo \"exit code \$rc, expected 2\"; exit
 grep -q 'spring_xi' fric_bad.err || { cat fric_bad.err; exit 1; }; \
 ! ls fric_run.h5* 2>/dev/null")
 set_tests_properties("cli: a frictional random packing writes its springs, and run refuses a damaged spring dataset" PROPERTIES LABELS "cli")
+# A random packing's system file holds it as prepared (/prepared, data/SCHEMA.md §2): a run from it
+# prepares nothing and writes the trace bit for bit as the run that prepares it; a damaged group and
+# another seed's file are refused (exit 2).
+add_test(NAME "cli: a run from a random packing's system file takes it as prepared, the same bits"
+  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/cli/random_system.py ${GW} ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml
+          ${CLI_TMP}/random_system)
+set_tests_properties("cli: a run from a random packing's system file takes it as prepared, the same bits" PROPERTIES LABELS "cli")

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/resources.hpp"
 #include "models.hpp"
+#include "packing/prepared_state.hpp"
 #include "sweep/distributed.hpp"
 #include "sweep/study.hpp"
 
@@ -18,7 +19,7 @@ namespace {
 
 // Exactly one positional argument: the case file. Unknown options are refused.
 config::Case load_single_case(const Args& args, const std::vector<std::string>& valued, const std::vector<std::string>& flags,
-                              const char* usage) {
+                              const char* usage, const packing::PreparedState* prepared = nullptr) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const auto& a = args[i];
     if (a.rfind("-", 0) != 0) continue;
@@ -30,7 +31,7 @@ config::Case load_single_case(const Args& args, const std::vector<std::string>& 
   }
   auto pos = positionals(args, valued);
   if (pos.size() != 1) throw InputError(std::string("expected one case file\n") + usage);
-  config::Case c = config::load_case(pos[0]);
+  config::Case c = config::load_case(pos[0], prepared);
   if (c.crystal && c.crystal->random_gas_only)
     throw InputError(pos[0] + ": random.stop_at = \"gas\" leaves the gas uncompressed, for `granwave packing CASE -o FILE` "
                      "only; allowed here: \"static\" (the default)");
@@ -142,6 +143,8 @@ int cmd_run(const Args& args) {
       "  simulate one case; the trace file goes to -o (default NAME.traces.h5), written as\n"
       "  NAME.tmp and renamed when complete. Then it measures that trace with the code of\n"
       "  `granwave analyze TRACE` (default options): the same numbers, one ruler.\n"
+      "  --system takes the packing from `granwave build`'s file instead of building it (a random\n"
+      "  packing as its build prepared it, not prepared again).\n"
       "  --json prints one JSON object (schema \"granwave-run/1\", data/SCHEMA.md §3.1): the run's\n"
       "  own numbers and, under \"analysis\", exactly what `granwave analyze TRACE --json` prints.\n"
       "  A crystal run prints where its time loop spent its wall time (\"phases\" in the JSON, s);\n"
@@ -153,13 +156,18 @@ int cmd_run(const Args& args) {
     std::cout << usage << "\n" << kLimitsHelp << "\n";
     return 0;
   }
-  config::Case c =
-      load_single_case(args, {"-o", "--output", "--system", "--max-steps", "--max-memory"}, {"--json", "--quiet"}, usage);
+  // A random packing's system file holds it as prepared: the case takes it instead of preparing it again.
+  const std::string system_path = option_value(args, "", "--system");
+  std::optional<packing::PreparedState> prepared;
+  if (!system_path.empty() && std::filesystem::exists(system_path)) prepared = packing::read_prepared_group(system_path);
+  config::Case c = load_single_case(args, {"-o", "--output", "--system", "--max-steps", "--max-memory"}, {"--json", "--quiet"}, usage,
+                                    prepared ? &*prepared : nullptr);
+  prepared.reset();
   RunRequest req;
   req.limits = limits_of(args);
   req.trace_path = option_value(args, "-o", "--output");
   if (req.trace_path.empty()) req.trace_path = default_trace_path(c);
-  req.system_path = option_value(args, "", "--system");
+  req.system_path = system_path;
   req.json = has_flag(args, "--json");
   req.quiet = has_flag(args, "--quiet");
   RunProgress progress;

@@ -15,6 +15,10 @@
 #include "packing/packing.hpp"
 #include "packing/random_packing.hpp"
 
+namespace granwave::packing {
+struct PreparedState;
+}
+
 namespace granwave::config {
 
 enum class Model { chain, crystal, impact };
@@ -175,13 +179,17 @@ struct Case {
 };
 
 // Read, parse and validate a case file. Throws InputError naming file, key and allowed range.
-Case load_case(const std::string& path);
+// `prepared` (may be null): a random packing's prepared state from its system file
+// (packing/prepared_state.hpp), taken instead of preparing the packing when its seed, count,
+// pressure and friction are the case's (refused when not); ignored by any other lattice.
+Case load_case(const std::string& path, const packing::PreparedState* prepared = nullptr);
 // Same, from text (tests; `origin` names it in messages).
 // What a parse builds: everything, or the keys only (every key read and refused as above, but no
 // packing imported or prepared, and no file a key names opened: a trace's case text, read for its
 // excitation and analysis keys, whose packing may be minutes of compression or on another machine).
 // A keys-only crystal of lattice "file" or "random" has no imported packing, radius nor overlap.
 enum class CaseParse { everything, keys_only };
-Case parse_case(const std::string& toml_text, const std::string& origin, CaseParse what = CaseParse::everything);
+Case parse_case(const std::string& toml_text, const std::string& origin, CaseParse what = CaseParse::everything,
+                const packing::PreparedState* prepared = nullptr);
 
 }  // namespace granwave::config

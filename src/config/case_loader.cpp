@@ -260,7 +260,7 @@ const Material& Case::material(const std::string& n) const {
   throw InputError(path + ": unknown material \"" + n + "\"");
 }
 
-Case parse_case(const std::string& toml_text, const std::string& origin, CaseParse what) {
+Case parse_case(const std::string& toml_text, const std::string& origin, CaseParse what, const packing::PreparedState* prepared) {
   const TomlReader r(origin);
   const toml::table root = parse_toml(toml_text, origin);
   r.allow_only(root, "", {"case", "materials", "chain", "crystal", "packing", "random", "impact", "contact", "excitation", "integrator",
@@ -333,7 +333,7 @@ Case parse_case(const std::string& toml_text, const std::string& origin, CasePar
   }
 
   // lattice = "random": prepared now, with the case's law and time step known (config/random_loader.cpp).
-  if (c.crystal) read_random(r, root, c, what == CaseParse::everything);
+  if (c.crystal) read_random(r, root, c, what == CaseParse::everything, prepared);
 
   // [stop] (chains)
   int nbeads = c.chain ? chain_bead_count(*c.chain) : 0;
@@ -399,12 +399,12 @@ Case parse_case(const std::string& toml_text, const std::string& origin, CasePar
   return c;
 }
 
-Case load_case(const std::string& path) {
+Case load_case(const std::string& path, const packing::PreparedState* prepared) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the case file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_case(text.str(), path);
+  return parse_case(text.str(), path, CaseParse::everything, prepared);
 }
 
 }  // namespace granwave::config

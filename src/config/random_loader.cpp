@@ -70,7 +70,7 @@ RadiusLaw read_radii(const TomlReader& r, const toml::table& t) {
 
 }  // namespace
 
-void read_random(const TomlReader& r, const toml::table& root, Case& c, bool prepare) {
+void read_random(const TomlReader& r, const toml::table& root, Case& c, bool prepare, const packing::PreparedState* prepared) {
   CrystalCase& k = *c.crystal;
   const toml::node* node = root.get("random");
   if (k.lattice != "random") {
@@ -203,7 +203,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c, bool pre
     std::filesystem::path sp(*v);
     if (sp.is_relative()) sp = std::filesystem::path(c.path).parent_path() / sp;
     start = sp.string();
-    if (prepare && !std::filesystem::exists(start)) r.fail("random.start", "no such saved packing: " + start, t.get("start"));
+    if (prepare && !prepared && !std::filesystem::exists(start)) r.fail("random.start", "no such saved packing: " + start, t.get("start"));
     s.start_static = true;
   }
   if (!prepare) {
@@ -215,21 +215,34 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c, bool pre
   packing::Packing pk;
   packing::Preparation prep;
   try {  // the generator's refusals name their key; here they get the case file's name
-    if (start.empty()) {
-      pk = packing::random_gas(s);
+    if (prepared) {  // the system file's packing as its build prepared it (wrapped): to the last bit
+      const packing::PreparedState& g = *prepared;
+      if (k.random_gas_only || g.seed != s.seed || static_cast<long>(g.packing.particles.size()) != s.count ||
+          g.pressure_target != s.pressure || g.friction != s.friction)
+        throw InputError(g.packing.source + ": prepared with random.seed = " + std::to_string(g.seed) + ", count = " +
+                         std::to_string(g.packing.particles.size()) + ", pressure = " + fmt("%.17g", g.pressure_target) +
+                         ", friction = " + fmt("%.17g", g.friction) + ", not this case's; allowed: a system file that " +
+                         "`granwave build` wrote from this case");
+      pk = g.packing;
+      prep = g.preparation;
+      for (packing::Particle& q : pk.particles) q.density = s.density;
     } else {
-      if (k.random_gas_only)
-        throw InputError("random.start and random.stop_at = \"gas\" together: a saved packing is no gas; allowed: one of them");
-      pk = packing::load_prepared(start).packing;
-      if (static_cast<long>(pk.particles.size()) != s.count)
-        throw InputError("random.start = " + start + " holds " + std::to_string(pk.particles.size()) + " particles, random.count = " +
-                         std::to_string(s.count) + "; allowed: a saved packing of the same count");
+      if (start.empty()) {
+        pk = packing::random_gas(s);
+      } else {
+        if (k.random_gas_only)
+          throw InputError("random.start and random.stop_at = \"gas\" together: a saved packing is no gas; allowed: one of them");
+        pk = packing::load_prepared(start).packing;
+        if (static_cast<long>(pk.particles.size()) != s.count)
+          throw InputError("random.start = " + start + " holds " + std::to_string(pk.particles.size()) + " particles, random.count = " +
+                           std::to_string(s.count) + "; allowed: a saved packing of the same count");
+      }
+      if (!k.random_gas_only)
+        prep = packing::compress(pk, s, form, [](const std::string& line) {
+          std::cerr << "granwave: preparing the random packing: " << line << "\n";
+        });
+      packing::wrap_into_box(pk);
     }
-    if (!k.random_gas_only)
-      prep = packing::compress(pk, s, form, [](const std::string& line) {
-        std::cerr << "granwave: preparing the random packing: " << line << "\n";
-      });
-    packing::wrap_into_box(pk);
     packing::Limits limits;
     limits.max_overlap = max_overlap;
     packing::check_packing(pk, limits);

@@ -13,7 +13,9 @@ namespace granwave::config {
 // prepares the packing (a progress line on stderr while it compresses) and fills c.crystal's
 // imported, packing_file (format "random"), random, preparation, radius and overlap.
 // With another lattice: refuses a [random] table. Without `prepare`, the keys and the refusals that
-// need no file only (CaseParse::keys_only): no saved start opened, nothing compressed.
-void read_random(const TomlReader& r, const toml::table& root, Case& c, bool prepare = true);
+// need no file only (CaseParse::keys_only): no saved start opened, nothing compressed. With
+// `prepared` (a system file's /prepared, load_case): its packing instead of a preparation.
+void read_random(const TomlReader& r, const toml::table& root, Case& c, bool prepare = true,
+                 const packing::PreparedState* prepared = nullptr);
 
 }  // namespace granwave::config

@@ -22,6 +22,7 @@
 #include "crystal/vtk.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
+#include "packing/prepared_state.hpp"
 #include "theory/crystal_theory.hpp"
 #include "theory/lattice_dynamics.hpp"
 
@@ -161,6 +162,16 @@ void build(const config::Case& c, const std::string& system_path) {
   io::H5Writer w(system_path);
   io::write_provenance(w);
   write_system(w, p, c.name);
+  const config::CrystalCase& k = *c.crystal;
+  if (k.random && k.imported && k.preparation) {  // what a run from this file takes instead of preparing it again
+    packing::PreparedState st;
+    st.packing = *k.imported;
+    st.preparation = *k.preparation;
+    st.pressure_target = k.random->pressure;
+    st.seed = k.random->seed;
+    st.friction = k.random->friction;
+    packing::write_prepared_group(w, st);
+  }
   // The resolved time step, so that the other codes' drivers need not linearise the law for dt_over_tc.
   w.attr("/", "dt", derived->dt);
   w.commit();
