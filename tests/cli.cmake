@@ -244,9 +244,9 @@ grep -q 'spring_xi' fric_bad.err || { cat fric_bad.err; exit 1; }; \
 ! ls fric_run.h5* 2>/dev/null")
 set_tests_properties("cli: a frictional random packing writes its springs, and run refuses a damaged spring dataset" PROPERTIES LABELS "cli")
 # A random packing's system file holds it as prepared (/prepared, data/SCHEMA.md §2): a run from it
-# prepares nothing and writes the trace bit for bit as the run that prepares it; a damaged group and
-# another seed's file are refused (exit 2).
+# prepares nothing and writes the trace bit for bit as the run that prepares it (frictionless, and
+# frictional with its springs); a damaged group and another seed's file are refused (exit 2).
 add_test(NAME "cli: a run from a random packing's system file takes it as prepared, the same bits"
-  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/cli/random_system.py ${GW} ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml
-          ${CLI_TMP}/random_system)
+  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/cli/random_system.py ${GW} ${CLI_TMP}/random_system
+          ${CMAKE_SOURCE_DIR}/data/cases/random_small.toml ${CMAKE_SOURCE_DIR}/tests/data/random/random_friction.toml)
 set_tests_properties("cli: a run from a random packing's system file takes it as prepared, the same bits" PROPERTIES LABELS "cli")

@@ -12,6 +12,7 @@
 #include "crystal/dynamics.hpp"
 #include "crystal/neighbors.hpp"
 #include "io/h5.hpp"
+#include "packing/spring_datasets.hpp"
 
 namespace granwave::crystal {
 
@@ -200,54 +201,25 @@ void write_system(io::H5Writer& w, const Packing& p, const std::string& case_nam
       w.attr(g, "prepare_friction", p.preparation_friction);
       w.attr(g, "prepare_unbalanced_torque", q.unbalanced_torque);
       w.attr(g, "prepare_sliding", std::int64_t{q.sliding});
-      const std::size_t m = p.springs.size();
-      std::vector<std::int64_t> pairs(2 * m);
-      std::vector<double> xi(3 * m);
-      for (std::size_t c = 0; c < m; ++c) {
-        pairs[2 * c] = p.springs[c].i, pairs[2 * c + 1] = p.springs[c].j;
-        for (int d = 0; d < 3; ++d) xi[3 * c + d] = p.springs[c].xi[d];
-      }
-      w.write(pre + "spring_pairs", pairs, {m, 2});
-      w.write(pre + "spring_xi", xi, {m, 3});
+      packing::write_springs(w, pre, p.springs);
     }
   }
 }
 
 namespace {
 
-// A frictional preparation's springs (spring_pairs [m, 2], spring_xi [m, 3]): every pair two particles
-// i < j, sorted and once, every spring finite and shorter than the mean diameter; else refused by name.
+// A frictional preparation's mu, largest net torque and springs (packing/spring_datasets.hpp: every
+// spring shorter than the mean diameter); else refused by name.
 template <class Refuse>
-void read_springs(const io::H5Reader& r, const std::string& g, const std::string& pre, Packing& p, std::size_t n,
-                  const Refuse& refuse) {
+void read_preparation_springs(const io::H5Reader& r, const std::string& g, const std::string& pre, Packing& p, std::size_t n,
+                              const Refuse& refuse, const std::string& where) {
   const double mu = r.attr_double(g, "prepare_friction");
   if (!(std::isfinite(mu) && mu > 0.0)) refuse("attribute 'prepare_friction' must be a finite number > 0");
   p.preparation_friction = mu;
   p.preparation.unbalanced_torque = r.has_attr(g, "prepare_unbalanced_torque") ? r.attr_double(g, "prepare_unbalanced_torque") : 0.0;
   if (!(std::isfinite(p.preparation.unbalanced_torque) && p.preparation.unbalanced_torque >= 0.0))
     refuse("attribute 'prepare_unbalanced_torque' must be a finite number >= 0");
-  for (const char* name : {"spring_pairs", "spring_xi"})
-    if (!r.has(pre + name)) refuse(std::string("a frictional packing (prepare_friction) needs the dataset ") + name);
-  std::vector<std::size_t> dp, dx;
-  const auto pairs = r.read_int(pre + "spring_pairs", &dp);
-  const auto xi = r.read_double(pre + "spring_xi", &dx);
-  if (dp.size() != 2 || dp[1] != 2) refuse("dataset spring_pairs must have the shape [contacts, 2]");
-  if (dx.size() != 2 || dx[1] != 3 || dx[0] != dp[0]) refuse("dataset spring_xi must have the shape [contacts, 3], one row per spring_pairs row");
-  const std::size_t m = dp[0];
-  p.springs.resize(m);
-  for (std::size_t c = 0; c < m; ++c) {
-    const std::int64_t i = pairs[2 * c], j = pairs[2 * c + 1];
-    if (!(i >= 0 && j > i && j < static_cast<std::int64_t>(n)))
-      refuse("dataset spring_pairs: row " + std::to_string(c) + " is not two particle indices i < j < " + std::to_string(n));
-    packing::SpringHistory& s = p.springs[c];
-    s.i = static_cast<std::uint32_t>(i), s.j = static_cast<std::uint32_t>(j);
-    if (c > 0 && !(p.springs[c - 1].i < s.i || (p.springs[c - 1].i == s.i && p.springs[c - 1].j < s.j)))
-      refuse("dataset spring_pairs: row " + std::to_string(c) + " is out of order or repeated (sorted by (i, j), once each)");
-    for (int d = 0; d < 3; ++d) {
-      s.xi[d] = xi[3 * c + d];
-      if (!(std::abs(s.xi[d]) < p.d)) refuse("dataset spring_xi: row " + std::to_string(c) + " is not finite or longer than d");
-    }
-  }
+  p.springs = packing::read_springs(r, pre, n, p.d, where);
 }
 
 }  // namespace
@@ -330,7 +302,7 @@ Packing read_system(const std::string& path) {
       q.coordination = number("prepare_coordination", false);
       q.coordination_backbone = number("prepare_coordination_backbone", false);
       q.rattlers = static_cast<long>(count("prepare_rattlers", 0, static_cast<double>(n)));
-      if (r.has_attr(g, "prepare_friction")) read_springs(r, g, pre, p, n, refuse);
+      if (r.has_attr(g, "prepare_friction")) read_preparation_springs(r, g, pre, p, n, refuse, path + ": " + g);
     }
   } else if (static_cast<double>(n) != static_cast<double>(p.nx) * p.ny * p.layers) {
     refuse("holds " + std::to_string(n) + " particles, not cells_x * cells_y * layers");

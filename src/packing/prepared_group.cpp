@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "io/h5.hpp"
 #include "packing/prepared_state.hpp"
+#include "packing/spring_datasets.hpp"
 
 namespace granwave::packing {
 
@@ -20,7 +21,7 @@ constexpr const char* kGroup = "/prepared";
 void write_prepared_group(io::H5Writer& w, const PreparedState& st) {
   const std::string g = kGroup, pre = g + "/";
   const Preparation& p = st.preparation;
-  const std::size_t n = st.packing.particles.size(), m = p.springs.size();
+  const std::size_t n = st.packing.particles.size();
   w.group(g);
   w.attr(g, "pressure_target", st.pressure_target);
   w.attr(g, "seed", static_cast<std::int64_t>(st.seed));
@@ -53,15 +54,7 @@ void write_prepared_group(io::H5Writer& w, const PreparedState& st) {
   w.write(pre + "centre", centre, {n, 3});
   w.write(pre + "radius", radius);
   w.write(pre + "mass", mass);
-  if (!(st.friction > 0.0)) return;  // a frictionless preparation has no springs
-  std::vector<std::int64_t> pairs(2 * m);
-  std::vector<double> xi(3 * m);
-  for (std::size_t c = 0; c < m; ++c) {
-    pairs[2 * c] = p.springs[c].i, pairs[2 * c + 1] = p.springs[c].j;
-    for (int d = 0; d < 3; ++d) xi[3 * c + d] = p.springs[c].xi[d];
-  }
-  w.write(pre + "spring_pairs", pairs, {m, 2});
-  w.write(pre + "spring_xi", xi, {m, 3});
+  if (st.friction > 0.0) write_springs(w, pre, p.springs);  // a frictionless preparation has none
 }
 
 std::optional<PreparedState> read_prepared_group(const std::string& path) {
@@ -136,24 +129,10 @@ std::optional<PreparedState> read_prepared_group(const std::string& path) {
       refuse("particle " + std::to_string(q) + ": its radius and mass must be finite numbers > 0");
   }
   st.packing.source = path + ": " + g;
-  if (!(st.friction > 0.0)) return st;  // a frictionless preparation has no springs
-  std::vector<std::size_t> dp, dx;
-  const auto pairs = r.read_int(dataset("spring_pairs"), &dp);
-  const auto xi = r.read_double(dataset("spring_xi"), &dx);
-  const std::size_t m = dp.empty() ? 0 : dp[0];
-  if (dp.size() != 2 || dp[1] != 2 || dx.size() != 2 || dx[0] != m || dx[1] != 3)
-    refuse("datasets 'spring_pairs' and 'spring_xi' must have the shapes [springs, 2] and [springs, 3]");
-  p.springs.resize(m);
-  for (std::size_t c = 0; c < m; ++c) {
-    const std::int64_t i = pairs[2 * c], j = pairs[2 * c + 1];
-    if (!(i >= 0 && j > i && j < static_cast<std::int64_t>(n)))
-      refuse("dataset 'spring_pairs': row " + std::to_string(c) + " is not two particle indices i < j < " + std::to_string(n));
-    SpringHistory& s = p.springs[c];
-    s.i = static_cast<std::uint32_t>(i), s.j = static_cast<std::uint32_t>(j);
-    for (int d = 0; d < 3; ++d) {
-      s.xi[d] = xi[3 * c + d];
-      if (!std::isfinite(s.xi[d])) refuse("dataset 'spring_xi': row " + std::to_string(c) + " is not finite");
-    }
+  if (st.friction > 0.0) {  // its springs, none longer than the mean diameter
+    double diameters = 0.0;
+    for (const Particle& x : st.packing.particles) diameters += 2.0 * x.radius;
+    p.springs = read_springs(r, pre, n, diameters / static_cast<double>(n), path + ": " + g);
   }
   return st;
 }
