@@ -7,6 +7,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -23,6 +24,7 @@
 #include "core/error.hpp"
 #include "io/h5.hpp"
 #include "models.hpp"
+#include "packing/prepared_state.hpp"
 #include "sweep/study.hpp"
 
 namespace py = pybind11;
@@ -218,7 +220,10 @@ PYBIND11_MODULE(_granwave, m) {
       "run",
       [](const std::string& text, const std::string& origin, const std::string& trace_path, const std::string& system_path,
          py::object callback, double check_seconds, bool in_memory) {
-        const config::Case c = config::parse_case(text, origin);
+        // A random packing's system file holds it as prepared: taken instead of preparing it again.
+        std::optional<packing::PreparedState> prepared = packing::prepared_of_system(system_path);
+        const config::Case c = config::parse_case(text, origin, config::CaseParse::everything, prepared ? &*prepared : nullptr);
+        prepared.reset();
         RunRequest req;
         req.trace_path = trace_path;
         req.system_path = system_path;

@@ -158,8 +158,7 @@ int cmd_run(const Args& args) {
   }
   // A random packing's system file holds it as prepared: the case takes it instead of preparing it again.
   const std::string system_path = option_value(args, "", "--system");
-  std::optional<packing::PreparedState> prepared;
-  if (!system_path.empty() && std::filesystem::exists(system_path)) prepared = packing::read_prepared_group(system_path);
+  std::optional<packing::PreparedState> prepared = packing::prepared_of_system(system_path);
   config::Case c = load_single_case(args, {"-o", "--output", "--system", "--max-steps", "--max-memory"}, {"--json", "--quiet"}, usage,
                                     prepared ? &*prepared : nullptr);
   prepared.reset();

@@ -3,6 +3,7 @@
 // the last bit, so that a run from the system file need not prepare the packing again.
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include "core/error.hpp"
@@ -135,6 +136,11 @@ std::optional<PreparedState> read_prepared_group(const std::string& path) {
     p.springs = read_springs(r, pre, n, diameters / static_cast<double>(n), path + ": " + g);
   }
   return st;
+}
+
+std::optional<PreparedState> prepared_of_system(const std::string& system_path) {
+  if (system_path.empty() || !std::filesystem::exists(system_path)) return std::nullopt;
+  return read_prepared_group(system_path);
 }
 
 }  // namespace granwave::packing

@@ -37,5 +37,7 @@ void write_prepared_group(io::H5Writer& w, const PreparedState& state);
 // nullopt when the file has no /prepared (a lattice's system, or an older file); a damaged group is
 // refused (InputError naming the file, the dataset or attribute and what is allowed).
 std::optional<PreparedState> read_prepared_group(const std::string& path);
+// read_prepared_group of a run's system file; nullopt for none ("") or a missing file (the run refuses that).
+std::optional<PreparedState> prepared_of_system(const std::string& system_path);
 
 }  // namespace granwave::packing

@@ -232,6 +232,19 @@ def test_theory_build_sweep(tmp_path):
     assert not (tmp_path / "smoke.h5.tmp").exists()
 
 
+def test_random_packing_runs_from_its_system_file(tmp_path):
+    """A random packing's system file keeps it as prepared (/prepared): the module's run from the file
+    takes it and gives the bits of the run that prepares it (a regression test: one route against the other)."""
+    case = g.Case.load(g.data_path("cases/random_small.toml"))
+    system = g.build(case, out=tmp_path / "random.h5")
+    with h5py.File(system, "r") as f:
+        assert f["prepared/centre"].shape == (f["radius"].shape[0], 3)
+    on_system, own = g.run(case, system=system), g.run(case)
+    assert own.traces
+    for k in own.traces:
+        assert same_bits(on_system.traces[k], own.traces[k]), k
+
+
 def long_study(tmp_path, n_total=40, configurations=40):
     """The smoke study made longer: longer chains, more configurations (40, 40: 801 runs, about 3 s
     on one core)."""
