@@ -209,10 +209,10 @@ void write_system(io::H5Writer& w, const Packing& p, const std::string& case_nam
 namespace {
 
 // A frictional preparation's mu, largest net torque and springs (packing/spring_datasets.hpp: every
-// spring shorter than the mean diameter); else refused by name.
-template <class Refuse>
+// spring shorter than the mean diameter); else refused by name ("where: what").
 void read_preparation_springs(const io::H5Reader& r, const std::string& g, const std::string& pre, Packing& p, std::size_t n,
-                              const Refuse& refuse, const std::string& where) {
+                              const std::string& where) {
+  const auto refuse = [&](const std::string& what) { throw InputError(where + ": " + what); };
   const double mu = r.attr_double(g, "prepare_friction");
   if (!(std::isfinite(mu) && mu > 0.0)) refuse("attribute 'prepare_friction' must be a finite number > 0");
   p.preparation_friction = mu;
@@ -302,7 +302,7 @@ Packing read_system(const std::string& path) {
       q.coordination = number("prepare_coordination", false);
       q.coordination_backbone = number("prepare_coordination_backbone", false);
       q.rattlers = static_cast<long>(count("prepare_rattlers", 0, static_cast<double>(n)));
-      if (r.has_attr(g, "prepare_friction")) read_preparation_springs(r, g, pre, p, n, refuse, path + ": " + g);
+      if (r.has_attr(g, "prepare_friction")) read_preparation_springs(r, g, pre, p, n, path + ": " + g);
     }
   } else if (static_cast<double>(n) != static_cast<double>(p.nx) * p.ny * p.layers) {
     refuse("holds " + std::to_string(n) + " particles, not cells_x * cells_y * layers");

@@ -17,7 +17,7 @@ namespace granwave::packing {
 
 struct PreparedState {
   Packing packing;           // triply periodic, centres wrapped into the box
-  Preparation preparation;   // the stage's record (springs not kept: the path is frictionless)
+  Preparation preparation;   // the stage's record (springs: in the system file's group only; the path is frictionless)
   double pressure_target = 0.0;  // Pa
   double seconds = 0.0;      // wall time of the stage
   // The system file's group only: the case keys it was prepared with, checked when it is taken.

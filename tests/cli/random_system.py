@@ -3,10 +3,11 @@
 
 usage: random_system.py GRANWAVE WORKDIR CASE.toml [CASE.toml ...]
 
-Checks, for every case (a frictional one keeps its springs in /prepared): `granwave build` writes /prepared; the run from the system file prepares nothing (a budget
-of 10 steps, refused without the file, is never spent) and writes every dataset of the trace bit for bit as the run that prepares the packing itself; a damaged
-/prepared and a system file of another seed are refused (exit 2, naming the dataset or the keys),
-nothing written (the first case).
+Checks, for every case (a frictional one keeps its springs in /prepared): `granwave build` writes
+/prepared; the run from the system file prepares nothing (a budget of 10 steps, refused without the
+file, is never spent) and writes every dataset of the trace bit for bit as the run that prepares the
+packing itself. For the first case: a damaged /prepared and a system file of another seed are refused
+(exit 2, naming the dataset or the keys), nothing written.
 """
 import os
 import re
