@@ -105,14 +105,7 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
     inv_inertia[p] = 1.0 / inertia[p];
     mobile[p] = packing_.fixed[p] ? 0 : 1;
   }
-  skin_ = list_skin(packing);  // of the whole packing: the same on every rank
-  // sqrt(d2) > skin/2 exactly when d2 > far2_: the root is correctly rounded and monotone, so
-  // far2_ is the largest double whose root does not exceed skin/2 (step() compares squares).
-  const double half_skin = 0.5 * skin_;
-  far2_ = half_skin * half_skin;
-  while (far2_ > 0.0 && std::sqrt(far2_) > half_skin) far2_ = std::nextafter(far2_, 0.0);
-  const double up = std::numeric_limits<double>::infinity();
-  while (std::sqrt(std::nextafter(far2_, up)) <= half_skin) far2_ = std::nextafter(far2_, up);
+  take_skin(list_skin(packing));  // of the whole packing: the same on every rank
   dissipated_before_.assign(static_cast<std::size_t>(std::max(0, packing.layers)), 0.0);
   // A prepared packing's springs go into the whole Verlet list first: a spring of a pair beyond
   // the margin is lost (and its energy booked) by the first contact pass, as it always was.
@@ -125,6 +118,26 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
     relist();
   }
   compute_forces(dt_, true);
+}
+
+void Dynamics::take_skin(double skin) {
+  skin_ = skin;
+  // sqrt(d2) > skin/2 exactly when d2 > far2_: the root is correctly rounded and monotone, so
+  // far2_ is the largest double whose root does not exceed skin/2 (step() compares squares).
+  const double half_skin = 0.5 * skin_;
+  far2_ = half_skin * half_skin;
+  while (far2_ > 0.0 && std::sqrt(far2_) > half_skin) far2_ = std::nextafter(far2_, 0.0);
+  const double up = std::numeric_limits<double>::infinity();
+  while (std::sqrt(std::nextafter(far2_, up)) <= half_skin) far2_ = std::nextafter(far2_, up);
+}
+
+void Dynamics::widen_skin(double skin) {
+  if (!(skin > 0.0 && skin < std::numeric_limits<double>::infinity()))
+    throw InputError("the Verlet list's skin must be > 0 and finite (m)");
+  if (skin <= skin_) return;
+  list_margin_ *= skin / skin_;  // the close pairs keep their share of the skin
+  take_skin(skin);
+  rebuild();
 }
 
 void Dynamics::seed_springs(const std::vector<packing::SpringHistory>& springs) {

@@ -288,6 +288,11 @@ class Dynamics {
   void displace(const std::vector<std::size_t>& which, double dx, double dy, double dz);
   // Recompute the contact list from scratch (keeps history of pairs that persist).
   void rebuild();
+  // A wider Verlet skin from now on (the close pairs' margin widened alike), the list built again:
+  // fewer builds where particles travel far (a relaxation's rattlers); the same forces and sums, bit
+  // for bit (list_margin below). A skin at most today's changes nothing; not finite or <= 0: refused.
+  void widen_skin(double skin);
+  double skin() const { return skin_; }
   // The close pairs (the margin below) again from the Verlet list's pairs, without a neighbour
   // search (keeps history and losses of the pairs that persist; not a rebuild: `rebuilds` counts
   // the Verlet list's builds, as LAMMPS counts its neighbour lists).
@@ -408,6 +413,7 @@ class Dynamics {
   contact::LeverArm lever_arm_ = contact::LeverArm::radius;
   ImageMotion images_;
   double dt_ = 0.0;
+  void take_skin(double skin);  // skin_ and far2_
   double skin_ = 0.0;
   double far2_ = 0.0;  // a particle is more than skin/2 from its place at the build when d^2 > far2_
   // The close pairs (set_list_margin): the Verlet list's pairs while the contact list holds fewer

@@ -128,6 +128,48 @@ TEST_CASE("the close pairs give the whole Verlet list's bits on the threads' rou
   same_runs(c, 0.2, 0);  // threaded() when OpenMP may run two threads; the one-thread route otherwise
 }
 
+// A wider skin (Dynamics::widen_skin, the relaxations'): regression test of one route against the
+// other, the same bits with fewer Verlet builds.
+TEST_CASE("a wider skin gives the same bits with fewer Verlet builds", "[crystal][neighbors]") {
+  const config::Case c = case_with(
+      "[contact]\nlaw = \"hertz_mindlin\"\nyoungs_modulus = 1e8\npoisson_ratio = 0.25\ndamping_ratio = 0.1\n"
+      "mu_static = 0.5\nmu_dynamic = 0.5\n");
+  const crystal::Packing p = shrunk_crystal(c, 0.05, 11);
+  crystal::Dynamics a(p, c.contact, 2e-7), b(p, c.contact, 2e-7);
+  const double skin = b.skin(), margin = b.list_margin();
+  b.widen_skin(4.0 * skin);
+  CHECK(b.skin() == 4.0 * skin);
+  CHECK(b.list_margin() == 4.0 * margin);  // the close pairs' margin keeps its share of the skin
+  CHECK(b.contacts.size() > a.contacts.size());
+  CHECK_THROWS(b.widen_skin(std::numeric_limits<double>::infinity()));
+  CHECK_THROWS(b.widen_skin(-1.0));
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g(0.0, 0.4);
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    if (!a.mobile[q]) continue;
+    a.vx[q] = b.vx[q] = g(rng);
+    a.vy[q] = b.vy[q] = g(rng);
+    a.vz[q] = b.vz[q] = g(rng);
+  }
+  for (int round = 0; round < 12; ++round) {
+    a.advance(40);
+    b.advance(40);
+    INFO("round " << round << ", rebuilds " << a.rebuilds << " and " << b.rebuilds);
+    REQUIRE(same_bits(a.x, b.x));
+    REQUIRE(same_bits(a.vz, b.vz));
+    REQUIRE(same_bits(a.fx, b.fx));
+    REQUIRE(same_bits(a.tz, b.tz));
+    const auto ea = a.energies(), eb = b.energies();
+    CHECK(std::bit_cast<std::uint64_t>(ea.potential) == std::bit_cast<std::uint64_t>(eb.potential));
+    // Each Verlet build folds the list's losses into the per-layer totals: another schedule of
+    // builds groups the same losses otherwise, equal to rounding (a relaxation has none).
+    CHECK(std::abs(ea.dissipated - eb.dissipated) <= 1e-14 * std::abs(ea.dissipated));
+  }
+  CHECK(a.energies().dissipated > 0.0);  // the dashpots and sliding lost energy
+  CHECK(a.rebuilds > 2);            // the particles travelled past half the skin several times
+  CHECK(b.rebuilds < a.rebuilds);   // the wider skin built its list fewer times
+}
+
 TEST_CASE("a crystal whose listed pairs all touch keeps one list", "[crystal][neighbors]") {
   const config::Case c = case_with("[contact]\nkn = 1e5\n");
   const crystal::Packing p = crystal::make_packing(c);
