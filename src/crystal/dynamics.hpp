@@ -289,7 +289,7 @@ class Dynamics {
   // Recompute the contact list from scratch (keeps history of pairs that persist).
   void rebuild();
   // A wider Verlet skin from now on (the close pairs' margin widened alike), the list built again:
-  // fewer builds where particles travel far (a relaxation's rattlers); the same forces and sums, bit
+  // fewer builds where particles travel far (a relaxation's FIRE steps); the same forces and sums, bit
   // for bit (list_margin below). A skin at most today's changes nothing; not finite or <= 0: refused.
   void widen_skin(double skin);
   double skin() const { return skin_; }
