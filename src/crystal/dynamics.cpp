@@ -110,11 +110,11 @@ Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> m
   // A prepared packing's springs go into the whole Verlet list first: a spring of a pair beyond
   // the margin is lost (and its energy booked) by the first contact pass, as it always was.
   const bool springs = !packing.springs.empty();
-  list_margin_ = springs ? skin_ : 0.25 * skin_;
+  list_margin_ = springs ? skin_ : close_margin_share * skin_;
   rebuild();
   if (springs) {
     seed_springs(packing.springs);
-    list_margin_ = 0.25 * skin_;
+    list_margin_ = close_margin_share * skin_;
     relist();
   }
   compute_forces(dt_, true);
@@ -131,11 +131,13 @@ void Dynamics::take_skin(double skin) {
   while (std::sqrt(std::nextafter(far2_, up)) <= half_skin) far2_ = std::nextafter(far2_, up);
 }
 
-void Dynamics::widen_skin(double skin) {
+void Dynamics::widen_skin(double skin, double margin) {
   if (!(skin > 0.0 && skin < std::numeric_limits<double>::infinity()))
     throw InputError("the Verlet list's skin must be > 0 and finite (m)");
+  if (!(margin > 0.0 && margin < std::numeric_limits<double>::infinity()))
+    throw InputError("the contact list's margin must be > 0 and finite (m)");
   if (skin <= skin_) return;
-  list_margin_ *= skin / skin_;  // the close pairs keep their share of the skin
+  list_margin_ = margin;
   take_skin(skin);
   rebuild();
 }

@@ -147,12 +147,14 @@ TEST_CASE("a wider skin gives the same bits with fewer Verlet builds", "[crystal
   const crystal::Packing p = shrunk_crystal(c, 0.05, 11);
   crystal::Dynamics a(p, c.contact, 2e-7), b(p, c.contact, 2e-7);
   const double skin = b.skin(), margin = b.list_margin();
-  b.widen_skin(4.0 * skin);
+  b.widen_skin(4.0 * skin, 4.0 * margin);
   CHECK(b.skin() == 4.0 * skin);
-  CHECK(b.list_margin() == 4.0 * margin);  // the close pairs' margin keeps its share of the skin
+  CHECK(b.list_margin() == 4.0 * margin);
   CHECK(b.contacts.size() > a.contacts.size());
-  CHECK_THROWS(b.widen_skin(std::numeric_limits<double>::infinity()));
-  CHECK_THROWS(b.widen_skin(-1.0));
+  CHECK_THROWS(b.widen_skin(std::numeric_limits<double>::infinity(), margin));
+  CHECK_THROWS(b.widen_skin(-1.0, margin));
+  CHECK_THROWS(b.widen_skin(8.0 * skin, 0.0));
+  CHECK_THROWS(b.widen_skin(8.0 * skin, std::numeric_limits<double>::quiet_NaN()));
   shake(a, b, p, 0.4);
   for (int round = 0; round < 12; ++round) {
     a.advance(40);
