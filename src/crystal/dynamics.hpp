@@ -306,7 +306,7 @@ class Dynamics {
   // plan: every pair.
   void set_list_margin(double margin);
   // A wave moves particles a small part of a radius: on the disordered row (20 000 spheres) the
-  // contact list holds 2 % open pairs at skin/16 against 7 % at skin/4, and relists none
+  // contact list holds 2 % open pairs at skin/16 against 6 % at skin/4, and relists none
   // (docs/benchmarks.md, session 42).
   static constexpr double close_margin_share = 1.0 / 16.0;
   double list_margin() const { return list_margin_; }
