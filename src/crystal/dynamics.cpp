@@ -25,6 +25,14 @@
 
 namespace granwave::crystal {
 
+namespace {
+// The contact list's margin (set_list_margin, widen_skin): > 0 and finite, else refused.
+void check_list_margin(double margin) {
+  if (!(margin > 0.0 && margin < std::numeric_limits<double>::infinity()))
+    throw InputError("the contact list's margin must be > 0 and finite (m)");
+}
+}  // namespace
+
 int Dynamics::threads_available() {
 #ifdef _OPENMP
   return omp_get_max_threads();
@@ -134,8 +142,7 @@ void Dynamics::take_skin(double skin) {
 void Dynamics::widen_skin(double skin, double margin) {
   if (!(skin > 0.0 && skin < std::numeric_limits<double>::infinity()))
     throw InputError("the Verlet list's skin must be > 0 and finite (m)");
-  if (!(margin > 0.0 && margin < std::numeric_limits<double>::infinity()))
-    throw InputError("the contact list's margin must be > 0 and finite (m)");
+  check_list_margin(margin);
   if (skin <= skin_) return;
   list_margin_ = margin;
   take_skin(skin);
@@ -171,8 +178,7 @@ void Dynamics::set_box(double box_x, double box_y, const ImageMotion& images) {
 }
 
 void Dynamics::set_list_margin(double margin) {
-  if (!(margin > 0.0 && margin < std::numeric_limits<double>::infinity()))
-    throw InputError("the contact list's margin must be > 0 and finite (m)");
+  check_list_margin(margin);
   list_margin_ = margin;
   relist();
 }

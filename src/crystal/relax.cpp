@@ -21,7 +21,8 @@ RelaxResult relax_with(Packing& packing, std::shared_ptr<const ContactModel> mod
   // than a wave does; with a run's skin it rebuilt its list every ~100 steps, with a run's share of
   // the skin it relisted more and took 9 % longer (docs/benchmarks.md, sessions 41 and 42); the same
   // bits (Dynamics::widen_skin).
-  dyn.widen_skin(2.0 * dyn.skin(), 0.5 * dyn.skin());
+  const double skin = 2.0 * dyn.skin();
+  dyn.widen_skin(skin, 0.25 * skin);
   const std::size_t n = dyn.size();
   long quiet = 0;
   RelaxResult res;
