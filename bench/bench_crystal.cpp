@@ -25,17 +25,12 @@
 #include "crystal/packing.hpp"
 #include "crystal/simulation.hpp"
 
+#include "bench_crystal_cases.hpp"
+
 using namespace granwave;
+using bench::excited, bench::fastest, bench::seed_case;
 
 namespace {
-
-config::Case seed_case(int layers, double kt, config::LeverArm arm = config::LeverArm::radius) {
-  config::Case c = config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_p.toml");
-  c.crystal->cells[2] = layers;
-  c.contact.set_number("kt", kt);
-  c.contact.friction().lever_arm = arm;
-  return c;
-}
 
 template <class T, class A>
 std::size_t bytes(const std::vector<T, A>& v) {
@@ -121,16 +116,6 @@ config::Case hertz_case() {
   return config::load_case(std::string(GRANWAVE_SOURCE_DIR) + "/data/cases/crystal_hertz.toml");
 }
 
-crystal::Dynamics excited(const config::Case& c) {
-  const crystal::Packing p = crystal::make_packing(c);
-  crystal::Dynamics dyn(p, crystal::case_model(c.contact, c.crystal->density), crystal::derive(c).dt);
-  std::vector<std::size_t> source;
-  for (std::size_t q = 0; q < p.size(); ++q)
-    if (p.layer[q] < p.fixed_layers) source.push_back(q);
-  dyn.displace(source, 0.0, 0.0, 1e-4 * p.d);
-  return dyn;
-}
-
 #ifdef _OPENMP
 // Two crystals of case c stepped at once, one a thread, each on one thread (no shared data, no
 // barrier within a step): seconds per step of the slower and the faster, best of `repeats`. What two
@@ -180,18 +165,6 @@ const char* build_flags() {
 #endif
 }
 
-// Fastest of `calls` single calls of f, in seconds.
-template <class F>
-double fastest(int calls, F&& f) {
-  double best = 1e300;
-  for (int k = 0; k < calls; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
-}
-
 // A run's steps (`per_call` in one advance: the finish joined to the next drift), phase by phase, each
 // the fastest of `calls` advances: the contact pass per contact, the particle pass per particle.
 void run_phases(crystal::Dynamics& d, int calls, long per_call) {
@@ -225,13 +198,7 @@ int main(int argc, char** argv) {
   };
   const bool passes_only = argc > 1 && std::string(argv[1]) == "--passes";
   if (passes_only) --argc, ++argv;
-  auto count = [&](int k, long fallback) -> long {
-    if (argc <= k) return fallback;
-    char* end = nullptr;
-    const long v = std::strtol(argv[k], &end, 10);
-    if (end == argv[k] || *end != '\0' || v < 1) usage();
-    return v;
-  };
+  auto count = [&](int k, long fallback) { return bench::whole_argument(argc, argv, k, fallback, usage); };
   if (argc > 3) usage();
   const long steps = count(1, 2000);
   const int repeats = static_cast<int>(count(2, 3));
