@@ -3,8 +3,9 @@
 // issue #14: data/cases/crystal_hertz.toml), on one and two threads; the
 // cost per step as the number of layers grows; memory per particle. Beside the two-thread speed-up, its
 // ceiling here: two copies of the crystal stepped at once, one a thread.
-// Usage: bench_crystal [--passes] [steps=2000] [repeats=3]  (--passes: the passes alone and a run by phase,
-// bench/ceilings_figure.py's achieved times, issue #41)
+// Usage: bench_crystal [--passes | --routes] [steps=2000] [repeats=3]  (--passes: the passes alone and a run by
+// phase, bench/ceilings_figure.py's achieved times, issue #41; --routes: a frictionless crystal's run steps by the
+// lattice rows' pass, crystal/lattice.hpp, against the list's, paired runs in turn)
 // Each figure is the best of `repeats` measurements, by wall clock and by CPU time (on a loaded
 // machine the wall clock also counts other processes' turns; CPU time does not). The passes of
 // one step are timed alone as well, each the fastest of many single calls (robust under load).
@@ -186,18 +187,60 @@ void run_phases(crystal::Dynamics& d, int calls, long per_call) {
               1e9 * best.seconds[P::list_upkeep] / d.size());
 }
 
+// --routes: the frictionless crystal's run steps by the lattice rows' pass (crystal/lattice.hpp) and by the list's,
+// `pairs` paired measurements taken in turn (a slow spell of the machine hits both), the median of the ratios.
+void compare_routes(long steps, int pairs) {
+  std::printf("lattice pass against the list's pass, frictionless, %d paired runs in turn (median; min-max)\n"
+              "%-24s %8s %10s %14s %14s %22s\n", pairs, "case", "threads", "particles", "lattice us", "list us",
+              "lattice / list");
+  struct Size {
+    int layers, threads;
+  };
+  for (const Size z : {Size{200, 1}, Size{2000, 1}, Size{2000, 2}, Size{20000, 1}}) {
+#ifdef _OPENMP
+    omp_set_num_threads(z.threads);
+#else
+    if (z.threads > 1) continue;
+#endif
+    const config::Case c = seed_case(z.layers, 0.0);
+    crystal::Dynamics lattice = excited(c), list = excited(c);
+    list.lattice_pass = false;
+    for (crystal::Dynamics* d : {&lattice, &list}) d->parallel_min_particles = z.threads > 1 ? 0 : d->size() + 1;
+    const long n = as_run_steps(std::max<long>(20, steps * 200 / z.layers));
+    std::vector<double> ratio, t_lattice, t_list;
+    for (int k = 0; k < pairs; ++k) {
+      const StepCost a = seconds_per_step(lattice, n, 1, z.threads), b = seconds_per_step(list, n, 1, z.threads);
+      t_lattice.push_back(a.wall), t_list.push_back(b.wall), ratio.push_back(a.wall / b.wall);
+    }
+    if (lattice.lattice_rows() == nullptr) std::printf("(the lattice pass did not apply)\n");
+    if (z.threads == 1 && z.layers == 2000) {
+      std::printf("phases, lattice:"), print_phases(lattice, n);
+      std::printf("phases, list:   "), print_phases(list, n);
+    }
+    auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    };
+    std::printf("%-24s %8d %10zu %14.2f %14.2f %10.3f (%.3f-%.3f)\n", ("4x4x" + std::to_string(z.layers)).c_str(),
+                z.threads, lattice.size(), 1e6 * median(t_lattice), 1e6 * median(t_list), median(ratio),
+                *std::min_element(ratio.begin(), ratio.end()), *std::max_element(ratio.begin(), ratio.end()));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   // bench_crystal [--passes] [STEPS [REPEATS]]: whole numbers >= 1 (anything else, --help included: usage,
   // exit 2); --passes: the passes alone only
   auto usage = [] {
-    std::fprintf(stderr, "usage: bench_crystal [--passes] [STEPS [REPEATS]]  (steps per measurement, default 2000; "
-                         "best of REPEATS, default 3; whole numbers >= 1; --passes: the passes alone only)\n");
+    std::fprintf(stderr, "usage: bench_crystal [--passes | --routes] [STEPS [REPEATS]]  (steps per measurement, "
+                         "default 2000; best of REPEATS, default 3 (--routes: paired runs, at least 7); whole numbers "
+                         ">= 1; --passes: the passes alone only; --routes: the lattice pass against the list's)\n");
     std::exit(2);
   };
   const bool passes_only = argc > 1 && std::string(argv[1]) == "--passes";
-  if (passes_only) --argc, ++argv;
+  const bool routes = argc > 1 && std::string(argv[1]) == "--routes";
+  if (passes_only || routes) --argc, ++argv;
   auto count = [&](int k, long fallback) { return bench::whole_argument(argc, argv, k, fallback, usage); };
   if (argc > 3) usage();
   const long steps = count(1, 2000);
@@ -208,6 +251,10 @@ int main(int argc, char** argv) {
 #endif
   std::printf("crystal time step, %ld steps per measurement, best of %d (OpenMP max threads %d); built for %s\n",
               steps, repeats, max_threads, build_flags());
+  if (routes) {
+    compare_routes(steps, std::max(7, repeats));
+    return 0;
+  }
   std::printf("%-34s %8s %12s %18s %18s\n", "case", "threads", "us/step", "particle-steps/s", "(by CPU time)");
   // The contact-point lever arm (YADE's and LIGGGHTS' convention) costs one more sum per contact.
   struct Row {

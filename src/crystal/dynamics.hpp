@@ -28,6 +28,7 @@
 #include "core/spread_allocator.hpp"
 #include "core/error.hpp"
 #include "contact/lever_arm.hpp"
+#include "crystal/lattice.hpp"
 #include "crystal/layer_sums.hpp"
 #include "crystal/neighbors.hpp"
 #include "crystal/packing.hpp"
@@ -118,6 +119,9 @@ struct ContactPassPlan {
   // Write ContactList::f_x, f_y, f_z and Dynamics::end_arms (the layer stress of a sample reads
   // them); false lets a one-thread pass of a law with torques sum straight into contact_sums.
   bool store_forces = true;
+  // Leave the list's overlaps and losses current; false lets a pass that keeps its own (the lattice
+  // rows') bring them in at the last step of an advance (and the losses before the list is built again).
+  bool list_current = true;
 };
 // What the contact pass leaves for the finish: the rows per particle of Dynamics::contact_sums it
 // filled (one thread: 1 f, 2 and n x f^t, 3 and delta n x f^t), 0 when the finish sums the
@@ -330,6 +334,13 @@ class Dynamics {
   // forces and torques fx..tz are current only when advance returns.
   void advance(long k, bool store_forces = true, PhaseClock* clock = nullptr);
 
+  // The lattice rows of the contact pass (crystal/lattice.hpp) when the held particles are such a
+  // crystal, the box neither sheared nor moving and the list the lattice's; else nullptr (the list's
+  // pass). Mapped again after each build of the list.
+  LatticeRows* lattice_rows();
+  // false: the list's pass for such a crystal too (its sums in the list's order: other bits; the
+  // tests' and benches' second route).
+  bool lattice_pass = true;
   // OpenMP is used from this many particles on (fork/join costs more than it saves on small
   // crystals, and much more on a loaded machine), and only when OpenMP may run more than one
   // thread (else the one-thread route, which sums forces in the contact pass, is faster);
@@ -412,6 +423,8 @@ class Dynamics {
   void check_layers() const;  // slab: every owned particle within z_tolerance of its layer
 
   Packing packing_;
+  LatticeRows lattice_;
+  int lattice_layout_ = 0;  // 1: lattice_ laid out, -1: not a lattice crystal (or no longer), 0: not yet asked
   std::shared_ptr<const ContactModel> model_;
   bool torques_ = false;
   bool couples_ = false;  // the model's couples(): the particle pass sums them

@@ -486,13 +486,23 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
 
 // The contact pass of `law`: per contact, overlap, force, n x f^t, history and (when the law
 // dissipates) the dissipated energy. `inc` is the time the springs advance by.
+// A law the lattice rows' pass runs (crystal/lattice_pass.hpp): no torques, no history, one sweep.
+template <class Law>
+inline constexpr bool lattice_law =
+    !Law::torques && contact::history_columns<typename Law::History> == 0 && !contact::DefersContacts<Law>;
+template <class Law, bool Dissipative>
+ContactSums lattice_contact_pass(Dynamics& d, LatticeRows& R, const Law& law, const ContactPassPlan& plan);
+
 template <class Law, bool Dissipative>
 ContactSums contact_pass(Dynamics& d, const Law& law, const ContactPassPlan& plan) {
-  if constexpr (Law::torques)
+  if constexpr (Law::torques) {
     return d.images().any() ? gathered_contact_pass<Law, Dissipative, true>(d, law, plan)
                             : gathered_contact_pass<Law, Dissipative, false>(d, law, plan);
-  else
+  } else {
+    if constexpr (lattice_law<Law>)
+      if (LatticeRows* R = d.lattice_rows()) return lattice_contact_pass<Law, Dissipative>(d, *R, law, plan);
     return direct_contact_pass<Law, Dissipative>(d, law, plan);
+  }
 }
 
 // A law as the dynamics sees it. `rates = false` evaluates the law without its rate terms
@@ -533,3 +543,5 @@ std::shared_ptr<const ContactModel> model_of(const Law& law) {
 }
 
 }  // namespace granwave::crystal
+
+#include "crystal/lattice_pass.hpp"  // lattice_contact_pass, declared above

@@ -504,7 +504,7 @@ void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
     }
     upkeep_list(drift);  // a rebuild when a particle left its skin
     lap(PhaseTimes::list_upkeep);
-    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces});
+    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces, last});
     lap(PhaseTimes::contact_pass);
     waiting = finish_step(sums, last);  // F(t + dt) and the second half kick, v(t + dt)
     lap(PhaseTimes::finish);

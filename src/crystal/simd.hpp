@@ -71,6 +71,18 @@ GRANWAVE_ALWAYS_INLINE inline void columns_of_halves4(const V4& h0, const V4& h1
   c2 = __builtin_shufflevector(h2, h3, 0, 4, 2, 6);
   c3 = __builtin_shufflevector(h2, h3, 1, 5, 3, 7);
 }
+// Vector k of a lattice row of 4m values (m vectors; crystal/lattice_pass.hpp) with its values taken
+// Shift places along: lane l holds value 4k + l + Shift of the row, which wraps around (Shift -1, 0, +1).
+template <int Shift>
+GRANWAVE_ALWAYS_INLINE inline V4 row_shifted4(const double* row, int m, int k) {
+  const V4 v = load4(row + 4 * k);
+  if constexpr (Shift == 0)
+    return v;
+  else if constexpr (Shift > 0)
+    return __builtin_shufflevector(v, load4(row + 4 * (k + 1 == m ? 0 : k + 1)), 1, 2, 3, 4);
+  else
+    return __builtin_shufflevector(load4(row + 4 * (k == 0 ? m - 1 : k - 1)), v, 3, 4, 5, 6);
+}
 // The 4 x 4 transpose: rows r0..r3 in, columns c0..c3 out (and back).
 GRANWAVE_ALWAYS_INLINE inline void transpose4(const V4& r0, const V4& r1, const V4& r2, const V4& r3, V4& c0, V4& c1,
                                               V4& c2, V4& c3) {

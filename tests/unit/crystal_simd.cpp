@@ -1,6 +1,6 @@
 // The SIMD layer (crystal/simd.hpp) and what is built on it (crystal/kernel_gather.hpp,
 // crystal/particle_lanes.hpp), each vector routine against its scalar twin written out here, bit
-// for bit: the 4 x 4 transpose, the masks, the widened floats, the particle rows, the gather of a
+// for bit: the 4 x 4 transpose, a lattice row's shifted vectors, the masks, the widened floats, the particle rows, the gather of a
 // chunk's columns, the scatter of contact sums into rows (the particle pass's order of additions),
 // the particle passes' rows of sums, torques, kicks and drift. Values include signed zeros,
 // subnormals and large magnitudes, and counts that are not multiples of four (the scalar tails).
@@ -102,6 +102,23 @@ TEST_CASE("simd: transpose4, transpose4_rows, mask4, the root, widened floats an
   const float f[6] = {0.5f, -0.0f, 1e-40f, 3.25e7f, -1.0f, 7.0f};
   const simd::V4 w = simd::load4(f + 1);  // unaligned
   for (int q = 0; q < 4; ++q) CHECK(same_bits(w[q], static_cast<double>(f[1 + q])));
+}
+
+TEST_CASE("simd: row_shifted4 = the row's values taken one place along, wrapping", "[crystal][simd]") {
+  for (int m : {1, 2, 3}) {
+    const std::vector<double> row = mixed_values(4 * m, 7 + m);
+    for (int k = 0; k < m; ++k) {
+      const simd::V4 s0 = simd::row_shifted4<0>(row.data(), m, k), up = simd::row_shifted4<1>(row.data(), m, k),
+                     down = simd::row_shifted4<-1>(row.data(), m, k);
+      for (int l = 0; l < 4; ++l) {
+        CAPTURE(m, k, l);
+        const int at = 4 * k + l, n = 4 * m;
+        CHECK(same_bits(s0[l], row[at]));
+        CHECK(same_bits(up[l], row[(at + 1) % n]));
+        CHECK(same_bits(down[l], row[(at - 1 + n) % n]));
+      }
+    }
+  }
 }
 
 TEST_CASE("simd: stream_copy = the values copied one at a time", "[crystal][simd]") {

@@ -1,0 +1,123 @@
+// The lattice rows of the crystal's contact pass (crystal/lattice.hpp): the layout, the list's map, the
+// losses back into the list, and the dynamics' choice of the route.
+#include "crystal/lattice.hpp"
+
+#include "crystal/dynamics.hpp"
+#include "crystal/simd.hpp"  // GRANWAVE_GATHER_VECTORS
+
+namespace granwave::crystal {
+
+bool LatticeRows::lay_out(const Dynamics& dyn) {
+  const Packing& pk = dyn.packing();
+  if (pk.generator != "fcc" || pk.nx < 4 || pk.nx % 4 != 0 || pk.ny < 2) return false;
+  const std::int64_t S = static_cast<std::int64_t>(pk.nx) * pk.ny, n = static_cast<std::int64_t>(dyn.size());
+  const std::int64_t offset = static_cast<std::int64_t>(dyn.offset());
+  if (n == 0 || n % S != 0 || offset % S != 0 || static_cast<std::int64_t>(pk.layer.size()) != n) return false;
+  const std::int64_t first_layer = offset / S;
+  for (std::int64_t p = 0; p < n; ++p)
+    if (pk.layer[p] != first_layer + p / S) return false;
+  nx = pk.nx, ny = pk.ny, sites = static_cast<int>(S), vectors = pk.nx / 4;
+  held_layers = static_cast<int>(n / S), parity0 = static_cast<int>(first_layer % 2);
+  box_x = pk.box_x, particles = n;
+  partner_row.assign(2 * kDirections * ny, 0), owner_row.assign(partner_row.size(), 0);
+  image_y.assign(partner_row.size(), 0.0);
+  for (int P = 0; P < 2; ++P)
+    for (int d = 0; d < kDirections; ++d)
+      for (int iy = 0; iy < ny; ++iy) {
+        const int at = (P * kDirections + d) * ny;
+        int jy = iy + kStep[P][d][1], my = 0;
+        if (jy >= ny) jy -= ny, my = 1;
+        if (jy < 0) jy += ny, my = -1;
+        partner_row[at + iy] = jy, owner_row[at + jy] = iy, image_y[at + iy] = my * pk.box_y;
+      }
+  lost.assign(static_cast<std::size_t>(kDirections * n), 0.0);
+  return true;
+}
+
+bool LatticeRows::partner(std::int64_t p, int d, std::int64_t& q, int& mx, int& my) const {
+  const int L = static_cast<int>(p / sites), s = static_cast<int>(p % sites), ix = s % nx, iy = s / nx;
+  const int up = d >= 2;
+  if (L + up >= held_layers) return false;
+  const int* step = kStep[(parity0 + L) % 2][d];
+  int jx = ix + step[0], jy = iy + step[1];
+  mx = jx >= nx ? 1 : jx < 0 ? -1 : 0, my = jy >= ny ? 1 : jy < 0 ? -1 : 0;
+  jx -= mx * nx, jy -= my * ny;
+  q = static_cast<std::int64_t>(L + up) * sites + jy * nx + jx;
+  return true;
+}
+
+bool LatticeRows::map_list(const ContactList& list) {
+  const std::int64_t n = particles;
+  listed.assign(static_cast<std::size_t>(kDirections * n), -1);
+  reversed.assign(listed.size(), 0.0);
+  list_place.assign(list.size(), 0);
+  std::fill(lost.begin(), lost.end(), 0.0);
+  losses_pending = false;
+  // Each listed pair (i, j, image): i's contact in some direction, or j's with the image the other way.
+  auto slot_of = [&](std::int64_t a, std::int64_t b, int mx, int my) -> std::int64_t {
+    for (int d = 0; d < kDirections; ++d) {
+      std::int64_t q;
+      int ix, iy;
+      if (partner(a, d, q, ix, iy) && q == b && ix == mx && iy == my) return d * n + a;
+    }
+    return -1;
+  };
+  for (std::size_t c = 0; c < list.size(); ++c) {
+    const std::int64_t i = list.i[c], j = list.j[c];
+    std::int64_t slot = slot_of(i, j, list.image_x[c], list.image_y[c]);
+    bool other_way = false;
+    if (slot < 0) slot = slot_of(j, i, -list.image_x[c], -list.image_y[c]), other_way = true;
+    if (slot < 0 || listed[slot] >= 0) return false;  // not a lattice pair, or one listed twice
+    if (slot % n / sites != i / sites) return false;      // (a crystal of one layer's rows wrapped onto another)
+    listed[slot] = static_cast<std::int32_t>(c);
+    list_place[c] = static_cast<std::int32_t>(slot / n * column() + slot % n % sites);
+    reversed[slot] = other_way ? 1.0 : 0.0;
+    lost[slot] = list.dissipated[c];
+  }
+  // A layer's pairs in one direction are all listed or none: two fixed layers' pairs, or a slab's halo
+  // layer's own (the list leaves both out: no force). Any other mix is no lattice crystal's list.
+  unlisted.assign(static_cast<std::size_t>(held_layers) * kDirections, 0);
+  for (int L = 0; L < held_layers; ++L)
+    for (int d = 0; d < kDirections; ++d) {
+      if (L + (d >= 2) >= held_layers) continue;
+      int count = 0;
+      for (int s = 0; s < sites; ++s) count += listed[d * n + static_cast<std::int64_t>(L) * sites + s] >= 0;
+      if (count != 0 && count != sites) return false;
+      unlisted[L * kDirections + d] = count == 0;
+    }
+  return true;
+}
+
+void LatticeRows::losses_to_list(ContactList& list) {
+  if (!losses_pending) return;
+  for (std::size_t slot = 0; slot < listed.size(); ++slot)
+    if (listed[slot] >= 0) list.dissipated[listed[slot]] = lost[slot];
+  losses_pending = false;
+}
+
+LatticeRows* Dynamics::lattice_rows() {
+#ifdef GRANWAVE_GATHER_VECTORS
+  if (images_.any() || !lattice_pass) {  // the list's pass: the losses go back first
+    if (lattice_layout_ > 0) lattice_.losses_to_list(contacts);
+    lattice_.list_build = -1;
+    return nullptr;
+  }
+  // Every rank decides alike (each sees its own layers): a run's sums in one order on any number of ranks.
+  auto everywhere = [this](bool ok) { return slab_ ? slab_->comm->max(ok ? 0.0 : 1.0) == 0.0 : ok; };
+  if (lattice_layout_ == 0) lattice_layout_ = everywhere(lattice_.lay_out(*this)) ? 1 : -1;
+  if (lattice_layout_ < 0) return nullptr;
+  if (lattice_.list_build != list_builds_) {
+    if (!everywhere(lattice_.map_list(contacts))) {  // from now on the list's pass
+      lattice_layout_ = -1;
+      lattice_ = LatticeRows{};
+      return nullptr;
+    }
+    lattice_.list_build = list_builds_;
+  }
+  return &lattice_;
+#else
+  return nullptr;
+#endif
+}
+
+}  // namespace granwave::crystal
