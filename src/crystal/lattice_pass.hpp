@@ -115,7 +115,6 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
   const int *partner_row = R.partner_row.data(), *owner_row = R.owner_row.data();
   const double* image_y = R.image_y.data();
   const std::uint8_t* unlisted = R.unlisted.data();
-  const std::int32_t* listed = R.listed.data();
   const double* reversed = R.reversed.data();
   const std::int32_t* list_place = R.list_place.data();
   const std::int32_t* i_first = C.i_first.data();
