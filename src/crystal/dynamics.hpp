@@ -338,6 +338,13 @@ class Dynamics {
   // crystal, the box neither sheared nor moving and the list the lattice's; else nullptr (the list's
   // pass). Mapped again after each build of the list.
   LatticeRows* lattice_rows();
+  // A lattice pass keeps a sampled step's contact forces and end arms by slot (LatticeRows::place_f_x):
+  // a reader of contacts.f_x, f_y, f_z or end_arms calls forces_to_list() first (then they are the last
+  // sampled step's, as the list's pass leaves them). The layer stress reads them where they are:
+  // sampled_lattice_forces() (nullptr: in the list) with place_ends(), LayerOrder::ends by place.
+  void forces_to_list() const;
+  const LatticeRows* sampled_lattice_forces() const;
+  const LayerLists& place_ends() const;
   // false: the list's pass for such a crystal too (its sums in the list's order: other bits; the
   // tests' and benches' second route).
   bool lattice_pass = true;
@@ -456,6 +463,8 @@ class Dynamics {
   long list_builds_ = 0;                   // rebuilds of the contact list so far
   mutable LayerOrder order_;               // layer_order() of the list build order_build_
   mutable long order_build_ = -1;
+  mutable LayerLists place_ends_;        // place_ends() of the list build place_ends_build_
+  mutable long place_ends_build_ = -1;
   std::shared_ptr<const SlabPlan> slab_;
   std::size_t offset_ = 0, own_lo_ = 0, own_hi_ = 0;
   std::size_t halo_below_ = 0, halo_above_ = 0;  // particles sent to (and received from) each side

@@ -2,6 +2,8 @@
 // losses back into the list, and the dynamics' choice of the route.
 #include "crystal/lattice.hpp"
 
+#include <limits>
+
 #include "crystal/dynamics.hpp"
 #include "crystal/simd.hpp"  // GRANWAVE_GATHER_VECTORS
 
@@ -51,8 +53,13 @@ bool LatticeRows::map_list(const ContactList& list) {
   listed.assign(static_cast<std::size_t>(kDirections * n), -1);
   reversed.assign(listed.size(), 0.0);
   list_place.assign(list.size(), 0);
+  contact_place.assign(list.size(), 0);
   std::fill(lost.begin(), lost.end(), 0.0);
   losses_pending = false;
+  forces_pending = forces_fresh = false;
+  if (2 * held_layers * places() > std::numeric_limits<std::int32_t>::max()) return false;  // (ends' indexes)
+  for (auto* v : {&place_f_x, &place_f_y, &place_f_z}) v->assign(static_cast<std::size_t>(held_layers * places()), 0.0);
+  place_arms.assign(static_cast<std::size_t>(2 * held_layers * places()), 0.0);
   // Each listed pair (i, j, image): i's contact in some direction, or j's with the image the other way.
   auto slot_of = [&](std::int64_t a, std::int64_t b, int mx, int my) -> std::int64_t {
     for (int d = 0; d < kDirections; ++d) {
@@ -71,6 +78,7 @@ bool LatticeRows::map_list(const ContactList& list) {
     if (slot % n / sites != i / sites) return false;      // (a crystal of one layer's rows wrapped onto another)
     listed[slot] = static_cast<std::int32_t>(c);
     list_place[c] = static_cast<std::int32_t>(slot / n * column() + slot % n % sites);
+    contact_place[c] = static_cast<std::int32_t>(i / sites * places() + list_place[c]);
     reversed[slot] = other_way ? 1.0 : 0.0;
     lost[slot] = list.dissipated[c];
   }
@@ -95,10 +103,53 @@ void LatticeRows::losses_to_list(ContactList& list) {
   losses_pending = false;
 }
 
+bool LatticeRows::forces_to_list(ContactList& list, SpreadVector<double>& end_arms) {
+  if (!forces_pending) return false;
+  const std::size_t nc = list.size();
+  end_arms.resize(2 * nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::int32_t g = contact_place[c];
+    list.f_x[c] = place_f_x[g], list.f_y[c] = place_f_y[g], list.f_z[c] = place_f_z[g];
+    end_arms[2 * c] = place_arms[2 * g], end_arms[2 * c + 1] = place_arms[2 * g + 1];
+  }
+  forces_pending = false;
+  return true;
+}
+
+void Dynamics::forces_to_list() const {
+  // The list is the record and the places its cache: filling it in changes nothing a reader could tell
+  // from the list's own route, so a const reader may ask.
+  if (lattice_layout_ <= 0) return;
+  auto& self = const_cast<Dynamics&>(*this);
+  if (self.lattice_.forces_to_list(self.contacts, self.end_arms)) self.end_arms_stored = lattice_.forces_fresh;
+}
+
+const LatticeRows* Dynamics::sampled_lattice_forces() const {
+  const LatticeRows& R = lattice_;
+  return lattice_layout_ > 0 && R.forces_pending && R.forces_fresh && R.list_build == list_builds_ ? &R : nullptr;
+}
+
+const LayerLists& Dynamics::place_ends() const {
+  // LayerOrder::ends with each end 2c + k as 2 contact_place[c] + k: the same order, the places' values.
+  if (place_ends_build_ == list_builds_) return place_ends_;
+  const LayerLists& ends = layer_order().ends;
+  const std::int32_t* place = lattice_.contact_place.data();
+  place_ends_.first = ends.first;
+  place_ends_.consecutive = false, place_ends_.base = 0;
+  const std::size_t total = ends.first.empty() ? 0 : static_cast<std::size_t>(ends.first.back());
+  place_ends_.entries.resize(total);
+  for (std::size_t k = 0; k < total; ++k) {
+    const std::int32_t e = ends.consecutive ? ends.base + static_cast<std::int32_t>(k) : ends.entries[k];
+    place_ends_.entries[k] = 2 * place[e >> 1] + (e & 1);
+  }
+  place_ends_build_ = list_builds_;
+  return place_ends_;
+}
+
 LatticeRows* Dynamics::lattice_rows() {
 #ifdef GRANWAVE_GATHER_VECTORS
   if (images_.any() || !lattice_pass) {  // the list's pass: the losses go back first
-    if (lattice_layout_ > 0) lattice_.losses_to_list(contacts);
+    if (lattice_layout_ > 0) lattice_.losses_to_list(contacts), forces_to_list();
     lattice_.list_build = -1;
     return nullptr;
   }

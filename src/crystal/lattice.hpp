@@ -60,6 +60,15 @@ struct LatticeRows {
   // contacts of a layer's particles i are that layer's slots.
   std::vector<std::int32_t> list_place;
   std::int64_t column() const { return sites + 8; }  // a layer's column of one direction (no 4 KiB aliasing)
+  std::int64_t places() const { return kDirections * column(); }  // a layer's slot places
+  // Per listed contact c: its slot's place among the held layers', L places() + list_place[c] (L: i's layer).
+  std::vector<std::int32_t> contact_place;
+  // A sampled step's contact forces and end arms (two a place, i's then j's) by place, as the list has
+  // them (the pair the other way round: minus the force, the ends swapped). They stay here until a reader
+  // of the list asks (forces_to_list), so a sample costs no copy into the list's order; the layer stress
+  // reads them where they are (Dynamics::sampled_lattice_forces). forces_fresh: the last pass wrote them.
+  SpreadVector<double> place_f_x, place_f_y, place_f_z, place_arms;
+  bool forces_pending = false, forces_fresh = false;
   SpreadVector<double> lost;
   bool losses_pending = false;  // `lost` holds losses the list has not
   long list_build = -1;         // the list build `listed` maps
@@ -71,6 +80,9 @@ struct LatticeRows {
   // The losses into the list (losses_pending: before a build carries them, or when the list's pass
   // takes over).
   void losses_to_list(ContactList& list);
+  // The pending forces and end arms into the list (before a build carries them, or for a reader of the
+  // list); true when there were any.
+  bool forces_to_list(ContactList& list, SpreadVector<double>& end_arms);
   // Partner q of held particle p in direction d and its image (mx, my); false past the held layers.
   bool partner(std::int64_t p, int d, std::int64_t& q, int& mx, int& my) const;
 };

@@ -100,11 +100,12 @@ GRANWAVE_ALWAYS_INLINE inline simd::V4 lattice_owner4(const double* v, const int
 }
 
 // Layers [L0, L1) of the held ones, on one thread: each layer's contacts, then its particles' forces
-// into sum_rows; with Write, the listed contacts' entries. OneVector: rows of four (m known, the
+// into sum_rows; with Write, the listed contacts' overlaps (and losses) and the places' forces and end
+// arms (LatticeRows::place_f_x). OneVector: rows of four (m known, the
 // seed's crystal: the general m's bounds and wraps cost 40 % of the pass there).
 template <class Law, bool Dissipative, ListWrite Write, bool OneVector>
-void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double inc, ContactList& C,
-                    double* end_arms, int L0, int L1, double* sum_rows) {
+void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double inc, ContactList& C, int L0,
+                    int L1, double* sum_rows) {
   using simd::V4;
   constexpr int kD = LatticeRows::kDirections;
   constexpr bool Arms = Write == ListWrite::forces;
@@ -119,17 +120,18 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
   const std::int32_t* list_place = R.list_place.data();
   const std::int32_t* i_first = C.i_first.data();
   double* lost = R.lost.data();
-  double *delta = C.delta.data(), *dissipated = C.dissipated.data(), *f_x = C.f_x.data(), *f_y = C.f_y.data(),
-         *f_z = C.f_z.data();
+  double *delta = C.delta.data(), *dissipated = C.dissipated.data();
+  double *place_f_x = R.place_f_x.data(), *place_f_y = R.place_f_y.data(), *place_f_z = R.place_f_z.data(),
+         *place_arms = R.place_arms.data();
+  const std::int64_t places = R.places();
   static thread_local std::vector<double> scratch;
-  if (scratch.size() < static_cast<std::size_t>(15 * kD * fs)) scratch.resize(15 * kD * fs);
+  if (scratch.size() < static_cast<std::size_t>(11 * kD * fs)) scratch.resize(11 * kD * fs);
   double* f = scratch.data();              // this layer's six directions: f + (3 d + c) fs
   double* below = f + 3 * kD * fs;         // the layer below's
-  // A layer's overlaps, b_z, distances and partner radii by direction (place d fs + s), and the forces as
-  // the list has them (fl + c 6 fs + place): what the list gets.
+  // A layer's overlaps, b_z, distances and partner radii by direction (place d fs + s): what the list
+  // and the places get.
   double *dl = below + 3 * kD * fs, *bz = dl + kD * fs, *dist = bz + kD * fs, *aj = dist + kD * fs;
-  double* fl = aj + kD * fs;
-  double* lost_here = fl + 3 * kD * fs;  // the layer's slots' losses (d fs + s)
+  double* lost_here = aj + kD * fs;  // the layer's slots' losses (d fs + s)
   // Layer L's contacts in directions [d0, 6) into out; Book: losses and the list's entries.
   auto layer_contacts = [=]<int P, bool Book>(int L, int d0, double* out) {
     const std::int64_t i0 = static_cast<std::int64_t>(L) * S;
@@ -155,8 +157,9 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
       }(), ...);
     }(std::make_integer_sequence<int, kD>{});
     // The list's entries after the law's loops (kept apart, the roots' chains overlap): first, in vectors,
-    // the values as the list has them (the pair the other way round: minus the force and u_z, exact, the
-    // ends swapped; 0.0 - x keeps an open contact's +0.0), then each into its contact.
+    // the places' forces and end arms as the list has them (the pair the other way round: minus the force
+    // and u_z, exact, the ends swapped; 0.0 - x keeps an open contact's +0.0), then each overlap into its
+    // contact.
     if constexpr (Book && Write != ListWrite::none) {
       for (int d = d0; d < kD; ++d) {
         if (L + (d >= 2) >= held || unlisted[L * kD + d]) continue;
@@ -164,22 +167,24 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
         const int a0 = d * fs;
         if constexpr (Arms) {
           const double* fd = out + 3 * d * fs;
-          double *fo_x = fl + a0, *fo_y = fl + kD * fs + a0, *fo_z = fl + 2 * kD * fs + a0;
+          const std::int64_t g0 = L * places + a0;
+          double *fo_x = place_f_x + g0, *fo_y = place_f_y + g0, *fo_z = place_f_z + g0;
+          double* arms = place_arms + 2 * g0;
           const double* rev = reversed + slot0;
           const double* ai = q.a + i0;
-          double *arm_i = bz + a0, *arm_j = dist + a0;  // in place of b_z and the distance
+          const double *b_z = bz + a0, *r = dist + a0;
           const double* delta_d = dl + a0;
           const double* aj_d = aj + a0;
 #pragma GCC ivdep
           for (int s = 0; s < S; ++s) {
             const bool other_way = rev[s] != 0.0;
-            const double u_z = arm_i[s] / arm_j[s];  // b_z / r: evaluate_contact's root, as the list's pass
+            const double u_z = b_z[s] / r[s];  // evaluate_contact's root, as the list's pass
             const double own = Dynamics::end_arm(ai[s], delta_d[s], u_z), partner = Dynamics::end_arm(aj_d[s], delta_d[s], u_z);
             fo_x[s] = other_way ? 0.0 - fd[s] : fd[s];
             fo_y[s] = other_way ? 0.0 - fd[fs + s] : fd[fs + s];
             fo_z[s] = other_way ? 0.0 - fd[2 * fs + s] : fd[2 * fs + s];
-            arm_i[s] = other_way ? 0.0 - partner : own;  // the list's i end
-            arm_j[s] = other_way ? 0.0 - own : partner;
+            arms[2 * s] = other_way ? 0.0 - partner : own;  // the list's i end
+            arms[2 * s + 1] = other_way ? 0.0 - own : partner;
           }
         }
         if constexpr (Dissipative)
@@ -187,15 +192,10 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
       }
       // Into the list in its order: the contacts of the layer's particles i are the layer's slots.
       const std::int32_t c0 = i_first[i0], c1 = i_first[i0 + S];
-      const double *fx = fl, *fy = fl + kD * fs, *fz = fl + 2 * kD * fs;
       for (std::int32_t c = c0; c < c1; ++c) {  // scalar: GCC's gathers here cost a fifth more
         const std::int32_t a = list_place[c];
         delta[c] = dl[a];
         if constexpr (Dissipative) dissipated[c] = lost_here[a];
-        if constexpr (Arms) {
-          f_x[c] = fx[a], f_y[c] = fy[a], f_z[c] = fz[a];
-          end_arms[2 * c] = bz[a], end_arms[2 * c + 1] = dist[a];
-        }
       }
     }
   };
@@ -253,18 +253,16 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
 template <class Law, bool Dissipative, ListWrite Write>
 ContactSums lattice_sweep(Dynamics& d, LatticeRows& R, const Law& law, const ContactPassPlan& plan) {
   ContactList& C = d.contacts;
-  if (Write == ListWrite::forces) d.end_arms.resize(2 * C.size());
   const LatticeState q{d.x.data(), d.y.data(), d.z.data(), d.radius.data(), d.vx.data(), d.vy.data(), d.vz.data()};
   double* sum_rows = d.begin_contact_sums(1);
-  double* end_arms = d.end_arms.data();
   const double inc = plan.increment_time;
   const int held = R.held_layers;
   const int parts = d.threaded() ? std::min(Dynamics::threads_available(), held) : 1;
   auto layers = [&](int L0, int L1) {
     if (R.vectors == 1)
-      lattice_layers<Law, Dissipative, Write, true>(law, R, q, inc, C, end_arms, L0, L1, sum_rows);
+      lattice_layers<Law, Dissipative, Write, true>(law, R, q, inc, C, L0, L1, sum_rows);
     else
-      lattice_layers<Law, Dissipative, Write, false>(law, R, q, inc, C, end_arms, L0, L1, sum_rows);
+      lattice_layers<Law, Dissipative, Write, false>(law, R, q, inc, C, L0, L1, sum_rows);
   };
   if (parts == 1) {
     layers(0, held);
@@ -278,7 +276,10 @@ ContactSums lattice_sweep(Dynamics& d, LatticeRows& R, const Law& law, const Con
     C.losses_booked = true;
     R.losses_pending = Write == ListWrite::none;
   }
-  d.end_arms_stored = Write == ListWrite::forces;
+  // The forces and end arms stay by place (LatticeRows::forces_pending): the list's are not this step's.
+  if constexpr (Write == ListWrite::forces) R.forces_pending = true;
+  R.forces_fresh = Write == ListWrite::forces;
+  d.end_arms_stored = false;
   return {1};
 }
 

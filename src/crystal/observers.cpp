@@ -79,6 +79,8 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
   if (particle_stress) particle_stress->assign(9 * dyn.size(), 0.0);
   const ContactList& C = dyn.contacts;
   const double volume = pk.box_x * pk.box_y * pk.l0;  // of one layer
+  const LatticeRows* places = particle_stress ? nullptr : dyn.sampled_lattice_forces();
+  if (!places) dyn.forces_to_list();
   if (particle_stress) {
     for (std::size_t c = 0; c < C.size(); ++c) {
       const double delta = C.delta[c];
@@ -111,12 +113,14 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
     // forces on one thread, else made here in loops that vectorise. Then each layer's sums over
     // the ends of its contacts in list order (Dynamics::LayerOrder::ends, i before j), the terms
     // arm u_z f_z, arm u_z f_x formed there, several layers side by side (layer_chains): the same
-    // products and subtractions in the same order.
+    // products and subtractions in the same order. A lattice pass's sampled step left the forces and
+    // arms by slot place: the same ends in the same order, each read from its place.
     static thread_local std::vector<double> arms;  // scratch of contact_end_arms
-    const double* arm_u = contact_end_arms(dyn, arms);
-    const double *f_z = C.f_z.data(), *f_x = C.f_x.data();
+    const double* arm_u = places ? places->place_arms.data() : contact_end_arms(dyn, arms);
+    const double* f_z = places ? places->place_f_z.data() : C.f_z.data();
+    const double* f_x = places ? places->place_f_x.data() : C.f_x.data();
     layer_chains<2>(
-        dyn.layer_order().ends, std::array{zz.data(), zx.data()},
+        places ? dyn.place_ends() : dyn.layer_order().ends, std::array{zz.data(), zx.data()},
         [=](std::array<double, 2>& acc, std::int32_t e) {
           acc[0] -= arm_u[e] * f_z[e >> 1];
           acc[1] -= arm_u[e] * f_x[e >> 1];

@@ -162,6 +162,7 @@ void apply_affine(Dynamics& d, ProbeStrain s, double e, double z_origin) {
 void add_stress(StressSum& out, const Dynamics& d, const SpreadVector<double>& X, const SpreadVector<double>& Y,
                 const SpreadVector<double>& Z, double bx, double by, const SpreadVector<std::uint8_t>* held,
                 const Packing& pk, double mu) {
+  d.forces_to_list();
   const ContactList& cl = d.contacts;
   const double box_x = d.packing().box_x, box_y = d.packing().box_y, shift_x = d.images().shift_x;
   for (std::size_t c = 0; c < cl.size(); ++c) {

@@ -20,6 +20,7 @@
 #include "config/case.hpp"
 #include "crystal/derive.hpp"
 #include "crystal/dynamics.hpp"
+#include "crystal/observers.hpp"
 #include "crystal/packing.hpp"
 #include "../case_text.hpp"
 
@@ -76,7 +77,22 @@ TEST_CASE("lattice pass against the list's: overlaps, losses and forces bit for 
     const crystal::ContactSums b = list.model().contact_pass(list, plan);
     REQUIRE(a.rows == 1);
     REQUIRE(b.rows == 1);
+    // The sample's forces and end arms stay by slot place: the layer stress reads them there, the same
+    // ends in the same order as from the list (forces_to_list), and as from the arms it makes itself.
+    REQUIRE(lat.sampled_lattice_forces() != nullptr);
+    REQUIRE(!lat.end_arms_stored);
+    std::vector<double> zz[3], zx[3];
+    crystal::layer_stress(lat, zz[0], zx[0]);
+    lat.forces_to_list();
+    REQUIRE(lat.sampled_lattice_forces() == nullptr);
     REQUIRE(lat.end_arms_stored);
+    crystal::layer_stress(lat, zz[1], zx[1]);
+    lat.end_arms_stored = false;
+    crystal::layer_stress(lat, zz[2], zx[2]);
+    lat.end_arms_stored = true;
+    CHECK(std::any_of(zz[0].begin(), zz[0].end(), [](double s) { return s != 0.0; }));
+    CHECK((zz[0] == zz[1] && zz[0] == zz[2]));
+    CHECK((zx[0] == zx[1] && zx[0] == zx[2]));
     const crystal::ContactList &A = lat.contacts, &B = list.contacts;
     REQUIRE(A.size() == B.size());
     const crystal::LatticeRows& L = *lat.lattice_rows();
