@@ -298,7 +298,7 @@ void Dynamics::rebuild() {
 void Dynamics::make_list(bool verlet_build) {
   const std::size_t n = size();
   ContactList& old = contacts;
-  if (lattice_layout_ > 0) lattice_.losses_to_list(old), forces_to_list();  // the build carries them
+  lattice_to_list();  // the build carries them
   if (verlet_build && old.losses_booked) add_dissipated(dissipated_before_.data(), old);  // per layer: no message
   if (candidates_.size() == 0 && !verlet_build) {  // the contact list was the whole Verlet list
     candidates_.i = old.i, candidates_.j = old.j;

@@ -343,6 +343,8 @@ class Dynamics {
   // sampled step's, as the list's pass leaves them). The layer stress reads them where they are:
   // sampled_lattice_forces() (nullptr: in the list) with place_ends(), LayerOrder::ends by place.
   void forces_to_list() const;
+  // Everything the lattice rows hold for the list (losses, forces): before a build or the list's pass.
+  void lattice_to_list();
   const LatticeRows* sampled_lattice_forces() const;
   const LayerLists& place_ends() const;
   // false: the list's pass for such a crystal too (its sums in the list's order: other bits; the

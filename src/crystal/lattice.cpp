@@ -124,6 +124,12 @@ void Dynamics::forces_to_list() const {
   if (self.lattice_.forces_to_list(self.contacts, self.end_arms)) self.end_arms_stored = lattice_.forces_fresh;
 }
 
+void Dynamics::lattice_to_list() {
+  if (lattice_layout_ <= 0) return;
+  lattice_.losses_to_list(contacts);
+  forces_to_list();
+}
+
 const LatticeRows* Dynamics::sampled_lattice_forces() const {
   const LatticeRows& R = lattice_;
   return lattice_layout_ > 0 && R.forces_pending && R.forces_fresh && R.list_build == list_builds_ ? &R : nullptr;
@@ -149,7 +155,7 @@ const LayerLists& Dynamics::place_ends() const {
 LatticeRows* Dynamics::lattice_rows() {
 #ifdef GRANWAVE_GATHER_VECTORS
   if (images_.any() || !lattice_pass) {  // the list's pass: the losses go back first
-    if (lattice_layout_ > 0) lattice_.losses_to_list(contacts), forces_to_list();
+    lattice_to_list();
     lattice_.list_build = -1;
     return nullptr;
   }
