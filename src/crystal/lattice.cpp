@@ -78,7 +78,7 @@ bool LatticeRows::map_list(const ContactList& list) {
     if (slot % n / sites != i / sites) return false;      // (a crystal of one layer's rows wrapped onto another)
     listed[slot] = static_cast<std::int32_t>(c);
     list_place[c] = static_cast<std::int32_t>(slot / n * column() + slot % n % sites);
-    contact_place[c] = static_cast<std::int32_t>(i / sites * places() + list_place[c]);
+    contact_place[c] = static_cast<std::int32_t>(i / sites * places() + slot / n * sites + slot % n % sites);
     reversed[slot] = other_way ? 1.0 : 0.0;
     lost[slot] = list.dissipated[c];
   }

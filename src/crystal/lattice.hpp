@@ -60,8 +60,10 @@ struct LatticeRows {
   // contacts of a layer's particles i are that layer's slots.
   std::vector<std::int32_t> list_place;
   std::int64_t column() const { return sites + 8; }  // a layer's column of one direction (no 4 KiB aliasing)
-  std::int64_t places() const { return kDirections * column(); }  // a layer's slot places
-  // Per listed contact c: its slot's place among the held layers', L places() + list_place[c] (L: i's layer).
+  // Per listed contact c: its slot's place among the held layers', L places() + d sites + s (L: i's layer),
+  // unpadded (the places are written a direction's run at a time: no aliasing to avoid, a third less memory
+  // for a seed-sized layer than the columns').
+  std::int64_t places() const { return kDirections * static_cast<std::int64_t>(sites); }  // a layer's slot places
   std::vector<std::int32_t> contact_place;
   // A sampled step's contact forces and end arms (two a place, i's then j's) by place, as the list has
   // them (the pair the other way round: minus the force, the ends swapped). They stay here until a reader

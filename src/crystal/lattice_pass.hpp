@@ -167,7 +167,7 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
         const int a0 = d * fs;
         if constexpr (Arms) {
           const double* fd = out + 3 * d * fs;
-          const std::int64_t g0 = L * places + a0;
+          const std::int64_t g0 = L * places + static_cast<std::int64_t>(d) * S;
           double *fo_x = place_f_x + g0, *fo_y = place_f_y + g0, *fo_z = place_f_z + g0;
           double* arms = place_arms + 2 * g0;
           const double* rev = reversed + slot0;
