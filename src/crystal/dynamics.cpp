@@ -353,7 +353,9 @@ void Dynamics::make_list(bool verlet_build) {
         ++k;
       }
   }
-  for (auto* v : {&fresh.delta, &fresh.f_x, &fresh.f_y, &fresh.f_z, &fresh.dissipated}) v->assign(nc, 0.0);
+  for (auto* v : {&fresh.delta, &fresh.dissipated}) v->assign(nc, 0.0);
+  const bool forces = !old.f_x.empty();  // else every old force is +0.0, as a new pair's: the fresh list's stay unsized
+  if (forces) fresh.keep_forces();
   fresh.history_columns = nh;
   fresh.history.assign(nh * nc, 0.0);
   // A persisting pair keeps its history (and its force and overlap; a relist its loss too); a new
@@ -364,9 +366,7 @@ void Dynamics::make_list(bool verlet_build) {
       const auto u = static_cast<std::size_t>(from[c]);
       for (std::size_t q = 0; q < nh; ++q) fresh.history_column(q)[k] = old.history_column(q)[u];
       fresh.delta[k] = old.delta[u];
-      fresh.f_x[k] = old.f_x[u];
-      fresh.f_y[k] = old.f_y[u];
-      fresh.f_z[k] = old.f_z[u];
+      if (forces) fresh.f_x[k] = old.f_x[u], fresh.f_y[k] = old.f_y[u], fresh.f_z[k] = old.f_z[u];
       if (!verlet_build) fresh.dissipated[k] = old.dissipated[u];
     }
     ++k;

@@ -41,7 +41,14 @@ struct ContactList {
   SpreadVector<std::int32_t> i, j;
   SpreadVector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y (|image| <= 127)
   SpreadVector<double> delta;               // overlap at the last evaluation (<= 0: open)
-  SpreadVector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see ContactPassPlan::store_forces)
+  SpreadVector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see ContactPassPlan::store_forces);
+                                           // empty until a pass or a reader sizes them (keep_forces): +0.0
+  // The force columns sized (+0.0) if still empty: a lattice pass keeps its forces by place, and a list
+  // whose forces were never asked for needs none (24 bytes a contact).
+  void keep_forces() {
+    if (f_x.size() != size())
+      for (auto* v : {&f_x, &f_y, &f_z}) v->assign(size(), 0.0);
+  }
   SpreadVector<double> nf_x, nf_y, nf_z;    // n x f^t (torque on i = -arm_i n x f^t, on j = -arm_j n x f^t);
                                            // threaded runs of a law with torques only (else empty)
   SpreadVector<double> couple_x, couple_y, couple_z;  // a law with couples (rolling, torsion): the torque
@@ -340,7 +347,7 @@ class Dynamics {
   LatticeRows* lattice_rows();
   // A lattice pass keeps a sampled step's contact forces and end arms by slot (LatticeRows::place_f_x):
   // a reader of contacts.f_x, f_y, f_z or end_arms calls forces_to_list() first (then they are the last
-  // sampled step's, as the list's pass leaves them). The layer stress reads them where they are:
+  // sampled step's, as the list's pass leaves them, and sized: ContactList::keep_forces). The layer stress reads them where they are:
   // sampled_lattice_forces() (nullptr: in the list) with place_ends(), LayerOrder::ends by place.
   void forces_to_list() const;
   // Everything the lattice rows hold for the list (losses, forces): before a build or the list's pass.

@@ -180,6 +180,7 @@ ContactSums direct_contact_pass(Dynamics& d, const Law& law, const ContactPassPl
   const double inc = plan.increment_time;
   constexpr std::size_t NH = contact::history_columns<typename Law::History>;
   ContactList& C = d.contacts;
+  C.keep_forces();  // (a list the lattice rows' pass had leaves them unsized)
   const auto [nc, ci, cj, imx, imy, cdelta, cfx, cfy, cfz, cnx, cny, cnz, diss, hist] = ListColumns<NH>(C);
   const double box_x = d.packing().box_x, box_y = d.packing().box_y;
   const double shift_x = d.images().shift_x;  // a sheared box (the static probe's xy strain), else 0
@@ -356,6 +357,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   double* ccx = C.couple_x.data();
   double* ccy = C.couple_y.data();
   double* ccz = C.couple_z.data();
+  C.keep_forces();  // (a list the lattice rows' pass had leaves them unsized)
   const auto [nc, ci, cj, imx, imy, cdelta, cfx, cfy, cfz, cnx, cny, cnz, diss, hist] = ListColumns<NH>(C);
   // The vector sweep adds to diss unless the law's is lossless (contact::LosslessSweep); the exact
   // sweep always does, and books it where it runs (below).

@@ -106,6 +106,7 @@ void LatticeRows::losses_to_list(ContactList& list) {
 bool LatticeRows::forces_to_list(ContactList& list, SpreadVector<double>& end_arms) {
   if (!forces_pending) return false;
   const std::size_t nc = list.size();
+  list.keep_forces();
   end_arms.resize(2 * nc);
   for (std::size_t c = 0; c < nc; ++c) {
     const std::int32_t g = contact_place[c];
@@ -119,8 +120,9 @@ bool LatticeRows::forces_to_list(ContactList& list, SpreadVector<double>& end_ar
 void Dynamics::forces_to_list() const {
   // The list is the record and the places its cache: filling it in changes nothing a reader could tell
   // from the list's own route, so a const reader may ask.
-  if (lattice_layout_ <= 0) return;
   auto& self = const_cast<Dynamics&>(*this);
+  self.contacts.keep_forces();
+  if (lattice_layout_ <= 0) return;
   if (self.lattice_.forces_to_list(self.contacts, self.end_arms)) self.end_arms_stored = lattice_.forces_fresh;
 }
 
