@@ -56,7 +56,7 @@ bool LatticeRows::map_list(const ContactList& list) {
   contact_place.assign(list.size(), 0);
   std::fill(lost.begin(), lost.end(), 0.0);
   losses_pending = false;
-  forces_pending = forces_fresh = false;
+  forces_pending = forces_fresh = stress_fresh = false;
   if (2 * held_layers * places() > std::numeric_limits<std::int32_t>::max()) return false;  // (ends' indexes)
   for (auto* v : {&place_f_x, &place_f_y, &place_f_z}) v->assign(static_cast<std::size_t>(held_layers * places()), 0.0);
   place_arms.assign(static_cast<std::size_t>(2 * held_layers * places()), 0.0);

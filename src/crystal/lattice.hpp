@@ -71,6 +71,12 @@ struct LatticeRows {
   // reads them where they are (Dynamics::sampled_lattice_forces). forces_fresh: the last pass wrote them.
   SpreadVector<double> place_f_x, place_f_y, place_f_z, place_arms;
   bool forces_pending = false, forces_fresh = false;
+  // That step's layer stress sums (the sample's walk over Dynamics::place_ends, before the division by
+  // a layer's volume), made by a one-thread pass as soon as a layer's places are written, while they are
+  // in cache (at 320 000 particles the walk read them back from memory: 12 % of a run). stress_fresh:
+  // the last pass made them.
+  std::vector<double> stress_zz, stress_zx;
+  bool stress_fresh = false;
   SpreadVector<double> lost;
   bool losses_pending = false;  // `lost` holds losses the list has not
   long list_build = -1;         // the list build `listed` maps

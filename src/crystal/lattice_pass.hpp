@@ -7,6 +7,7 @@
 // lambdas capturing by reference ran at half the speed (docs/benchmarks.md, session 46).
 #pragma once
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "crystal/kernel.hpp"
@@ -101,11 +102,11 @@ GRANWAVE_ALWAYS_INLINE inline simd::V4 lattice_owner4(const double* v, const int
 
 // Layers [L0, L1) of the held ones, on one thread: each layer's contacts, then its particles' forces
 // into sum_rows; with Write, the listed contacts' overlaps (and losses) and the places' forces and end
-// arms (LatticeRows::place_f_x). OneVector: rows of four (m known, the
+// arms (LatticeRows::place_f_x); then after_layer(L). OneVector: rows of four (m known, the
 // seed's crystal: the general m's bounds and wraps cost 40 % of the pass there).
-template <class Law, bool Dissipative, ListWrite Write, bool OneVector>
+template <class Law, bool Dissipative, ListWrite Write, bool OneVector, class AfterLayer>
 void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double inc, ContactList& C, int L0,
-                    int L1, double* sum_rows) {
+                    int L1, double* sum_rows, const AfterLayer& after_layer) {
   using simd::V4;
   constexpr int kD = LatticeRows::kDirections;
   constexpr bool Arms = Write == ListWrite::forces;
@@ -247,6 +248,7 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
       layer_sums.template operator()<0>(L, f, under);
     }
     std::swap(f, below);
+    after_layer(L);
   }
 }
 
@@ -258,19 +260,45 @@ ContactSums lattice_sweep(Dynamics& d, LatticeRows& R, const Law& law, const Con
   const double inc = plan.increment_time;
   const int held = R.held_layers;
   const int parts = d.threaded() ? std::min(Dynamics::threads_available(), held) : 1;
-  auto layers = [&](int L0, int L1) {
+  auto layers = [&](int L0, int L1, const auto& after_layer) {
     if (R.vectors == 1)
-      lattice_layers<Law, Dissipative, Write, true>(law, R, q, inc, C, L0, L1, sum_rows);
+      lattice_layers<Law, Dissipative, Write, true>(law, R, q, inc, C, L0, L1, sum_rows, after_layer);
     else
-      lattice_layers<Law, Dissipative, Write, false>(law, R, q, inc, C, L0, L1, sum_rows);
+      lattice_layers<Law, Dissipative, Write, false>(law, R, q, inc, C, L0, L1, sum_rows, after_layer);
   };
-  if (parts == 1) {
-    layers(0, held);
+  const auto nothing = [](int) {};
+  // A sampled step on one thread, every layer held: the layer stress of layers L - 1 and L once the pass
+  // has written layer L's places (a layer's ends read its own and the layer below's), the sample's walk
+  // (crystal/observers.cpp) in the same order, so the same bits.
+  const bool stress = Write == ListWrite::forces && parts == 1 && !d.slab() && held == d.packing().layers;
+  R.stress_fresh = false;
+  if (stress) {
+    const LayerLists& ends = d.place_ends();
+    R.stress_zz.assign(static_cast<std::size_t>(held), 0.0);
+    R.stress_zx.assign(static_cast<std::size_t>(held), 0.0);
+    const std::array sums{R.stress_zz.data(), R.stress_zx.data()};
+    const double* arm_u = R.place_arms.data();
+    const double* f_z = R.place_f_z.data();
+    const double* f_x = R.place_f_x.data();
+    const auto add = [=](std::array<double, 2>& acc, std::int32_t e) {
+      acc[0] -= arm_u[e] * f_z[e >> 1];
+      acc[1] -= arm_u[e] * f_x[e >> 1];
+    };
+    layers(0, held, [&](int L) {
+      const auto l = static_cast<std::size_t>(L);
+      if (L % 2 == 1)
+        layer_chains<2>(ends, l - 1, l + 1, sums, add);
+      else if (L + 1 == held)
+        layer_chains<2>(ends, l, l + 1, sums, add);
+    });
+    R.stress_fresh = true;
+  } else if (parts == 1) {
+    layers(0, held, nothing);
   } else {
 #pragma omp parallel for schedule(static, 1)
     for (int p = 0; p < parts; ++p)
       layers(static_cast<int>(static_cast<std::int64_t>(held) * p / parts),
-             static_cast<int>(static_cast<std::int64_t>(held) * (p + 1) / parts));
+             static_cast<int>(static_cast<std::int64_t>(held) * (p + 1) / parts), nothing);
   }
   if constexpr (Dissipative) {
     C.losses_booked = true;

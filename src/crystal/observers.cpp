@@ -115,17 +115,23 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
     // arm u_z f_z, arm u_z f_x formed there, several layers side by side (layer_chains): the same
     // products and subtractions in the same order. A lattice pass's sampled step left the forces and
     // arms by slot place: the same ends in the same order, each read from its place.
+    // A one-thread lattice pass made these sums itself, layer by layer (LatticeRows::stress_zz).
     static thread_local std::vector<double> arms;  // scratch of contact_end_arms
-    const double* arm_u = places ? places->place_arms.data() : contact_end_arms(dyn, arms);
-    const double* f_z = places ? places->place_f_z.data() : C.f_z.data();
-    const double* f_x = places ? places->place_f_x.data() : C.f_x.data();
-    layer_chains<2>(
-        places ? dyn.place_ends() : dyn.layer_order().ends, std::array{zz.data(), zx.data()},
-        [=](std::array<double, 2>& acc, std::int32_t e) {
-          acc[0] -= arm_u[e] * f_z[e >> 1];
-          acc[1] -= arm_u[e] * f_x[e >> 1];
-        },
-        dyn.threaded());
+    if (places && places->stress_fresh) {
+      std::copy(places->stress_zz.begin(), places->stress_zz.end(), zz.begin());
+      std::copy(places->stress_zx.begin(), places->stress_zx.end(), zx.begin());
+    } else {
+      const double* arm_u = places ? places->place_arms.data() : contact_end_arms(dyn, arms);
+      const double* f_z = places ? places->place_f_z.data() : C.f_z.data();
+      const double* f_x = places ? places->place_f_x.data() : C.f_x.data();
+      layer_chains<2>(
+          places ? dyn.place_ends() : dyn.layer_order().ends, std::array{zz.data(), zx.data()},
+          [=](std::array<double, 2>& acc, std::int32_t e) {
+            acc[0] -= arm_u[e] * f_z[e >> 1];
+            acc[1] -= arm_u[e] * f_x[e >> 1];
+          },
+          dyn.threaded());
+    }
   }
   for (std::size_t L = 0; L < nl; ++L) {
     zz[L] /= volume;
