@@ -347,8 +347,9 @@ class Dynamics {
   LatticeRows* lattice_rows();
   // A lattice pass keeps a sampled step's contact forces and end arms by slot (LatticeRows::place_f_x):
   // a reader of contacts.f_x, f_y, f_z or end_arms calls forces_to_list() first (then they are the last
-  // sampled step's, as the list's pass leaves them, and sized: ContactList::keep_forces). The layer stress reads them where they are:
-  // sampled_lattice_forces() (nullptr: in the list) with place_ends(), LayerOrder::ends by place.
+  // sampled step's, as the list's pass leaves them, and sized: ContactList::keep_forces). The layer
+  // stress reads them where they are: sampled_lattice_forces() (nullptr: in the list) with place_ends(),
+  // LayerOrder::ends by place.
   void forces_to_list() const;
   // Everything the lattice rows hold for the list (losses, forces): before a build or the list's pass.
   void lattice_to_list();
