@@ -12,6 +12,7 @@
 
 #include "crystal/kernel.hpp"
 #include "crystal/lattice.hpp"
+#include "crystal/layer_sums.hpp"
 #include "crystal/simd.hpp"
 
 namespace granwave::crystal::kernel {
@@ -277,13 +278,7 @@ ContactSums lattice_sweep(Dynamics& d, LatticeRows& R, const Law& law, const Con
     R.stress_zz.assign(static_cast<std::size_t>(held), 0.0);
     R.stress_zx.assign(static_cast<std::size_t>(held), 0.0);
     const std::array sums{R.stress_zz.data(), R.stress_zx.data()};
-    const double* arm_u = R.place_arms.data();
-    const double* f_z = R.place_f_z.data();
-    const double* f_x = R.place_f_x.data();
-    const auto add = [=](std::array<double, 2>& acc, std::int32_t e) {
-      acc[0] -= arm_u[e] * f_z[e >> 1];
-      acc[1] -= arm_u[e] * f_x[e >> 1];
-    };
+    const LayerStressTerm add{R.place_arms.data(), R.place_f_z.data(), R.place_f_x.data()};
     layers(0, held, [&](int L) {
       const auto l = static_cast<std::size_t>(L);
       if (L % 2 == 1)

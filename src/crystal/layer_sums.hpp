@@ -143,6 +143,19 @@ void layer_chains(const LayerLists& ll, const std::array<double*, Q>& s, const A
                      [&](std::size_t L0, std::size_t L1) { layer_chains<G>(ll, L0, L1, s, add); });
 }
 
+// The layer stress's term of contact end e: its arm (a - delta/2) u_z (arm_u[e]) times its contact's
+// force (f_z, f_x at e >> 1), taken from the layer's zz and zx sums. One definition: the sample's walk
+// (crystal/observers.cpp) and the one-thread lattice pass's fused sums must give the same bits.
+struct LayerStressTerm {
+  const double* arm_u;
+  const double* f_z;
+  const double* f_x;
+  void operator()(std::array<double, 2>& acc, std::int32_t e) const {
+    acc[0] -= arm_u[e] * f_z[e >> 1];
+    acc[1] -= arm_u[e] * f_x[e >> 1];
+  }
+};
+
 namespace kernel {
 
 // s[layer] += ... in call order, the current layer's running sum held in a register (terms come

@@ -126,11 +126,7 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
       const double* f_x = places ? places->place_f_x.data() : C.f_x.data();
       layer_chains<2>(
           places ? dyn.place_ends() : dyn.layer_order().ends, std::array{zz.data(), zx.data()},
-          [=](std::array<double, 2>& acc, std::int32_t e) {
-            acc[0] -= arm_u[e] * f_z[e >> 1];
-            acc[1] -= arm_u[e] * f_x[e >> 1];
-          },
-          dyn.threaded());
+          LayerStressTerm{arm_u, f_z, f_x}, dyn.threaded());
     }
   }
   for (std::size_t L = 0; L < nl; ++L) {
