@@ -27,14 +27,28 @@ CrystalTrace smoothed(const CrystalTrace& trace, double duration, const CrystalA
   double sum = 0.0;
   for (std::size_t j = 0; j < m; ++j) sum += w[j] = std::pow(std::sin(std::numbers::pi * (j + 0.5) / m), 2);
   for (double& x : w) x /= sum;
-  // Each (n, p) sums w[j] v[n - j] over j ascending; p innermost runs along a contiguous row.
+  // Each (n, p) sums w[j] v[n - j] over j ascending; p innermost runs along a contiguous row, a block
+  // of kBlock layers' sums held in registers through the j loop (loads of v only, no stores per j).
+  constexpr std::size_t kBlock = 64;
   y.assign(nt * nl, 0.0);
   for (std::size_t n = 0; n < nt; ++n) {
-    double* acc = y.data() + n * nl;
-    for (std::size_t j = 0; j < m; ++j) {
-      const double wj = w[j];
-      const double* row = &v[(n >= j ? n - j : 0) * nl];
-      for (std::size_t p = 0; p < nl; ++p) acc[p] += wj * row[p];
+    double* out_row = y.data() + n * nl;
+    for (std::size_t p0 = 0; p0 < nl; p0 += kBlock) {
+      if (p0 + kBlock <= nl) {
+        double acc[kBlock] = {};
+        for (std::size_t j = 0; j < m; ++j) {
+          const double wj = w[j];
+          const double* row = &v[(n >= j ? n - j : 0) * nl + p0];
+          for (std::size_t p = 0; p < kBlock; ++p) acc[p] += wj * row[p];
+        }
+        std::copy(acc, acc + kBlock, out_row + p0);
+      } else {
+        for (std::size_t j = 0; j < m; ++j) {
+          const double wj = w[j];
+          const double* row = &v[(n >= j ? n - j : 0) * nl];
+          for (std::size_t p = p0; p < nl; ++p) out_row[p] += wj * row[p];
+        }
+      }
     }
   }
   return out;
