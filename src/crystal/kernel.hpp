@@ -96,11 +96,11 @@ struct ListColumns {
 // (a law with torques) the spins; the law's response (Vector: the Deferrable
 // evaluation of a law that defers, contact::DefersContacts); its history written back (kept for a
 // deferred contact, which the exact sweep evaluates again from it; lost on opening), its loss
-// added, its overlap stored.
+// added, its overlap stored (unless !KeepOverlap: a pass whose overlaps nobody reads).
 // Quiet (a contact::LosslessSweep law's vector sweep): the losses are left alone and an opening
 // contact that loses stored energy is deferred. Returns whether the contact was deferred; `res`
 // and `open` (no force) are the caller's (a returned struct is not vectorised).
-template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH>
+template <class Law, bool Vector, bool Dissipative, bool Quiet, std::size_t NH, bool KeepOverlap = true>
 GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::array<double*, NH>& hist, double* diss,
                                                     double* cdelta, std::int64_t c, double bx, double by, double bz,
                                                     double r, double inv_r, double reach, double a_i, double a_j,
@@ -142,7 +142,7 @@ GRANWAVE_ALWAYS_INLINE inline bool evaluate_contact(const Law& law, const std::a
     const double lost = select(open, law.opening_loss(contact::history_from<History>(h0)), res.loss);
     diss[c] = select(deferred, diss[c], diss[c] + lost);
   }
-  cdelta[c] = delta;
+  if constexpr (KeepOverlap) cdelta[c] = delta;
   return deferred;
 }
 
