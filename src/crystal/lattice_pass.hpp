@@ -137,9 +137,9 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
   // Layer L's contacts in directions [d0, 6) into out; Book: losses and the list's entries.
   auto layer_contacts = [=]<int P, bool Book>(int L, int d0, double* out) {
     const std::int64_t i0 = static_cast<std::int64_t>(L) * S;
-    // The overlaps are read only by the list's entries below: a plain step's pass, or the layer under a
-    // block's first evaluated again, stores none (3-4 % of the frictionless row's loop).
-    constexpr bool Overlaps = Book && Write != ListWrite::none;
+    // Whether the list's entries (below) follow: only they read the overlaps and the end arms' inputs, so a
+    // plain step's pass, or the layer under a block's first evaluated again, stores none of them.
+    constexpr bool ListEntries = Book && Write != ListWrite::none;
     [&]<int... D>(std::integer_sequence<int, D...>) {
       ([&] {
         constexpr int d = D, up = d >= 2;
@@ -155,7 +155,7 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
         for (int iy = 0; iy < ny; ++iy)
           for (int k = 0; k < m; ++k) {
             const int s = iy * nx + 4 * k, at = d * fs + s;
-            lattice_row_contacts<Law, LatticeRows::kStep[P][d][0], Dissipative, Book, Arms, Overlaps>(
+            lattice_row_contacts<Law, LatticeRows::kStep[P][d][0], Dissipative, Book, ListEntries && Arms, ListEntries>(
                 law, q, i0 + s, j0 + rows[iy] * nx, m, k, box_x, images[iy], inc, fd + s, fs, dl + at, bz + at,
                 dist + at, aj + at, lost + d * n + i0 + s);
           }
@@ -165,7 +165,7 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
     // the places' forces and end arms as the list has them (the pair the other way round: minus the force
     // and u_z, exact, the ends swapped; 0.0 - x keeps an open contact's +0.0), then each overlap into its
     // contact.
-    if constexpr (Book && Write != ListWrite::none) {
+    if constexpr (ListEntries) {
       for (int d = d0; d < kD; ++d) {
         if (L + (d >= 2) >= held || unlisted[L * kD + d]) continue;
         const std::int64_t slot0 = d * n + i0;
