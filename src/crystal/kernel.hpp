@@ -367,8 +367,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   // One contact (evaluate_contact): g's entry u is contact c. Pointers and the law are captured
   // by value (OpenMP would share them by reference, which the vectoriser cannot see through).
   using Out = Sums<Couples ? 9 : 6>;
-  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, auto vector_sweep, auto scatter_sweep)
-                 GRANWAVE_ALWAYS_INLINE -> bool {
+  auto one = [=](std::int64_t c, std::int64_t u, const G& g, Out& o, auto vector_sweep, auto scatter_sweep,
+                 auto keep_overlap) GRANWAVE_ALWAYS_INLINE -> bool {
     constexpr bool Vector = decltype(vector_sweep)::value;
     constexpr bool Scatter = decltype(scatter_sweep)::value;
     // r_j - r_i with j at its periodic image, a_i + a_j, the radii, v_i - v_j, the spins
@@ -378,7 +378,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     constexpr bool Quiet = Vector && QuietSweep;
     contact::Response res;
     bool open;
-    const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet>(
+    const bool deferred = evaluate_contact<Law, Vector, Dissipative, Quiet, NH, decltype(keep_overlap)::value>(
         law, hist, diss, cdelta, c, g.col[G::bx][u], g.col[G::by][u], g.col[G::bz][u], g.col[G::r][u],
         g.col[G::inv_r][u], g.col[G::reach][u], g.col[G::a_i][u], g.col[G::a_j][u],
         ReducedRadius ? g.col[G::r_eff][u] : std::numeric_limits<double>::quiet_NaN(), dv, w_i, w_j, inc, res, open);
@@ -404,14 +404,15 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
-  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep, auto masked) GRANWAVE_ALWAYS_INLINE {
+  auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep, auto masked,
+                   auto keep_overlap) GRANWAVE_ALWAYS_INLINE {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
     constexpr bool Masked = decltype(masked)::value;
     auto sweep = [=](std::int64_t s0, std::int64_t s1, const G& g, Out& o) GRANWAVE_ALWAYS_INLINE {
       sweep_contacts<Defers, kChunk>(
           s0, s1,
           [&](std::int64_t c, auto vector_sweep) GRANWAVE_ALWAYS_INLINE {
-            return one(c, c - s0, g, o, vector_sweep, scatter_sweep);
+            return one(c, c - s0, g, o, vector_sweep, scatter_sweep, keep_overlap);
           },
           [=] {
             if constexpr (QuietSweep) std::atomic_ref<bool>(*losses_booked).store(true, std::memory_order_relaxed);
@@ -464,14 +465,19 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
     }
   };
   if (scatter_mode != 0 && !shared) {
-    range(0, nc, std::true_type{}, std::false_type{});
+    // Within an advance (!list_current, no sample) nothing reads the overlaps of a radius-arm pass:
+    // its scatter has no delta n x f^t row, and the step that ends the advance stores them.
+    if (scatter_mode == 1 && !store_forces && !plan.list_current)
+      range(0, nc, std::true_type{}, std::false_type{}, std::false_type{});
+    else
+      range(0, nc, std::true_type{}, std::false_type{}, std::true_type{});
 #ifdef GRANWAVE_GATHER_VECTORS
     if (stream) simd::fence_streams();
 #endif
   } else if (scatter_mode != 0) {
 #ifdef GRANWAVE_GATHER_VECTORS
     in_parts(nc, parts, [=](std::int64_t c0, std::int64_t c1) {
-      range(c0, c1, std::true_type{}, std::true_type{});
+      range(c0, c1, std::true_type{}, std::true_type{}, std::true_type{});
       if (stream) simd::fence_streams();  // each thread its own stores
     });
     if (scatter_mode == 1)
@@ -481,7 +487,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
 #endif
   } else
     in_blocks(nc, d.threaded(), [=](std::int64_t c0, std::int64_t c1) {
-      range(c0, c1, std::false_type{}, std::false_type{});
+      range(c0, c1, std::false_type{}, std::false_type{}, std::true_type{});
     });
   return {scatter_mode == 0 ? 0 : scatter_mode + 1, Couples && scatter_mode != 0};
 }

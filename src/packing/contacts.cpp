@@ -31,10 +31,14 @@ std::vector<Touch> touching_pairs(const Packing& packing) {
     } else {
       len[a] = box.length(a);
     }
-    // Cells at least rc wide; at most about 2 N^(1/3) per axis (wider cells only cost time).
-    const double most = 2.0 * std::cbrt(static_cast<double>(ps.size())) + 2.0;
-    n[a] = static_cast<int>(std::clamp(std::floor(len[a] / rc), 1.0, most));
+    n[a] = static_cast<int>(std::clamp(std::floor(len[a] / rc), 1.0, 1e6));  // cells at least rc wide
   }
+  // At most about 8 cells a particle in all (a sparse box's empty cells only cost time); capped per
+  // axis instead, a tall column's cells would be several diameters high and hold three times the
+  // candidates.
+  const double cells = static_cast<double>(n[0]) * n[1] * n[2], most = 8.0 * static_cast<double>(ps.size()) + 27.0;
+  if (cells > most)
+    for (int a = 0; a < 3; ++a) n[a] = std::max(1, static_cast<int>(n[a] / std::cbrt(cells / most)));
   auto coord = [](const Vec3& v, int a) { return a == 0 ? v.x() : a == 1 ? v.y() : v.z(); };
   auto cell_index = [&](const Vec3& c) {
     std::array<int, 3> k{};

@@ -47,17 +47,24 @@ TEST_CASE("boundary words as LAMMPS writes them", "[packing]") {
 }
 
 TEST_CASE("touching pairs: the cell list finds exactly the pairs every pair tried finds", "[packing]") {
+  // A box, a tall column (more cells along z than along x and y) and a sparse box (more cells than
+  // the cap of about 8 a particle), each with z periodic and with z open.
+  struct Shape {
+    double lx, ly, lz;
+    int n;
+  };
+  for (const Shape& box : {Shape{5.0, 6.0, 7.0, 300}, Shape{3.0, 3.5, 60.0, 300}, Shape{30.0, 31.0, 32.0, 2000}})
   for (bool z_periodic : {true, false}) {
     Packing p;
     p.source = "random";
-    p.box.hi = {5.0, 6.0, 7.0};
+    p.box.hi = {box.lx, box.ly, box.lz};
     p.box.periodic = {true, true, z_periodic};
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (int i = 0; i < 300; ++i) {
+    for (int i = 0; i < box.n; ++i) {
       Particle q;
       q.id = i;
-      q.centre = Vec3(5.0 * u(rng), 6.0 * u(rng), 7.0 * u(rng));
+      q.centre = Vec3(box.lx * u(rng), box.ly * u(rng), box.lz * u(rng));
       q.radius = 0.3 + 0.2 * u(rng);
       p.particles.push_back(q);
     }
@@ -65,9 +72,9 @@ TEST_CASE("touching pairs: the cell list finds exactly the pairs every pair trie
     for (std::size_t i = 0; i < p.particles.size(); ++i)
       for (std::size_t j = i + 1; j < p.particles.size(); ++j) {
         Vec3 d = p.particles[j].centre - p.particles[i].centre;
-        d.vx -= std::round(d.vx / 5.0) * 5.0;
-        d.vy -= std::round(d.vy / 6.0) * 6.0;
-        if (z_periodic) d.vz -= std::round(d.vz / 7.0) * 7.0;
+        d.vx -= std::round(d.vx / box.lx) * box.lx;
+        d.vy -= std::round(d.vy / box.ly) * box.ly;
+        if (z_periodic) d.vz -= std::round(d.vz / box.lz) * box.lz;
         const double reach = p.particles[i].radius + p.particles[j].radius;
         if (d.norm() < reach) brute.push_back({i, j, reach - d.norm(), d});
       }
