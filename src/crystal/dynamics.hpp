@@ -40,7 +40,8 @@ namespace granwave::crystal {
 struct ContactList {
   SpreadVector<std::int32_t> i, j;
   SpreadVector<std::int8_t> image_x, image_y;  // j is taken at x_j + image_x box_x, y_j + image_y box_y (|image| <= 127)
-  SpreadVector<double> delta;               // overlap at the last evaluation (<= 0: open)
+  SpreadVector<double> delta;               // overlap at the last evaluation (<= 0: open); within an advance
+                                           // a pass may leave it (ContactPassPlan::list_current)
   SpreadVector<double> f_x, f_y, f_z;       // contact force on i (j gets minus), N (see ContactPassPlan::store_forces);
                                            // empty until a pass or a reader sizes them (keep_forces): +0.0
   // The force columns sized (+0.0) if still empty: a lattice pass keeps its forces by place, and a list
@@ -126,8 +127,9 @@ struct ContactPassPlan {
   // Write ContactList::f_x, f_y, f_z and Dynamics::end_arms (the layer stress of a sample reads
   // them); false lets a one-thread pass of a law with torques sum straight into contact_sums.
   bool store_forces = true;
-  // Leave the list's overlaps and losses current; false lets a pass that keeps its own (the lattice
-  // rows') bring them in at the last step of an advance (and the losses before the list is built again).
+  // Leave the list's overlaps and losses current; false lets a pass leave them until the last step of
+  // an advance: the lattice rows' pass keeps its own and brings them in then (the losses before the
+  // list is built again), a radius-arm gathered pass stores no overlaps (nothing reads them between).
   bool list_current = true;
 };
 // What the contact pass leaves for the finish: the rows per particle of Dynamics::contact_sums it
