@@ -31,7 +31,8 @@ std::vector<Touch> touching_pairs(const Packing& packing) {
     } else {
       len[a] = box.length(a);
     }
-    n[a] = static_cast<int>(std::clamp(std::floor(len[a] / rc), 1.0, 1e6));  // cells at least rc wide
+    // Cells at least rc wide (at most 1e6 along an axis, so the count fits an int; the cap below cuts it)
+    n[a] = static_cast<int>(std::clamp(std::floor(len[a] / rc), 1.0, 1e6));
   }
   // At most about 8 cells a particle in all (a sparse box's empty cells only cost time); capped per
   // axis instead, a tall column's cells would be several diameters high and hold three times the
