@@ -48,9 +48,32 @@ struct Gathered {
 using simd::load4, simd::store4, simd::transpose4, simd::transpose4_rows, simd::V4;
 #endif
 
-// rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0. The rows of particles
-// [p0, p1), four at a time where it can (also the one-thread drift's, Dynamics::kick_drift);
-// Stream: past the caches (simd::stream4; the caller fences).
+// rows: x y z a for every particle, then vx vy vz 0, then wx wy wz 0.
+#ifdef GRANWAVE_GATHER_VECTORS
+// The rows of particles p..p+3 from their values as lanes (n particles in all); Stream: past the
+// caches (simd::stream4; the caller fences).
+template <bool Stream>
+GRANWAVE_ALWAYS_INLINE inline void rows4(double* rows, std::int64_t n, std::int64_t p, const V4& x, const V4& y,
+                                         const V4& z, const V4& a, const V4& vx, const V4& vy, const V4& vz,
+                                         const V4& wx, const V4& wy, const V4& wz) {
+  const V4 zero{0.0, 0.0, 0.0, 0.0};
+  V4 r0, r1, r2, r3;
+  auto put = [](double* q, const V4& c0, const V4& c1, const V4& c2, const V4& c3) GRANWAVE_ALWAYS_INLINE {
+    if constexpr (Stream)
+      simd::stream4(q, c0), simd::stream4(q + 4, c1), simd::stream4(q + 8, c2), simd::stream4(q + 12, c3);
+    else
+      store4(q, c0), store4(q + 4, c1), store4(q + 8, c2), store4(q + 12, c3);
+  };
+  transpose4(x, y, z, a, r0, r1, r2, r3);
+  put(rows + 4 * p, r0, r1, r2, r3);
+  transpose4(vx, vy, vz, zero, r0, r1, r2, r3);
+  put(rows + 4 * n + 4 * p, r0, r1, r2, r3);
+  transpose4(wx, wy, wz, zero, r0, r1, r2, r3);
+  put(rows + 8 * n + 4 * p, r0, r1, r2, r3);
+}
+#endif
+// The rows of particles [p0, p1), four at a time where it can (also the one-thread drift's,
+// Dynamics::kick_drift); Stream: past the caches (the caller fences).
 template <bool Stream = false>
 GRANWAVE_ALWAYS_INLINE inline void fill_rows(const Dynamics& d, double* rows, std::int64_t p0, std::int64_t p1) {
   const std::int64_t n = static_cast<std::int64_t>(d.size());
@@ -62,22 +85,9 @@ GRANWAVE_ALWAYS_INLINE inline void fill_rows(const Dynamics& d, double* rows, st
   const double *wx = d.wx.data(), *wy = d.wy.data(), *wz = d.wz.data();
   std::int64_t p = p0;
 #ifdef GRANWAVE_GATHER_VECTORS
-  for (; p + 4 <= p1; p += 4) {
-    const V4 zero{0.0, 0.0, 0.0, 0.0};
-    V4 r0, r1, r2, r3;
-    auto put = [](double* q, const V4& c0, const V4& c1, const V4& c2, const V4& c3) GRANWAVE_ALWAYS_INLINE {
-      if constexpr (Stream)
-        simd::stream4(q, c0), simd::stream4(q + 4, c1), simd::stream4(q + 8, c2), simd::stream4(q + 12, c3);
-      else
-        store4(q, c0), store4(q + 4, c1), store4(q + 8, c2), store4(q + 12, c3);
-    };
-    transpose4(load4(x + p), load4(y + p), load4(z + p), load4(a + p), r0, r1, r2, r3);
-    put(pos + 4 * p, r0, r1, r2, r3);
-    transpose4(load4(vx + p), load4(vy + p), load4(vz + p), zero, r0, r1, r2, r3);
-    put(vel + 4 * p, r0, r1, r2, r3);
-    transpose4(load4(wx + p), load4(wy + p), load4(wz + p), zero, r0, r1, r2, r3);
-    put(rot + 4 * p, r0, r1, r2, r3);
-  }
+  for (; p + 4 <= p1; p += 4)
+    rows4<Stream>(rows, n, p, load4(x + p), load4(y + p), load4(z + p), load4(a + p), load4(vx + p), load4(vy + p),
+                  load4(vz + p), load4(wx + p), load4(wy + p), load4(wz + p));
 #endif
   for (; p < p1; ++p) {
     pos[4 * p] = x[p], pos[4 * p + 1] = y[p], pos[4 * p + 2] = z[p], pos[4 * p + 3] = a[p];

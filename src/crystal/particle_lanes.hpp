@@ -58,15 +58,23 @@ GRANWAVE_ALWAYS_INLINE inline V4 kicked4(const V4& v, const V4& f, const V4m& m,
 }
 // Kicks and drift of one coordinate of particles p..p+3 (x += dt v for the mobile ones); returns
 // the displacement from the packing's place, x - x0 (the caller takes x_build and x_relist from it).
+// v1 and x1: the new velocity and coordinate (for the caller's rows).
 template <int Kicks>
 GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const V4m& m,
-                                             const V4& hv, const V4& dtv, const V4& inv_m, std::int64_t p) {
-  const V4 v1 = kicked4<Kicks>(load4(v + p), f, m, hv, inv_m);
+                                             const V4& hv, const V4& dtv, const V4& inv_m, std::int64_t p, V4& v1,
+                                             V4& x1) {
+  v1 = kicked4<Kicks>(load4(v + p), f, m, hv, inv_m);
   const V4 x0 = load4(r + p);
-  const V4 x1 = m ? x0 + dtv * v1 : x0;
+  x1 = m ? x0 + dtv * v1 : x0;
   store4(v + p, v1);
   store4(r + p, x1);
   return x1 - load4(r0 + p);
+}
+template <int Kicks>
+GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const V4m& m,
+                                             const V4& hv, const V4& dtv, const V4& inv_m, std::int64_t p) {
+  V4 v1, x1;
+  return kick_drift4<Kicks>(v, r, f, r0, m, hv, dtv, inv_m, p, v1, x1);
 }
 
 }  // namespace granwave::crystal::lanes

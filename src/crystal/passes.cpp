@@ -417,29 +417,45 @@ Drift Dynamics::finish_kick_drift() {
   const float *xb = x_build_.data(), *yb = y_build_.data(), *zb = z_build_.data();
   const float *xr = relist_x().data(), *yr = relist_y().data(), *zr = relist_z().data();
   const bool relisted = !x_relist_.empty();  // else the relist's reference is the build's
+  // The arrays as local pointers: the lanes' stores may alias anything (simd::V4u), so members
+  // read through `this` would be loaded again after every store.
+  double *pvx = vx.data(), *pvy = vy.data(), *pvz = vz.data(), *px = x.data(), *py = y.data(), *pz = z.data();
+  double *pwx = wx.data(), *pwy = wy.data(), *pwz = wz.data();
+  const double *x0p = x0.data(), *y0p = y0.data(), *z0p = z0.data(), *a = radius.data();
+  const double *im = inv_mass.data(), *ii = inv_inertia.data();
+  const std::uint8_t* on = mobile.data();
   // Particles [q0, q1) (a multiple of four); bit 0: one of them left half the skin, bit 1: the
   // close pairs' margin (kick_drift's flags).
-  auto fours = [=, this](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
+  auto fours = [=](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
     V4m far4{0, 0, 0, 0}, near4{0, 0, 0, 0};
     for (std::int64_t p = q0; p < q1; p += 4) {
       V4 sx, sy, sz, tqx, tqy, tqz;
       take_rows(sums + 4 * p, sx, sy, sz);
-      torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, radius.data(), p, tqx, tqy,
-                                     tqz);
-      const V4m m = mobile4(mobile.data(), p);
-      const V4 inv_m = load4(inv_mass.data() + p);
-      const V4 ux = kick_drift4<2>(vx.data(), x.data(), sx, x0.data(), m, hv, dtv, inv_m, p);
-      const V4 uy = kick_drift4<2>(vy.data(), y.data(), sy, y0.data(), m, hv, dtv, inv_m, p);
-      const V4 uz = kick_drift4<2>(vz.data(), z.data(), sz, z0.data(), m, hv, dtv, inv_m, p);
+      torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, a, p, tqx, tqy, tqz);
+      const V4m m = mobile4(on, p);
+      const V4 inv_m = load4(im + p);
+      V4 v1x, v1y, v1z, x1, y1, z1;
+      const V4 ux = kick_drift4<2>(pvx, px, sx, x0p, m, hv, dtv, inv_m, p, v1x, x1);
+      const V4 uy = kick_drift4<2>(pvy, py, sy, y0p, m, hv, dtv, inv_m, p, v1y, y1);
+      const V4 uz = kick_drift4<2>(pvz, pz, sz, z0p, m, hv, dtv, inv_m, p, v1z, z1);
+      V4 w1x, w1y, w1z;
       if constexpr (Torques) {
-        const V4 inv_i = load4(inv_inertia.data() + p);
-        for (auto [w, t] : {std::pair{wx.data(), tqx}, std::pair{wy.data(), tqy}, std::pair{wz.data(), tqz}})
-          store4(w + p, kicked4<2>(load4(w + p), t, m, hv, inv_i));
+        const V4 inv_i = load4(ii + p);
+        w1x = kicked4<2>(load4(pwx + p), tqx, m, hv, inv_i);
+        w1y = kicked4<2>(load4(pwy + p), tqy, m, hv, inv_i);
+        w1z = kicked4<2>(load4(pwz + p), tqz, m, hv, inv_i);
+        store4(pwx + p, w1x), store4(pwy + p, w1y), store4(pwz + p, w1z);
       }
       const V4 d2 = displaced2(ux, uy, uz, xb, yb, zb, p);
       far4 |= d2 > far2v;
       near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
-      if (rows) stream ? kernel::fill_rows<true>(*this, rows, p, p + 4) : kernel::fill_rows<false>(*this, rows, p, p + 4);
+      if constexpr (Torques)
+        if (rows) {  // the contact pass's rows of these four, from the values just made
+          if (stream)
+            kernel::rows4<true>(rows, n, p, x1, y1, z1, load4(a + p), v1x, v1y, v1z, w1x, w1y, w1z);
+          else
+            kernel::rows4<false>(rows, n, p, x1, y1, z1, load4(a + p), v1x, v1y, v1z, w1x, w1y, w1z);
+        }
     }
     if (stream) simd::fence_streams();
     return ((far4[0] | far4[1] | far4[2] | far4[3]) & 1) | ((near4[0] | near4[1] | near4[2] | near4[3]) & 2);

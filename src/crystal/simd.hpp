@@ -36,7 +36,11 @@ GRANWAVE_ALWAYS_INLINE inline V4 load4(const double* p) { return *reinterpret_ca
 GRANWAVE_ALWAYS_INLINE inline void store4(double* p, const V4& v) { *reinterpret_cast<V4u*>(p) = v; }
 // Four floats widened to doubles (exact).
 GRANWAVE_ALWAYS_INLINE inline V4 load4(const float* p) {
+#ifdef __AVX__
+  return V4(_mm256_cvtps_pd(_mm_loadu_ps(p)));  // one widening (GCC splits the generic form in halves)
+#else
   return __builtin_convertvector(*reinterpret_cast<const V4f*>(p), V4);
+#endif
 }
 // Four signed bytes widened to doubles (exact): one load and two widening conversions where GCC
 // builds the vector from four scalar conversions through the stack.

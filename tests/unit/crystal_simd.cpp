@@ -294,8 +294,9 @@ TEST_CASE("simd: the particle passes' steps four at a time = the passes' scalar 
       const simd::V4 fv = simd::load4(f.data()), iv = simd::load4(inv.data());
       const simd::V4 k = kicks == 1 ? lanes::kicked4<1>(simd::load4(v0.data()), fv, m, hv, iv)
                                     : lanes::kicked4<2>(simd::load4(v0.data()), fv, m, hv, iv);
-      const simd::V4 u = kicks == 1 ? lanes::kick_drift4<1>(vel.data(), pos.data(), fv, r0.data(), m, hv, dtv, iv, 0)
-                                    : lanes::kick_drift4<2>(vel.data(), pos.data(), fv, r0.data(), m, hv, dtv, iv, 0);
+      simd::V4 v1, x1;  // the new velocity and coordinate as lanes (finish_kick_drift's rows)
+      const simd::V4 u = kicks == 1 ? lanes::kick_drift4<1>(vel.data(), pos.data(), fv, r0.data(), m, hv, dtv, iv, 0, v1, x1)
+                                    : lanes::kick_drift4<2>(vel.data(), pos.data(), fv, r0.data(), m, hv, dtv, iv, 0, v1, x1);
       const simd::V4 disp = u - simd::load4(rb);  // the passes' displacement since the build
       for (int q = 0; q < 4; ++q) {
         double vq = v0[q];
@@ -304,6 +305,8 @@ TEST_CASE("simd: the particle passes' steps four at a time = the passes' scalar 
         CHECK(same_bits(lane(k, q), vq));
         CHECK(same_bits(vel[q], vq));
         CHECK(same_bits(pos[q], xq));
+        CHECK(same_bits(lane(v1, q), vq));
+        CHECK(same_bits(lane(x1, q), xq));
         CHECK(same_bits(lane(disp, q), (xq - r0[q]) - static_cast<double>(rb[q])));
       }
     }
