@@ -13,12 +13,14 @@ MPI is the build's GRANWAVE_MPI (ON/OFF). Each test uses its own DIR (ctest -j r
 creation time. Exit 77 (ctest SKIP) with a reason when the test cannot run here: a build without
 MPI, no mpirun, or no h5py; never a silent pass.
 """
+import atexit
 import os
 import re
 import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 
 SKIP = 77
@@ -35,11 +37,25 @@ def fail(why):
     sys.exit(1)
 
 
+_session_base = []
+
+
+def session_base():
+    """This test's own base for Open MPI's session directories: under the shared /tmp/ompi.<host>.<uid>,
+    one mpirun ending removed that directory while another (ctest -j) was making its own in it
+    ("A call to mkdir was unable to create the desired directory", orte_init failed, exit 1)."""
+    if not _session_base:
+        _session_base.append(tempfile.mkdtemp(prefix="granwave-ompi-"))
+        atexit.register(shutil.rmtree, _session_base[0], True)
+    return _session_base[0]
+
+
 def mpi_env():
     env = dict(os.environ)
     # Open MPI refuses root unless told; --oversubscribe: more ranks than this machine's cores.
     env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
     env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
+    env["OMPI_MCA_orte_tmpdir_base"] = session_base()
     env.pop("OMP_NUM_THREADS", None)
     return env
 
