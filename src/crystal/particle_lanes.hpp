@@ -70,12 +70,6 @@ GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(double* v, double* r, const V4& f, 
   store4(r + p, x1);
   return x1 - load4(r0 + p);
 }
-template <int Kicks>
-GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const V4m& m,
-                                             const V4& hv, const V4& dtv, const V4& inv_m, std::int64_t p) {
-  V4 v1, x1;
-  return kick_drift4<Kicks>(v, r, f, r0, m, hv, dtv, inv_m, p, v1, x1);
-}
 
 }  // namespace granwave::crystal::lanes
 #endif

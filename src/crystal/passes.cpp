@@ -299,6 +299,7 @@ Drift Dynamics::kick_drift(std::int64_t from) {
   const double* __restrict ptz = tz.data();
   const double* __restrict im = inv_mass.data();
   const double* __restrict ii = inv_inertia.data();
+  const double* __restrict pa = radius.data();  // the gather rows' radii
   const double* __restrict x0p = x0.data();
   const double* __restrict y0p = y0.data();
   const double* __restrict z0p = z0.data();
@@ -362,19 +363,28 @@ Drift Dynamics::kick_drift(std::int64_t from) {
     for (; p + 4 <= q1; p += 4) {
       const V4m m = mobile4(on, p);
       const V4 imv = load4(im + p);
-      const V4 ux = kick_drift4<1>(pvx, px, load4(pfx + p), x0p, m, hv, dtv, imv, p);
-      const V4 uy = kick_drift4<1>(pvy, py, load4(pfy + p), y0p, m, hv, dtv, imv, p);
-      const V4 uz = kick_drift4<1>(pvz, pz, load4(pfz + p), z0p, m, hv, dtv, imv, p);
+      V4 v1x, v1y, v1z, x1, y1, z1;
+      const V4 ux = kick_drift4<1>(pvx, px, load4(pfx + p), x0p, m, hv, dtv, imv, p, v1x, x1);
+      const V4 uy = kick_drift4<1>(pvy, py, load4(pfy + p), y0p, m, hv, dtv, imv, p, v1y, y1);
+      const V4 uz = kick_drift4<1>(pvz, pz, load4(pfz + p), z0p, m, hv, dtv, imv, p, v1z, z1);
+      V4 w1x, w1y, w1z;
       if constexpr (Torques) {
         const V4 iiv = load4(ii + p);
-        for (auto [w, t] : {std::pair{pwx, ptx}, std::pair{pwy, pty}, std::pair{pwz, ptz}})
-          store4(w + p, kicked4<1>(load4(w + p), load4(t + p), m, hv, iiv));
+        w1x = kicked4<1>(load4(pwx + p), load4(ptx + p), m, hv, iiv);
+        w1y = kicked4<1>(load4(pwy + p), load4(pty + p), m, hv, iiv);
+        w1z = kicked4<1>(load4(pwz + p), load4(ptz + p), m, hv, iiv);
+        store4(pwx + p, w1x), store4(pwy + p, w1y), store4(pwz + p, w1z);
       }
       const V4 d2 = displaced2(ux, uy, uz, xb, yb, zb, p);
       far4 |= d2 > far2v;
       near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
-      if (rows)  // the contact pass's rows of these four
-        stream ? kernel::fill_rows<true>(*this, rows, p, p + 4) : kernel::fill_rows<false>(*this, rows, p, p + 4);
+      if constexpr (Torques)
+        if (rows) {  // the contact pass's rows of these four, from the values just made
+          if (stream)
+            kernel::rows4<true>(rows, n, p, x1, y1, z1, load4(pa + p), v1x, v1y, v1z, w1x, w1y, w1z);
+          else
+            kernel::rows4<false>(rows, n, p, x1, y1, z1, load4(pa + p), v1x, v1y, v1z, w1x, w1y, w1z);
+        }
     }
     if (stream) simd::fence_streams();  // each thread its own stores
     std::int64_t far = range(p, q1);
