@@ -71,6 +71,15 @@ GRANWAVE_ALWAYS_INLINE inline void rows4(double* rows, std::int64_t n, std::int6
   transpose4(wx, wy, wz, zero, r0, r1, r2, r3);
   put(rows + 8 * n + 4 * p, r0, r1, r2, r3);
 }
+// The same, past the caches or not as the run decides (Dynamics::streams).
+GRANWAVE_ALWAYS_INLINE inline void rows4(bool stream, double* rows, std::int64_t n, std::int64_t p, const V4& x,
+                                         const V4& y, const V4& z, const V4& a, const V4& vx, const V4& vy,
+                                         const V4& vz, const V4& wx, const V4& wy, const V4& wz) {
+  if (stream)
+    rows4<true>(rows, n, p, x, y, z, a, vx, vy, vz, wx, wy, wz);
+  else
+    rows4<false>(rows, n, p, x, y, z, a, vx, vy, vz, wx, wy, wz);
+}
 #endif
 // The rows of particles [p0, p1), four at a time where it can (also the one-thread drift's,
 // Dynamics::kick_drift); Stream: past the caches (the caller fences).

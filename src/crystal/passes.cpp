@@ -379,12 +379,8 @@ Drift Dynamics::kick_drift(std::int64_t from) {
       far4 |= d2 > far2v;
       near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
       if constexpr (Torques)
-        if (rows) {  // the contact pass's rows of these four, from the values just made
-          if (stream)
-            kernel::rows4<true>(rows, n, p, x1, y1, z1, load4(pa + p), v1x, v1y, v1z, w1x, w1y, w1z);
-          else
-            kernel::rows4<false>(rows, n, p, x1, y1, z1, load4(pa + p), v1x, v1y, v1z, w1x, w1y, w1z);
-        }
+        if (rows)  // the contact pass's rows of these four, from the values just made
+          kernel::rows4(stream, rows, n, p, x1, y1, z1, load4(pa + p), v1x, v1y, v1z, w1x, w1y, w1z);
     }
     if (stream) simd::fence_streams();  // each thread its own stores
     std::int64_t far = range(p, q1);
@@ -460,12 +456,8 @@ Drift Dynamics::finish_kick_drift() {
       far4 |= d2 > far2v;
       near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
       if constexpr (Torques)
-        if (rows) {  // the contact pass's rows of these four, from the values just made
-          if (stream)
-            kernel::rows4<true>(rows, n, p, x1, y1, z1, load4(a + p), v1x, v1y, v1z, w1x, w1y, w1z);
-          else
-            kernel::rows4<false>(rows, n, p, x1, y1, z1, load4(a + p), v1x, v1y, v1z, w1x, w1y, w1z);
-        }
+        if (rows)  // the contact pass's rows of these four, from the values just made
+          kernel::rows4(stream, rows, n, p, x1, y1, z1, load4(a + p), v1x, v1y, v1z, w1x, w1y, w1z);
     }
     if (stream) simd::fence_streams();
     return ((far4[0] | far4[1] | far4[2] | far4[3]) & 1) | ((near4[0] | near4[1] | near4[2] | near4[3]) & 2);
