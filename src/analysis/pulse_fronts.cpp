@@ -10,6 +10,53 @@
 
 namespace granwave::analysis {
 
+namespace {
+
+// y[n, p] = sum over j ascending of w[j] v[max(n - j, 0), p]: every output's terms in this order,
+// from 0.0 (the smoothing's definition, and the sums' bits).
+void convolve_rows(const std::vector<double>& v, std::vector<double>& y, std::size_t nt, std::size_t nl,
+                   const std::vector<double>& w) {
+  for (std::size_t n = 0; n < nt; ++n)
+    for (std::size_t j = 0; j < w.size(); ++j) {
+      const double wj = w[j];
+      const double* row = &v[(n >= j ? n - j : 0) * nl];
+      double* out = &y[n * nl];
+      for (std::size_t p = 0; p < nl; ++p) out[p] += wj * row[p];
+    }
+}
+
+// The same for kRows samples from n0 and kCols layers from p0, the sums held in registers (GCC's
+// vector type: with plain arrays it kept them in memory): the rows are visited newest first, which
+// is each output's j ascending, so that one load of a row serves the kRows outputs it enters (the
+// plain order loads each row once per output, and was bound by the L2).
+using Lanes = double __attribute__((vector_size(64), aligned(8)));  // eight doubles, unaligned loads
+#ifdef __AVX512F__
+constexpr std::size_t kRows = 8, kLanes = 2;  // 16 zmm of sums
+#else
+constexpr std::size_t kRows = 4, kLanes = 1;  // 8 ymm pairs
+#endif
+constexpr std::size_t kCols = 8 * kLanes;
+void convolve_block(const double* v, double* y, std::size_t nl, std::size_t n0, std::size_t p0, const std::vector<double>& w) {
+  const long m = static_cast<long>(w.size()), first = static_cast<long>(n0);
+  Lanes acc[kRows][kLanes] = {};
+  for (long r = first + static_cast<long>(kRows) - 1; r > first - m; --r) {
+    const Lanes* row = reinterpret_cast<const Lanes*>(v + static_cast<std::size_t>(std::max(r, 0L)) * nl + p0);
+#pragma GCC unroll 8
+    for (std::size_t b = 0; b < kRows; ++b) {
+      const long j = first + static_cast<long>(b) - r;  // output n0 + b's term of row r
+      if (j < 0 || j >= m) continue;
+      const double wj = w[static_cast<std::size_t>(j)];
+#pragma GCC unroll 2
+      for (std::size_t q = 0; q < kLanes; ++q) acc[b][q] += wj * row[q];
+    }
+  }
+  for (std::size_t b = 0; b < kRows; ++b)
+    for (std::size_t q = 0; q < kLanes; ++q)
+      for (std::size_t p = 0; p < 8; ++p) y[(n0 + b) * nl + p0 + 8 * q + p] = acc[b][q][p];
+}
+
+}  // namespace
+
 CrystalTrace smoothed(const CrystalTrace& trace, double duration, const CrystalAnalysisOptions& options) {
   const PulseSeries ps = pulse_series(trace, options);
   const std::vector<double>& v = trace.*ps.member;
@@ -27,28 +74,19 @@ CrystalTrace smoothed(const CrystalTrace& trace, double duration, const CrystalA
   double sum = 0.0;
   for (std::size_t j = 0; j < m; ++j) sum += w[j] = std::pow(std::sin(std::numbers::pi * (j + 0.5) / m), 2);
   for (double& x : w) x /= sum;
-  // Each (n, p) sums w[j] v[n - j] over j ascending; p innermost runs along a contiguous row, a block
-  // of kBlock layers' sums held in registers through the j loop (loads of v only, no stores per j).
-  constexpr std::size_t kBlock = 64;
   y.assign(nt * nl, 0.0);
-  for (std::size_t n = 0; n < nt; ++n) {
-    double* out_row = y.data() + n * nl;
-    for (std::size_t p0 = 0; p0 < nl; p0 += kBlock) {
-      if (p0 + kBlock <= nl) {
-        double acc[kBlock] = {};
-        for (std::size_t j = 0; j < m; ++j) {
-          const double wj = w[j];
-          const double* row = &v[(n >= j ? n - j : 0) * nl + p0];
-          for (std::size_t p = 0; p < kBlock; ++p) acc[p] += wj * row[p];
-        }
-        std::copy(acc, acc + kBlock, out_row + p0);
-      } else {
-        for (std::size_t j = 0; j < m; ++j) {
-          const double wj = w[j];
-          const double* row = &v[(n >= j ? n - j : 0) * nl];
-          for (std::size_t p = p0; p < nl; ++p) out_row[p] += wj * row[p];
-        }
+  if (nt < kRows || nl < kCols) {
+    convolve_rows(v, y, nt, nl, w);
+  } else {
+    // Blocks of kRows samples by kCols layers; the last block of each kind overlaps the one before
+    // (its outputs made again, the same bits) so that every block is whole.
+    for (std::size_t n0 = 0;; n0 += kRows) {
+      const std::size_t n = std::min(n0, nt - kRows);
+      for (std::size_t p0 = 0;; p0 += kCols) {
+        convolve_block(v.data(), y.data(), nl, n, std::min(p0, nl - kCols), w);
+        if (p0 + kCols >= nl) break;
       }
+      if (n0 + kRows >= nt) break;
     }
   }
   return out;

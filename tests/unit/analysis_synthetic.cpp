@@ -3,7 +3,9 @@
 // resolution (domega); the derivations are next to the checks.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
@@ -280,6 +282,36 @@ TEST_CASE("pulse fronts: a Hann-smoothed step rises over T to the step, a non-di
     ++measured;
   }
   CHECK(measured >= 3);
+}
+
+TEST_CASE("smoothed: the blocked sums are the definition's, term for term (regression)", "[analysis]") {
+  // Regression test of one route against another: smoothed() sums in blocks of samples and layers;
+  // each output must be the plain sum over j ascending of w[j] v[max(n - j, 0)] from 0.0, bit for bit,
+  // whatever the shape (blocks that overlap at the ends, windows shorter than a block, a trace
+  // narrower than a block's layers, which takes the plain loop).
+  for (const auto [nt, nl, m] : {std::array<std::size_t, 3>{37, 21, 5}, {1201, 200, 147}, {40, 33, 2}, {9, 17, 30},
+                                 {5, 3, 4}, {300, 16, 9}, {3, 40, 2}}) {
+    CrystalTrace tr;
+    tr.nt = nt, tr.nlayers = nl;
+    CounterRng rng(11, nt * 1000 + nl);
+    for (std::size_t n = 0; n < nt; ++n) tr.time.push_back(n * h);
+    for (std::size_t k = 0; k < nt * nl; ++k) tr.velocity_z.push_back(rng.uniform() - 0.5);
+    const CrystalTrace sm = smoothed(tr, static_cast<double>(m) * h);
+    std::vector<double> w(m);
+    double sum = 0.0;
+    for (std::size_t j = 0; j < m; ++j) sum += w[j] = std::pow(std::sin(std::numbers::pi * (j + 0.5) / m), 2);
+    for (double& x : w) x /= sum;
+    std::size_t differ = 0;
+    for (std::size_t n = 0; n < nt; ++n)
+      for (std::size_t p = 0; p < nl; ++p) {
+        double y = 0.0;
+        for (std::size_t j = 0; j < m; ++j) y += w[j] * tr.velocity_z[(n >= j ? n - j : 0) * nl + p];
+        differ += std::memcmp(&y, &sm.velocity_z[n * nl + p], sizeof y) != 0;
+      }
+    INFO("nt " << nt << ", nlayers " << nl << ", window " << m << " samples");
+    CHECK(sm.velocity_z.size() == nt * nl);
+    CHECK(differ == 0);
+  }
 }
 
 TEST_CASE("front and coda: a lone pulse has no coda, a trailing pulse is the coda's energy", "[analysis]") {
