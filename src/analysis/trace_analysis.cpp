@@ -185,6 +185,11 @@ PulseSeries pulse_series(const CrystalTrace& tr, const CrystalAnalysisOptions& o
   return ps;
 }
 
+std::vector<std::string> measured_series(char mode) {
+  if (mode == 'S') return {"layer_stress_zx", "layer_velocity_x", "layer_displacement_x"};
+  return {"layer_stress_zz", "layer_velocity_z", "layer_displacement_z"};
+}
+
 CrystalAnalysis analyze_crystal(const CrystalTrace& tr, const CrystalAnalysisOptions& opt) {
   CrystalAnalysis a;
   a.mode = tr.mode;

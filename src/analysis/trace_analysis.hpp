@@ -151,6 +151,11 @@ struct PulseSeries {
 };
 PulseSeries pulse_series(const CrystalTrace& trace, const CrystalAnalysisOptions& options);
 
+// The layer series a crystal analysis reads of a trace of mode 'P' or 'S' (pulse_series, the
+// wavenumber speed's and the dispersion's fields choose among them): the stress, velocity and
+// displacement along the mode's axis. The trace's other series cannot change a measure.
+std::vector<std::string> measured_series(char mode);
+
 // Five-layer local speed (header comment) from first-peak times t[i] at equal spacing dz;
 // entries without a full window (or with a missing time, NaN) are NaN.
 std::vector<Measured> local_speeds(const std::vector<double>& peak_times, double dz);

@@ -10,6 +10,7 @@
 #include <ostream>
 
 #include "analysis/report.hpp"
+#include "analysis/trace_analysis.hpp"
 #include "config/contact_laws.hpp"
 #include "core/error.hpp"
 #include "core/json.hpp"
@@ -271,9 +272,15 @@ int run(const config::Case& c, const RunRequest& req, std::ostream& out_all) {
   double v_lattice = 0.0;
   add_case_lattice(measure, c, d, LatticeNeed::when_not_sine, &v_lattice);
   // (a packing's bins: the analysis takes its slabs, fit range and pulse field from the trace's roles)
-  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, observables(), measure)
-                                                 : analysis::report_file(trace_path, observables(), measure);
+  // Read back only what the measures read: the file was written whole just now, and the other
+  // series would cost their reads, checksums and memory for nothing (`analyze` reads them all).
   const bool shear = c.excitation.mode == config::Excitation::Mode::S;
+  const std::vector<std::string> measured = analysis::measured_series(shear ? 'S' : 'P');
+  std::vector<Observable> read_back;
+  for (const Observable& o : observables())
+    if (std::find(measured.begin(), measured.end(), o.name) != measured.end()) read_back.push_back(o);
+  const analysis::FileReport rep = kept_trace ? analysis::report_file(*kept_trace, read_back, measure)
+                                                 : analysis::report_file(trace_path, read_back, measure);
   const double pss = static_cast<double>(packing.size()) * steps / std::max(seconds, 1e-12);
   if (req.json) {
     Json j = {{"schema", "granwave-run/1"},
