@@ -60,15 +60,19 @@ DispersionResult dispersion(const std::vector<double>& field, std::size_t nt, st
   for (std::size_t n = 0; n < nt; ++n)
     for (std::size_t p = 0; p < nz; ++p) in[p * nt + n] = field[n * nz + p];
   fftw_execute(plan.get());
+  // |F| once for every (k, omega), in place of the real parts (the spectrum, the maximum and the
+  // weights below read each several times).
+  double amax = 0.0;
+  for (std::size_t i = 0; i < nz * nw; ++i) {
+    out[i][0] = std::hypot(out[i][0], out[i][1]);
+    amax = std::max(amax, out[i][0]);
+  }
   // |F(omega_m, k_s)| for signed s: FFTW's forward sign is e^{-i k z}; ours is e^{+i k z}, so the
   // column of wavenumber s is FFTW's row (-s) mod nz.
   auto amp = [&](long s, std::size_t m) {
     const long q = ((-s) % static_cast<long>(nz) + static_cast<long>(nz)) % static_cast<long>(nz);
-    const fftw_complex& c = out[static_cast<std::size_t>(q) * nw + m];
-    return std::hypot(c[0], c[1]);
+    return out[static_cast<std::size_t>(q) * nw + m][0];
   };
-  double amax = 0.0;
-  for (std::size_t i = 0; i < nz * nw; ++i) amax = std::max(amax, std::hypot(out[i][0], out[i][1]));
 
   if (opt.keep_spectrum) {
     const long s_lo = -static_cast<long>((nz - 1) / 2), s_hi = static_cast<long>(nz / 2);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/numbers.hpp"
+
 namespace granwave::packing {
 
 std::vector<Touch> touching_pairs(const Packing& packing) {
@@ -90,7 +92,7 @@ std::vector<Touch> touching_pairs(const Packing& packing) {
               Vec3 d = ps[j].centre - ps[i].centre;
               double* dc[3] = {&d.vx, &d.vy, &d.vz};
               for (int a = 0; a < 3; ++a)
-                if (box.periodic[a]) *dc[a] -= std::round(*dc[a] / len[a]) * len[a];
+                if (box.periodic[a]) *dc[a] -= round_half_away(*dc[a] / len[a]) * len[a];
               const double reach = ps[i].radius + ps[j].radius;
               const double dist2 = d.squaredNorm();
               if (dist2 < reach * reach) out.push_back({i, j, reach - std::sqrt(dist2), d});

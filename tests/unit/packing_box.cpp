@@ -2,14 +2,38 @@
 // the cell list of touching pairs against every pair tried.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "core/error.hpp"
+#include "core/numbers.hpp"
 #include "packing/contacts.hpp"
 #include "packing/packing.hpp"
 
 using namespace granwave;
 using namespace granwave::packing;
+
+TEST_CASE("round_half_away is std::round, bit for bit, for every kind of double", "[packing]") {
+  // The pair searches' periodic image (touching_pairs, the crystal's find_pairs) takes it instead of
+  // libm's round: halves away from zero, signed zeros kept, integers and non-finite values unchanged.
+  std::vector<double> xs = {0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.49999999999999994, -0.49999999999999994,
+                            0.5000000000000001, 4503599627370495.5, -4503599627370495.5, 4503599627370496.0,
+                            9007199254740994.0, 1e300, -1e300, 5e-324, -5e-324, 0.3, -0.3, 1.0 - 1e-16,
+                            std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::quiet_NaN()};
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-4.0, 4.0);
+  for (int k = 0; k < 100000; ++k) xs.push_back(u(rng));
+  for (int k = -40; k <= 40; ++k) xs.push_back(k / 4.0), xs.push_back(std::nextafter(k / 4.0, 0.0));
+  std::size_t differ = 0;
+  for (const double x : xs) {
+    const double a = round_half_away(x), b = std::round(x);
+    differ += std::isnan(b) ? !std::isnan(a) : std::memcmp(&a, &b, sizeof a) != 0;
+  }
+  CHECK(differ == 0);
+}
 
 TEST_CASE("wrap maps periodic axes into the box, from lo up to but not hi, and leaves walls alone", "[packing]") {
   Box b;
