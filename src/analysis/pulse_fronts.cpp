@@ -33,7 +33,7 @@ using Lanes = double __attribute__((vector_size(64), aligned(8)));  // eight dou
 #ifdef __AVX512F__
 constexpr std::size_t kRows = 8, kLanes = 2;  // 16 zmm of sums
 #else
-constexpr std::size_t kRows = 4, kLanes = 1;  // 8 ymm pairs
+constexpr std::size_t kRows = 4, kLanes = 1;  // 4 x 2 ymm of sums
 #endif
 constexpr std::size_t kCols = 8 * kLanes;
 void convolve_block(const double* v, double* y, std::size_t nl, std::size_t n0, std::size_t p0, const std::vector<double>& w) {

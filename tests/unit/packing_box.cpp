@@ -16,8 +16,8 @@ using namespace granwave;
 using namespace granwave::packing;
 
 TEST_CASE("round_half_away is std::round, bit for bit, for every kind of double", "[packing]") {
-  // The pair searches' periodic image (touching_pairs, the crystal's find_pairs) takes it instead of
-  // libm's round: halves away from zero, signed zeros kept, integers and non-finite values unchanged.
+  // touching_pairs takes its periodic images with it instead of libm's round: halves away from zero,
+  // signed zeros kept, integers and non-finite values unchanged.
   std::vector<double> xs = {0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.49999999999999994, -0.49999999999999994,
                             0.5000000000000001, 4503599627370495.5, -4503599627370495.5, 4503599627370496.0,
                             9007199254740994.0, 1e300, -1e300, 5e-324, -5e-324, 0.3, -0.3, 1.0 - 1e-16,
