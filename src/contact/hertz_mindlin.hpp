@@ -254,6 +254,15 @@ struct HertzMindlinLaw {
     e += 0.4 * ((4.0 / 3.0) * e_star * a * delta) * delta;  // (2/5) A delta^(5/2) = (2/5) f_n delta
     if constexpr (H != MindlinHistory::none) e += tangential_energy(h, g8 * a);
   }
+  // The same from the contact radius the last evaluation kept, h.a = sqrt(R* delta) of the overlap
+  // it stored (the kernel's samples): the same terms, without the root and R*'s division.
+  template <class Energy>
+  void add_evaluated_energy(Energy& e, double delta, const History& h) const
+    requires(H != MindlinHistory::none)
+  {
+    e += 0.4 * ((4.0 / 3.0) * e_star * h.a * delta) * delta;
+    e += tangential_energy(h, g8 * h.a);
+  }
   LeverArm lever_arm() const { return p.lever_arm; }
   bool dissipates() const { return Damped || H != MindlinHistory::none; }
   HertzMindlinLaw<false, H, Hysteresis> without_rates() const { return HertzMindlinLaw<false, H, Hysteresis>(p); }

@@ -26,6 +26,13 @@
 // form above:
 //   template <class Energy> void add_stored_energy(Energy& e, double delta, const History&, double a_i, double a_j) const;
 //
+// and optionally, with it, for a law whose history keeps what that energy needs from the radii
+// and the overlap as its last evaluation made it (Hertz-Mindlin: the contact radius a):
+//   template <class Energy> void add_evaluated_energy(Energy& e, double delta, const History&) const;
+//                                     the same terms, bit for bit, when delta is the overlap that
+//                                     evaluation stored (the kernel's list after any pass: its
+//                                     samples take it, without the root and R*'s division)
+//
 // and optionally, for a law whose exact evaluation is expensive for a few contacts only (the
 // roots and divisions of sliding):
 //   Response evaluate(const Contact&, History&, Deferrable) const;
@@ -98,6 +105,11 @@ struct Deferrable {};
 template <class Law>
 concept StoredEnergyOfRadii = requires(const Law& law, double& e, const typename Law::History& h) {
   law.add_stored_energy(e, 0.0, h, 0.0, 0.0);
+};
+
+template <class Law>
+concept StoredEnergyOfEvaluation = requires(const Law& law, double& e, const typename Law::History& h) {
+  law.add_evaluated_energy(e, 0.0, h);
 };
 
 template <class Law>

@@ -99,6 +99,13 @@ struct WithRollingTorsion {
       base.add_stored_energy(e, delta, h.base);
     e += own_energy(h);
   }
+  template <class Energy>
+  void add_evaluated_energy(Energy& e, double delta, const History& h) const
+    requires StoredEnergyOfEvaluation<Base>
+  {
+    base.add_evaluated_energy(e, delta, h.base);
+    e += own_energy(h);
+  }
   LeverArm lever_arm() const { return base.lever_arm(); }
   bool dissipates() const { return true; }
   auto without_rates() const {

@@ -61,10 +61,15 @@ class StoredEnergy {
       return *this;
     }
   };
+  // A law that keeps what its energy takes from the radii in its history (contact/law.hpp): the
+  // form from its last evaluation, which the list's overlaps and histories are after any pass.
+  static constexpr bool from_evaluation = contact::StoredEnergyOfEvaluation<Law>;
   template <class Energy>
   GRANWAVE_ALWAYS_INLINE void stored_energy(Energy& e, double delta, const typename Law::History& h, double a_i,
                                             double a_j) const {
-    if constexpr (contact::StoredEnergyOfRadii<Law>)
+    if constexpr (from_evaluation)
+      law_.add_evaluated_energy(e, delta, h);
+    else if constexpr (contact::StoredEnergyOfRadii<Law>)
       law_.add_stored_energy(e, delta, h, a_i, a_j);
     else
       law_.add_stored_energy(e, delta, h);
@@ -102,7 +107,10 @@ class StoredEnergy {
           std::array<double, NH> h;
           layer_sums::unrolled<NH>([&](std::size_t q) { h[q] = column[q][c]; });
           EnergyTerms<NT> r;
-          stored_energy(r, dl[c], contact::history_from<History>(h), rad[pi[c]], rad[pj[c]]);
+          if constexpr (from_evaluation)  // no radii read
+            stored_energy(r, dl[c], contact::history_from<History>(h), 0.0, 0.0);
+          else
+            stored_energy(r, dl[c], contact::history_from<History>(h), rad[pi[c]], rad[pj[c]]);
           for (std::size_t k = 0; k < NT; ++k) out[k * stride + c - c0] = r.t[k];
         }
       }
