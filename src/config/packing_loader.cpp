@@ -38,9 +38,11 @@ std::array<std::array<double, 2>, 3> read_box(const TomlReader& r, const toml::t
   return box;
 }
 
-packing::Packing import(const PackingKeys& p) {
+// The file's packing, checked; `touching`: its touching pairs as the check found them.
+packing::Packing import(const PackingKeys& p, std::vector<packing::Touch>& touching) {
   packing::Limits limits;
   limits.max_overlap = p.max_overlap;
+  limits.touching = &touching;
   if (p.format == "lammps_data") return packing::read_lammps_data(p.file, p.units, p.boundary, limits);
   if (p.format == "lammps_dump") return packing::read_lammps_dump(p.file, p.units, limits);
   packing::Box box;
@@ -122,19 +124,20 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
   }
 
   packing::Packing pk;
+  std::vector<packing::Touch> touching;
   try {  // the importer names the packing file, its line and particle; the case that named the file leads
-    pk = import(p);
+    pk = import(p, touching);
   } catch (const InputError& e) {
     throw InputError(origin + ": packing.file: " + e.what());
   }
   if (pk.particles.empty()) throw InputError(origin + ": packing.file: " + p.file + ": no particles");
   apply_density(pk, p, k.density);
-  resolve_slabs(r, *t, "packing", p, pk, k);
+  resolve_slabs(r, *t, "packing", p, pk, touching, k);
   k.imported = std::make_shared<const packing::Packing>(std::move(pk));
 }
 
 void resolve_slabs(const TomlReader& r, const toml::table& t, const std::string& table, PackingKeys& p,
-                   const packing::Packing& pk, CrystalCase& k) {
+                   const packing::Packing& pk, const std::vector<packing::Touch>& touching, CrystalCase& k) {
   const auto positive = [](double v) { return v > 0; };
   const auto length = [&](const char* key) { return r.number_in(t, table, key, false, positive, "> 0 (m)"); };
   const std::optional<double> source = length("source_thickness"), fixed = length("fixed_thickness"), bin = length("bin_width");
@@ -166,7 +169,6 @@ void resolve_slabs(const TomlReader& r, const toml::table& t, const std::string&
     r.fail(key("bin_width"), "must be <= a third of the box's height " + std::to_string(height) + " m", t.get("bin_width"));
   // What the law is linearised at (crystal::derive): the mean radius and the contacts' mean overlap.
   double overlap_sum = 0.0;
-  const auto touching = packing::touching_pairs(pk);
   for (const packing::Touch& c : touching) overlap_sum += c.overlap;
   k.radius = r_mean;
   k.overlap = touching.empty() ? 0.0 : overlap_sum / static_cast<double>(touching.size()) / (2.0 * r_mean);

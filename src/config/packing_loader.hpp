@@ -4,6 +4,7 @@
 #pragma once
 #include "config/case.hpp"
 #include "config/toml_reader.hpp"
+#include "packing/contacts.hpp"
 
 namespace granwave::config {
 
@@ -17,9 +18,10 @@ void read_packing(const TomlReader& r, const toml::table& root, const toml::tabl
 
 // The slabs' and bins' keys of a periodic packing `pk` (in table `table`: "packing" or "random")
 // with their defaults (source 2 largest diameters deep, top as deep, bins a mean diameter), their
-// refusals, and what the law is linearised at (k.radius, k.overlap from pk's contacts); sets
-// k.packing_file = p (p's other keys as the caller filled them).
+// refusals, and what the law is linearised at (k.radius, k.overlap from pk's touching pairs, as
+// check_packing found them: packing::Limits::touching); sets k.packing_file = p (p's other keys as
+// the caller filled them).
 void resolve_slabs(const TomlReader& r, const toml::table& t, const std::string& table, PackingKeys& p,
-                   const packing::Packing& pk, CrystalCase& k);
+                   const packing::Packing& pk, const std::vector<packing::Touch>& touching, CrystalCase& k);
 
 }  // namespace granwave::config

@@ -213,6 +213,7 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c, bool pre
   }
 
   packing::Packing pk;
+  std::vector<packing::Touch> touching;  // check_packing's, for the slabs' mean overlap
   packing::Preparation prep;
   try {  // the generator's refusals name their key; here they get the case file's name
     if (prepared) {  // the system file's packing as its build prepared it (wrapped): to the last bit
@@ -245,11 +246,12 @@ void read_random(const TomlReader& r, const toml::table& root, Case& c, bool pre
     }
     packing::Limits limits;
     limits.max_overlap = max_overlap;
+    limits.touching = &touching;
     packing::check_packing(pk, limits);
   } catch (const InputError& e) {
     throw InputError(c.path + ": " + e.what());
   }
-  resolve_slabs(r, t, "random", p, pk, k);
+  resolve_slabs(r, t, "random", p, pk, touching, k);
   k.random = s;
   k.preparation = std::make_shared<const packing::Preparation>(prep);
   k.imported = std::make_shared<const packing::Packing>(std::move(pk));

@@ -88,7 +88,8 @@ void check_packing(const Packing& packing, const Limits& limits) {
                        " is less than three largest diameters " + num(6.0 * a_max) +
                        " (YADE's periodic cell needs them; allowed: >= " + num(6.0 * a_max) + ")");
   }
-  for (const auto& t : touching_pairs(packing)) {
+  std::vector<Touch> touches = touching_pairs(packing);
+  for (const auto& t : touches) {
     const double smaller = std::min(ps[t.i].radius, ps[t.j].radius);
     if (t.overlap > limits.max_overlap * smaller)
       throw InputError(where(packing, ps[t.i]) + " and particle id " + std::to_string(ps[t.j].id) +
@@ -96,6 +97,7 @@ void check_packing(const Packing& packing, const Limits& limits) {
                        " overlap by " + num(t.overlap) + ", " + num(t.overlap / smaller) +
                        " of the smaller radius (allowed: <= max_overlap = " + num(limits.max_overlap) + ")");
   }
+  if (limits.touching) *limits.touching = std::move(touches);
 }
 
 }  // namespace granwave::packing

@@ -1,6 +1,9 @@
 // Judges a packing before anything runs on it: every defect is an InputError (exit 2) that names
 // the file, the line and the particle, and says what is allowed.
 #pragma once
+#include <vector>
+
+#include "packing/contacts.hpp"
 #include "packing/packing.hpp"
 
 namespace granwave::packing {
@@ -11,6 +14,9 @@ struct Limits {
   double max_overlap = 0.05;
   // Largest contact reach (centre distance at which a contact acts); 0: twice the largest radius.
   double contact_reach = 0.0;
+  // Where check_packing leaves the touching pairs it judged (touching_pairs' list), for a caller
+  // that needs them of the same packing (the slabs' mean overlap); nullptr: not kept.
+  std::vector<Touch>* touching = nullptr;
 };
 
 // In this order: lateral walls (x or y not periodic), a centre outside a non-periodic axis or a
