@@ -250,9 +250,7 @@ struct HertzMindlinLaw {
   // Radii-dependent (R*), so the kernel passes them (contact/law.hpp, the optional form).
   template <class Energy>
   void add_stored_energy(Energy& e, double delta, const History& h, double a_i, double a_j) const {
-    const double a = std::sqrt(reduced_radius(a_i, a_j) * delta);
-    e += 0.4 * ((4.0 / 3.0) * e_star * a * delta) * delta;  // (2/5) A delta^(5/2) = (2/5) f_n delta
-    if constexpr (H != MindlinHistory::none) e += tangential_energy(h, g8 * a);
+    energy_at_radius(e, std::sqrt(reduced_radius(a_i, a_j) * delta), delta, h);
   }
   // The same from the contact radius the last evaluation kept, h.a = sqrt(R* delta) of the overlap
   // it stored (the kernel's samples): the same terms, without the root and R*'s division.
@@ -260,14 +258,19 @@ struct HertzMindlinLaw {
   void add_evaluated_energy(Energy& e, double delta, const History& h) const
     requires(H != MindlinHistory::none)
   {
-    e += 0.4 * ((4.0 / 3.0) * e_star * h.a * delta) * delta;
-    e += tangential_energy(h, g8 * h.a);
+    energy_at_radius(e, h.a, delta, h);
   }
   LeverArm lever_arm() const { return p.lever_arm; }
   bool dissipates() const { return Damped || H != MindlinHistory::none; }
   HertzMindlinLaw<false, H, Hysteresis> without_rates() const { return HertzMindlinLaw<false, H, Hysteresis>(p); }
 
  private:
+  // The stored energy at contact radius a and overlap delta, term by term.
+  template <class Energy>
+  void energy_at_radius(Energy& e, double a, double delta, const History& h) const {
+    e += 0.4 * ((4.0 / 3.0) * e_star * a * delta) * delta;  // (2/5) A delta^(5/2) = (2/5) f_n delta
+    if constexpr (H != MindlinHistory::none) e += tangential_energy(h, g8 * a);
+  }
   template <class T>
   double tangential_energy(const T& h, double k_t) const {
     const double s2 = h.t_x * h.t_x + h.t_y * h.t_y + h.t_z * h.t_z;
