@@ -190,13 +190,15 @@ def classify(body):
                 and len(parts) <= 2 or (mn.startswith("vextract") and "(" in dest)
             stack = any("%rsp" in p or "%rbp" in p for p in mem)
             w = width(ops, mn)
+            # bytes: the arrays' only (ceilings_figure.py's memory floors); a spill or a base pointer
+            # reloaded from the stack stays in the L1
             if store:
                 c["stores"] += 1
-                c["store_bytes"] += w
+                c["store_bytes"] += 0 if stack else w
                 c["stack_stores"] += stack
             else:
                 c["loads"] += 1
-                c["load_bytes"] += w
+                c["load_bytes"] += 0 if stack else w
                 c["stack_loads"] += stack
     return c
 
