@@ -118,6 +118,9 @@ struct Drift {
   bool far = false;         // a particle moved more than skin/2 since the list's build: rebuild
   bool near = false;        // one moved enough to refresh the close pairs (Dynamics::relist)
   bool rows_fresh = false;  // Dynamics::gather_rows hold the drifted state (one thread, no slab)
+  // Only the gather rows hold it: the arrays x..wz of particles [0, 4 floor(n/4)) are a step or more
+  // behind (Dynamics::state_in_rows) until Dynamics::state_from_rows.
+  bool state_in_rows = false;
 };
 // What the contact pass is asked to do.
 struct ContactPassPlan {
@@ -373,6 +376,13 @@ class Dynamics {
   // and a plain store would first read each line from memory. Results do not depend on it.
   std::size_t stream_min_particles = 65536;
   bool streams() const { return size() >= stream_min_particles; }
+  // From this many particles on (one thread, no slab), the gather rows are the state within an
+  // advance: the fused particle pass reads x, v and w from the rows it wrote the step before and
+  // writes only the rows, and the arrays are made from the rows where something reads them (the
+  // list's upkeep, the advance's last step); beyond the L2 that halves the pass's traffic, in it the
+  // transposes cost more than they save (docs/benchmarks.md, session 59). Results do not depend on it.
+  std::size_t state_in_rows_min_particles = 8192;
+  bool state_in_rows() const { return size() >= state_in_rows_min_particles && !slab_ && !threaded(); }
 
   // ---- energies (J) ----
   // Each is a sum per layer (particles in index order, contacts in list order counted in the
@@ -431,6 +441,7 @@ class Dynamics {
   void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (threaded when from < 0), from `from` on
   template <int Rows, bool Couples>
   Drift finish_kick_drift();  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time
+  void state_from_rows();     // x..wz of particles [0, 4 floor(n/4)) from the gather rows (Drift::state_in_rows)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   // Kinetic and/or Verlet (nullptr: not wanted), through layer_order().
   void add_particle_energies(double* kinetic, double* verlet) const;

@@ -59,16 +59,37 @@ GRANWAVE_ALWAYS_INLINE inline V4 kicked4(const V4& v, const V4& f, const V4m& m,
 // Kicks and drift of one coordinate of particles p..p+3 (x += dt v for the mobile ones); returns
 // the displacement from the packing's place, x - x0 (the caller takes x_build and x_relist from it).
 // v1 and x1: the new velocity and coordinate (for the caller's rows).
+// The same from the values v and x of the coordinate (the gather rows' copy of the state,
+// Dynamics::state_in_rows): nothing stored.
+template <int Kicks>
+GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(const V4& v, const V4& x, const V4& f, const double* r0, const V4m& m,
+                                             const V4& hv, const V4& dtv, const V4& inv_m, std::int64_t p, V4& v1,
+                                             V4& x1) {
+  v1 = kicked4<Kicks>(v, f, m, hv, inv_m);
+  x1 = m ? x + dtv * v1 : x;
+  return x1 - load4(r0 + p);
+}
+// From and to the arrays v and r.
 template <int Kicks>
 GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(double* v, double* r, const V4& f, const double* r0, const V4m& m,
                                              const V4& hv, const V4& dtv, const V4& inv_m, std::int64_t p, V4& v1,
                                              V4& x1) {
-  v1 = kicked4<Kicks>(load4(v + p), f, m, hv, inv_m);
-  const V4 x0 = load4(r + p);
-  x1 = m ? x0 + dtv * v1 : x0;
+  const V4 u = kick_drift4<Kicks>(load4(v + p), load4(r + p), f, r0, m, hv, dtv, inv_m, p, v1, x1);
   store4(v + p, v1);
   store4(r + p, x1);
-  return x1 - load4(r0 + p);
+  return u;
+}
+// The state of particles p..p+3 from their gather rows (kernel::rows4's layout: x y z a | v | w,
+// each kind a block of 4n doubles): x, y, z, a, v and w as lanes.
+GRANWAVE_ALWAYS_INLINE inline void state_of_rows(const double* rows, std::int64_t n, std::int64_t p, V4& x, V4& y,
+                                                 V4& z, V4& a, V4& vx, V4& vy, V4& vz, V4& wx, V4& wy, V4& wz) {
+  V4 unused;
+  const double* q = rows + 4 * p;
+  simd::transpose4(load4(q), load4(q + 4), load4(q + 8), load4(q + 12), x, y, z, a);
+  q += 4 * n;
+  simd::transpose4(load4(q), load4(q + 4), load4(q + 8), load4(q + 12), vx, vy, vz, unused);
+  q += 4 * n;
+  simd::transpose4(load4(q), load4(q + 4), load4(q + 8), load4(q + 12), wx, wy, wz, unused);
 }
 
 }  // namespace granwave::crystal::lanes

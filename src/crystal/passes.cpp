@@ -45,7 +45,8 @@ std::int64_t any_block_on_threads(std::int64_t p0, std::int64_t p1, const Body& 
 }
 
 #ifdef GRANWAVE_GATHER_VECTORS
-using lanes::kick_drift4, lanes::kicked4, lanes::mobile4, lanes::take_rows, lanes::torques_of_rows;
+using lanes::kick_drift4, lanes::kicked4, lanes::mobile4, lanes::state_of_rows, lanes::take_rows,
+    lanes::torques_of_rows;
 using simd::load4, simd::store4, simd::V4, simd::V4m;
 
 // |u - r|^2 of particles p..p+3: u = x - x0, r a reference displacement (the list's build, the relist).
@@ -431,8 +432,9 @@ Drift Dynamics::finish_kick_drift() {
   const double *im = inv_mass.data(), *ii = inv_inertia.data();
   const std::uint8_t* on = mobile.data();
   // Particles [q0, q1) (a multiple of four); bit 0: one of them left half the skin, bit 1: the
-  // close pairs' margin (kick_drift's flags).
-  auto fours = [=](std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
+  // close pairs' margin (kick_drift's flags). FromRows: x, v and w read from the gather rows and
+  // written there only (state_in_rows); else from and to the arrays, the rows written too.
+  auto fours = [=]<bool FromRows>(std::int64_t q0, std::int64_t q1) GRANWAVE_ALWAYS_INLINE -> std::int64_t {
     V4m far4{0, 0, 0, 0}, near4{0, 0, 0, 0};
     for (std::int64_t p = q0; p < q1; p += 4) {
       V4 sx, sy, sz, tqx, tqy, tqz;
@@ -440,36 +442,58 @@ Drift Dynamics::finish_kick_drift() {
       torques_of_rows<Rows, Couples>(sums + 4 * n, sums + 8 * n, sums + 4 * Rows * n, a, p, tqx, tqy, tqz);
       const V4m m = mobile4(on, p);
       const V4 inv_m = load4(im + p);
-      V4 v1x, v1y, v1z, x1, y1, z1;
-      const V4 ux = kick_drift4<2>(pvx, px, sx, x0p, m, hv, dtv, inv_m, p, v1x, x1);
-      const V4 uy = kick_drift4<2>(pvy, py, sy, y0p, m, hv, dtv, inv_m, p, v1y, y1);
-      const V4 uz = kick_drift4<2>(pvz, pz, sz, z0p, m, hv, dtv, inv_m, p, v1z, z1);
-      V4 w1x, w1y, w1z;
-      if constexpr (Torques) {
+      V4 v1x, v1y, v1z, x1, y1, z1, w1x, w1y, w1z, ux, uy, uz, ap;
+      if constexpr (FromRows) {
+        V4 x0, y0, z0, v0x, v0y, v0z, w0x, w0y, w0z;
+        state_of_rows(rows, n, p, x0, y0, z0, ap, v0x, v0y, v0z, w0x, w0y, w0z);
+        ux = kick_drift4<2>(v0x, x0, sx, x0p, m, hv, dtv, inv_m, p, v1x, x1);
+        uy = kick_drift4<2>(v0y, y0, sy, y0p, m, hv, dtv, inv_m, p, v1y, y1);
+        uz = kick_drift4<2>(v0z, z0, sz, z0p, m, hv, dtv, inv_m, p, v1z, z1);
         const V4 inv_i = load4(ii + p);
-        w1x = kicked4<2>(load4(pwx + p), tqx, m, hv, inv_i);
-        w1y = kicked4<2>(load4(pwy + p), tqy, m, hv, inv_i);
-        w1z = kicked4<2>(load4(pwz + p), tqz, m, hv, inv_i);
-        store4(pwx + p, w1x), store4(pwy + p, w1y), store4(pwz + p, w1z);
+        w1x = kicked4<2>(w0x, tqx, m, hv, inv_i);
+        w1y = kicked4<2>(w0y, tqy, m, hv, inv_i);
+        w1z = kicked4<2>(w0z, tqz, m, hv, inv_i);
+      } else {
+        ux = kick_drift4<2>(pvx, px, sx, x0p, m, hv, dtv, inv_m, p, v1x, x1);
+        uy = kick_drift4<2>(pvy, py, sy, y0p, m, hv, dtv, inv_m, p, v1y, y1);
+        uz = kick_drift4<2>(pvz, pz, sz, z0p, m, hv, dtv, inv_m, p, v1z, z1);
+        if constexpr (Torques) {
+          const V4 inv_i = load4(ii + p);
+          w1x = kicked4<2>(load4(pwx + p), tqx, m, hv, inv_i);
+          w1y = kicked4<2>(load4(pwy + p), tqy, m, hv, inv_i);
+          w1z = kicked4<2>(load4(pwz + p), tqz, m, hv, inv_i);
+          store4(pwx + p, w1x), store4(pwy + p, w1y), store4(pwz + p, w1z);
+          if (rows) ap = load4(a + p);
+        }
       }
       const V4 d2 = displaced2(ux, uy, uz, xb, yb, zb, p);
       far4 |= d2 > far2v;
       near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
       if constexpr (Torques)
-        if (rows)  // the contact pass's rows of these four, from the values just made
-          kernel::rows4(stream, rows, n, p, x1, y1, z1, load4(a + p), v1x, v1y, v1z, w1x, w1y, w1z);
+        if (FromRows || rows)  // the contact pass's rows of these four, from the values just made
+          kernel::rows4(stream, rows, n, p, x1, y1, z1, ap, v1x, v1y, v1z, w1x, w1y, w1z);
     }
     if (stream) simd::fence_streams();
     return ((far4[0] | far4[1] | far4[2] | far4[3]) & 1) | ((near4[0] | near4[1] | near4[2] | near4[3]) & 2);
   };
   const std::int64_t p = n / 4 * 4;
-  // Threaded: the rows of the threaded contact pass (kernel::in_parts).
-  const std::int64_t far = threaded() ? any_block_on_threads(0, p, fours) : fours(0, p);
-  Drift drift{(far & 1) != 0, (far & 2) != 0, rows != nullptr};
-  if (p < n) {
+  // The rows hold the state at this drift's start whenever they are sized (the contact pass just
+  // read them, refilled from the arrays or left by the drift before); one thread only.
+  const bool from_rows = Torques && rows && state_in_rows();
+  std::int64_t far = 0;
+  if (from_rows)
+    far = fours.template operator()<true>(0, p);
+  else if (threaded())  // the rows of the threaded contact pass (kernel::in_parts)
+    far = any_block_on_threads(0, p, [&](std::int64_t q0, std::int64_t q1) {
+      return fours.template operator()<false>(q0, q1);
+    });
+  else
+    far = fours.template operator()<false>(0, p);
+  Drift drift{(far & 1) != 0, (far & 2) != 0, rows != nullptr, from_rows};
+  if (p < n) {  // the tail in the arrays (and its rows: kick_drift's with no slab)
     finish_pass<true, Rows, Couples>(h, p);
     const Drift tail = kick_drift<Torques, false>(p);
-    drift = {drift.far || tail.far, drift.near || tail.near, tail.rows_fresh};
+    drift = {drift.far || tail.far, drift.near || tail.near, tail.rows_fresh, from_rows};
   }
   return drift;
 #else
@@ -489,6 +513,22 @@ Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
   const bool threads = threaded();
   return torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
                   : (threads ? kick_drift<false, true>() : kick_drift<false, false>());
+}
+
+void Dynamics::state_from_rows() {
+#ifdef GRANWAVE_GATHER_VECTORS
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  const double* rows = gather_rows.data();
+  double *px = x.data(), *py = y.data(), *pz = z.data(), *pvx = vx.data(), *pvy = vy.data(), *pvz = vz.data();
+  double *pwx = wx.data(), *pwy = wy.data(), *pwz = wz.data();
+  for (std::int64_t p = 0; p + 4 <= n; p += 4) {
+    V4 qx, qy, qz, qa, qvx, qvy, qvz, qwx, qwy, qwz;
+    state_of_rows(rows, n, p, qx, qy, qz, qa, qvx, qvy, qvz, qwx, qwy, qwz);
+    store4(px + p, qx), store4(py + p, qy), store4(pz + p, qz);
+    store4(pvx + p, qvx), store4(pvy + p, qvy), store4(pvz + p, qvz);
+    store4(pwx + p, qwx), store4(pwy + p, qwy), store4(pwz + p, qwz);
+  }
+#endif
 }
 
 void Dynamics::upkeep_list(const Drift& drift) {
@@ -513,6 +553,8 @@ void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
   for (long s = 1; s <= k; ++s) {
     const bool last = s == k;
     const Drift drift = half_kick_drift(waiting);  // v(t + dt/2), x(t + dt)
+    // the arrays again for what reads them: the list's upkeep, the last step's finish and the caller
+    if (drift.state_in_rows && (last || drift.far || drift.near)) state_from_rows();
     time += dt_;
     ++steps;
     lap(PhaseTimes::kick_drift);

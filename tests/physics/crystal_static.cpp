@@ -385,6 +385,62 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   }
 }
 
+TEST_CASE("the gather rows as the state within an advance give the same bits as the arrays",
+          "[crystal][static][route]") {
+  // Regression (route against route). From Dynamics::state_in_rows_min_particles on, the fused
+  // particle pass of an advance reads x, v and w from the gather rows and writes only the rows; the
+  // arrays are made again before the list's upkeep and the advance's last step. Lowered to 0 on a
+  // small crystal (and on one whose count is not a multiple of four, its tail in the arrays), with
+  // the particles fast enough to relist and rebuild within an advance: every state, force, layer
+  // stress and energy agrees with the arrays' route to the last bit, for every law whose contact
+  // pass reads the rows.
+  const RouteLaws r = route_laws();
+  const crystal::Packing whole = crystal::make_packing(r.c);
+  crystal::Packing short_of_three = whole;  // three top-layer (fixed) particles fewer: n % 4 = 1
+  for (auto* v : {&short_of_three.x, &short_of_three.y, &short_of_three.z, &short_of_three.radius,
+                  &short_of_three.mass, &short_of_three.inertia})
+    v->resize(v->size() - 3);
+  short_of_three.layer.resize(short_of_three.layer.size() - 3);
+  short_of_three.fixed.resize(short_of_three.fixed.size() - 3);
+  for (const crystal::Packing* packing : {&whole, static_cast<const crystal::Packing*>(&short_of_three)}) {
+    const Disturbed base = disturb(*packing);
+    for (const contact::LawParams& cp : all_laws(r)) {
+      const auto model = crystal::case_model(cp, r.c.crystal->density);
+      crystal::Dynamics arrays(base.p, model, 2e-7), in_rows(base.p, model, 2e-7);
+      arrays.state_in_rows_min_particles = ~std::size_t{0};
+      in_rows.state_in_rows_min_particles = 0;
+      std::vector<double> zz[2], zx[2];
+      for (auto* d : {&arrays, &in_rows}) {
+        d->parallel_min_particles = ~std::size_t{0};  // one thread: the fused route
+        set_sliding_motion(*d, base);
+        for (std::size_t q = 0; q < base.p.size(); ++q) d->vz[q] *= 1e4;  // ~10 m/s along z: the lists move
+        for (int k = 0; k < 4; ++k) d->advance(25);  // fused steps, each 25th stores the forces (a sample)
+        const int route = d == &arrays ? 0 : 1;
+        crystal::layer_stress(*d, zz[route], zx[route]);
+      }
+      CHECK(!arrays.state_in_rows());  // the routes really differ
+      CHECK(in_rows.state_in_rows());
+      // the linear laws' soft springs let the particles travel: relists and rebuilds within advances
+      if (!cp.find<contact::HertzMindlinCaseParams>()) CHECK(in_rows.relists + in_rows.rebuilds > 10);
+      CHECK(in_rows.relists == arrays.relists);
+      CHECK(in_rows.rebuilds == arrays.rebuilds);
+      for (auto f : {&crystal::Dynamics::fx, &crystal::Dynamics::fy, &crystal::Dynamics::fz, &crystal::Dynamics::tx,
+                     &crystal::Dynamics::ty, &crystal::Dynamics::tz, &crystal::Dynamics::x, &crystal::Dynamics::y,
+                     &crystal::Dynamics::z, &crystal::Dynamics::vx, &crystal::Dynamics::vy, &crystal::Dynamics::vz,
+                     &crystal::Dynamics::wx, &crystal::Dynamics::wy, &crystal::Dynamics::wz})
+        CHECK(arrays.*f == in_rows.*f);
+      CHECK(arrays.contacts.f_x == in_rows.contacts.f_x);
+      CHECK(arrays.contacts.f_z == in_rows.contacts.f_z);
+      CHECK(arrays.contacts.delta == in_rows.contacts.delta);
+      CHECK(zz[0] == zz[1]);
+      CHECK(zx[0] == zx[1]);
+      CHECK(arrays.potential_energy() == in_rows.potential_energy());
+      CHECK(arrays.dissipated_energy() == in_rows.dissipated_energy());
+      CHECK(arrays.dissipated_energy() > 0.0);
+    }
+  }
+}
+
 TEST_CASE("stores past the caches (a crystal beyond the L3) give the same bits as plain stores",
           "[crystal][static][route]") {
   // From Dynamics::stream_min_particles on, the kick and drift write the gather rows, and a
