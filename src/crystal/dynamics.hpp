@@ -376,13 +376,16 @@ class Dynamics {
   // and a plain store would first read each line from memory. Results do not depend on it.
   std::size_t stream_min_particles = 65536;
   bool streams() const { return size() >= stream_min_particles; }
-  // From this many particles on (one thread, no slab), the gather rows are the state within an
-  // advance: the fused particle pass reads x, v and w from the rows it wrote the step before and
-  // writes only the rows, and the arrays are made from the rows where something reads them (the
-  // list's upkeep, the advance's last step); beyond the L2 that halves the pass's traffic, in it the
-  // transposes cost more than they save (docs/benchmarks.md, session 59). Results do not depend on it.
+  // From this many particles on, up to those that stream (one thread, no slab), the gather rows are
+  // the state within an advance: the fused particle pass reads x, v and w from the rows it wrote the
+  // step before and writes only the rows, and the arrays are made from the rows where something reads
+  // them (the list's upkeep, the advance's last step). Beyond the L2 that takes a fifth off the pass;
+  // in it the transposes cost more than they save, and from memory (streams()) it gains nothing
+  // (docs/benchmarks.md, session 59). Results do not depend on it.
   std::size_t state_in_rows_min_particles = 8192;
-  bool state_in_rows() const { return size() >= state_in_rows_min_particles && !slab_ && !threaded(); }
+  bool state_in_rows() const {
+    return size() >= state_in_rows_min_particles && !streams() && !slab_ && !threaded();
+  }
 
   // ---- energies (J) ----
   // Each is a sum per layer (particles in index order, contacts in list order counted in the
