@@ -58,9 +58,8 @@ GRANWAVE_ALWAYS_INLINE inline V4 kicked4(const V4& v, const V4& f, const V4m& m,
 }
 // Kicks and drift of one coordinate of particles p..p+3 (x += dt v for the mobile ones); returns
 // the displacement from the packing's place, x - x0 (the caller takes x_build and x_relist from it).
-// v1 and x1: the new velocity and coordinate (for the caller's rows).
-// The same from the values v and x of the coordinate (the gather rows' copy of the state,
-// Dynamics::state_in_rows): nothing stored.
+// v1 and x1: the new velocity and coordinate (for the caller's rows). This form from the values v and
+// x (the gather rows' copy of the state, Dynamics::state_in_rows), nothing stored:
 template <int Kicks>
 GRANWAVE_ALWAYS_INLINE inline V4 kick_drift4(const V4& v, const V4& x, const V4& f, const double* r0, const V4m& m,
                                              const V4& hv, const V4& dtv, const V4& inv_m, std::int64_t p, V4& v1,

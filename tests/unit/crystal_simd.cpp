@@ -157,6 +157,25 @@ TEST_CASE("simd: the particle rows (fill_rows) = the state copied one value at a
   }
 }
 
+TEST_CASE("simd: the state read back from the particle rows (state_of_rows) = the state the rows were filled from",
+          "[crystal][simd]") {
+  for (const std::size_t n : {std::size_t{4}, std::size_t{16}}) {
+    const Dynamics d = particles(n);
+    SpreadVector<double> rows(12 * n, 1.0);
+    kernel::fill_rows(d, rows.data(), 0, static_cast<std::int64_t>(n));
+    for (std::int64_t p = 0; p < static_cast<std::int64_t>(n); p += 4) {
+      simd::V4 q[10];
+      lanes::state_of_rows(rows.data(), static_cast<std::int64_t>(n), p, q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7],
+                           q[8], q[9]);
+      for (int l = 0; l < 4; ++l) {
+        const std::size_t i = static_cast<std::size_t>(p + l);
+        const double want[10] = {d.x[i], d.y[i], d.z[i], d.radius[i], d.vx[i], d.vy[i], d.vz[i], d.wx[i], d.wy[i], d.wz[i]};
+        for (int k = 0; k < 10; ++k) CHECK(same_bits(q[k][l], want[k]));
+      }
+    }
+  }
+}
+
 TEST_CASE("simd: the gather of a chunk's columns = the contact's own scalar expressions", "[crystal][simd]") {
   const std::size_t n = 30;
   const Dynamics d = particles(n);
@@ -298,6 +317,10 @@ TEST_CASE("simd: the particle passes' steps four at a time = the passes' scalar 
       const simd::V4 u = kicks == 1 ? lanes::kick_drift4<1>(vel.data(), pos.data(), fv, r0.data(), m, hv, dtv, iv, 0, v1, x1)
                                     : lanes::kick_drift4<2>(vel.data(), pos.data(), fv, r0.data(), m, hv, dtv, iv, 0, v1, x1);
       const simd::V4 disp = u - simd::load4(rb);  // the passes' displacement since the build
+      simd::V4 v1r, x1r;  // the form that reads the state as values (Dynamics::state_in_rows) and stores nothing
+      const simd::V4 ur =
+          kicks == 1 ? lanes::kick_drift4<1>(simd::load4(v0.data()), simd::load4(x0.data()), fv, r0.data(), m, hv, dtv, iv, 0, v1r, x1r)
+                     : lanes::kick_drift4<2>(simd::load4(v0.data()), simd::load4(x0.data()), fv, r0.data(), m, hv, dtv, iv, 0, v1r, x1r);
       for (int q = 0; q < 4; ++q) {
         double vq = v0[q];
         for (int s = 0; s < kicks; ++s) vq = on[q] ? vq + h * f[q] * inv[q] : vq;
@@ -308,6 +331,9 @@ TEST_CASE("simd: the particle passes' steps four at a time = the passes' scalar 
         CHECK(same_bits(lane(v1, q), vq));
         CHECK(same_bits(lane(x1, q), xq));
         CHECK(same_bits(lane(disp, q), (xq - r0[q]) - static_cast<double>(rb[q])));
+        CHECK(same_bits(lane(v1r, q), vq));
+        CHECK(same_bits(lane(x1r, q), xq));
+        CHECK(same_bits(lane(ur, q), xq - r0[q]));
       }
     }
   }
