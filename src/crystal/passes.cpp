@@ -470,7 +470,7 @@ Drift Dynamics::finish_kick_drift() {
       far4 |= d2 > far2v;
       near4 |= (relisted ? displaced2(ux, uy, uz, xr, yr, zr, p) : d2) > near2v;
       if constexpr (Torques)
-        if (FromRows || rows)  // the contact pass's rows of these four, from the values just made
+        if (rows)  // the contact pass's rows of these four, from the values just made (always FromRows)
           kernel::rows4(stream, rows, n, p, x1, y1, z1, ap, v1x, v1y, v1z, w1x, w1y, w1z);
     }
     if (stream) simd::fence_streams();

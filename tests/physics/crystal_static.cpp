@@ -128,8 +128,6 @@ std::vector<contact::LawParams> all_laws(const RouteLaws& r) {
   laws.insert(laws.end(), r.rolling.begin(), r.rolling.end());
   return laws;
 }
-// The disturbed velocities, and spins so fast that the surfaces slide past each other at ~0.3 m/s
-// (contacts slip).
 // The packing without its last three (top-layer, fixed) particles: a count not a multiple of four
 // when `whole`'s is.
 crystal::Packing three_fewer(const crystal::Packing& whole) {
@@ -139,6 +137,8 @@ crystal::Packing three_fewer(const crystal::Packing& whole) {
   p.fixed.resize(p.fixed.size() - 3);
   return p;
 }
+// The disturbed velocities, and spins so fast that the surfaces slide past each other at ~0.3 m/s
+// (contacts slip).
 void set_sliding_motion(crystal::Dynamics& d, const Disturbed& base) {
   for (std::size_t q = 0; q < base.p.size(); ++q) {
     d.vx[q] = base.v[3 * q], d.vy[q] = base.v[3 * q + 1], d.vz[q] = base.v[3 * q + 2];
