@@ -122,6 +122,12 @@ struct Drift {
   // behind (Dynamics::state_in_rows) until Dynamics::state_from_rows.
   bool state_in_rows = false;
 };
+// The next step's finish, half kick and drift made behind a one-thread contact pass (Dynamics::
+// finish_behind): the four-particle groups [0, done) and their drift's report.
+struct Behind {
+  std::int64_t done = 0;
+  bool far = false, near = false;
+};
 // What the contact pass is asked to do.
 struct ContactPassPlan {
   double increment_time = 0.0;  // the springs advance by it
@@ -134,6 +140,9 @@ struct ContactPassPlan {
   // an advance: the lattice rows' pass keeps its own and brings them in then (the losses before the
   // list is built again), a radius-arm gathered pass stores no overlaps (nothing reads them between).
   bool list_current = true;
+  // Not null: finish, kick and drift the particles whose sums are whole behind the pass (one thread:
+  // Dynamics::finish_behind), the next step's drift_behind the rest.
+  Behind* behind = nullptr;
 };
 // What the contact pass leaves for the finish: the rows per particle of Dynamics::contact_sums it
 // filled (one thread: 1 f, 2 and n x f^t, 3 and delta n x f^t), 0 when the finish sums the
@@ -386,6 +395,15 @@ class Dynamics {
   bool state_in_rows() const {
     return size() >= state_in_rows_min_particles && !streams() && !slab_ && !threaded();
   }
+  // Where the rows are the state, the next step's finish, half kick and drift run behind the one-thread
+  // contact pass, at least this many particles at a time once their sums are whole (the list is sorted
+  // by i with i < j), while their rows and sums are still in the L2: the disordered row's loop 0.93-0.95
+  // (docs/benchmarks.md, session 60); 0: after the pass. Results do not depend on it.
+  std::size_t behind_batch = 4096;
+  bool finishes_behind() const;
+  // The four-particle groups below `below` (rounded down) not yet done, once at least behind_batch
+  // particles or the last of them wait; `rows`, `couples`: the sums' layout (ContactSums).
+  void finish_behind(Behind& behind, int rows, bool couples, std::int64_t below);
 
   // ---- energies (J) ----
   // Each is a sum per layer (particles in index order, contacts in list order counted in the
@@ -428,6 +446,8 @@ class Dynamics {
   // The first half kick and drift, after the finish of the step before when its sums `waiting`
   // were left for it (one thread: finish_kick_drift).
   Drift half_kick_drift(const ContactSums& waiting);
+  // The same when the contact pass made part of it behind it: the groups it left, then the tail.
+  Drift drift_behind(const ContactSums& waiting, Behind& behind);
   // Contact-list upkeep: a rebuild when the drift took a particle out of its skin (under a slab
   // plan, when it did on any rank).
   void upkeep_list(const Drift& drift);
@@ -442,8 +462,10 @@ class Dynamics {
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   template <bool Kick, int Rows, bool Couples>
   void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (threaded when from < 0), from `from` on
+  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time; with q1 >= 0 only the
+  // groups [q0, q1) from the gather rows (finish_behind)
   template <int Rows, bool Couples>
-  Drift finish_kick_drift();  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time
+  Drift finish_kick_drift(std::int64_t q0 = 0, std::int64_t q1 = -1);
   void state_from_rows();     // x..wz of particles [0, 4 floor(n/4)) from the gather rows (Drift::state_in_rows)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   // Kinetic and/or Verlet (nullptr: not wanted), through layer_order().

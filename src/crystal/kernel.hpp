@@ -404,6 +404,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
   };
   // The contacts [c0, c1) of a block, a chunk at a time: the chunk's particle data are gathered
   // into columns (row loads and transposes), then the loop over its contacts reads them as vectors.
+  [[maybe_unused]] Behind* behind = parts == 1 ? plan.behind : nullptr;  // the next drift behind the pass (one thread)
+  [[maybe_unused]] Dynamics* dyn = &d;
   auto range = [=](std::int64_t c0, std::int64_t c1, auto scatter_sweep, auto masked,
                    auto keep_overlap) GRANWAVE_ALWAYS_INLINE {
     constexpr bool Scatter = decltype(scatter_sweep)::value;
@@ -460,6 +462,8 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
             cnx[s0 + u] = o.col[3][u], cny[s0 + u] = o.col[4][u], cnz[s0 + u] = o.col[5][u];
             if constexpr (Couples) ccx[s0 + u] = o.col[6][u], ccy[s0 + u] = o.col[7][u], ccz[s0 + u] = o.col[8][u];
           }
+        if constexpr (!Masked)  // the particles below the next chunk's first i have their sums whole
+          if (behind) dyn->finish_behind(*behind, scatter_mode + 1, Couples, s1 < nc ? std::int64_t{ci[s1]} : np);
       }
 #endif
     }

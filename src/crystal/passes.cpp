@@ -1,4 +1,4 @@
-// The time step of the crystal (Dynamics::advance): velocity Verlet's particle passes -- the
+// Velocity Verlet's particle passes of the crystal's time step (its phases in order: advance.cpp) -- the
 // half kicks and drift, the finish of the contact pass's sums into forces and torques.
 // 256-bit vectors for the contact loop (4 contacts per instruction; lane-wise IEEE: the same results
 // at any width). With AVX-512 this still uses its masks and 32 registers; 512-bit vectors were
@@ -412,7 +412,7 @@ Drift Dynamics::kick_drift(std::int64_t from) {
 // time, F and the torques kept in registers (fx..tz are not stored: the step's last finish
 // writes them); the last n % 4 particles through the two passes as they are.
 template <int Rows, bool Couples>
-Drift Dynamics::finish_kick_drift() {
+Drift Dynamics::finish_kick_drift(std::int64_t q0, std::int64_t q1) {
 #ifdef GRANWAVE_GATHER_VECTORS
   constexpr bool Torques = Rows >= 2;
   const double h = 0.5 * dt_, dt = dt_, far2 = far2_, near2 = near2_;
@@ -477,6 +477,10 @@ Drift Dynamics::finish_kick_drift() {
     return ((far4[0] | far4[1] | far4[2] | far4[3]) & 1) | ((near4[0] | near4[1] | near4[2] | near4[3]) & 2);
   };
   const std::int64_t p = n / 4 * 4;
+  if (q1 >= 0) {  // groups behind the contact pass (finish_behind: the rows are the state)
+    const std::int64_t f = fours.template operator()<true>(q0, q1);
+    return {(f & 1) != 0, (f & 2) != 0, true, true};
+  }
   // The rows hold the state at this drift's start whenever they are sized (the contact pass just
   // read them, refilled from the arrays or left by the drift before); one thread only.
   const bool from_rows = Torques && rows && state_in_rows();
@@ -497,9 +501,40 @@ Drift Dynamics::finish_kick_drift() {
   }
   return drift;
 #else
+  (void)q0, (void)q1;
   finish_pass<true, Rows, Couples>(0.5 * dt_);
   return kick_drift<Rows >= 2, false>();
 #endif
+}
+
+void Dynamics::finish_behind(Behind& behind, int rows, bool couples, std::int64_t below) {
+  const std::int64_t n = static_cast<std::int64_t>(size());
+  const std::int64_t q1 = std::min(below, n) / 4 * 4;
+  if (q1 - behind.done < static_cast<std::int64_t>(behind_batch) && below < n) return;  // a batch at a time
+  if (q1 <= behind.done) return;
+  Drift d;
+  if (rows == 2)
+    d = couples ? finish_kick_drift<2, true>(behind.done, q1) : finish_kick_drift<2, false>(behind.done, q1);
+  else
+    d = couples ? finish_kick_drift<3, true>(behind.done, q1) : finish_kick_drift<3, false>(behind.done, q1);
+  behind.far = behind.far || d.far, behind.near = behind.near || d.near;
+  behind.done = q1;
+}
+
+Drift Dynamics::drift_behind(const ContactSums& waiting, Behind& behind) {
+  const std::int64_t n = static_cast<std::int64_t>(size()), p = n / 4 * 4;
+  finish_behind(behind, waiting.rows, waiting.couples, n);  // what the pass left (nothing when it ran to its end)
+  Drift drift{behind.far, behind.near, true, true};
+  if (p < n) {  // the tail in the arrays, as finish_kick_drift's
+    const double h = 0.5 * dt_;
+    if (waiting.rows == 2)
+      waiting.couples ? finish_pass<true, 2, true>(h, p) : finish_pass<true, 2, false>(h, p);
+    else
+      waiting.couples ? finish_pass<true, 3, true>(h, p) : finish_pass<true, 3, false>(h, p);
+    const Drift tail = kick_drift<true, false>(p);
+    drift = {drift.far || tail.far, drift.near || tail.near, tail.rows_fresh, true};
+  }
+  return drift;
 }
 
 Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
@@ -529,46 +564,6 @@ void Dynamics::state_from_rows() {
     store4(pwx + p, qwx), store4(pwy + p, qwy), store4(pwz + p, qwz);
   }
 #endif
-}
-
-void Dynamics::upkeep_list(const Drift& drift) {
-  const bool far = slab_ ? slab_->comm->max(drift.far ? 1.0 : 0.0) > 0.0 : drift.far;  // every rank alike
-  if (far)
-    rebuild();
-  else if (drift.near)  // never under a slab plan (its list holds every pair)
-    relist();
-}
-
-ContactSums Dynamics::finish_step(const ContactSums& sums, bool last) {
-  if (!last && !slab_ && sums.rows != 0) return sums;  // joined to the next drift
-  finish_forces(sums, true);
-  return {};
-}
-
-void Dynamics::advance(long k, bool store_forces, PhaseClock* clock) {
-  auto lap = [clock](PhaseTimes::Phase phase) {
-    if (clock) clock->lap(phase);
-  };
-  ContactSums waiting;  // the step before's sums, when their finish joins this step's drift
-  for (long s = 1; s <= k; ++s) {
-    const bool last = s == k;
-    const Drift drift = half_kick_drift(waiting);  // v(t + dt/2), x(t + dt)
-    // the arrays again for what reads them: the list's upkeep, the last step's finish and the caller
-    if (drift.state_in_rows && (last || drift.far || drift.near)) state_from_rows();
-    time += dt_;
-    ++steps;
-    lap(PhaseTimes::kick_drift);
-    if (slab_) {
-      exchange_halo();  // the neighbours' boundary layers at t + dt
-      lap(PhaseTimes::halo);
-    }
-    upkeep_list(drift);  // a rebuild when a particle left its skin
-    lap(PhaseTimes::list_upkeep);
-    const ContactSums sums = model_->contact_pass(*this, {dt_, true, drift.rows_fresh, last && store_forces, last});
-    lap(PhaseTimes::contact_pass);
-    waiting = finish_step(sums, last);  // F(t + dt) and the second half kick, v(t + dt)
-    lap(PhaseTimes::finish);
-  }
 }
 
 }  // namespace granwave::crystal

@@ -389,15 +389,17 @@ TEST_CASE("advance(k) equals k steps bit for bit (second half kick fused with th
   }
 }
 
-TEST_CASE("the gather rows as the state within an advance give the same bits as the arrays",
+TEST_CASE("the gather rows as the state within an advance and the drift behind the contact pass give the bits of the arrays",
           "[crystal][static][route]") {
   // Regression (route against route). From Dynamics::state_in_rows_min_particles on, the fused
   // particle pass of an advance reads x, v and w from the gather rows and writes only the rows; the
-  // arrays are made again before the list's upkeep and the advance's last step. Lowered to 0 on a
-  // small crystal (and on one whose count is not a multiple of four, its tail in the arrays), with
-  // the particles fast enough to relist and rebuild within an advance: every state, force, layer
-  // stress and energy agrees with the arrays' route to the last bit, for every law whose contact
-  // pass reads the rows.
+  // arrays are made again before the list's upkeep and the advance's last step. With the rows the
+  // state, the next step's finish, kick and drift run behind the one-thread contact pass
+  // (Dynamics::behind_batch particles at a time, once their sums are whole). Lowered to 0 and to
+  // batches of 4 particles on a small crystal (and on one whose count is not a multiple of four, its
+  // tail in the arrays), with the particles fast enough to relist and rebuild within an advance:
+  // every state, force, layer stress and energy agrees with the arrays' route to the last bit, for
+  // every law whose contact pass reads the rows.
   const RouteLaws r = route_laws();
   const crystal::Packing whole = crystal::make_packing(r.c);
   const crystal::Packing short_of_three = three_fewer(whole);  // n % 4 = 1
@@ -405,34 +407,40 @@ TEST_CASE("the gather rows as the state within an advance give the same bits as 
     const Disturbed base = disturb(*packing);
     for (const contact::LawParams& cp : all_laws(r)) {
       const auto model = crystal::case_model(cp, r.c.crystal->density);
-      crystal::Dynamics arrays(base.p, model, 2e-7), in_rows(base.p, model, 2e-7);
+      crystal::Dynamics arrays(base.p, model, 2e-7), in_rows(base.p, model, 2e-7), behind(base.p, model, 2e-7);
+      crystal::Dynamics* routes[] = {&arrays, &in_rows, &behind};
       arrays.state_in_rows_min_particles = ~std::size_t{0};
-      in_rows.state_in_rows_min_particles = 0;
-      std::vector<double> zz[2], zx[2];
-      for (auto* d : {&arrays, &in_rows}) {
-        d->parallel_min_particles = ~std::size_t{0};  // one thread: the fused route
-        set_sliding_motion(*d, base);
-        for (std::size_t q = 0; q < base.p.size(); ++q) d->vz[q] *= 1e4;  // ~10 m/s along z: the lists move
-        for (int k = 0; k < 4; ++k) d->advance(25);  // fused steps, each 25th stores the forces (a sample)
-        const int route = d == &arrays ? 0 : 1;
-        crystal::layer_stress(*d, zz[route], zx[route]);
+      in_rows.state_in_rows_min_particles = behind.state_in_rows_min_particles = 0;
+      in_rows.behind_batch = 0;  // the drift after the pass
+      behind.behind_batch = 4;   // a group of four at a time
+      std::vector<double> zz[3], zx[3];
+      for (int route = 0; route < 3; ++route) {
+        crystal::Dynamics& d = *routes[route];
+        d.parallel_min_particles = ~std::size_t{0};  // one thread: the fused route
+        set_sliding_motion(d, base);
+        for (std::size_t q = 0; q < base.p.size(); ++q) d.vz[q] *= 1e4;  // ~10 m/s along z: the lists move
+        for (int k = 0; k < 4; ++k) d.advance(25);  // fused steps, each 25th stores the forces (a sample)
+        crystal::layer_stress(d, zz[route], zx[route]);
       }
       CHECK(!arrays.state_in_rows());  // the routes really differ
-      CHECK(in_rows.state_in_rows());
+      CHECK((in_rows.state_in_rows() && !in_rows.finishes_behind()));
+      CHECK(behind.finishes_behind());
       // the linear laws' soft springs let the particles travel: relists and rebuilds within advances
       if (!cp.find<contact::HertzMindlinCaseParams>()) CHECK(in_rows.relists + in_rows.rebuilds > 10);
-      CHECK(in_rows.relists == arrays.relists);
-      CHECK(in_rows.rebuilds == arrays.rebuilds);
       using D = crystal::Dynamics;
-      for (auto f : {&D::fx, &D::fy, &D::fz, &D::tx, &D::ty, &D::tz, &D::x, &D::y, &D::z, &D::vx, &D::vy, &D::vz,
-                     &D::wx, &D::wy, &D::wz})
-        CHECK(arrays.*f == in_rows.*f);
-      CHECK(arrays.contacts.f_x == in_rows.contacts.f_x);
-      CHECK(arrays.contacts.f_z == in_rows.contacts.f_z);
-      CHECK(arrays.contacts.delta == in_rows.contacts.delta);
-      CHECK((zz[0] == zz[1] && zx[0] == zx[1]));
-      CHECK(arrays.potential_energy() == in_rows.potential_energy());
-      CHECK(arrays.dissipated_energy() == in_rows.dissipated_energy());
+      for (const D* d : {&in_rows, &behind}) {
+        CHECK(d->relists == arrays.relists);
+        CHECK(d->rebuilds == arrays.rebuilds);
+        for (auto f : {&D::fx, &D::fy, &D::fz, &D::tx, &D::ty, &D::tz, &D::x, &D::y, &D::z, &D::vx, &D::vy, &D::vz,
+                       &D::wx, &D::wy, &D::wz})
+          CHECK(arrays.*f == d->*f);
+        CHECK(arrays.contacts.f_x == d->contacts.f_x);
+        CHECK(arrays.contacts.f_z == d->contacts.f_z);
+        CHECK(arrays.contacts.delta == d->contacts.delta);
+        CHECK(arrays.potential_energy() == d->potential_energy());
+        CHECK(arrays.dissipated_energy() == d->dissipated_energy());
+      }
+      CHECK((zz[0] == zz[1] && zx[0] == zx[1] && zz[0] == zz[2] && zx[0] == zx[2]));
       CHECK(arrays.dissipated_energy() > 0.0);
     }
   }
