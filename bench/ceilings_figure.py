@@ -51,14 +51,18 @@ def dispatch_width(cpu):
     return 8 if cpu.get("vendor") == "AuthenticAMD" and cpu.get("family", 0) >= 26 else 6
 
 
-CEILINGS = ["divider", "FP pipes", "L1 ports", "dispatch", "gathers", "memory (L2)", "memory (L3)", "memory (DRAM)",
-            "chain"]
+CEILINGS = ["divider", "FP pipes", "L1 ports", "dispatch", "execution ports", "gathers", "memory (L2)", "memory (L3)",
+            "memory (DRAM)", "chain"]
 # Floors: the time the pass cannot go below while that resource alone limits it (the pass's arrays do
 # not fit in L1, so they come at L2's rate at best). Not floors: L3 and DRAM (the bench crystal's few MB
 # live in L2 and L3: what the pass would take if they came from there), and the chain (one iteration's
 # critical path per contact: the time if successive iterations did not overlap; the out-of-order window
 # overlaps them).
-FLOORS = ["divider", "FP pipes", "L1 ports", "dispatch", "gathers", "memory (L2)"]
+# Execution ports: each loop's instructions on the ports that can take them, the busiest port's load (llvm-mca's
+# block reciprocal throughput, from its model of the core: at 512 bits an Intel core has two vector ports, 0
+# and 5, and port 5 alone shuffles), so a floor of today's instructions, not of the law's arithmetic; 0 when
+# count_pass_ops ran without --mca.
+FLOORS = ["divider", "FP pipes", "L1 ports", "dispatch", "execution ports", "gathers", "memory (L2)"]
 
 
 def achieved(text):
@@ -95,9 +99,10 @@ def bounds(ops, ceil, name, per):
     by_lanes = {r["lanes"]: r for r in ceil["arithmetic"]}
     # packed xmm (2 lanes) at the scalar rate (the probe times scalar, ymm and zmm); a width it has not, at ymm's
     tput = lambda op, lanes: by_lanes[1 if lanes == 2 else lanes if lanes in by_lanes else 4][op]["throughput_ns"]
-    div = chain = 0.0
+    div = chain = ports = 0.0
     for L in ops["loops"]:
         n = L["per_iteration"]
+        ports += ((L.get("mca") or {}).get("block_rthroughput") or 0.0) * ns_cycle / n
         for lanes, k in L["div_by_lanes"].items():
             div += k * tput("div", int(lanes)) / n
         for lanes, k in L["sqrt_by_lanes"].items():
@@ -111,6 +116,7 @@ def bounds(ops, ceil, name, per):
                         fp_time(p, "mul", "mul", tput)),
         "L1 ports": max(p["loads"] * ceil["l1_ymm"]["load_ns"], p["stores"] * ceil["l1_ymm"]["store_ns"]),
         "dispatch": p["instructions"] / dispatch_width(ceil["cpu"]) * ns_cycle,
+        "execution ports": ports,
         "chain": chain,
     }
     l1 = next(g for g in ceil["gathers"] if g["table"].startswith("L1"))
@@ -206,7 +212,7 @@ def draw(rows, out, ceil):
     fig, axes = plt.subplots(1, 2, figsize=(13, 6.5), gridspec_kw={"width_ratios": [5, 4]})
     labels = ["achieved"] + CEILINGS
     colors = ["black", "tab:red", "tab:orange", "tab:olive", "tab:purple", "tab:blue", "tab:cyan", "tab:green",
-              "tab:gray", "tab:brown"]
+              "tab:gray", "tab:brown", "tab:pink"]
     for ax, (per, unit) in zip(axes, groups):
         rs = [r for r in rows if r["per"] == per]
         if per == "particle":  # one bar group per distinct particle pass
