@@ -402,8 +402,8 @@ class Dynamics {
   std::size_t behind_batch = 4096;
   bool finishes_behind() const;
   // The four-particle groups below `below` (rounded down) not yet done, once at least behind_batch
-  // particles or the last of them wait; `rows`, `couples`: the sums' layout (ContactSums).
-  void finish_behind(Behind& behind, int rows, bool couples, std::int64_t below);
+  // particles or the last of them wait; `sums`: the layout of the contact pass's sums.
+  void finish_behind(Behind& behind, const ContactSums& sums, std::int64_t below);
 
   // ---- energies (J) ----
   // Each is a sum per layer (particles in index order, contacts in list order counted in the
@@ -447,7 +447,7 @@ class Dynamics {
   // were left for it (one thread: finish_kick_drift).
   Drift half_kick_drift(const ContactSums& waiting);
   // The same when the contact pass made part of it behind it: the groups it left, then the tail.
-  Drift drift_behind(const ContactSums& waiting, Behind& behind);
+  Drift drift_behind(const ContactSums& waiting, const Behind& behind);
   // Contact-list upkeep: a rebuild when the drift took a particle out of its skin (under a slab
   // plan, when it did on any rank).
   void upkeep_list(const Drift& drift);
@@ -462,10 +462,12 @@ class Dynamics {
   void particle_pass(double h);  // pass 2 over the owned particles, h: the half kick (0: none)
   template <bool Kick, int Rows, bool Couples>
   void finish_pass(double h, std::int64_t from = -1);  // pass 2 from contact_sums (threaded when from < 0), from `from` on
-  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time; with q1 >= 0 only the
-  // groups [q0, q1) from the gather rows (finish_behind)
+  // finish_pass<true, Rows, Couples>, then kick_drift, four particles at a time, from particle q0 (a
+  // multiple of four) to the end; with q1 >= 0 only the groups [q0, q1) from the gather rows
+  // (finish_behind). The second form takes Rows and Couples from the sums' layout.
   template <int Rows, bool Couples>
-  Drift finish_kick_drift(std::int64_t q0 = 0, std::int64_t q1 = -1);
+  Drift finish_kick_drift(std::int64_t q0, std::int64_t q1);
+  Drift finish_kick_drift(const ContactSums& sums, std::int64_t q0, std::int64_t q1);
   void state_from_rows();     // x..wz of particles [0, 4 floor(n/4)) from the gather rows (Drift::state_in_rows)
   // Per-layer sums of the owned particles (contacts [own_first, size())), added to s[layer].
   // Kinetic and/or Verlet (nullptr: not wanted), through layer_order().

@@ -463,7 +463,7 @@ ContactSums gathered_contact_pass(Dynamics& d, const Law& law, const ContactPass
             if constexpr (Couples) ccx[s0 + u] = o.col[6][u], ccy[s0 + u] = o.col[7][u], ccz[s0 + u] = o.col[8][u];
           }
         if constexpr (!Masked)  // the particles below the next chunk's first i have their sums whole
-          if (behind) dyn->finish_behind(*behind, scatter_mode + 1, Couples, s1 < nc ? std::int64_t{ci[s1]} : np);
+          if (behind) dyn->finish_behind(*behind, {scatter_mode + 1, Couples}, s1 < nc ? std::int64_t{ci[s1]} : np);
       }
 #endif
     }

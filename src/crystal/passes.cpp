@@ -486,13 +486,13 @@ Drift Dynamics::finish_kick_drift(std::int64_t q0, std::int64_t q1) {
   const bool from_rows = Torques && rows && state_in_rows();
   std::int64_t far = 0;
   if (from_rows)
-    far = fours.template operator()<true>(0, p);
+    far = fours.template operator()<true>(q0, p);
   else if (threaded())  // the rows of the threaded contact pass (kernel::in_parts)
-    far = any_block_on_threads(0, p, [&](std::int64_t q0, std::int64_t q1) {
-      return fours.template operator()<false>(q0, q1);
+    far = any_block_on_threads(q0, p, [&](std::int64_t b0, std::int64_t b1) {
+      return fours.template operator()<false>(b0, b1);
     });
   else
-    far = fours.template operator()<false>(0, p);
+    far = fours.template operator()<false>(q0, p);
   Drift drift{(far & 1) != 0, (far & 2) != 0, rows != nullptr, from_rows};
   if (p < n) {  // the tail in the arrays (and its rows: kick_drift's with no slab)
     finish_pass<true, Rows, Couples>(h, p);
@@ -507,43 +507,31 @@ Drift Dynamics::finish_kick_drift(std::int64_t q0, std::int64_t q1) {
 #endif
 }
 
-void Dynamics::finish_behind(Behind& behind, int rows, bool couples, std::int64_t below) {
+Drift Dynamics::finish_kick_drift(const ContactSums& sums, std::int64_t q0, std::int64_t q1) {
+  switch (sums.rows) {
+    case 1: return finish_kick_drift<1, false>(q0, q1);
+    case 2: return sums.couples ? finish_kick_drift<2, true>(q0, q1) : finish_kick_drift<2, false>(q0, q1);
+    default: return sums.couples ? finish_kick_drift<3, true>(q0, q1) : finish_kick_drift<3, false>(q0, q1);
+  }
+}
+
+void Dynamics::finish_behind(Behind& behind, const ContactSums& sums, std::int64_t below) {
   const std::int64_t n = static_cast<std::int64_t>(size());
   const std::int64_t q1 = std::min(below, n) / 4 * 4;
   if (q1 - behind.done < static_cast<std::int64_t>(behind_batch) && below < n) return;  // a batch at a time
   if (q1 <= behind.done) return;
-  Drift d;
-  if (rows == 2)
-    d = couples ? finish_kick_drift<2, true>(behind.done, q1) : finish_kick_drift<2, false>(behind.done, q1);
-  else
-    d = couples ? finish_kick_drift<3, true>(behind.done, q1) : finish_kick_drift<3, false>(behind.done, q1);
+  const Drift d = finish_kick_drift(sums, behind.done, q1);
   behind.far = behind.far || d.far, behind.near = behind.near || d.near;
   behind.done = q1;
 }
 
-Drift Dynamics::drift_behind(const ContactSums& waiting, Behind& behind) {
-  const std::int64_t n = static_cast<std::int64_t>(size()), p = n / 4 * 4;
-  finish_behind(behind, waiting.rows, waiting.couples, n);  // what the pass left (nothing when it ran to its end)
-  Drift drift{behind.far, behind.near, true, true};
-  if (p < n) {  // the tail in the arrays, as finish_kick_drift's
-    const double h = 0.5 * dt_;
-    if (waiting.rows == 2)
-      waiting.couples ? finish_pass<true, 2, true>(h, p) : finish_pass<true, 2, false>(h, p);
-    else
-      waiting.couples ? finish_pass<true, 3, true>(h, p) : finish_pass<true, 3, false>(h, p);
-    const Drift tail = kick_drift<true, false>(p);
-    drift = {drift.far || tail.far, drift.near || tail.near, tail.rows_fresh, true};
-  }
-  return drift;
+Drift Dynamics::drift_behind(const ContactSums& waiting, const Behind& behind) {
+  const Drift rest = finish_kick_drift(waiting, behind.done, -1);  // the groups the pass left, then the tail
+  return {behind.far || rest.far, behind.near || rest.near, rest.rows_fresh, rest.state_in_rows};
 }
 
 Drift Dynamics::half_kick_drift(const ContactSums& waiting) {
-  switch (waiting.rows) {
-    case 1: return finish_kick_drift<1, false>();
-    case 2: return waiting.couples ? finish_kick_drift<2, true>() : finish_kick_drift<2, false>();
-    case 3: return waiting.couples ? finish_kick_drift<3, true>() : finish_kick_drift<3, false>();
-    default: break;
-  }
+  if (waiting.rows != 0) return finish_kick_drift(waiting, 0, -1);
   // The halo is not integrated here: its owner does it, and exchange_halo copies it.
   const bool threads = threaded();
   return torques_ ? (threads ? kick_drift<true, true>() : kick_drift<true, false>())
