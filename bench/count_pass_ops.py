@@ -29,6 +29,8 @@ import sys
 from pathlib import Path
 
 # The passes bench_crystal times (its cases), with the instantiation each case runs on one thread
+# (and the packed divisions and roots a contact its loops hold: the gather's 1/r and r, R* for
+# Hertz-Mindlin, the laws' own; a count that differs is refused)
 # (contact/*_case.hpp's model(): crystal_p has gamma_n = 0, kt = 0 -> HookeLaw<false>, not dissipative;
 # kt = k, mu_static = mu_dynamic, no dashpots -> LinearLudingLaw<false, false>, either arm (the arm is a
 # run-time value: scatter<2> or scatter<3>); crystal_hertz.toml, undamped, displacement history ->
@@ -46,36 +48,36 @@ PASSES = [
     {"name": "frictionless (Hooke)", "object": "law_model_linear.cpp.o",
      "function": "direct_contact_pass<granwave::contact::HookeLaw<false>, false>(granwave::crystal::Dynamics&, granwave::contact::HookeLaw<false> const&, granwave::crystal::ContactPassPlan const&)::{lambda(long, long)#4}::operator()",
      "loops": ["images", "evaluation", "scatter1"], "step": {"images": 32, "evaluation": 8, "scatter1": 4},
-     "per": "contact"},
+     "per": "contact", "divisions_roots": (1, 1)},
     {"name": "friction, radius arm", "object": "law_model_linear_wide.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::LinearLudingLaw<false, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter2"], "step": {"gather": 4, "evaluation": 8, "scatter2": 4},
-     "per": "contact"},
+     "per": "contact", "divisions_roots": (2, 1)},
     {"name": "friction, contact-point arm", "object": "law_model_linear_wide.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::LinearLudingLaw<false, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter3"], "step": {"gather": 4, "evaluation": 8, "scatter3": 4},
-     "per": "contact"},
+     "per": "contact", "divisions_roots": (2, 1)},
     {"name": "Hertz-Mindlin", "object": "law_model_hertz_mindlin_wide.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::HertzMindlinLaw<false, (granwave::contact::MindlinHistory)1, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter2"], "step": {"gather": 4, "evaluation": 8, "scatter2": 4},
-     "per": "contact"},
+     "per": "contact", "divisions_roots": (3, 2)},
     {"name": "rolling and torsion", "object": "law_model_linear.cpp.o",
      "function": "granwave::crystal::ContactSums granwave::crystal::kernel::gathered_contact_pass<granwave::contact::WithRollingTorsion<granwave::contact::LinearLudingLaw<false, false>, false, false>, true, false>(",
      "loops": ["gather", "evaluation", "scatter2c"], "step": {"gather": 4, "evaluation": 8, "scatter2c": 4},
-     "per": "contact"},
+     "per": "contact", "divisions_roots": (4, 1)},
 ]
 
-# The particle pass of each (one thread, a run's step): Dynamics::finish_kick_drift<Rows, Couples>
+# The particle pass of each (one thread, a run's step): Dynamics::finish_kick_drift<Rows, Couples>(q0, q1)
 # (crystal/passes.cpp), the contact sums' rows finished, kicked, drifted and the gather rows refilled.
 PARTICLE = [
     {"name": "particle pass, 1 row (frictionless)", "object": "passes.cpp.o",
-     "function": "granwave::crystal::Dynamics::finish_kick_drift<1, false>()", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
+     "function": "granwave::crystal::Dynamics::finish_kick_drift<1, false>(long, long)", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
     {"name": "particle pass, 2 rows (radius arm, Hertz-Mindlin)", "object": "passes.cpp.o",
-     "function": "granwave::crystal::Dynamics::finish_kick_drift<2, false>()", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
+     "function": "granwave::crystal::Dynamics::finish_kick_drift<2, false>(long, long)", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
     {"name": "particle pass, 3 rows (contact-point arm)", "object": "passes.cpp.o",
-     "function": "granwave::crystal::Dynamics::finish_kick_drift<3, false>()", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
+     "function": "granwave::crystal::Dynamics::finish_kick_drift<3, false>(long, long)", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
     {"name": "particle pass, 2 rows and couples (rolling)", "object": "passes.cpp.o",
-     "function": "granwave::crystal::Dynamics::finish_kick_drift<2, true>()", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
+     "function": "granwave::crystal::Dynamics::finish_kick_drift<2, true>(long, long)", "loops": ["fkd"], "step": {"fkd": 4}, "per": "particle"},
 ]
 
 INSN = re.compile(r"^\s*([0-9a-f]+):\s+(\S+)\s*(.*)$")
@@ -444,6 +446,14 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
             if isinstance(v, (int, float)) and v is not None:
                 total[k] = total.get(k, 0.0) + v / n
     out["per_" + spec["per"]] = total
+    # The loops picked must hold the pass's divisions and roots a contact: a build with other arithmetic
+    # (a scratch bound without them) makes pick() take another loop, whose counts would be wrong silently.
+    if "divisions_roots" in spec and (total.get("div_lanes"), total.get("sqrt_lanes")) != spec["divisions_roots"]:
+        print(f"count_pass_ops: {spec['name']}: the loops picked in {obj.name} hold {total.get('div_lanes', 0):g} divisions "
+              f"and {total.get('sqrt_lanes', 0):g} roots a contact where the pass has {spec['divisions_roots'][0]} and "
+              f"{spec['divisions_roots'][1]}: a build with other arithmetic, or the kernel changed "
+              "(--list FUNCTION shows its loops; PASSES names what each pass holds)", file=sys.stderr)
+        sys.exit(2)
     return out
 
 
