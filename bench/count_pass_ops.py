@@ -448,7 +448,8 @@ def pass_counts(objdir, spec, lat, with_mca, cache):
     out["per_" + spec["per"]] = total
     # The loops picked must hold the pass's divisions and roots a contact: a build with other arithmetic
     # (a scratch bound without them) makes pick() take another loop, whose counts would be wrong silently.
-    if "divisions_roots" in spec and (total.get("div_lanes"), total.get("sqrt_lanes")) != spec["divisions_roots"]:
+    if "divisions_roots" in spec and any(abs(total.get(k, 0.0) - want) > 1e-9 for k, want in
+                                         zip(("div_lanes", "sqrt_lanes"), spec["divisions_roots"])):
         print(f"count_pass_ops: {spec['name']}: the loops picked in {obj.name} hold {total.get('div_lanes', 0):g} divisions "
               f"and {total.get('sqrt_lanes', 0):g} roots a contact where the pass has {spec['divisions_roots'][0]} and "
               f"{spec['divisions_roots'][1]}: a build with other arithmetic, or the kernel changed "
