@@ -29,8 +29,6 @@ import sys
 from pathlib import Path
 
 # The passes bench_crystal times (its cases), with the instantiation each case runs on one thread
-# (and the packed divisions and roots a contact its loops hold: the gather's 1/r and r, R* for
-# Hertz-Mindlin, the laws' own; a count that differs is refused)
 # (contact/*_case.hpp's model(): crystal_p has gamma_n = 0, kt = 0 -> HookeLaw<false>, not dissipative;
 # kt = k, mu_static = mu_dynamic, no dashpots -> LinearLudingLaw<false, false>, either arm (the arm is a
 # run-time value: scatter<2> or scatter<3>); crystal_hertz.toml, undamped, displacement history ->
@@ -44,6 +42,8 @@ from pathlib import Path
 # (their index steps 4, ymm in either unit), the frictionless pass's image offsets 32 (16 ymm stores of
 # shx, shy), the particle pass 4. The one-thread route: the gathered passes' own function, the direct
 # pass's lambda #4 (kernel::in_parts' body without stored end arms, a run's step).
+# divisions_roots: the packed divisions and roots a contact the pass's loops hold (the gather's 1/r and r,
+# R* for Hertz-Mindlin, the laws' own); loops picked with other counts are refused.
 PASSES = [
     {"name": "frictionless (Hooke)", "object": "law_model_linear.cpp.o",
      "function": "direct_contact_pass<granwave::contact::HookeLaw<false>, false>(granwave::crystal::Dynamics&, granwave::contact::HookeLaw<false> const&, granwave::crystal::ContactPassPlan const&)::{lambda(long, long)#4}::operator()",
