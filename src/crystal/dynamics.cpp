@@ -57,8 +57,10 @@ double list_skin(const Packing& packing) {
 Dynamics::Dynamics(const Packing& packing, const contact::LawParams& cp, double dt)
     : Dynamics(packing, case_model(cp, packing_density(packing)), dt) {}
 
-Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt, const SlabPlan* slab)
+Dynamics::Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt, const SlabPlan* slab,
+                   bool keep_contact_forces)
     : model_(std::move(model)), dt_(dt) {
+  lattice_.keep_places = keep_contact_forces;
   torques_ = model_->torques();
   couples_ = model_->couples();
   lever_arm_ = model_->lever_arm();

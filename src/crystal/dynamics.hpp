@@ -223,8 +223,10 @@ class Dynamics {
   // (crystal/slab.hpp), this rank's slab of an MPI run: the state holds the plan's particles
   // [held_lo, held_hi) only, indexed from 0 (local index = global index - offset()), and every
   // global quantity (energies, the rebuild trigger, coordination) is that of the whole crystal.
+  // keep_contact_forces false: a sampled step of the lattice pass keeps no per-contact forces for
+  // readers of the list (forces_to_list refuses), only what the layer stress sums (LatticeRows::keep_places).
   Dynamics(const Packing& packing, std::shared_ptr<const ContactModel> model, double dt,
-           const SlabPlan* slab = nullptr);
+           const SlabPlan* slab = nullptr, bool keep_contact_forces = true);
 
   // ---- state (SoA; public so observers and tests can read and set it) ----
   SpreadVector<double> x, y, z, vx, vy, vz, wx, wy, wz;  // positions (unwrapped), velocities, angular velocities
@@ -368,7 +370,7 @@ class Dynamics {
   // Everything the lattice rows hold for the list (losses, forces): before a build or the list's pass.
   void lattice_to_list();
   const LatticeRows* sampled_lattice_forces() const;
-  const LayerLists& place_ends() const;
+  const LayerLists& place_ends(std::int32_t span = 0) const;
   // false: the list's pass for such a crystal too (its sums in the list's order: other bits; the
   // tests' and benches' second route).
   bool lattice_pass = true;
@@ -515,6 +517,7 @@ class Dynamics {
   mutable long order_build_ = -1;
   mutable LayerLists place_ends_;        // place_ends() of the list build place_ends_build_
   mutable long place_ends_build_ = -1;
+  mutable std::int32_t place_ends_span_ = 0;
   std::shared_ptr<const SlabPlan> slab_;
   std::size_t offset_ = 0, own_lo_ = 0, own_hi_ = 0;
   std::size_t halo_below_ = 0, halo_above_ = 0;  // particles sent to (and received from) each side

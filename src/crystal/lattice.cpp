@@ -2,6 +2,8 @@
 // losses back into the list, and the dynamics' choice of the route.
 #include "crystal/lattice.hpp"
 
+#include <stdexcept>
+
 #include <limits>
 
 #include "crystal/dynamics.hpp"
@@ -58,8 +60,7 @@ bool LatticeRows::map_list(const ContactList& list) {
   losses_pending = false;
   forces_pending = forces_fresh = stress_fresh = false;
   if (2 * held_layers * places() > std::numeric_limits<std::int32_t>::max()) return false;  // (ends' indexes)
-  for (auto* v : {&place_f_x, &place_f_y, &place_f_z}) v->assign(static_cast<std::size_t>(held_layers * places()), 0.0);
-  place_arms.assign(static_cast<std::size_t>(2 * held_layers * places()), 0.0);
+  place_layers = 0;  // sized by the first sampled pass (LatticeRows::size_places): every layer's or a ring's
   // Each listed pair (i, j, image): i's contact in some direction, or j's with the image the other way.
   auto slot_of = [&](std::int64_t a, std::int64_t b, int mx, int my) -> std::int64_t {
     for (int d = 0; d < kDirections; ++d) {
@@ -103,6 +104,15 @@ void LatticeRows::losses_to_list(ContactList& list) {
   losses_pending = false;
 }
 
+void LatticeRows::size_places(std::int64_t layers) {
+  if (layers == place_layers) return;
+  const auto n = static_cast<std::size_t>(layers * places());
+  for (auto* v : {&place_f_x, &place_f_y, &place_f_z, &place_arms}) SpreadVector<double>().swap(*v);  // no copy kept
+  for (auto* v : {&place_f_x, &place_f_y, &place_f_z}) v->assign(n, 0.0);
+  place_arms.assign(2 * n, 0.0);
+  place_layers = layers;
+}
+
 bool LatticeRows::forces_to_list(ContactList& list, SpreadVector<double>& end_arms) {
   if (!forces_pending) return false;
   const std::size_t nc = list.size();
@@ -120,6 +130,10 @@ bool LatticeRows::forces_to_list(ContactList& list, SpreadVector<double>& end_ar
 void Dynamics::forces_to_list() const {
   // The list is the record and the places its cache: filling it in changes nothing a reader could tell
   // from the list's own route, so a const reader may ask.
+  if (lattice_layout_ > 0 && lattice_.forces_dropped)
+    throw std::logic_error(
+        "crystal::Dynamics: the contact forces of the last sampled step were not kept (built with "
+        "keep_contact_forces = false: only the layer stress is sampled)");
   auto& self = const_cast<Dynamics&>(*this);
   self.contacts.keep_forces();
   if (lattice_layout_ <= 0) return;
@@ -129,17 +143,20 @@ void Dynamics::forces_to_list() const {
 void Dynamics::lattice_to_list() {
   if (lattice_layout_ <= 0) return;
   lattice_.losses_to_list(contacts);
-  forces_to_list();
+  if (!lattice_.forces_dropped) forces_to_list();  // none to carry
 }
 
 const LatticeRows* Dynamics::sampled_lattice_forces() const {
   const LatticeRows& R = lattice_;
-  return lattice_layout_ > 0 && R.forces_pending && R.forces_fresh && R.list_build == list_builds_ ? &R : nullptr;
+  return lattice_layout_ > 0 && (R.stress_fresh || (R.forces_pending && R.forces_fresh)) && R.list_build == list_builds_
+             ? &R
+             : nullptr;
 }
 
-const LayerLists& Dynamics::place_ends() const {
-  // LayerOrder::ends with each end 2c + k as 2 contact_place[c] + k: the same order, the places' values.
-  if (place_ends_build_ == list_builds_) return place_ends_;
+const LayerLists& Dynamics::place_ends(std::int32_t span) const {
+  // LayerOrder::ends with each end 2c + k as 2 contact_place[c] + k: the same order, the places' values;
+  // span > 0: that index mod span (a ring of places, LatticeRows::keep_places).
+  if (place_ends_build_ == list_builds_ && place_ends_span_ == span) return place_ends_;
   const LayerLists& ends = layer_order().ends;
   const std::int32_t* place = lattice_.contact_place.data();
   place_ends_.first = ends.first;
@@ -148,9 +165,11 @@ const LayerLists& Dynamics::place_ends() const {
   place_ends_.entries.resize(total);
   for (std::size_t k = 0; k < total; ++k) {
     const std::int32_t e = ends.consecutive ? ends.base + static_cast<std::int32_t>(k) : ends.entries[k];
-    place_ends_.entries[k] = 2 * place[e >> 1] + (e & 1);
+    const std::int32_t at = 2 * place[e >> 1] + (e & 1);
+    place_ends_.entries[k] = span > 0 ? at % span : at;
   }
   place_ends_build_ = list_builds_;
+  place_ends_span_ = span;
   return place_ends_;
 }
 

@@ -71,6 +71,17 @@ struct LatticeRows {
   // reads them where they are (Dynamics::sampled_lattice_forces). forces_fresh: the last pass wrote them.
   SpreadVector<double> place_f_x, place_f_y, place_f_z, place_arms;
   bool forces_pending = false, forces_fresh = false;
+  // keep_places false (a run whose samples read only the layer stress, Dynamics(..., keep_contact_forces)):
+  // a one-thread pass that sums the layer stress itself writes its places into a ring of kRingLayers
+  // layers (place L mod kRingLayers: what those sums read, in cache), not into arrays of every layer
+  // that a sampled step would stream to memory and nothing reads; forces_dropped: the last sampled
+  // step's forces were not kept (Dynamics::forces_to_list refuses). place_layers: the layers the place
+  // arrays hold (every held layer or the ring's).
+  static constexpr int kRingLayers = 4;
+  bool keep_places = true, forces_dropped = false;
+  std::int64_t place_layers = 0;
+  // The place arrays for `layers` layers (sized again only when that changes).
+  void size_places(std::int64_t layers);
   // That step's layer stress sums (the sample's walk over Dynamics::place_ends, before the division by
   // a layer's volume), made by a one-thread pass as soon as a layer's places are written, while they are
   // in cache (at 320 000 particles the walk read them back from memory: 12 % of a run). stress_fresh:

@@ -126,6 +126,7 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
   double *place_f_x = R.place_f_x.data(), *place_f_y = R.place_f_y.data(), *place_f_z = R.place_f_z.data(),
          *place_arms = R.place_arms.data();
   const std::int64_t places = R.places();
+  const int ring = R.place_layers < R.held_layers ? LatticeRows::kRingLayers : 0;  // place layer L mod ring
   static thread_local std::vector<double> scratch;
   if (scratch.size() < static_cast<std::size_t>(11 * kD * fs)) scratch.resize(11 * kD * fs);
   double* f = scratch.data();              // this layer's six directions: f + (3 d + c) fs
@@ -172,7 +173,7 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
         const int a0 = d * fs;
         if constexpr (Arms) {
           const double* fd = out + 3 * d * fs;
-          const std::int64_t g0 = L * places + static_cast<std::int64_t>(d) * S;
+          const std::int64_t g0 = (ring ? L % ring : L) * places + static_cast<std::int64_t>(d) * S;
           double *fo_x = place_f_x + g0, *fo_y = place_f_y + g0, *fo_z = place_f_z + g0;
           double* arms = place_arms + 2 * g0;
           const double* rev = reversed + slot0;
@@ -275,9 +276,12 @@ ContactSums lattice_sweep(Dynamics& d, LatticeRows& R, const Law& law, const Con
   // has written layer L's places (a layer's ends read its own and the layer below's), the sample's walk
   // (crystal/observers.cpp) in the same order, so the same bits.
   const bool stress = Write == ListWrite::forces && parts == 1 && !d.slab() && held == d.packing().layers;
+  // Places for every layer, or a ring when nothing but these sums reads them (LatticeRows::keep_places).
+  const bool ring = stress && !R.keep_places && held > LatticeRows::kRingLayers;
+  if constexpr (Write == ListWrite::forces) R.size_places(ring ? LatticeRows::kRingLayers : held);
   R.stress_fresh = false;
   if (stress) {
-    const LayerLists& ends = d.place_ends();
+    const LayerLists& ends = d.place_ends(ring ? static_cast<std::int32_t>(2 * LatticeRows::kRingLayers * R.places()) : 0);
     R.stress_zz.assign(static_cast<std::size_t>(held), 0.0);
     R.stress_zx.assign(static_cast<std::size_t>(held), 0.0);
     const std::array sums{R.stress_zz.data(), R.stress_zx.data()};
@@ -302,9 +306,13 @@ ContactSums lattice_sweep(Dynamics& d, LatticeRows& R, const Law& law, const Con
     C.losses_booked = true;
     R.losses_pending = Write == ListWrite::none;
   }
-  // The forces and end arms stay by place (LatticeRows::forces_pending): the list's are not this step's.
-  if constexpr (Write == ListWrite::forces) R.forces_pending = true;
-  R.forces_fresh = Write == ListWrite::forces;
+  // The forces and end arms stay by place (LatticeRows::forces_pending): the list's are not this step's;
+  // a ring's are gone (forces_dropped).
+  if constexpr (Write == ListWrite::forces) {
+    R.forces_pending = !ring;
+    R.forces_dropped = ring;
+  }
+  R.forces_fresh = Write == ListWrite::forces && !ring;
   d.end_arms_stored = false;
   return {1};
 }

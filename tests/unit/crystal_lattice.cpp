@@ -11,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 #ifdef _OPENMP
@@ -165,6 +166,56 @@ TEST_CASE("lattice pass: a run follows the list's to rounding, and threads give 
   CHECK(one.fz == two.fz);
   CHECK(one.contacts.delta == two.contacts.delta);
   CHECK(same(one.dissipated_energy(), two.dissipated_energy()));
+}
+
+// A regression test of one route against the other: a run that keeps no contact forces (the samples read
+// the layer stress only) writes a sampled step's places into a ring of layers and sums the layer stress
+// from there; every sample is the bits of the run that keeps them, and a reader of the forces is refused.
+TEST_CASE("lattice pass: without the contact forces kept, the samples' bits and a refused reader",
+          "[crystal][lattice]") {
+  const config::Case c = lattice_case(4, 4, 24, 0.1);  // a dashpot: losses booked as well
+  const crystal::Packing p = crystal::make_packing(c);
+  auto made = [&](bool keep) {
+    crystal::Dynamics d(p, crystal::case_model(c.contact, c.crystal->density), crystal::derive(c).dt, nullptr, keep);
+    d.parallel_min_particles = ~std::size_t{0};  // one thread: the pass sums the layer stress
+    std::vector<std::size_t> source;
+    for (std::size_t q = 0; q < p.size(); ++q)
+      if (p.layer[q] < p.fixed_layers) source.push_back(q);
+    d.displace(source, 1e-5 * p.d, -2e-5 * p.d, 1e-4 * p.d);
+    return d;
+  };
+  crystal::Dynamics kept = made(true), ring = made(false);
+  REQUIRE(kept.lattice_rows() != nullptr);
+  REQUIRE(ring.lattice_rows() != nullptr);
+  CHECK(kept.lattice_rows()->place_layers == 24);
+  CHECK(ring.lattice_rows()->place_layers == crystal::LatticeRows::kRingLayers);
+  std::vector<double> zz_k, zx_k, zz_r, zx_r;
+  int compared = 0;
+  for (int sample = 0; sample < 12; ++sample) {
+    kept.advance(5, true);
+    ring.advance(5, true);
+    crystal::layer_stress(kept, zz_k, zx_k);
+    crystal::layer_stress(ring, zz_r, zx_r);
+    bool all = zz_k.size() == zz_r.size() && zx_k.size() == zx_r.size();
+    for (std::size_t L = 0; all && L < zz_k.size(); ++L) all = same(zz_k[L], zz_r[L]) && same(zx_k[L], zx_r[L]);
+    CHECK(all);
+    const crystal::Dynamics::Energies ek = kept.energies(), er = ring.energies();
+    CHECK(same(ek.potential, er.potential));
+    CHECK(same(ek.dissipated, er.dissipated));
+    CHECK(same(crystal::coordination(kept), crystal::coordination(ring)));
+    compared += all;
+  }
+  CHECK(compared == 12);
+  double peak = 0.0;
+  for (double v : zz_k) peak = std::max(peak, std::fabs(v));
+  CHECK(peak > 0.0);  // a stress to compare
+  CHECK(ring.z == kept.z);
+  CHECK(ring.vz == kept.vz);
+  // The forces of a sampled step went with the ring: a reader of the list's is told so, not given old ones.
+  CHECK_THROWS_AS(ring.forces_to_list(), std::logic_error);
+  std::vector<double> per_particle;
+  CHECK_THROWS_AS(crystal::layer_stress(ring, zz_r, zx_r, &per_particle), std::logic_error);
+  CHECK_NOTHROW(kept.forces_to_list());
 }
 
 TEST_CASE("lattice pass: what is no lattice crystal, or has a pair outside it, takes the list's pass",
