@@ -370,6 +370,8 @@ class Dynamics {
   // Everything the lattice rows hold for the list (losses, forces): before a build or the list's pass.
   void lattice_to_list();
   const LatticeRows* sampled_lattice_forces() const;
+  // The layer stress the last pass summed (LatticeRows::stress_fresh) while nothing newer holds it.
+  const LatticeRows* sampled_lattice_stress() const;
   const LayerLists& place_ends(std::int32_t span = 0) const;
   // false: the list's pass for such a crystal too (its sums in the list's order: other bits; the
   // tests' and benches' second route).

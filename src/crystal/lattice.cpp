@@ -148,9 +148,14 @@ void Dynamics::lattice_to_list() {
 
 const LatticeRows* Dynamics::sampled_lattice_forces() const {
   const LatticeRows& R = lattice_;
-  return lattice_layout_ > 0 && (R.stress_fresh || (R.forces_pending && R.forces_fresh)) && R.list_build == list_builds_
-             ? &R
-             : nullptr;
+  return lattice_layout_ > 0 && R.forces_pending && R.forces_fresh && R.list_build == list_builds_ ? &R : nullptr;
+}
+
+const LatticeRows* Dynamics::sampled_lattice_stress() const {
+  const LatticeRows& R = lattice_;
+  // The forces still by place, or gone with a ring: the pass's sums are the only record then.
+  const bool by_place = (R.forces_pending && R.forces_fresh) || R.forces_dropped;
+  return lattice_layout_ > 0 && R.stress_fresh && by_place && R.list_build == list_builds_ ? &R : nullptr;
 }
 
 const LayerLists& Dynamics::place_ends(std::int32_t span) const {

@@ -80,7 +80,8 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
   const ContactList& C = dyn.contacts;
   const double volume = pk.box_x * pk.box_y * pk.l0;  // of one layer
   const LatticeRows* places = particle_stress ? nullptr : dyn.sampled_lattice_forces();
-  if (!places) dyn.forces_to_list();
+  const LatticeRows* summed = particle_stress ? nullptr : dyn.sampled_lattice_stress();
+  if (!places && !summed) dyn.forces_to_list();
   if (particle_stress) {
     for (std::size_t c = 0; c < C.size(); ++c) {
       const double delta = C.delta[c];
@@ -117,9 +118,9 @@ void layer_stress(const Dynamics& dyn, std::vector<double>& zz, std::vector<doub
     // arms by slot place: the same ends in the same order, each read from its place.
     // A one-thread lattice pass made these sums itself, layer by layer (LatticeRows::stress_zz).
     static thread_local std::vector<double> arms;  // scratch of contact_end_arms
-    if (places && places->stress_fresh) {
-      std::copy(places->stress_zz.begin(), places->stress_zz.end(), zz.begin());
-      std::copy(places->stress_zx.begin(), places->stress_zx.end(), zx.begin());
+    if (summed) {
+      std::copy(summed->stress_zz.begin(), summed->stress_zz.end(), zz.begin());
+      std::copy(summed->stress_zx.begin(), summed->stress_zx.end(), zx.begin());
     } else {
       const double* arm_u = places ? places->place_arms.data() : contact_end_arms(dyn, arms);
       const double* f_z = places ? places->place_f_z.data() : C.f_z.data();
