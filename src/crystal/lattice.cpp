@@ -130,7 +130,9 @@ bool LatticeRows::forces_to_list(ContactList& list, SpreadVector<double>& end_ar
 void Dynamics::forces_to_list() const {
   // The list is the record and the places its cache: filling it in changes nothing a reader could tell
   // from the list's own route, so a const reader may ask.
-  if (lattice_layout_ > 0 && lattice_.forces_dropped)
+  // (Refused only while the rows' pass holds the list: once the list's own pass has taken over, the
+  // list's forces are its.)
+  if (lattice_layout_ > 0 && lattice_.forces_dropped && lattice_.list_build == list_builds_)
     throw std::logic_error(
         "crystal::Dynamics: the contact forces of the last sampled step were not kept (built with "
         "keep_contact_forces = false: only the layer stress is sampled)");

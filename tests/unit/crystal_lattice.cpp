@@ -216,6 +216,15 @@ TEST_CASE("lattice pass: without the contact forces kept, the samples' bits and 
   std::vector<double> per_particle;
   CHECK_THROWS_AS(crystal::layer_stress(ring, zz_r, zx_r, &per_particle), std::logic_error);
   CHECK_NOTHROW(kept.forces_to_list());
+  // Once the list's own pass takes over, the list's forces are its: no refusal, the same stress.
+  kept.lattice_pass = ring.lattice_pass = false;
+  kept.advance(5, true);
+  ring.advance(5, true);
+  CHECK_NOTHROW(ring.forces_to_list());
+  crystal::layer_stress(kept, zz_k, zx_k);
+  crystal::layer_stress(ring, zz_r, zx_r);
+  CHECK(zz_k == zz_r);
+  CHECK(zx_k == zx_r);
 }
 
 TEST_CASE("lattice pass: what is no lattice crystal, or has a pair outside it, takes the list's pass",
