@@ -2,9 +2,8 @@
 // losses back into the list, and the dynamics' choice of the route.
 #include "crystal/lattice.hpp"
 
-#include <stdexcept>
-
 #include <limits>
+#include <stdexcept>
 
 #include "crystal/dynamics.hpp"
 #include "crystal/simd.hpp"  // GRANWAVE_GATHER_VECTORS

@@ -82,6 +82,10 @@ struct LatticeRows {
   std::int64_t place_layers = 0;
   // The place arrays for `layers` layers (sized again only when that changes).
   void size_places(std::int64_t layers);
+  // Where layer L's places start in them, and the span an end's place index is taken modulo (0: none).
+  bool places_ring() const { return place_layers > 0 && place_layers < held_layers; }
+  std::int64_t place_layer_start(int L) const { return (places_ring() ? L % place_layers : L) * places(); }
+  std::int32_t place_span() const { return places_ring() ? static_cast<std::int32_t>(2 * place_layers * places()) : 0; }
   // That step's layer stress sums (the sample's walk over Dynamics::place_ends, before the division by
   // a layer's volume), made by a one-thread pass as soon as a layer's places are written, while they are
   // in cache (at 320 000 particles the walk read them back from memory: 12 % of a run). stress_fresh:

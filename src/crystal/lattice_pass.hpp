@@ -125,8 +125,6 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
   double *delta = C.delta.data(), *dissipated = C.dissipated.data();
   double *place_f_x = R.place_f_x.data(), *place_f_y = R.place_f_y.data(), *place_f_z = R.place_f_z.data(),
          *place_arms = R.place_arms.data();
-  const std::int64_t places = R.places();
-  const int ring = R.place_layers < R.held_layers ? LatticeRows::kRingLayers : 0;  // place layer L mod ring
   static thread_local std::vector<double> scratch;
   if (scratch.size() < static_cast<std::size_t>(11 * kD * fs)) scratch.resize(11 * kD * fs);
   double* f = scratch.data();              // this layer's six directions: f + (3 d + c) fs
@@ -173,7 +171,7 @@ void lattice_layers(const Law& law, LatticeRows& R, const LatticeState q, double
         const int a0 = d * fs;
         if constexpr (Arms) {
           const double* fd = out + 3 * d * fs;
-          const std::int64_t g0 = (ring ? L % ring : L) * places + static_cast<std::int64_t>(d) * S;
+          const std::int64_t g0 = R.place_layer_start(L) + static_cast<std::int64_t>(d) * S;
           double *fo_x = place_f_x + g0, *fo_y = place_f_y + g0, *fo_z = place_f_z + g0;
           double* arms = place_arms + 2 * g0;
           const double* rev = reversed + slot0;
@@ -281,7 +279,7 @@ ContactSums lattice_sweep(Dynamics& d, LatticeRows& R, const Law& law, const Con
   if constexpr (Write == ListWrite::forces) R.size_places(ring ? LatticeRows::kRingLayers : held);
   R.stress_fresh = false;
   if (stress) {
-    const LayerLists& ends = d.place_ends(ring ? static_cast<std::int32_t>(2 * LatticeRows::kRingLayers * R.places()) : 0);
+    const LayerLists& ends = d.place_ends(R.place_span());
     R.stress_zz.assign(static_cast<std::size_t>(held), 0.0);
     R.stress_zx.assign(static_cast<std::size_t>(held), 0.0);
     const std::array sums{R.stress_zz.data(), R.stress_zx.data()};
